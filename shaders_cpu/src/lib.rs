@@ -1,0 +1,12 @@
+//! Everything evaluated at a shading point: BSDFs, the sky, sampling warps.
+//!
+//! Pure functions of (inputs, sample) → value/pdf: no scene, no I/O, no threads.
+//!
+//! Direction convention (pbrt's, stated once here): `wo` points toward the
+//! viewer, `wi` toward the light, both away from the surface. BSDFs work in a
+//! local frame whose z axis is the shading normal; `pdf` is per solid angle.
+//! Colours are linear RGB in `glam::Vec3`.
+
+pub mod bsdf;
+pub mod sampling;
+pub mod sky;

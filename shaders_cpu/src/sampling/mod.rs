@@ -1,0 +1,1 @@
+//! Sampling warps, local frames and MIS weights (shaders helper fills in).

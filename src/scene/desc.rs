@@ -1,0 +1,99 @@
+//! Scene descriptions: the TOML scene format, as serde structs that reject
+//! unknown keys. The field docs here are the scene-format manual.
+//!
+//! Units: metres, degrees in files (radians inside), world frame right-handed
+//! with z up. Positions are f64 so a scene may sit far from the origin.
+
+use serde::{Deserialize, Serialize};
+
+/// The stereo rig: left (reference) camera pose, intrinsics, baselines.
+///
+/// Orientation: with yaw = pitch = roll = 0 the camera looks along world +x,
+/// its image x axis points to world −y and its image y axis to world −z.
+/// `yaw_deg` turns the rig counter-clockwise seen from above (about world z),
+/// `pitch_deg` > 0 tilts it down, `roll_deg` > 0 turns it clockwise about the
+/// optical axis as seen from behind the camera.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RigDesc {
+    /// Image width in pixels (default 1600).
+    #[serde(default = "default_width")]
+    pub width: u32,
+    /// Image height in pixels (default 900).
+    #[serde(default = "default_height")]
+    pub height: u32,
+    /// Horizontal field of view in degrees, in (0, 180) (default 60).
+    #[serde(default = "default_hfov")]
+    pub hfov_deg: f64,
+    /// Baselines in centimetres, each > 0 (default 10, 54, 100, 200, 300).
+    #[serde(default = "default_baselines")]
+    pub baselines_cm: Vec<f64>,
+    /// Left camera centre, world metres.
+    pub position: [f64; 3],
+    /// Heading in degrees, counter-clockwise from world +x about world z.
+    #[serde(default)]
+    pub yaw_deg: f64,
+    /// Downward tilt in degrees, in [−90, 90].
+    #[serde(default)]
+    pub pitch_deg: f64,
+    /// Roll about the optical axis in degrees, in [−180, 180].
+    #[serde(default)]
+    pub roll_deg: f64,
+}
+
+/// Render settings.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RenderDesc {
+    /// Samples per pixel per view, ≥ 1 (default 64).
+    #[serde(default = "default_spp")]
+    pub spp: u32,
+    /// Maximum path depth (number of bounces), ≥ 1 (default 8).
+    #[serde(default = "default_max_depth")]
+    pub max_depth: u32,
+    /// Seed of every random stream. Absent: one is drawn and recorded.
+    #[serde(default)]
+    pub seed: Option<u64>,
+}
+
+impl Default for RenderDesc {
+    fn default() -> Self {
+        RenderDesc {
+            spp: default_spp(),
+            max_depth: default_max_depth(),
+            seed: None,
+        }
+    }
+}
+
+fn default_width() -> u32 {
+    1600
+}
+fn default_height() -> u32 {
+    900
+}
+fn default_hfov() -> f64 {
+    60.0
+}
+fn default_baselines() -> Vec<f64> {
+    vec![10.0, 54.0, 100.0, 200.0, 300.0]
+}
+fn default_spp() -> u32 {
+    64
+}
+fn default_max_depth() -> u32 {
+    8
+}
+
+// SceneDesc and the object/material/light/sky descriptions follow (scene helper).
+
+/// A whole scene file (placeholder until the scene format lands).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneDesc {
+    /// The stereo rig.
+    pub camera: RigDesc,
+    /// Render settings.
+    #[serde(default)]
+    pub render: RenderDesc,
+}

@@ -1,0 +1,1 @@
+//! Primitive tessellation (placeholder).

@@ -1,0 +1,1 @@
+//! OBJ import through tobj (placeholder).
