@@ -2,6 +2,11 @@
 //! ground truth. See `../shared/DESIGN.md` for the map of modules.
 
 pub mod accel;
+pub mod camera;
+pub mod film;
 pub mod geometry;
+pub mod integrator;
 pub mod light;
+pub mod render;
+pub mod sampler;
 pub mod scene;

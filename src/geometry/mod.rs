@@ -4,9 +4,13 @@
 //! sits at the origin (STYLE.md rule 6): positions there are small, so f32
 //! traversal keeps its precision kilometres from the world origin.
 
+mod exact;
+mod interaction;
 mod offset;
 
-pub use offset::{offset_ray_origin, position_error};
+pub use exact::{ray_plane_t, ray_sphere_t};
+pub use interaction::{surface_interaction, SurfaceInteraction};
+pub use offset::{gamma, offset_ray_origin, position_error};
 
 use glam::Vec3;
 

@@ -41,3 +41,88 @@ pub enum Light {
         cos_outer: f32,
     },
 }
+
+mod set;
+
+pub use set::{LightSample, LightSet};
+
+use shaders_cpu::sampling::{sample_uniform_cone, uniform_cone_pdf, Frame};
+
+/// Radiance of a uniform sun disk of angular radius `alpha` giving irradiance `e`:
+/// E = L·π·sin²α for a disk seen at normal incidence.
+pub fn sun_radiance(irradiance: Vec3, angular_radius_rad: f32) -> Vec3 {
+    irradiance / (std::f32::consts::PI * angular_radius_rad.sin().powi(2))
+}
+
+/// Direction and radiance of a sample of one explicit light seen from `p`:
+/// (wi, radiance or intensity/d², pdf per solid angle or 1 for delta, distance).
+fn sample_explicit(light: &Light, p: Vec3, u: glam::Vec2) -> Option<(Vec3, Vec3, f32, f32, bool)> {
+    match *light {
+        Light::Sun {
+            dir_to_sun,
+            angular_radius_rad,
+            irradiance,
+        } => {
+            let cos_max = angular_radius_rad.cos();
+            let wi = Frame::from_z(dir_to_sun).from_local(sample_uniform_cone(u, cos_max));
+            let le = sun_radiance(irradiance, angular_radius_rad);
+            Some((wi, le, uniform_cone_pdf(cos_max), f32::INFINITY, false))
+        }
+        Light::Point { p: pl, intensity } => {
+            let d = pl - p;
+            let dist2 = d.length_squared();
+            if dist2 == 0.0 {
+                return None;
+            }
+            let dist = dist2.sqrt();
+            Some((d / dist, intensity / dist2, 1.0, dist, true))
+        }
+        Light::Spot {
+            p: pl,
+            dir,
+            intensity,
+            cos_inner,
+            cos_outer,
+        } => {
+            let d = pl - p;
+            let dist2 = d.length_squared();
+            if dist2 == 0.0 {
+                return None;
+            }
+            let dist = dist2.sqrt();
+            let wi = d / dist;
+            let falloff = spot_falloff(-wi.dot(dir), cos_inner, cos_outer);
+            if falloff == 0.0 {
+                return None;
+            }
+            Some((wi, intensity * falloff / dist2, 1.0, dist, true))
+        }
+    }
+}
+
+/// Smoothstep falloff between the outer (0) and inner (1) cone cosines (pbrt-v4 §12.2.2).
+pub fn spot_falloff(cos_theta: f32, cos_inner: f32, cos_outer: f32) -> f32 {
+    if cos_inner <= cos_outer {
+        return if cos_theta >= cos_outer { 1.0 } else { 0.0 };
+    }
+    let t = ((cos_theta - cos_outer) / (cos_inner - cos_outer)).clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
+/// Emitted power proxy (luminance-weighted) of an explicit light, for selection.
+/// Distant lights use `scene_radius` for the disk they illuminate (pbrt-v4's
+/// `DistantLight::Phi`).
+fn power(light: &Light, scene_radius: f32) -> f32 {
+    use shaders_cpu::sampling::luminance;
+    let pi = std::f32::consts::PI;
+    match *light {
+        Light::Sun { irradiance, .. } => pi * scene_radius * scene_radius * luminance(irradiance),
+        Light::Point { intensity, .. } => 4.0 * pi * luminance(intensity),
+        Light::Spot {
+            intensity,
+            cos_inner,
+            cos_outer,
+            ..
+        } => 2.0 * pi * (1.0 - 0.5 * (cos_inner + cos_outer)) * luminance(intensity),
+    }
+}

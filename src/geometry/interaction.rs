@@ -1,0 +1,110 @@
+//! Turning an accelerator `Hit` into a `SurfaceInteraction` (Mitsuba's
+//! `PreliminaryIntersection` → `SurfaceInteraction3f` split): position with its
+//! f32 error bound, geometric and shading normals, material and labels.
+//!
+//! Normals are render-space (= world orientation) unit vectors; `n_geo` follows
+//! the triangle winding (or points out of a sphere) and is not flipped here.
+
+use glam::{Vec2, Vec3};
+
+use super::offset::{gamma, offset_ray_origin, position_error};
+use super::Ray;
+use crate::accel::Hit;
+use crate::scene::Scene;
+
+/// Everything shading needs to know about a surface point.
+#[derive(Clone, Copy, Debug)]
+pub struct SurfaceInteraction {
+    /// Hit point, render space.
+    pub p: Vec3,
+    /// Conservative absolute error bound of `p` per axis.
+    pub p_error: Vec3,
+    /// Unit geometric normal (winding order / outward for spheres).
+    pub n_geo: Vec3,
+    /// Unit shading normal, on the same side as `n_geo`.
+    pub n_shading: Vec3,
+    /// Texture coordinates (zero when the mesh has none).
+    pub uv: Vec2,
+    /// Material index into `Scene::materials`.
+    pub material: u32,
+    /// Semantic class id.
+    pub semantic: u8,
+    /// Instance id.
+    pub instance: u16,
+}
+
+impl SurfaceInteraction {
+    /// Origin for a ray leaving this point towards `w` (no self-intersection).
+    pub fn spawn_origin(&self, w: Vec3) -> Vec3 {
+        offset_ray_origin(self.p, self.p_error, self.n_geo, w)
+    }
+
+    /// A ray leaving this point towards direction `w`.
+    pub fn spawn_ray(&self, w: Vec3) -> Ray {
+        Ray::new(self.spawn_origin(w), w)
+    }
+
+    /// A shadow ray from this point to `target` (exclusive, by a relative margin).
+    pub fn spawn_ray_to(&self, target: Vec3) -> Ray {
+        let o = self.spawn_origin(target - self.p);
+        Ray::segment(o, target - o, 1.0 - 1e-4)
+    }
+}
+
+/// Builds the interaction for `hit` of `ray` in `scene`.
+pub fn surface_interaction(scene: &Scene, ray: &Ray, hit: &Hit) -> SurfaceInteraction {
+    let geom = hit.geom_id as usize;
+    if geom < scene.meshes.len() {
+        let mesh = &scene.meshes[geom];
+        let tri = mesh.triangles[hit.prim_id as usize];
+        let [i0, i1, i2] = tri.map(|i| i as usize);
+        let p = [mesh.p_f32[i0], mesh.p_f32[i1], mesh.p_f32[i2]];
+        let b = [1.0 - hit.u - hit.v, hit.u, hit.v];
+        let p_hit = p[0] * b[0] + p[1] * b[1] + p[2] * b[2];
+        let n_geo = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or(hit.n_geo.normalize_or(Vec3::Z));
+        let mut n_shading = n_geo;
+        if !mesh.normals.is_empty() {
+            let n = mesh.normals[i0] * b[0] + mesh.normals[i1] * b[1] + mesh.normals[i2] * b[2];
+            if let Some(n) = n.try_normalize() {
+                n_shading = if n.dot(n_geo) < 0.0 { -n } else { n };
+            }
+        }
+        let uv = if mesh.uvs.is_empty() {
+            Vec2::ZERO
+        } else {
+            mesh.uvs[i0] * b[0] + mesh.uvs[i1] * b[1] + mesh.uvs[i2] * b[2]
+        };
+        SurfaceInteraction {
+            p: p_hit,
+            p_error: position_error(b, p),
+            n_geo,
+            n_shading,
+            uv,
+            material: mesh.tri_material[hit.prim_id as usize],
+            semantic: mesh.semantic,
+            instance: mesh.instance,
+        }
+    } else {
+        let s = &scene.spheres[hit.prim_id as usize];
+        let c = scene.spheres_f32[hit.prim_id as usize];
+        let center = c.truncate();
+        // Re-project onto the surface (pbrt-v4 §6.8.5): error ~ gamma(5)·|p|.
+        let mut p = ray.at(hit.t);
+        let n = (p - center).normalize_or(Vec3::Z);
+        p = center + n * c.w;
+        let uv = Vec2::new(
+            0.5 + n.y.atan2(n.x) / std::f32::consts::TAU,
+            n.z.clamp(-1.0, 1.0).acos() / std::f32::consts::PI,
+        );
+        SurfaceInteraction {
+            p,
+            p_error: p.abs() * gamma(5) + Vec3::splat(c.w * gamma(5)),
+            n_geo: n,
+            n_shading: n,
+            uv,
+            material: s.material,
+            semantic: s.semantic,
+            instance: s.instance,
+        }
+    }
+}

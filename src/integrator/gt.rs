@@ -1,0 +1,201 @@
+//! The ground-truth pass: one unjittered ray through every pixel centre of
+//! every view, never filtered (GROUND_TRUTH.md; STYLE.md rule 5).
+//!
+//! Traversal is f32 (8-wide packets along a row); the hit primitive is then
+//! re-intersected in f64 (`geometry::exact`), so depth_z = t along the
+//! camera-z-normalised direction is exact. Disparity d = f·B/Z is computed in
+//! f64 and rounded once. Occlusion for baseline B: the left surface point X
+//! falls outside the right image (x − d < 0) or the segment C_R → X hits
+//! something before X (relative tolerance 1e-4 of |X − C_R|).
+
+use glam::{DVec3, Vec3};
+use rayon::prelude::*;
+
+use super::RenderCamera;
+use crate::accel::{Accel, Hit, Ray};
+use crate::geometry::{ray_plane_t, ray_sphere_t, surface_interaction};
+use crate::scene::{mask_bits, Scene};
+
+/// Semantic class id of sky pixels (the class table in `scene::semantic`).
+pub const SKY_CLASS: u8 = 13;
+
+/// Per-pixel geometry of one view.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ViewGt {
+    /// Image width.
+    pub width: u32,
+    /// Image height.
+    pub height: u32,
+    /// depth_z in f64 (exact); +inf for sky.
+    pub depth_z: Vec<f64>,
+    /// Unit world normals facing the camera (zero for sky).
+    pub normal_world: Vec<Vec3>,
+    /// Semantic class ids (sky class for no hit).
+    pub semantic: Vec<u8>,
+    /// Instance ids (0 = none).
+    pub instance: Vec<u16>,
+    /// Mask bits (GROUND_TRUTH.md: sky, rain, transparent, mirror-like).
+    pub mask: Vec<u8>,
+}
+
+impl ViewGt {
+    /// depth_z rounded to f32 (+inf stays +inf).
+    pub fn depth_z_f32(&self) -> Vec<f32> {
+        self.depth_z.iter().map(|&z| z as f32).collect()
+    }
+
+    /// Disparity f·B/Z in pixels, f64 arithmetic rounded once; 0 for sky.
+    pub fn disparity(&self, f_px: f64, baseline_m: f64) -> Vec<f32> {
+        self.depth_z.iter().map(|&z| disparity_px(f_px, baseline_m, z)).collect()
+    }
+}
+
+/// d = f·B/Z in f64, rounded once to f32; a point at infinity has disparity 0.
+pub fn disparity_px(f_px: f64, baseline_m: f64, depth_z: f64) -> f32 {
+    if depth_z.is_finite() {
+        (f_px * baseline_m / depth_z) as f32
+    } else {
+        0.0
+    }
+}
+
+/// Whether the f64 re-intersection agrees with traversal closely enough to be
+/// the same surface (guards the near-parallel case where it is ill-conditioned).
+fn plausible(t64: f64, t32: f32) -> bool {
+    t64.is_finite() && t64 > 0.0 && (t64 - t32 as f64).abs() <= 1e-3 * t32 as f64 + 1e-3
+}
+
+/// Exact (f64) ray parameter of `hit` for the ray o + t·d.
+pub fn exact_t(scene: &Scene, o: DVec3, d: DVec3, hit: &Hit) -> f64 {
+    let g = hit.geom_id as usize;
+    let t64 = if g < scene.meshes.len() {
+        let m = &scene.meshes[g];
+        let tri = m.triangles[hit.prim_id as usize];
+        ray_plane_t(o, d, tri.map(|i| m.p_render[i as usize]))
+    } else {
+        let s = &scene.spheres[hit.prim_id as usize];
+        ray_sphere_t(o, d, s.center, s.radius, 0.5 * hit.t as f64)
+    };
+    match t64 {
+        Some(t) if plausible(t, hit.t) => t,
+        _ => hit.t as f64,
+    }
+}
+
+/// Traces one row of pixel-centre rays; returns the hits and their exact t.
+fn trace_row(
+    scene: &Scene,
+    accel: &impl Accel,
+    cam: &RenderCamera,
+    j: u32,
+) -> (Vec<Ray>, Vec<Option<Hit>>, Vec<f64>) {
+    let w = cam.intrinsics.width;
+    let o = cam.center_f32();
+    let v = j as f64 + 0.5;
+    let rays: Vec<Ray> = (0..w)
+        .map(|i| Ray::new(o, cam.dir(i as f64 + 0.5, v).as_vec3()))
+        .collect();
+    let mut hits = vec![None; w as usize];
+    accel.intersect_batch(&rays, &mut hits);
+    let depth = hits
+        .iter()
+        .enumerate()
+        .map(|(i, h)| match h {
+            Some(h) => exact_t(scene, cam.center, cam.dir(i as f64 + 0.5, v), h),
+            None => f64::INFINITY,
+        })
+        .collect();
+    (rays, hits, depth)
+}
+
+/// Full per-pixel GT of one view (labels included when `labels` is set).
+pub fn view_gt(scene: &Scene, accel: &impl Accel, cam: &RenderCamera, labels: bool) -> ViewGt {
+    let (w, h) = (cam.intrinsics.width, cam.intrinsics.height);
+    let rows: Vec<_> = (0..h)
+        .into_par_iter()
+        .map(|j| {
+            let (rays, hits, depth) = trace_row(scene, accel, cam, j);
+            let n = w as usize;
+            let (mut normal, mut sem, mut inst, mut mask) = (
+                vec![Vec3::ZERO; if labels { n } else { 0 }],
+                vec![SKY_CLASS; if labels { n } else { 0 }],
+                vec![0u16; if labels { n } else { 0 }],
+                vec![mask_bits::SKY; if labels { n } else { 0 }],
+            );
+            if labels {
+                for i in 0..n {
+                    let Some(hit) = hits[i] else { continue };
+                    let si = surface_interaction(scene, &rays[i], &hit);
+                    let facing = if si.n_shading.dot(rays[i].d) > 0.0 { -1.0 } else { 1.0 };
+                    normal[i] = si.n_shading * facing;
+                    sem[i] = si.semantic;
+                    inst[i] = si.instance;
+                    mask[i] = scene.materials[si.material as usize].mask;
+                }
+            }
+            (depth, normal, sem, inst, mask)
+        })
+        .collect();
+    let mut gt = ViewGt {
+        width: w,
+        height: h,
+        ..Default::default()
+    };
+    for (depth, normal, sem, inst, mask) in rows {
+        gt.depth_z.extend(depth);
+        gt.normal_world.extend(normal);
+        gt.semantic.extend(sem);
+        gt.instance.extend(inst);
+        gt.mask.extend(mask);
+    }
+    gt
+}
+
+/// Left-view occlusion for the right camera `right`: 255 where the left
+/// surface point is outside the right image or hidden from the right camera.
+/// Returns the mask and the number of shadow rays traced.
+pub fn occlusion_mask(
+    accel: &impl Accel,
+    left: &RenderCamera,
+    right: &RenderCamera,
+    left_gt: &ViewGt,
+    baseline_m: f64,
+) -> (Vec<u8>, u64) {
+    let (w, h) = (left.intrinsics.width as usize, left.intrinsics.height);
+    let f = left.intrinsics.f_px;
+    let c_r = right.center;
+    let rows: Vec<(Vec<u8>, u64)> = (0..h)
+        .into_par_iter()
+        .map(|j| {
+            let v = j as f64 + 0.5;
+            let mut occ = vec![0u8; w];
+            let mut rays = Vec::with_capacity(w);
+            let mut idx = Vec::with_capacity(w);
+            for (i, o) in occ.iter_mut().enumerate() {
+                let z = left_gt.depth_z[j as usize * w + i];
+                if !z.is_finite() {
+                    continue;
+                }
+                let x = i as f64 + 0.5;
+                if x - f * baseline_m / z < 0.0 {
+                    *o = 255;
+                    continue;
+                }
+                let p = left.center + left.dir(x, v) * z;
+                let seg = p - c_r;
+                rays.push(Ray::segment(c_r.as_vec3(), seg.as_vec3(), 1.0 - 1e-4));
+                idx.push(i);
+            }
+            let mut blocked = vec![false; rays.len()];
+            accel.occluded_batch(&rays, &mut blocked);
+            for (k, &i) in idx.iter().enumerate() {
+                if blocked[k] {
+                    occ[i] = 255;
+                }
+            }
+            (occ, rays.len() as u64)
+        })
+        .collect();
+    let rays = rows.iter().map(|r| r.1).sum();
+    (rows.into_iter().flat_map(|r| r.0).collect(), rays)
+}

@@ -1,0 +1,43 @@
+//! Integrators: the exact ground-truth pass (`gt`) and the path tracer (`path`).
+//!
+//! Both consume a `RenderCamera` — a camera re-expressed in render space — so
+//! neither ever sees world coordinates.
+
+pub mod gt;
+pub mod path;
+
+use glam::{DMat3, DVec3, Vec3};
+
+use crate::camera::{Camera, Intrinsics};
+
+/// A camera placed in render space (world minus the scene's render origin).
+#[derive(Clone, Copy, Debug)]
+pub struct RenderCamera {
+    /// Intrinsics.
+    pub intrinsics: Intrinsics,
+    /// Rotation camera → render (= world) orientation.
+    pub render_from_camera: DMat3,
+    /// Camera centre in render space, f64.
+    pub center: DVec3,
+}
+
+impl RenderCamera {
+    /// Expresses `camera` relative to `origin_world`.
+    pub fn new(camera: &Camera, origin_world: DVec3) -> Self {
+        RenderCamera {
+            intrinsics: camera.intrinsics,
+            render_from_camera: camera.world_from_camera,
+            center: camera.center_world - origin_world,
+        }
+    }
+
+    /// Render-space direction through image point (u, v), with camera z = 1.
+    pub fn dir(&self, u: f64, v: f64) -> DVec3 {
+        self.render_from_camera * self.intrinsics.dir_cam(u, v)
+    }
+
+    /// The camera centre rounded to f32, as ray origin for traversal.
+    pub fn center_f32(&self) -> Vec3 {
+        self.center.as_vec3()
+    }
+}

@@ -1,0 +1,172 @@
+//! Unidirectional path tracing with next-event estimation and multiple
+//! importance sampling (power heuristic, Veach 1997 §9.2), Russian roulette,
+//! and error-bounded secondary-ray origins (pbrt-v4 `PathIntegrator`, §13.4).
+//!
+//! Every random number comes from the pixel's `SampleStream`; each bounce
+//! starts at a fixed dimension so the streams of different bounces never shift.
+//! `max_depth` counts scattering events: 1 is direct lighting only.
+
+use glam::Vec3;
+use shaders_cpu::bsdf::Bsdf;
+use shaders_cpu::sampling::{power_heuristic, Frame};
+
+use crate::accel::{Accel, Ray};
+use crate::geometry::surface_interaction;
+use crate::light::LightSet;
+use crate::sampler::SampleStream;
+use crate::scene::Scene;
+
+/// Dimensions reserved per bounce (light choice 1, light 2, lobe 1, BSDF 2, RR 1).
+const DIMS_PER_BOUNCE: u32 = 8;
+/// Dimensions used by the camera before the first bounce (pixel jitter).
+pub const CAMERA_DIMS: u32 = 2;
+/// Bounces before Russian roulette may end a path.
+const RR_START: u32 = 3;
+
+/// Scene, accelerator and lights: what a path needs to see.
+pub struct PathContext<'a, A: Accel> {
+    /// The frame's scene.
+    pub scene: &'a Scene,
+    /// Its accelerator.
+    pub accel: &'a A,
+    /// Its lights.
+    pub lights: &'a LightSet,
+    /// Maximum number of scattering events.
+    pub max_depth: u32,
+}
+
+/// Reflection-only BSDFs see both faces of a surface the same way.
+fn is_two_sided(bsdf: &Bsdf) -> bool {
+    !matches!(bsdf, Bsdf::Dielectric { .. })
+}
+
+impl<A: Accel> PathContext<'_, A> {
+    /// Radiance arriving along `ray` (unit direction); adds traced rays to `rays`.
+    pub fn li(&self, mut ray: Ray, stream: &mut SampleStream, rays: &mut u64) -> Vec3 {
+        let scene = self.scene;
+        let mut l = Vec3::ZERO;
+        let mut beta = Vec3::ONE;
+        let mut prev_pdf = 0.0f32;
+        let mut prev_delta = true;
+        let mut prev_p = ray.o;
+        let mut bounces = 0u32;
+        loop {
+            *rays += 1;
+            let Some(hit) = self.accel.intersect(&ray) else {
+                l += beta * self.escaped(ray.d, prev_pdf, prev_delta);
+                break;
+            };
+            let mut si = surface_interaction(scene, &ray, &hit);
+            let wo = -ray.d;
+            let mat = &scene.materials[si.material as usize];
+            let front = wo.dot(si.n_geo) > 0.0;
+            if mat.le != Vec3::ZERO && (front || mat.two_sided_emission) {
+                let w = if prev_delta {
+                    1.0
+                } else {
+                    let pdf_l = self.lights.pdf_triangle(scene, hit.geom_id, hit.prim_id, prev_p, si.p, si.n_geo);
+                    power_heuristic(1.0, prev_pdf, 1.0, pdf_l)
+                };
+                l += beta * mat.le * w;
+            }
+            if bounces == self.max_depth {
+                break;
+            }
+            let bsdf = mat.bsdf;
+            if is_two_sided(&bsdf) && !front {
+                si.n_geo = -si.n_geo;
+                si.n_shading = -si.n_shading;
+            }
+            let frame = Frame::from_z(si.n_shading);
+            let wo_local = frame.to_local(wo);
+            stream.set_dimension(CAMERA_DIMS + bounces * DIMS_PER_BOUNCE);
+            let u_light = stream.next_1d();
+            let u_light2 = stream.next_2d();
+            if !bsdf.is_delta() {
+                l += beta * self.direct(&si, &bsdf, &frame, wo_local, u_light, u_light2, rays);
+            }
+            let u_lobe = stream.next_1d();
+            let u_bsdf = stream.next_2d();
+            let Some(bs) = bsdf.sample(wo_local, u_lobe, u_bsdf) else { break };
+            if bs.pdf <= 0.0 {
+                break;
+            }
+            let wi = frame.from_local(bs.wi);
+            // Reflection-only surfaces must not send light through the geometry.
+            if is_two_sided(&bsdf) && wi.dot(si.n_geo) <= 0.0 {
+                break;
+            }
+            beta *= bs.f * bs.wi.z.abs() / bs.pdf;
+            if !beta.is_finite() || beta == Vec3::ZERO {
+                break;
+            }
+            prev_pdf = bs.pdf;
+            prev_delta = bs.delta;
+            prev_p = si.p;
+            bounces += 1;
+            if bounces >= RR_START {
+                let q = (1.0 - beta.max_element()).clamp(0.0, 0.95);
+                if stream.next_1d() < q {
+                    break;
+                }
+                beta /= 1.0 - q;
+            }
+            ray = si.spawn_ray(wi);
+        }
+        l
+    }
+
+    /// Sky and sun radiance for an escaping direction, MIS-weighted against NEE.
+    fn escaped(&self, d: Vec3, prev_pdf: f32, prev_delta: bool) -> Vec3 {
+        let sky = self.scene.sky.le(d);
+        let sun = self.lights.sun_le(d);
+        if prev_delta {
+            return sky + sun;
+        }
+        let (pdf_sky, pdf_sun) = self.lights.pdf_infinite(self.scene, d);
+        sky * power_heuristic(1.0, prev_pdf, 1.0, pdf_sky) + sun * power_heuristic(1.0, prev_pdf, 1.0, pdf_sun)
+    }
+
+    /// Next-event estimation: one light sample, shadow-tested, MIS-weighted.
+    #[allow(clippy::too_many_arguments)]
+    fn direct(
+        &self,
+        si: &crate::geometry::SurfaceInteraction,
+        bsdf: &Bsdf,
+        frame: &Frame,
+        wo_local: Vec3,
+        u_select: f32,
+        u: glam::Vec2,
+        rays: &mut u64,
+    ) -> Vec3 {
+        let Some(ls) = self.lights.sample(self.scene, si.p, u_select, u) else {
+            return Vec3::ZERO;
+        };
+        if ls.pdf <= 0.0 || ls.li == Vec3::ZERO {
+            return Vec3::ZERO;
+        }
+        if is_two_sided(bsdf) && ls.wi.dot(si.n_geo) <= 0.0 {
+            return Vec3::ZERO;
+        }
+        let wi_local = frame.to_local(ls.wi);
+        let f = bsdf.eval(wo_local, wi_local) * wi_local.z.abs();
+        if f == Vec3::ZERO {
+            return Vec3::ZERO;
+        }
+        let shadow = if ls.dist.is_finite() {
+            si.spawn_ray_to(si.p + ls.wi * ls.dist)
+        } else {
+            si.spawn_ray(ls.wi)
+        };
+        *rays += 1;
+        if self.accel.occluded(&shadow) {
+            return Vec3::ZERO;
+        }
+        let w = if ls.delta {
+            1.0
+        } else {
+            power_heuristic(1.0, ls.pdf, 1.0, bsdf.pdf(wo_local, wi_local))
+        };
+        f * ls.li * (w / ls.pdf)
+    }
+}

@@ -1,0 +1,192 @@
+//! `render_frame`: one frame, every view, as data (DESIGN.md "One frame, as
+//! data"; modelled on pbrt-v4's `RenderCPU` as one linear set-up).
+//!
+//! The geometry is built once and shared by every view. The ground-truth pass
+//! runs first and independently of the path pass, so nothing the path pass
+//! does (jitter, noise) can touch it. Views: 0 = left, 1 + b = right camera of
+//! baseline b; each has its own sample stream.
+
+use std::time::Instant;
+
+use glam::Vec3;
+use rayon::prelude::*;
+
+use crate::accel::Accel;
+use crate::camera::StereoRig;
+use crate::film::Film;
+use crate::integrator::gt::{occlusion_mask, view_gt, ViewGt};
+use crate::integrator::path::PathContext;
+use crate::integrator::RenderCamera;
+use crate::light::LightSet;
+use crate::sampler::{SampleStream, StreamKey};
+use crate::scene::Scene;
+
+/// What to render.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RenderSettings {
+    /// Samples per pixel per view (0 skips the path pass: ground truth only).
+    pub spp: u32,
+    /// Maximum scattering events per path.
+    pub max_depth: u32,
+    /// Seed of every stream.
+    pub seed: u64,
+    /// Frame index (part of every stream key).
+    pub frame: u32,
+}
+
+/// Ground truth for one baseline.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct BaselineGt {
+    /// Baseline in metres.
+    pub baseline_m: f64,
+    /// Left-view disparity f·B/Z (px).
+    pub disparity_left: Vec<f32>,
+    /// Right-view depth_z (m, +inf sky).
+    pub depth_right: Vec<f32>,
+    /// Right-view disparity (px): a right pixel at x lands at x + d in the left image.
+    pub disparity_right: Vec<f32>,
+    /// Left-view occlusion mask, 255 = occluded.
+    pub occlusion: Vec<u8>,
+}
+
+/// Everything one frame produces.
+#[derive(Clone, Debug)]
+pub struct FrameOutput {
+    /// Left-view ground truth.
+    pub left: ViewGt,
+    /// Per-baseline ground truth, in rig order.
+    pub baselines: Vec<BaselineGt>,
+    /// Linear radiance per view (empty when spp = 0).
+    pub images: Vec<Film>,
+    /// Exposure scale computed from the left view, shared by all views.
+    pub exposure_scale: f32,
+    /// Statistics.
+    pub stats: RenderStats,
+}
+
+/// Work done for a frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RenderStats {
+    /// Rays traced by the ground-truth pass (primary + occlusion).
+    pub gt_rays: u64,
+    /// Rays traced by the path pass (closest-hit + any-hit).
+    pub path_rays: u64,
+    /// Camera samples taken by the path pass.
+    pub samples: u64,
+    /// Seconds in the ground-truth pass.
+    pub gt_seconds: f64,
+    /// Seconds in the path pass.
+    pub path_seconds: f64,
+}
+
+/// Renders one frame of `scene` (built around the rig's left camera) from every view.
+pub fn render_frame(
+    scene: &Scene,
+    accel: &impl Accel,
+    rig: &StereoRig,
+    settings: &RenderSettings,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> FrameOutput {
+    let cams: Vec<RenderCamera> = rig
+        .views()
+        .iter()
+        .map(|c| RenderCamera::new(c, scene.origin_world))
+        .collect();
+    let f_px = rig.left.intrinsics.f_px;
+    let n_views = cams.len();
+    let mut stats = RenderStats::default();
+
+    let t0 = Instant::now();
+    let left = view_gt(scene, accel, &cams[0], true);
+    stats.gt_rays += left.depth_z.len() as u64;
+    let mut baselines = Vec::with_capacity(rig.baselines_m.len());
+    for (b, &baseline_m) in rig.baselines_m.iter().enumerate() {
+        let right = view_gt(scene, accel, &cams[1 + b], false);
+        let (occlusion, occ_rays) = occlusion_mask(accel, &cams[0], &cams[1 + b], &left, baseline_m);
+        stats.gt_rays += right.depth_z.len() as u64 + occ_rays;
+        baselines.push(BaselineGt {
+            baseline_m,
+            disparity_left: left.disparity(f_px, baseline_m),
+            depth_right: right.depth_z_f32(),
+            disparity_right: right.disparity(f_px, baseline_m),
+            occlusion,
+        });
+    }
+    stats.gt_seconds = t0.elapsed().as_secs_f64();
+
+    let t1 = Instant::now();
+    let mut images = Vec::new();
+    if settings.spp > 0 {
+        let lights = LightSet::build(scene);
+        let ctx = PathContext {
+            scene,
+            accel,
+            lights: &lights,
+            max_depth: settings.max_depth,
+        };
+        for (view, cam) in cams.iter().enumerate() {
+            progress(view, n_views);
+            let key = StreamKey {
+                seed: settings.seed,
+                frame: settings.frame,
+                view: view as u32,
+            };
+            let (film, rays) = render_view(&ctx, cam, key, settings.spp);
+            stats.path_rays += rays;
+            stats.samples += cam.intrinsics.width as u64 * cam.intrinsics.height as u64 * settings.spp as u64;
+            images.push(film);
+        }
+        progress(n_views, n_views);
+    }
+    stats.path_seconds = t1.elapsed().as_secs_f64();
+    let exposure_scale = images.first().map_or(1.0, crate::film::auto_exposure);
+    FrameOutput {
+        left,
+        baselines,
+        images,
+        exposure_scale,
+        stats,
+    }
+}
+
+/// Path-traces one view; pixels are independent, so any thread count gives the same film.
+fn render_view<A: Accel>(ctx: &PathContext<'_, A>, cam: &RenderCamera, key: StreamKey, spp: u32) -> (Film, u64) {
+    let (w, h) = (cam.intrinsics.width, cam.intrinsics.height);
+    let o = cam.center_f32();
+    let rows: Vec<(Vec<Vec3>, u64)> = (0..h)
+        .into_par_iter()
+        .map(|j| {
+            let mut rays = 0u64;
+            let row = (0..w)
+                .map(|i| {
+                    let mut sum = Vec3::ZERO;
+                    for s in 0..spp {
+                        let mut stream = SampleStream::new(key, i, j, s);
+                        let jitter = stream.next_2d();
+                        let d = cam
+                            .dir(i as f64 + jitter.x as f64, j as f64 + jitter.y as f64)
+                            .as_vec3()
+                            .normalize();
+                        let li = ctx.li(crate::accel::Ray::new(o, d), &mut stream, &mut rays);
+                        // A non-finite sample would poison the pixel: drop it.
+                        if li.is_finite() {
+                            sum += li;
+                        }
+                    }
+                    sum / spp as f32
+                })
+                .collect();
+            (row, rays)
+        })
+        .collect();
+    let rays = rows.iter().map(|r| r.1).sum();
+    let rgb = rows.into_iter().flat_map(|r| r.0).collect();
+    (
+        Film {
+            width: w,
+            height: h,
+            rgb,
+        },
+        rays,
+    )
+}
