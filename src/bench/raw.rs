@@ -1,0 +1,103 @@
+//! Raw traversal throughput of an accelerator with no shading at all: the
+//! ceiling the renderer is measured against. Incoherent rays start at the
+//! primary hit points and head in uniformly distributed directions.
+
+use std::time::Instant;
+
+use glam::Vec3;
+use rayon::prelude::*;
+
+use crate::accel::{Accel, Hit, Ray};
+use crate::camera::StereoRig;
+use crate::geometry::surface_interaction;
+use crate::integrator::RenderCamera;
+use crate::sampler::mix64;
+use crate::scene::Scene;
+
+/// Raw traversal rates, Mrays/s.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct RawThroughput {
+    /// Primary rays one at a time.
+    pub primary_single_mrays: f64,
+    /// Primary rays in 8-wide packets along rows.
+    pub primary_packet_mrays: f64,
+    /// Incoherent closest-hit rays.
+    pub incoherent_closest_mrays: f64,
+    /// Incoherent any-hit rays.
+    pub incoherent_any_mrays: f64,
+}
+
+fn rate(rays: usize, f: impl FnOnce()) -> f64 {
+    let t = Instant::now();
+    f();
+    rays as f64 / t.elapsed().as_secs_f64().max(1e-9) / 1e6
+}
+
+fn unit_from_hash(h: u64) -> Vec3 {
+    let u = (h >> 40) as f32 / (1u64 << 24) as f32;
+    let v = ((h >> 16) & 0xff_ffff) as f32 / (1u64 << 24) as f32;
+    let z = 1.0 - 2.0 * u;
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    let phi = std::f32::consts::TAU * v;
+    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+}
+
+/// Measures raw rates on the left camera's primary rays and their bounces.
+pub fn raw_throughput(accel: &impl Accel, scene: &Scene, rig: &StereoRig) -> RawThroughput {
+    let cam = RenderCamera::new(&rig.left, scene.origin_world);
+    let (w, h) = (cam.intrinsics.width as usize, cam.intrinsics.height as usize);
+    let o = cam.center_f32();
+    let rows: Vec<Vec<Ray>> = (0..h)
+        .map(|j| {
+            (0..w)
+                .map(|i| Ray::new(o, cam.dir(i as f64 + 0.5, j as f64 + 0.5).as_vec3()))
+                .collect()
+        })
+        .collect();
+    let n = w * h;
+    let mut out = RawThroughput {
+        primary_single_mrays: rate(n, || {
+            rows.par_iter().for_each(|row| {
+                for r in row {
+                    std::hint::black_box(accel.intersect(r));
+                }
+            })
+        }),
+        ..Default::default()
+    };
+    let mut hits: Vec<Vec<Option<Hit>>> = vec![vec![None; w]; h];
+    out.primary_packet_mrays = rate(n, || {
+        rows.par_iter()
+            .zip(hits.par_iter_mut())
+            .for_each(|(row, hit)| accel.intersect_batch(row, hit))
+    });
+    let secondary: Vec<Ray> = rows
+        .iter()
+        .zip(&hits)
+        .flat_map(|(row, hit)| row.iter().zip(hit))
+        .enumerate()
+        .filter_map(|(k, (r, h))| {
+            let si = surface_interaction(scene, r, h.as_ref()?);
+            Some(si.spawn_ray(unit_from_hash(mix64(k as u64))))
+        })
+        .collect();
+    if secondary.is_empty() {
+        return out;
+    }
+    let m = secondary.len();
+    out.incoherent_closest_mrays = rate(m, || {
+        secondary.par_chunks(1024).for_each(|c| {
+            for r in c {
+                std::hint::black_box(accel.intersect(r));
+            }
+        })
+    });
+    out.incoherent_any_mrays = rate(m, || {
+        secondary.par_chunks(1024).for_each(|c| {
+            for r in c {
+                std::hint::black_box(accel.occluded(r));
+            }
+        })
+    });
+    out
+}

@@ -1,0 +1,74 @@
+//! `parallax bench [SCENE.toml | MESH.obj]`: throughput against raw traversal.
+
+use std::path::PathBuf;
+
+use clap::Args;
+
+use super::{show, thread_pool, CliError};
+use crate::accel::Backend;
+use crate::bench::{bench_scene_from_obj, run_bench, BenchSettings};
+use crate::scene::load_scene;
+
+/// Arguments of `parallax bench`.
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    /// A scene description (.toml) or a plain OBJ mesh (default: scenes/street.toml).
+    pub input: Option<PathBuf>,
+    /// Camera file for an OBJ (the shared benchmark's camera.json format).
+    #[arg(long)]
+    pub camera: Option<PathBuf>,
+    /// Worker threads.
+    #[arg(long, default_value_t = 2)]
+    pub threads: usize,
+    /// Samples per pixel of the path pass.
+    #[arg(long, default_value_t = 1)]
+    pub spp: u32,
+    /// Maximum path depth.
+    #[arg(long, default_value_t = 5)]
+    pub max_depth: u32,
+    /// Image width override.
+    #[arg(long)]
+    pub width: Option<u32>,
+    /// Image height override.
+    #[arg(long)]
+    pub height: Option<u32>,
+    /// Traversal backend: embree or bvh.
+    #[arg(long, default_value_t = Backend::default_backend())]
+    pub backend: Backend,
+}
+
+/// Runs `parallax bench`.
+pub fn run(a: BenchArgs) -> Result<(), CliError> {
+    let input = a.input.clone().unwrap_or_else(|| PathBuf::from("scenes/street.toml"));
+    let is_obj = input.extension().is_some_and(|e| e.eq_ignore_ascii_case("obj"));
+    let mut loaded = if is_obj {
+        let camera = match &a.camera {
+            Some(p) => Some(crate::bench::scene::read_obj_camera(p).map_err(|e| CliError::input(e.to_string()))?),
+            None => None,
+        };
+        bench_scene_from_obj(&input, camera.as_ref())
+    } else {
+        load_scene(&input)
+    }
+    .map_err(|e| CliError::input(e.to_string()))?;
+    if let Some(w) = a.width {
+        loaded.desc.camera.width = w;
+    }
+    if let Some(h) = a.height {
+        loaded.desc.camera.height = h;
+    }
+    if a.spp == 0 || a.max_depth == 0 || a.threads == 0 {
+        return Err(CliError::input("--spp, --max-depth and --threads must be at least 1"));
+    }
+    let settings = BenchSettings {
+        spp: a.spp,
+        max_depth: a.max_depth,
+        backend: a.backend,
+    };
+    let pool = thread_pool(a.threads)?;
+    let report = pool
+        .install(|| run_bench(&loaded, &settings))
+        .map_err(|e| CliError::failure(format!("{}: {e}", show(&input))))?;
+    println!("{}", report.render_text(a.threads));
+    Ok(())
+}

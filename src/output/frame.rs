@@ -1,0 +1,166 @@
+//! Writes one rendered frame in the native layout of DATASET.md: lossless
+//! PNG images, EXR depth and normals, PFM disparities, PNG labels and masks, and
+//! the camera JSON. Every file is written atomically (temporary name, rename).
+
+use std::path::{Path, PathBuf};
+
+use serde::Serialize;
+
+use super::{
+    write_exr_f32_gray, write_exr_rgb_f32, write_json, write_pfm_gray, write_png_gray16, write_png_gray8,
+    write_png_rgb8, NativeLayout, OutputError,
+};
+use crate::camera::{Camera, StereoRig};
+use crate::film::tonemap_to_srgb8;
+use crate::render::FrameOutput;
+
+/// Per-frame metadata written to `cameras/NNNNNN.json`.
+#[derive(Clone, Debug, Serialize)]
+pub struct CameraFile {
+    /// Image width, pixels.
+    pub width: u32,
+    /// Image height, pixels.
+    pub height: u32,
+    /// Intrinsic matrix K (row-major), pixels.
+    pub k: [[f64; 3]; 3],
+    /// Focal length, pixels.
+    pub f_px: f64,
+    /// World-from-camera pose of the left camera (row-major 4×4, OpenCV camera frame).
+    pub left_pose: [[f64; 4]; 4],
+    /// One entry per baseline.
+    pub right: Vec<RightCamera>,
+    /// Exposure scale applied to linear radiance before the tone curve.
+    pub exposure_scale: f32,
+    /// Exposure in EV (log2 of the scale).
+    pub exposure_ev: f32,
+    /// Seed of every random stream of this frame.
+    pub seed: u64,
+    /// Frame index.
+    pub frame: u32,
+    /// Samples per pixel per view.
+    pub spp: u32,
+    /// Maximum path depth.
+    pub max_depth: u32,
+    /// Semantic class table: (name, id).
+    pub semantic_classes: Vec<(String, u8)>,
+    /// Conventions, spelled out for readers of the file.
+    pub conventions: &'static str,
+}
+
+/// One right camera in the metadata.
+#[derive(Clone, Debug, Serialize)]
+pub struct RightCamera {
+    /// Baseline, metres.
+    pub baseline_m: f64,
+    /// Directory name (`baseline_XXX`).
+    pub dir: String,
+    /// World-from-camera pose (row-major 4×4).
+    pub pose: [[f64; 4]; 4],
+}
+
+/// Conventions string stored in every camera file.
+pub const CONVENTIONS: &str = "world: right-handed, z up, metres; camera: OpenCV (x right, y down, z forward); \
+pixel (i,j) centre at (i+0.5, j+0.5); depth_z along the optical axis, +inf for sky; \
+disparity = f*B/Z px (left pixel x lands at x-d in the right image; right pixel x at x+d in the left); \
+occlusion 255 = occluded; mask bits: 1 sky, 2 rain, 4 transparent, 8 mirror-like";
+
+fn pose_of(c: &Camera) -> [[f64; 4]; 4] {
+    c.pose_matrix()
+}
+
+/// Options for writing a frame.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct WriteOptions {
+    /// Also write linear HDR radiance EXRs for every view.
+    pub hdr: bool,
+}
+
+/// Writes every file of `out` for frame `frame` below `root`; returns the paths written.
+pub fn write_native_frame(
+    root: &Path,
+    frame: u32,
+    rig: &StereoRig,
+    out: &FrameOutput,
+    meta: CameraFile,
+    opts: WriteOptions,
+) -> Result<Vec<PathBuf>, OutputError> {
+    let layout = NativeLayout::new(root);
+    let (w, h) = (rig.left.intrinsics.width, rig.left.intrinsics.height);
+    let mut written = Vec::new();
+    let mut put = |p: PathBuf, r: Result<(), OutputError>| -> Result<(), OutputError> {
+        r?;
+        written.push(p);
+        Ok(())
+    };
+    let depth = out.left.depth_z_f32();
+    let p = layout.left_depth(frame);
+    put(p.clone(), write_exr_f32_gray(&p, w, h, &depth))?;
+    let p = layout.left_normal(frame);
+    put(p.clone(), write_exr_rgb_f32(&p, w, h, &out.left.normal_world))?;
+    let p = layout.left_semantic(frame);
+    put(p.clone(), write_png_gray8(&p, w, h, &out.left.semantic))?;
+    let p = layout.left_instance(frame);
+    put(p.clone(), write_png_gray16(&p, w, h, &out.left.instance))?;
+    let p = layout.left_mask(frame);
+    put(p.clone(), write_png_gray8(&p, w, h, &out.left.mask))?;
+    for (b, gt) in out.baselines.iter().enumerate() {
+        let cm = rig.baseline_cm(b);
+        let p = layout.baseline_disp(frame, cm);
+        put(p.clone(), write_pfm_gray(&p, w, h, &gt.disparity_left))?;
+        let p = layout.baseline_depth_right(frame, cm);
+        put(p.clone(), write_exr_f32_gray(&p, w, h, &gt.depth_right))?;
+        let p = layout.baseline_disp_right(frame, cm);
+        put(p.clone(), write_pfm_gray(&p, w, h, &gt.disparity_right))?;
+        let p = layout.baseline_occ(frame, cm);
+        put(p.clone(), write_png_gray8(&p, w, h, &gt.occlusion))?;
+    }
+    for (view, film) in out.images.iter().enumerate() {
+        let srgb = tonemap_to_srgb8(film, out.exposure_scale);
+        let p = if view == 0 {
+            layout.left_rgb(frame)
+        } else {
+            layout.baseline_rgb(frame, rig.baseline_cm(view - 1))
+        };
+        put(p.clone(), write_png_rgb8(&p, w, h, &srgb))?;
+        if opts.hdr {
+            let p = if view == 0 {
+                layout.left_rgb_hdr(frame)
+            } else {
+                layout.baseline_rgb_hdr(frame, rig.baseline_cm(view - 1))
+            };
+            put(p.clone(), write_exr_rgb_f32(&p, w, h, &film.rgb))?;
+        }
+    }
+    let p = layout.camera_json(frame);
+    put(p.clone(), write_json(&p, &meta))?;
+    Ok(written)
+}
+
+/// Builds the camera metadata of a frame.
+pub fn camera_file(rig: &StereoRig, out: &FrameOutput, seed: u64, frame: u32, spp: u32, max_depth: u32) -> CameraFile {
+    CameraFile {
+        width: rig.left.intrinsics.width,
+        height: rig.left.intrinsics.height,
+        k: rig.left.intrinsics.k_matrix(),
+        f_px: rig.left.intrinsics.f_px,
+        left_pose: pose_of(&rig.left),
+        right: (0..rig.baselines_m.len())
+            .map(|b| RightCamera {
+                baseline_m: rig.baselines_m[b],
+                dir: format!("baseline_{:03}", rig.baseline_cm(b)),
+                pose: pose_of(&rig.right(b)),
+            })
+            .collect(),
+        exposure_scale: out.exposure_scale,
+        exposure_ev: out.exposure_scale.log2(),
+        seed,
+        frame,
+        spp,
+        max_depth,
+        semantic_classes: crate::scene::semantic::CLASSES
+            .iter()
+            .map(|(n, id)| (n.to_string(), *id))
+            .collect(),
+        conventions: CONVENTIONS,
+    }
+}
