@@ -1,0 +1,229 @@
+//! Bad input through the real binary: one case per class of the scene
+//! contract. Each must exit non-zero (2) before rendering, print a message
+//! naming the file and the key, line or argument, and leave no output behind.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+const GOOD: &str = r#"
+[camera]
+width = 32
+height = 24
+position = [0.0, 0.0, 1.65]
+[render]
+spp = 1
+seed = 1
+[sky]
+kind = "constant"
+le = [1.0, 1.0, 1.0]
+[[material]]
+name = "grey"
+kind = "diffuse"
+albedo = [0.5, 0.5, 0.5]
+[[object]]
+kind = "box"
+size = [1.0, 1.0, 1.0]
+material = "grey"
+transform = { translate = [5.0, 0.0, 1.0] }
+"#;
+
+struct Case {
+    dir: tempfile::TempDir,
+}
+
+impl Case {
+    fn new() -> Self {
+        Case {
+            dir: tempfile::tempdir().unwrap(),
+        }
+    }
+    fn file(&self, name: &str, text: &str) -> PathBuf {
+        let p = self.dir.path().join(name);
+        std::fs::write(&p, text).unwrap();
+        p
+    }
+    fn out(&self) -> PathBuf {
+        self.dir.path().join("out")
+    }
+    /// Runs `parallax render SCENE -o out ARGS`; returns stderr after checking
+    /// the exit code and that nothing was written.
+    fn fails(&self, scene: &Path, args: &[&str], needles: &[&str]) -> String {
+        let o = Command::new(env!("CARGO_BIN_EXE_parallax"))
+            .arg("render")
+            .arg(scene)
+            .arg("-o")
+            .arg(self.out())
+            .args(args)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr).to_string();
+        assert_eq!(o.status.code(), Some(2), "exit code; stderr: {err}");
+        assert!(!self.out().exists(), "output directory was created");
+        for n in needles {
+            assert!(err.contains(n), "message lacks {n:?}: {err}");
+        }
+        err
+    }
+}
+
+fn with(replace: &str, by: &str) -> String {
+    assert!(GOOD.contains(replace));
+    GOOD.replacen(replace, by, 1)
+}
+
+#[test]
+fn good_scene_renders_every_native_file() {
+    let c = Case::new();
+    let s = c.file("good.toml", GOOD);
+    let o = Command::new(env!("CARGO_BIN_EXE_parallax"))
+        .args(["render", s.to_str().unwrap(), "-o", c.out().to_str().unwrap(), "--baselines", "10,54"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("Mrays/s") && stdout.contains("backend"), "{stdout}");
+    for f in [
+        "left/rgb/000000.png",
+        "left/depth/000000.exr",
+        "left/normal/000000.exr",
+        "left/semantic/000000.png",
+        "left/instance/000000.png",
+        "left/mask/000000.png",
+        "baseline_010/rgb/000000.png",
+        "baseline_054/disp/000000.pfm",
+        "baseline_054/depth_right/000000.exr",
+        "baseline_054/disp_right/000000.pfm",
+        "baseline_054/occ/000000.png",
+        "cameras/000000.json",
+    ] {
+        assert!(c.out().join(f).is_file(), "missing {f}");
+    }
+}
+
+#[test]
+fn missing_scene_file_is_named() {
+    let c = Case::new();
+    c.fails(&c.dir.path().join("nope.toml"), &[], &["nope.toml"]);
+}
+
+#[test]
+fn toml_syntax_error_names_the_line() {
+    let c = Case::new();
+    let s = c.file("syntax.toml", &with("spp = 1", "spp = = 1"));
+    c.fails(&s, &[], &["syntax.toml", "line"]);
+}
+
+#[test]
+fn unknown_key_is_named() {
+    let c = Case::new();
+    let s = c.file("unknown.toml", &with("spp = 1", "spp = 1\nsamples_per_pixle = 4"));
+    c.fails(&s, &[], &["unknown.toml", "samples_per_pixle"]);
+}
+
+#[test]
+fn wrong_type_names_the_key() {
+    let c = Case::new();
+    let s = c.file("type.toml", &with("spp = 1", "spp = \"many\""));
+    c.fails(&s, &[], &["type.toml", "spp"]);
+}
+
+#[test]
+fn out_of_range_values_name_the_key() {
+    for (from, to, key) in [
+        ("width = 32", "width = 32\nbaselines_cm = [10.0, -54.0]", "baselines_cm"),
+        ("width = 32", "width = 32\nhfov_deg = 180.0", "hfov_deg"),
+        ("width = 32", "width = 0", "width"),
+        ("spp = 1", "spp = 0", "spp"),
+        ("size = [1.0, 1.0, 1.0]", "size = [1.0, -1.0, 1.0]", "size"),
+    ] {
+        let c = Case::new();
+        let s = c.file("range.toml", &with(from, to));
+        c.fails(&s, &[], &["range.toml", key]);
+    }
+}
+
+#[test]
+fn unknown_material_is_named() {
+    let c = Case::new();
+    let s = c.file("mat.toml", &with("material = \"grey\"", "material = \"gold_leaf\""));
+    c.fails(&s, &[], &["mat.toml", "gold_leaf"]);
+}
+
+fn obj_scene(c: &Case, obj: &str) -> PathBuf {
+    c.file("mesh.obj", obj);
+    c.file(
+        "obj.toml",
+        &with(
+            "kind = \"box\"\nsize = [1.0, 1.0, 1.0]",
+            "kind = \"obj\"\nfile = \"mesh.obj\"",
+        ),
+    )
+}
+
+#[test]
+fn obj_with_non_finite_coordinates_is_refused() {
+    let c = Case::new();
+    let s = obj_scene(&c, "v 0 0 0\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n");
+    c.fails(&s, &[], &["mesh.obj"]);
+}
+
+#[test]
+fn obj_with_absurd_coordinates_is_refused() {
+    let c = Case::new();
+    let s = obj_scene(&c, "v 0 0 0\nv 1e12 0 0\nv 0 1 0\nf 1 2 3\n");
+    c.fails(&s, &[], &["mesh.obj"]);
+}
+
+#[test]
+fn obj_with_bad_indices_is_refused() {
+    let c = Case::new();
+    let s = obj_scene(&c, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
+    c.fails(&s, &[], &["mesh.obj"]);
+}
+
+#[test]
+fn degenerate_or_empty_obj_is_refused() {
+    let c = Case::new();
+    let s = obj_scene(&c, "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
+    c.fails(&s, &[], &["mesh.obj"]);
+    let c = Case::new();
+    let s = obj_scene(&c, "# nothing here\n");
+    c.fails(&s, &[], &["mesh.obj"]);
+}
+
+#[test]
+fn resolution_that_cannot_fit_in_memory_is_refused_before_allocating() {
+    let c = Case::new();
+    let s = c.file("huge.toml", &with("width = 32\nheight = 24", "width = 200000\nheight = 100000"));
+    c.fails(&s, &[], &["huge.toml"]);
+}
+
+#[test]
+fn triangle_count_that_cannot_fit_is_refused_before_allocating() {
+    let c = Case::new();
+    let s = c.file(
+        "tris.toml",
+        &with(
+            "transform = { translate = [5.0, 0.0, 1.0] }",
+            "transform = { translate = [5.0, 0.0, 1.0] }\nrepeat = [{ count = 100000, offset = [1.0, 0.0, 0.0] }, { count = 100000, offset = [0.0, 1.0, 0.0] }]",
+        ),
+    );
+    c.fails(&s, &[], &["tris.toml", "triangle"]);
+}
+
+#[test]
+fn bad_arguments_are_named() {
+    let c = Case::new();
+    let s = c.file("good.toml", GOOD);
+    c.fails(&s, &["--spp", "0"], &["--spp"]);
+    c.fails(&s, &["--baselines", "10,-3"], &["baseline"]);
+    c.fails(&s, &["--width", "0"], &["--width"]);
+    c.fails(&s, &["--height", "900000", "--width", "900000"], &["height"]);
+}
+
+#[test]
+fn scene_without_light_is_refused() {
+    let c = Case::new();
+    let s = c.file("dark.toml", &with("le = [1.0, 1.0, 1.0]", "le = [0.0, 0.0, 0.0]"));
+    c.fails(&s, &[], &["dark.toml", "light"]);
+}

@@ -1,0 +1,54 @@
+//! Shared set-up for integration tests: inline scenes, one-call frame renders.
+#![allow(dead_code)]
+
+use std::path::Path;
+
+use parallax::accel::{build_accel, AnyAccel, Backend};
+use parallax::camera::StereoRig;
+use parallax::render::{render_frame, FrameOutput, RenderSettings};
+use parallax::scene::{build_scene, parse_scene_str, LoadedScene, Scene};
+
+/// Parses an inline scene (OBJ paths resolve against `tests/`).
+pub fn scene_from_toml(text: &str) -> LoadedScene {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/inline.toml");
+    parse_scene_str(text, &path).unwrap_or_else(|e| panic!("inline scene: {e}"))
+}
+
+/// Everything of one rendered frame.
+pub struct Rendered {
+    pub rig: StereoRig,
+    pub scene: Scene,
+    pub accel: AnyAccel,
+    pub out: FrameOutput,
+}
+
+/// Builds and renders `loaded` with `spp` samples (0 = ground truth only).
+pub fn render(loaded: &LoadedScene, backend: Backend, spp: u32) -> Rendered {
+    let rig = StereoRig::from_desc(&loaded.desc.camera);
+    let scene = build_scene(loaded, rig.left.center_world).expect("scene builds");
+    let accel = build_accel(backend, &scene.accel_geometry()).expect("accel builds");
+    let settings = RenderSettings {
+        spp,
+        max_depth: loaded.desc.render.max_depth,
+        seed: loaded.desc.render.seed.unwrap_or(1),
+        frame: 0,
+    };
+    let out = render_frame(&scene, &accel, &rig, &settings, &|_, _| {});
+    Rendered { rig, scene, accel, out }
+}
+
+/// A camera block for a level rig at `position` looking along +x.
+pub fn camera_block(width: u32, height: u32, position: [f64; 3]) -> String {
+    format!(
+        "[camera]\nwidth = {width}\nheight = {height}\nhfov_deg = 60.0\nposition = [{:?}, {:?}, {:?}]\n",
+        position[0], position[1], position[2]
+    )
+}
+
+/// Mean and standard error of a sample.
+pub fn mean_stderr(v: &[f64]) -> (f64, f64) {
+    let n = v.len() as f64;
+    let mean = v.iter().sum::<f64>() / n;
+    let var = v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0);
+    (mean, (var / n).sqrt())
+}

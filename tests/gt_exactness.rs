@@ -1,0 +1,209 @@
+//! Ground-truth exactness on analytic scenes at full 1600×900 for every default
+//! baseline (GROUND_TRUTH.md "Exactness, as tests check it"):
+//! |Z − Z*| ≤ 1e-5·Z*, |d − d*| ≤ 1e-5·d* + 1e-6, sky = +inf and 0.
+//! Expected values are derived here independently of the renderer: for a level
+//! rig looking along +x the ray through (u, v) is (1, −(u−cx)/f, −(v−cy)/f).
+
+mod common;
+
+use common::{camera_block, render, scene_from_toml, Rendered};
+use glam::DVec3;
+use parallax::accel::Backend;
+
+const W: u32 = 1600;
+const H: u32 = 900;
+
+fn f_px() -> f64 {
+    800.0 / (30f64.to_radians()).tan()
+}
+
+/// World direction with camera-z component 1 for a level rig looking along +x.
+fn dir(i: u32, j: u32) -> DVec3 {
+    let f = f_px();
+    DVec3::new(1.0, -((i as f64 + 0.5) - 800.0) / f, -((j as f64 + 0.5) - 450.0) / f)
+}
+
+/// Checks every pixel of the left view and of every right view against
+/// `z_true(camera_centre, i, j)` (None = sky).
+fn check_all(r: &Rendered, z_true: impl Fn(DVec3, u32, u32) -> Option<f64>) {
+    let f = f_px();
+    let c_left = r.rig.left.center_world;
+    let mut worst = 0.0f64;
+    let left32 = r.out.left.depth_z_f32();
+    for j in 0..H {
+        for i in 0..W {
+            let k = (j * W + i) as usize;
+            let z = r.out.left.depth_z[k];
+            match z_true(c_left, i, j) {
+                None => {
+                    assert!(z.is_infinite() && z > 0.0, "pixel ({i},{j}) should be sky, got {z}");
+                    for b in &r.out.baselines {
+                        assert_eq!(b.disparity_left[k], 0.0);
+                    }
+                }
+                Some(zt) => {
+                    let rel = (z - zt).abs() / zt;
+                    worst = worst.max(rel);
+                    assert!(rel <= 1e-5, "pixel ({i},{j}): Z {z} vs {zt}");
+                    let z32 = left32[k] as f64;
+                    assert!((z32 - zt).abs() <= 1e-5 * zt);
+                    for b in &r.out.baselines {
+                        let dt = f * b.baseline_m / zt;
+                        let d = b.disparity_left[k] as f64;
+                        assert!((d - dt).abs() <= 1e-5 * dt + 1e-6, "pixel ({i},{j}) B={}: d {d} vs {dt}", b.baseline_m);
+                    }
+                }
+            }
+            for (bi, b) in r.out.baselines.iter().enumerate() {
+                let c_right = r.rig.right(bi).center_world;
+                match z_true(c_right, i, j) {
+                    None => assert!(b.depth_right[k].is_infinite() && b.disparity_right[k] == 0.0),
+                    Some(zt) => {
+                        let zr = b.depth_right[k] as f64;
+                        assert!((zr - zt).abs() <= 1e-5 * zt, "right ({i},{j}) B={}: {zr} vs {zt}", b.baseline_m);
+                        let dt = f * b.baseline_m / zt;
+                        let d = b.disparity_right[k] as f64;
+                        assert!((d - dt).abs() <= 1e-5 * dt + 1e-6);
+                    }
+                }
+            }
+        }
+    }
+    eprintln!("worst relative depth error {worst:e}");
+}
+
+const LIGHTS: &str = r#"
+[sky]
+kind = "constant"
+le = [1.0, 1.0, 1.0]
+[[material]]
+name = "grey"
+kind = "diffuse"
+albedo = [0.5, 0.5, 0.5]
+"#;
+
+fn fronto_plane(offset: DVec3) -> Rendered {
+    let c = DVec3::new(0.0, 0.0, 1.65) + offset;
+    let text = format!(
+        "{}{LIGHTS}\n[[object]]\nkind = \"quad\"\nsize = [400.0, 400.0]\nmaterial = \"grey\"\ntransform = {{ translate = [{:?}, {:?}, {:?}], rotate_deg = [0.0, -90.0, 0.0] }}\n",
+        camera_block(W, H, c.to_array()),
+        c.x + 10.0,
+        c.y,
+        c.z
+    );
+    render(&scene_from_toml(&text), Backend::default_backend(), 0)
+}
+
+#[test]
+fn depth_and_disparity_exact_on_fronto_parallel_plane() {
+    let r = fronto_plane(DVec3::ZERO);
+    // The plane x = 10 m ahead: Z = 10 − (C.x − 0) for every camera (right cameras share x).
+    check_all(&r, |c, _, _| Some(10.0 - (c.x - r.rig.left.center_world.x)));
+}
+
+#[test]
+fn depth_and_disparity_exact_far_from_the_origin() {
+    let offset = DVec3::new(2.0e5, -1.5e5, 30.0);
+    let r = fronto_plane(offset);
+    check_all(&r, |c, _, _| Some(10.0 - (c.x - r.rig.left.center_world.x)));
+}
+
+#[test]
+fn depth_and_disparity_exact_on_tilted_plane() {
+    // Plane through P0 = (12, 0, 1.65) with normal n (tilted 35° about z and 20° up).
+    let n = DVec3::new(-(35f64.to_radians().cos()), 35f64.to_radians().sin(), 0.3).normalize();
+    let p0 = DVec3::new(12.0, 0.0, 1.65);
+    // quad normal +z rotated: rotate about y then z to match n.
+    let elev = n.z.asin();
+    let az = n.y.atan2(n.x);
+    let text = format!(
+        "{}{LIGHTS}\n[[object]]\nkind = \"quad\"\nsize = [600.0, 600.0]\nmaterial = \"grey\"\ntransform = {{ translate = [12.0, 0.0, 1.65], rotate_deg = [0.0, {:?}, {:?}] }}\n",
+        camera_block(W, H, [0.0, 0.0, 1.65]),
+        90.0 - elev.to_degrees(),
+        az.to_degrees()
+    );
+    let r = render(&scene_from_toml(&text), Backend::default_backend(), 0);
+    check_all(&r, |c, i, j| {
+        let d = dir(i, j);
+        let t = n.dot(p0 - c) / n.dot(d);
+        (t > 0.0).then_some(t)
+    });
+}
+
+#[test]
+fn depth_and_disparity_exact_on_analytic_sphere() {
+    let center = DVec3::new(15.0, 1.0, 2.0);
+    let radius = 4.0;
+    let text = format!(
+        "{}{LIGHTS}\n[[object]]\nkind = \"sphere\"\nradius = {radius:?}\nmaterial = \"grey\"\ntransform = {{ translate = [15.0, 1.0, 2.0] }}\n",
+        camera_block(W, H, [0.0, 0.0, 1.65])
+    );
+    let r = render(&scene_from_toml(&text), Backend::default_backend(), 0);
+    check_all(&r, |c, i, j| {
+        // Textbook quadratic a t² + b t + c = 0 (independent of the renderer's form).
+        let d = dir(i, j);
+        let oc = c - center;
+        let (a, b, cc) = (d.dot(d), 2.0 * oc.dot(d), oc.dot(oc) - radius * radius);
+        let disc = b * b - 4.0 * a * cc;
+        (disc >= 0.0).then(|| (-b - disc.sqrt()) / (2.0 * a)).filter(|&t| t > 0.0)
+    });
+}
+
+/// Slab test in f64: entry parameter of ray c + t·d into an axis-aligned box.
+fn slab(c: DVec3, d: DVec3, lo: DVec3, hi: DVec3) -> Option<f64> {
+    let (mut t0, mut t1) = (0.0f64, f64::INFINITY);
+    for a in 0..3 {
+        let (ta, tb) = ((lo[a] - c[a]) / d[a], (hi[a] - c[a]) / d[a]);
+        t0 = t0.max(ta.min(tb));
+        t1 = t1.min(ta.max(tb));
+    }
+    (t0 <= t1 && t0 > 0.0).then_some(t0)
+}
+
+pub const BOXES: [([f64; 3], [f64; 3]); 3] = [
+    ([8.0, -1.0, 1.0], [1.0, 1.5, 2.0]),
+    ([14.0, 2.5, 2.0], [3.0, 2.0, 4.0]),
+    ([25.0, -4.0, 3.0], [2.0, 6.0, 6.0]),
+];
+
+pub fn boxes_scene(width: u32, height: u32) -> String {
+    let mut text = camera_block(width, height, [0.0, 0.0, 1.65]) + LIGHTS;
+    for (c, s) in BOXES {
+        text += &format!(
+            "\n[[object]]\nkind = \"box\"\nsize = [{:?}, {:?}, {:?}]\nmaterial = \"grey\"\ntransform = {{ translate = [{:?}, {:?}, {:?}] }}\n",
+            s[0], s[1], s[2], c[0], c[1], c[2]
+        );
+    }
+    text
+}
+
+#[test]
+fn depth_and_disparity_exact_on_boxes() {
+    let r = render(&scene_from_toml(&boxes_scene(W, H)), Backend::default_backend(), 0);
+    check_all(&r, |c, i, j| {
+        let d = dir(i, j);
+        BOXES
+            .iter()
+            .filter_map(|(ctr, s)| {
+                let (ctr, h) = (DVec3::from_array(*ctr), DVec3::from_array(*s) * 0.5);
+                slab(c, d, ctr - h, ctr + h)
+            })
+            .min_by(|a, b| a.total_cmp(b))
+    });
+}
+
+#[test]
+fn road_plane_to_the_horizon_is_exact_and_sky_is_infinite() {
+    let text = format!(
+        "{}{LIGHTS}\n[[object]]\nkind = \"quad\"\nsize = [40000.0, 40000.0]\nmaterial = \"grey\"\nsemantic = \"road\"\n",
+        camera_block(W, H, [0.0, 0.0, 1.65])
+    );
+    let r = render(&scene_from_toml(&text), Backend::default_backend(), 0);
+    check_all(&r, |c, i, j| {
+        let d = dir(i, j);
+        (d.z < 0.0).then(|| c.z / -d.z)
+    });
+    // Sky pixels carry the sky mask bit; road pixels the road class.
+    assert_eq!(r.out.left.mask[0] & 1, 1);
+    assert_eq!(r.out.left.semantic[(W * (H - 1)) as usize], 1);
+}
