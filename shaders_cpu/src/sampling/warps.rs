@@ -148,10 +148,27 @@ mod tests {
     #[test]
     fn warp_pdfs_integrate_to_one() {
         let cos = sphere_integral(|w| cosine_hemisphere_pdf(w.z));
-        let hemi = sphere_integral(|w| if w.z > 0.0 { uniform_hemisphere_pdf() } else { 0.0 });
+        let hemi = sphere_integral(|w| {
+            if w.z > 0.0 {
+                uniform_hemisphere_pdf()
+            } else {
+                0.0
+            }
+        });
         let sph = sphere_integral(|_| uniform_sphere_pdf());
-        let cone = sphere_integral(|w| if w.z > 0.5 { uniform_cone_pdf(0.5) } else { 0.0 });
-        for (name, v) in [("cos", cos), ("hemi", hemi), ("sphere", sph), ("cone", cone)] {
+        let cone = sphere_integral(|w| {
+            if w.z > 0.5 {
+                uniform_cone_pdf(0.5)
+            } else {
+                0.0
+            }
+        });
+        for (name, v) in [
+            ("cos", cos),
+            ("hemi", hemi),
+            ("sphere", sph),
+            ("cone", cone),
+        ] {
             assert!((v - 1.0).abs() < 2e-3, "{name}: {v}");
         }
     }
