@@ -10,3 +10,4 @@
 pub mod bsdf;
 pub mod sampling;
 pub mod sky;
+pub mod stats;

@@ -138,7 +138,11 @@ mod tests {
             sum += s.le(Vec3::new(r, 0.0, z));
         }
         let mean = sum / n as f32;
-        assert!((mean - s.mean_le()).length() < 1e-3, "{mean} vs {}", s.mean_le());
+        assert!(
+            (mean - s.mean_le()).length() < 1e-3,
+            "{mean} vs {}",
+            s.mean_le()
+        );
         assert!((Sky::Constant { le: Vec3::ONE }.luminance_avg() - 1.0).abs() < 1e-6);
     }
 }
