@@ -8,6 +8,7 @@
 mod chi2;
 mod gamma;
 mod pcg;
+mod quadrature;
 
 pub use chi2::{chi2_test, chi2_test_with, sidak_threshold, Chi2Config, Chi2Result};
 pub use gamma::{chi2_sf, ln_gamma, regularized_gamma_p, regularized_gamma_q};
