@@ -131,7 +131,7 @@ pub fn sample(
 
 /// Wraps a rough sample, rejecting degenerate pdfs.
 fn finish(wi: Vec3, f: Vec3, pdf: f32) -> Option<BsdfSample> {
-    if !(pdf > 0.0 && pdf.is_finite()) || !f.is_finite() {
+    if !(pdf > 0.0 && pdf.is_finite() && f.is_finite()) {
         return None;
     }
     Some(BsdfSample {

@@ -96,7 +96,7 @@ pub fn chi2_test_with(
 ) -> Chi2Result {
     let (nc, np) = (config.n_theta, config.n_phi);
     let mut observed = vec![0u64; nc * np];
-    let mut rng = Pcg32::new(config.seed, 0xc41_2);
+    let mut rng = Pcg32::new(config.seed, 0xc412);
     let (mut valid, mut outliers) = (0usize, 0usize);
     for _ in 0..config.n_samples {
         let u = rng.next_vec2();
