@@ -1,4 +1,5 @@
-//! Everything evaluated at a shading point: BSDFs, the sky, sampling warps.
+//! Everything evaluated at a shading point: BSDFs, the sky, sampling warps,
+//! plus `stats`, the chi-square harness their tests (and the renderer's) use.
 //!
 //! Pure functions of (inputs, sample) → value/pdf: no scene, no I/O, no threads.
 //!
@@ -7,6 +8,9 @@
 //! local frame whose z axis is the shading normal; `pdf` is per solid angle.
 //! Colours are linear RGB in `glam::Vec3`.
 
+#![warn(missing_docs)]
+
 pub mod bsdf;
 pub mod sampling;
 pub mod sky;
+pub mod stats;

@@ -1,5 +1,20 @@
-//! BSDFs in the local shading frame (z = shading normal). API contract only;
-//! implementations live in the per-family files.
+//! BSDFs in the local shading frame (z = shading normal), radiance transport.
+//!
+//! This file is the contract (pbrt-v4 `base/bxdf.h` style); each family lives in
+//! its own file: `lambert` (pbrt-v4 §9.2), `conductor` (§9.4, §9.6),
+//! `dielectric` (§9.5, §9.7), with `microfacet` (GGX, §9.6) and `fresnel`
+//! (§9.3). `eval` is f without the cosine; `pdf` is per solid angle; a delta
+//! sample carries f = (specular weight)/|cosθi| so f·|cosθi|/pdf is the weight.
+
+pub mod fresnel;
+pub mod microfacet;
+
+mod conductor;
+mod dielectric;
+mod lambert;
+mod presets;
+
+pub use presets::roughness_to_alpha;
 
 use glam::{Vec2, Vec3};
 
@@ -14,6 +29,17 @@ pub struct BsdfSample {
     pub pdf: f32,
     /// Whether the sample came from a delta (perfectly specular) lobe.
     pub delta: bool,
+}
+
+impl BsdfSample {
+    /// Throughput weight f·|cosθi|/pdf (zero if the pdf is zero).
+    pub fn weight(&self) -> Vec3 {
+        if self.pdf > 0.0 {
+            self.f * (self.wi.z.abs() / self.pdf)
+        } else {
+            Vec3::ZERO
+        }
+    }
 }
 
 /// The closed set of scattering models.
@@ -47,19 +73,48 @@ pub enum Bsdf {
 
 impl Bsdf {
     /// f(wo, wi), local frame (zero for delta lobes).
-    pub fn eval(&self, _wo: Vec3, _wi: Vec3) -> Vec3 {
-        unimplemented!("shaders helper")
+    pub fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        match *self {
+            Bsdf::Lambert { albedo } => lambert::eval(albedo, wo, wi),
+            Bsdf::Conductor { eta, k, alpha } => conductor::eval(eta, k, alpha, wo, wi),
+            Bsdf::Dielectric { eta, alpha, tint } => dielectric::eval(eta, alpha, tint, wo, wi),
+        }
     }
     /// Pdf per solid angle of sampling `wi` given `wo` (zero for delta lobes).
-    pub fn pdf(&self, _wo: Vec3, _wi: Vec3) -> f32 {
-        unimplemented!("shaders helper")
+    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        match *self {
+            Bsdf::Lambert { .. } => lambert::pdf(wo, wi),
+            Bsdf::Conductor { alpha, .. } => conductor::pdf(alpha, wo, wi),
+            Bsdf::Dielectric { eta, alpha, .. } => dielectric::pdf(eta, alpha, wo, wi),
+        }
     }
     /// Samples `wi` given `wo`, a lobe-selection number and a 2D sample.
-    pub fn sample(&self, _wo: Vec3, _u_lobe: f32, _u: Vec2) -> Option<BsdfSample> {
-        unimplemented!("shaders helper")
+    pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        match *self {
+            Bsdf::Lambert { albedo } => lambert::sample(albedo, wo, u),
+            Bsdf::Conductor { eta, k, alpha } => conductor::sample(eta, k, alpha, wo, u),
+            Bsdf::Dielectric { eta, alpha, tint } => {
+                dielectric::sample(eta, alpha, tint, wo, u_lobe, u)
+            }
+        }
     }
     /// Whether every lobe is a delta (eval and pdf are then always zero).
     pub fn is_delta(&self) -> bool {
-        unimplemented!("shaders helper")
+        match *self {
+            Bsdf::Lambert { .. } => false,
+            Bsdf::Conductor { alpha, .. } => {
+                microfacet::TrowbridgeReitz::new(alpha).effectively_smooth()
+            }
+            Bsdf::Dielectric { eta, alpha, .. } => dielectric::is_delta(eta, alpha),
+        }
+    }
+    /// A rough colour for debug views: Lambert albedo, a conductor's normal-
+    /// incidence reflectance F0, a dielectric's tint.
+    pub fn albedo_hint(&self) -> Vec3 {
+        match *self {
+            Bsdf::Lambert { albedo } => albedo,
+            Bsdf::Conductor { eta, k, .. } => fresnel::fr_complex_rgb(1.0, eta, k),
+            Bsdf::Dielectric { tint, .. } => tint,
+        }
     }
 }

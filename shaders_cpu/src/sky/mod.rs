@@ -1,6 +1,15 @@
 //! Environment radiance for rays leaving the scene (world directions, z up).
+//!
+//! `Gradient` interpolates linearly in elevation: t = elevation / (π/2) =
+//! asin(z)·2/π, L = lerp(horizon, zenith, t) for z ≥ 0 and `ground` below.
+//! Sampling (see `sampling.rs`) mixes a cosine lobe about +z with the uniform
+//! sphere, so the pdf is positive wherever `le` can be.
 
+mod sampling;
+
+use crate::sampling::luminance;
 use glam::{Vec2, Vec3};
+use std::f32::consts::FRAC_2_PI;
 
 /// A simple analytic sky (the physical atmosphere is a later addition).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -23,15 +32,117 @@ pub enum Sky {
 
 impl Sky {
     /// Radiance arriving from world direction `dir` (unit, z up).
-    pub fn le(&self, _dir: Vec3) -> Vec3 {
-        unimplemented!("shaders helper")
+    pub fn le(&self, dir: Vec3) -> Vec3 {
+        match *self {
+            Sky::Constant { le } => le,
+            Sky::Gradient {
+                zenith,
+                horizon,
+                ground,
+            } => {
+                if dir.z < 0.0 {
+                    ground
+                } else {
+                    let t = dir.z.min(1.0).asin() * FRAC_2_PI;
+                    horizon.lerp(zenith, t)
+                }
+            }
+        }
     }
     /// Samples a world direction; returns (dir, radiance, pdf per solid angle).
-    pub fn sample(&self, _u: Vec2) -> (Vec3, Vec3, f32) {
-        unimplemented!("shaders helper")
+    pub fn sample(&self, u: Vec2) -> (Vec3, Vec3, f32) {
+        let dir = sampling::sample_dir(self.cosine_lobe_prob(), u);
+        (dir, self.le(dir), self.pdf(dir))
     }
     /// Pdf per solid angle of `sample` producing `dir`.
-    pub fn pdf(&self, _dir: Vec3) -> f32 {
-        unimplemented!("shaders helper")
+    pub fn pdf(&self, dir: Vec3) -> f32 {
+        sampling::dir_pdf(self.cosine_lobe_prob(), dir)
+    }
+    /// Mean radiance over the sphere, (1/4π)∫ le dω, per channel (closed form).
+    pub fn mean_le(&self) -> Vec3 {
+        match *self {
+            Sky::Constant { le } => le,
+            Sky::Gradient {
+                zenith,
+                horizon,
+                ground,
+            } => {
+                // Upper hemisphere: 2π ∫₀¹ lerp(h, z, asin(z)·2/π) dz with
+                // ∫₀¹ asin z dz = π/2 − 1, so the zenith weight is 1 − 2/π.
+                let wz = 1.0 - FRAC_2_PI;
+                let upper = horizon * (1.0 - wz) + zenith * wz;
+                (upper + ground) * 0.5
+            }
+        }
+    }
+    /// Luminance of [`Sky::mean_le`] (Rec.709 Y), e.g. for exposure hints.
+    pub fn luminance_avg(&self) -> f32 {
+        luminance(self.mean_le())
+    }
+    /// Probability of drawing from the cosine lobe about +z: 0 for a constant
+    /// sky (uniform sphere is exact), else 0.8 × the upper hemisphere's share
+    /// of the power, so the uniform-sphere part always keeps pdf > 0.
+    fn cosine_lobe_prob(&self) -> f32 {
+        match *self {
+            Sky::Constant { .. } => 0.0,
+            Sky::Gradient {
+                zenith,
+                horizon,
+                ground,
+            } => {
+                let up = luminance((zenith + horizon) * 0.5).max(0.0);
+                let down = luminance(ground).max(0.0);
+                if up + down > 0.0 {
+                    0.8 * up / (up + down)
+                } else {
+                    0.0
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn gradient() -> Sky {
+        Sky::Gradient {
+            zenith: Vec3::new(0.2, 0.4, 1.0),
+            horizon: Vec3::new(0.8, 0.9, 1.0),
+            ground: Vec3::new(0.1, 0.1, 0.1),
+        }
+    }
+
+    #[test]
+    fn gradient_hits_its_end_points() {
+        let s = gradient();
+        assert!((s.le(Vec3::Z) - Vec3::new(0.2, 0.4, 1.0)).length() < 1e-6);
+        assert!((s.le(Vec3::X) - Vec3::new(0.8, 0.9, 1.0)).length() < 1e-6);
+        assert_eq!(s.le(Vec3::new(0.0, 0.6, -0.8)), Vec3::splat(0.1));
+        // 30° elevation is a third of the way up.
+        let d = Vec3::new(0.866_025_4, 0.0, 0.5);
+        let expect = Vec3::new(0.8, 0.9, 1.0).lerp(Vec3::new(0.2, 0.4, 1.0), 1.0 / 3.0);
+        assert!((s.le(d) - expect).length() < 1e-5);
+    }
+
+    #[test]
+    fn mean_le_matches_quadrature() {
+        let s = gradient();
+        let n = 2000;
+        let mut sum = Vec3::ZERO;
+        for i in 0..n {
+            // φ-symmetric: integrate over z ∈ [-1, 1] only (dω = dz dφ).
+            let z = -1.0 + 2.0 * (i as f32 + 0.5) / n as f32;
+            let r = (1.0 - z * z).sqrt();
+            sum += s.le(Vec3::new(r, 0.0, z));
+        }
+        let mean = sum / n as f32;
+        assert!(
+            (mean - s.mean_le()).length() < 1e-3,
+            "{mean} vs {}",
+            s.mean_le()
+        );
+        assert!((Sky::Constant { le: Vec3::ONE }.luminance_avg() - 1.0).abs() < 1e-6);
     }
 }
