@@ -2,6 +2,8 @@
 //! ground truth. See `../shared/DESIGN.md` for the map of modules.
 
 pub mod accel;
+pub mod film;
 pub mod geometry;
 pub mod light;
+pub mod output;
 pub mod scene;
