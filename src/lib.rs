@@ -2,11 +2,14 @@
 //! ground truth. See `../shared/DESIGN.md` for the map of modules.
 
 pub mod accel;
+pub mod bench;
 pub mod camera;
+pub mod cli;
 pub mod film;
 pub mod geometry;
 pub mod integrator;
 pub mod light;
+pub mod output;
 pub mod render;
 pub mod sampler;
 pub mod scene;

@@ -1,16 +1,79 @@
-//! TEMPORARY stub (replaced by the film helper's module at merge).
+//! Film: the per-view linear HDR radiance buffer, the frame's shared exposure,
+//! the fixed tone curve to 8-bit sRGB, and the AOV vocabulary.
+//!
+//! Conventions: pixels are row-major, pixel (column i, row j) at `j * width + i`,
+//! row 0 at the top of the image. Radiance is linear, in the renderer's
+//! radiometric units; only the tone-mapping step turns it into display values.
+//! Exposure is computed once per frame from the LEFT view and applied to every
+//! view, so a surface has the same brightness in both images (GROUND_TRUTH.md).
+
+mod aov;
+mod exposure;
+mod tone;
+
+pub use aov::{
+    Aov, MASK_MIRROR, MASK_RAIN, MASK_SKY, MASK_TRANSPARENT, OCCLUSION_OCCLUDED, OCCLUSION_VISIBLE,
+};
+pub use exposure::{
+    auto_exposure, exposure_ev, luminance_rec709, EXPOSURE_EV_MAX, EXPOSURE_FLOOR_FRACTION,
+    MIDDLE_GREY,
+};
+pub use tone::{quantize_u8, srgb_oetf, tone_curve_aces, tonemap_to_srgb8};
+
 use glam::Vec3;
-/// Linear radiance film.
-#[derive(Clone, Debug)]
+
+/// Linear HDR radiance of one view, one `Vec3` (linear Rec.709 RGB) per pixel.
+#[derive(Clone, Debug, PartialEq)]
 pub struct Film {
-    /// Width.
-    pub width: u32,
-    /// Height.
-    pub height: u32,
-    /// Pixels.
+    /// Width in pixels.
+    pub width: usize,
+    /// Height in pixels.
+    pub height: usize,
+    /// Row-major radiance, `rgb[j * width + i]` for column i, row j (row 0 on top).
     pub rgb: Vec<Vec3>,
 }
-/// Exposure.
-pub fn auto_exposure(_f: &Film) -> f32 {
-    1.0
+
+impl Film {
+    /// A black film of `width × height` pixels.
+    pub fn new(width: usize, height: usize) -> Film {
+        Film {
+            width,
+            height,
+            rgb: vec![Vec3::ZERO; width * height],
+        }
+    }
+
+    /// A film filled with one radiance value (used by tests and calibration).
+    pub fn uniform(width: usize, height: usize, rgb: Vec3) -> Film {
+        Film {
+            width,
+            height,
+            rgb: vec![rgb; width * height],
+        }
+    }
+
+    /// Index into `rgb` of column `i`, row `j`. Precondition: `i < width`, `j < height`.
+    #[inline]
+    pub fn index(&self, i: usize, j: usize) -> usize {
+        debug_assert!(i < self.width && j < self.height);
+        j * self.width + i
+    }
+
+    /// Radiance at column `i`, row `j`.
+    #[inline]
+    pub fn get(&self, i: usize, j: usize) -> Vec3 {
+        self.rgb[self.index(i, j)]
+    }
+
+    /// Sets the radiance at column `i`, row `j`.
+    #[inline]
+    pub fn set(&mut self, i: usize, j: usize, rgb: Vec3) {
+        let k = self.index(i, j);
+        self.rgb[k] = rgb;
+    }
+
+    /// Number of pixels, `width * height`.
+    pub fn pixel_count(&self) -> usize {
+        self.width * self.height
+    }
 }

@@ -8,7 +8,7 @@ use serde::Serialize;
 
 use super::{
     write_exr_f32_gray, write_exr_rgb_f32, write_json, write_pfm_gray, write_png_gray16, write_png_gray8,
-    write_png_rgb8, NativeLayout, OutputError,
+    write_png_rgb8, NativeLayout,
 };
 use crate::camera::{Camera, StereoRig};
 use crate::film::tonemap_to_srgb8;
@@ -83,11 +83,11 @@ pub fn write_native_frame(
     out: &FrameOutput,
     meta: CameraFile,
     opts: WriteOptions,
-) -> Result<Vec<PathBuf>, OutputError> {
+) -> std::io::Result<Vec<PathBuf>> {
     let layout = NativeLayout::new(root);
-    let (w, h) = (rig.left.intrinsics.width, rig.left.intrinsics.height);
+    let (w, h) = (rig.left.intrinsics.width as usize, rig.left.intrinsics.height as usize);
     let mut written = Vec::new();
-    let mut put = |p: PathBuf, r: Result<(), OutputError>| -> Result<(), OutputError> {
+    let mut put = |p: PathBuf, r: std::io::Result<()>| -> std::io::Result<()> {
         r?;
         written.push(p);
         Ok(())
@@ -104,7 +104,7 @@ pub fn write_native_frame(
     let p = layout.left_mask(frame);
     put(p.clone(), write_png_gray8(&p, w, h, &out.left.mask))?;
     for (b, gt) in out.baselines.iter().enumerate() {
-        let cm = rig.baseline_cm(b);
+        let cm = rig.baselines_m[b] * 100.0;
         let p = layout.baseline_disp(frame, cm);
         put(p.clone(), write_pfm_gray(&p, w, h, &gt.disparity_left))?;
         let p = layout.baseline_depth_right(frame, cm);
@@ -119,14 +119,14 @@ pub fn write_native_frame(
         let p = if view == 0 {
             layout.left_rgb(frame)
         } else {
-            layout.baseline_rgb(frame, rig.baseline_cm(view - 1))
+            layout.baseline_rgb(frame, rig.baselines_m[view - 1] * 100.0)
         };
         put(p.clone(), write_png_rgb8(&p, w, h, &srgb))?;
         if opts.hdr {
             let p = if view == 0 {
                 layout.left_rgb_hdr(frame)
             } else {
-                layout.baseline_rgb_hdr(frame, rig.baseline_cm(view - 1))
+                layout.baseline_rgb_hdr(frame, rig.baselines_m[view - 1] * 100.0)
             };
             put(p.clone(), write_exr_rgb_f32(&p, w, h, &film.rgb))?;
         }

@@ -183,8 +183,8 @@ fn render_view<A: Accel>(ctx: &PathContext<'_, A>, cam: &RenderCamera, key: Stre
     let rgb = rows.into_iter().flat_map(|r| r.0).collect();
     (
         Film {
-            width: w,
-            height: h,
+            width: w as usize,
+            height: h as usize,
             rgb,
         },
         rays,

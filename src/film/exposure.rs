@@ -1,0 +1,86 @@
+//! Automatic exposure: one scale factor per frame, computed from the LEFT view
+//! and applied to every view of the frame.
+//!
+//! Reinhard et al. 2002, "Photographic Tone Reproduction for Digital Images",
+//! §2 eq. 1–2: the log-average luminance L̄ = exp(mean(ln(δ + L))) is mapped to
+//! the key value a = 0.18 (middle grey), scale = a / L̄. Here δ is not an
+//! absolute constant but a floor relative to the 99th-percentile luminance, so
+//! the exposure is exactly scale-invariant (k·film gets scale/k) and a uniform
+//! film of any level maps to 0.18. Luminance is Rec.709 (ITU-R BT.709 Y).
+
+use super::Film;
+use glam::Vec3;
+
+/// The key value a of Reinhard et al. 2002: the log-average maps to this.
+pub const MIDDLE_GREY: f32 = 0.18;
+
+/// Pixels darker than this fraction of the 99th-percentile luminance count as
+/// that floor in the log average (about 10 stops below the bright reference):
+/// Reinhard's δ, made relative so exposure does not depend on radiance units.
+pub const EXPOSURE_FLOOR_FRACTION: f64 = 1e-3;
+
+/// The exposure is clamped to `[-EXPOSURE_EV_MAX, EXPOSURE_EV_MAX]` stops,
+/// a guard against overflow only; realistic frames are far inside it.
+pub const EXPOSURE_EV_MAX: f32 = 40.0;
+
+/// Rec.709 relative luminance Y of linear RGB.
+#[inline]
+pub fn luminance_rec709(rgb: Vec3) -> f32 {
+    0.2126 * rgb.x + 0.7152 * rgb.y + 0.0722 * rgb.z
+}
+
+/// Exposure in stops of a linear scale factor: `exposure_ev = log2(scale)`.
+/// Positive EV brightens. Precondition: `scale > 0`.
+pub fn exposure_ev(scale: f32) -> f32 {
+    scale.log2()
+}
+
+/// The frame's exposure scale factor from the left view's film.
+///
+/// Multiply every view's radiance by the result before the tone curve. Returns
+/// 1.0 (EV 0) when fewer than 1% of the finite pixels have positive luminance
+/// (black frames, or black with a few fireflies). Non-finite pixels are
+/// ignored; negative luminance counts as 0. Fireflies barely move the result:
+/// they enter through a log average and do not reach the 99th percentile.
+pub fn auto_exposure(film: &Film) -> f32 {
+    let mut lum: Vec<f32> = film
+        .rgb
+        .iter()
+        .map(|&rgb| luminance_rec709(rgb))
+        .filter(|l| l.is_finite())
+        .map(|l| l.max(0.0))
+        .collect();
+    if lum.is_empty() {
+        return 1.0;
+    }
+    // 99th percentile by selection, O(n): the bright reference for the floor.
+    let k = ((lum.len() - 1) as f64 * 0.99).round() as usize;
+    let (_, &mut reference, _) = lum.select_nth_unstable_by(k, f32::total_cmp);
+    if reference <= 0.0 {
+        return 1.0;
+    }
+    let floor = reference as f64 * EXPOSURE_FLOOR_FRACTION;
+    // Sum in f64: over 1.44 M terms the rounding stays far below f32 precision,
+    // so a uniform film maps to 0.18 to f32 precision.
+    let sum_ln: f64 = lum.iter().map(|&l| (l as f64).max(floor).ln()).sum();
+    let log_average = (sum_ln / lum.len() as f64).exp();
+    let scale = MIDDLE_GREY as f64 / log_average;
+    let limit = (EXPOSURE_EV_MAX as f64).exp2();
+    scale.clamp(1.0 / limit, limit) as f32
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rec709_luminance_weights_sum_to_one() {
+        assert!((luminance_rec709(Vec3::ONE) - 1.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn exposure_ev_is_log2_of_scale() {
+        assert_eq!(exposure_ev(8.0), 3.0);
+        assert_eq!(exposure_ev(0.25), -2.0);
+    }
+}

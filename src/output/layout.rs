@@ -1,0 +1,185 @@
+//! The `native` frame layout of DATASET.md as path functions: a sequence
+//! directory holds `left/<aov>/NNNNNN.<ext>`, `baseline_XXX/<aov>/NNNNNN.<ext>`
+//! (XXX = baseline in whole centimetres, zero-padded to 3 digits) and
+//! `cameras/NNNNNN.json`. Nothing here touches the file system.
+
+use std::path::{Path, PathBuf};
+
+/// Six-digit zero-padded frame stem: frame 7 → "000007".
+pub fn frame_stem(frame: u32) -> String {
+    format!("{frame:06}")
+}
+
+/// Directory name of a baseline: the baseline in centimetres rounded to the
+/// nearest integer, zero-padded to 3 digits: 54.0 → "baseline_054",
+/// 300.0 → "baseline_300". Precondition: `baseline_cm` finite and ≥ 0.
+pub fn baseline_dir_name(baseline_cm: f64) -> String {
+    debug_assert!(baseline_cm.is_finite() && baseline_cm >= 0.0);
+    format!("baseline_{:03}", baseline_cm.round() as u64)
+}
+
+/// Paths of the native layout below one sequence directory.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct NativeLayout {
+    /// The sequence directory (for `parallax render`: the output directory).
+    pub root: PathBuf,
+}
+
+impl NativeLayout {
+    /// A layout rooted at `root`.
+    pub fn new(root: impl Into<PathBuf>) -> NativeLayout {
+        NativeLayout { root: root.into() }
+    }
+
+    fn file(&self, dir: &[&str], frame: u32, ext: &str) -> PathBuf {
+        let mut p = self.root.clone();
+        for d in dir {
+            p.push(d);
+        }
+        p.push(format!("{}.{ext}", frame_stem(frame)));
+        p
+    }
+
+    fn baseline_file(&self, baseline_cm: f64, aov: &str, frame: u32, ext: &str) -> PathBuf {
+        self.file(&[&baseline_dir_name(baseline_cm), aov], frame, ext)
+    }
+
+    /// `left/rgb/NNNNNN.png`: 8-bit sRGB left image.
+    pub fn left_rgb(&self, frame: u32) -> PathBuf {
+        self.file(&["left", "rgb"], frame, "png")
+    }
+
+    /// `left/rgb_hdr/NNNNNN.exr`: optional linear radiance of the left view.
+    pub fn left_rgb_hdr(&self, frame: u32) -> PathBuf {
+        self.file(&["left", "rgb_hdr"], frame, "exr")
+    }
+
+    /// `left/depth/NNNNNN.exr`: float32 depth_z in metres, +inf for sky.
+    pub fn left_depth(&self, frame: u32) -> PathBuf {
+        self.file(&["left", "depth"], frame, "exr")
+    }
+
+    /// `left/normal/NNNNNN.exr`: world-space unit normals.
+    pub fn left_normal(&self, frame: u32) -> PathBuf {
+        self.file(&["left", "normal"], frame, "exr")
+    }
+
+    /// `left/semantic/NNNNNN.png`: 8-bit class ids.
+    pub fn left_semantic(&self, frame: u32) -> PathBuf {
+        self.file(&["left", "semantic"], frame, "png")
+    }
+
+    /// `left/instance/NNNNNN.png`: 16-bit instance ids (0 = none).
+    pub fn left_instance(&self, frame: u32) -> PathBuf {
+        self.file(&["left", "instance"], frame, "png")
+    }
+
+    /// `left/mask/NNNNNN.png`: 8-bit mask bits (sky, rain, transparent, mirror).
+    pub fn left_mask(&self, frame: u32) -> PathBuf {
+        self.file(&["left", "mask"], frame, "png")
+    }
+
+    /// `baseline_XXX/rgb/NNNNNN.png`: the right image for this baseline.
+    pub fn baseline_rgb(&self, frame: u32, baseline_cm: f64) -> PathBuf {
+        self.baseline_file(baseline_cm, "rgb", frame, "png")
+    }
+
+    /// `baseline_XXX/rgb_hdr/NNNNNN.exr`: the right image's linear radiance (optional).
+    pub fn baseline_rgb_hdr(&self, frame: u32, baseline_cm: f64) -> PathBuf {
+        self.baseline_file(baseline_cm, "rgb_hdr", frame, "exr")
+    }
+
+    /// `baseline_XXX/disp/NNNNNN.pfm`: left-view disparity, float32 px.
+    pub fn baseline_disp(&self, frame: u32, baseline_cm: f64) -> PathBuf {
+        self.baseline_file(baseline_cm, "disp", frame, "pfm")
+    }
+
+    /// `baseline_XXX/depth_right/NNNNNN.exr`: right-view depth_z in metres.
+    pub fn baseline_depth_right(&self, frame: u32, baseline_cm: f64) -> PathBuf {
+        self.baseline_file(baseline_cm, "depth_right", frame, "exr")
+    }
+
+    /// `baseline_XXX/disp_right/NNNNNN.pfm`: right-view disparity, float32 px.
+    pub fn baseline_disp_right(&self, frame: u32, baseline_cm: f64) -> PathBuf {
+        self.baseline_file(baseline_cm, "disp_right", frame, "pfm")
+    }
+
+    /// `baseline_XXX/occ/NNNNNN.png`: left-view occlusion mask, 255 = occluded.
+    pub fn baseline_occ(&self, frame: u32, baseline_cm: f64) -> PathBuf {
+        self.baseline_file(baseline_cm, "occ", frame, "png")
+    }
+
+    /// `cameras/NNNNNN.json`: K, poses, weather, sun, exposure, seed.
+    pub fn camera_json(&self, frame: u32) -> PathBuf {
+        self.file(&["cameras"], frame, "json")
+    }
+
+    /// The root as a path (for relative paths in manifests).
+    pub fn root(&self) -> &Path {
+        &self.root
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn native_paths_match_dataset_md() {
+        let l = NativeLayout::new("/seq");
+        assert_eq!(l.left_rgb(0), PathBuf::from("/seq/left/rgb/000000.png"));
+        assert_eq!(
+            l.left_depth(12),
+            PathBuf::from("/seq/left/depth/000012.exr")
+        );
+        assert_eq!(
+            l.left_rgb_hdr(1),
+            PathBuf::from("/seq/left/rgb_hdr/000001.exr")
+        );
+        assert_eq!(
+            l.left_normal(1),
+            PathBuf::from("/seq/left/normal/000001.exr")
+        );
+        assert_eq!(
+            l.left_semantic(1),
+            PathBuf::from("/seq/left/semantic/000001.png")
+        );
+        assert_eq!(
+            l.left_instance(1),
+            PathBuf::from("/seq/left/instance/000001.png")
+        );
+        assert_eq!(l.left_mask(1), PathBuf::from("/seq/left/mask/000001.png"));
+        assert_eq!(
+            l.baseline_rgb(3, 54.0),
+            PathBuf::from("/seq/baseline_054/rgb/000003.png")
+        );
+        assert_eq!(
+            l.baseline_disp(3, 10.0),
+            PathBuf::from("/seq/baseline_010/disp/000003.pfm")
+        );
+        assert_eq!(
+            l.baseline_depth_right(3, 300.0),
+            PathBuf::from("/seq/baseline_300/depth_right/000003.exr")
+        );
+        assert_eq!(
+            l.baseline_disp_right(3, 100.0),
+            PathBuf::from("/seq/baseline_100/disp_right/000003.pfm")
+        );
+        assert_eq!(
+            l.baseline_occ(3, 200.0),
+            PathBuf::from("/seq/baseline_200/occ/000003.png")
+        );
+        assert_eq!(
+            l.camera_json(999_999),
+            PathBuf::from("/seq/cameras/999999.json")
+        );
+    }
+
+    #[test]
+    fn baseline_dir_rounds_to_whole_centimetres() {
+        assert_eq!(baseline_dir_name(53.6), "baseline_054");
+        assert_eq!(baseline_dir_name(0.54 * 100.0), "baseline_054");
+        assert_eq!(baseline_dir_name(5.0), "baseline_005");
+        assert_eq!(baseline_dir_name(1234.0), "baseline_1234");
+    }
+}

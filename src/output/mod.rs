@@ -1,0 +1,27 @@
+//! File writers and readers for every output format, all writes atomic.
+//!
+//! Every writer encodes into memory, then [`write_atomic`] writes
+//! `<name>.tmp-<pid>-<seq>` in the target directory, fsyncs it and renames it
+//! over the target, so a file is either whole or absent (DATASET.md,
+//! bookkeeping). Every error is an `io::Error` wrapping an [`OutputError`] that
+//! names the path. Images are row-major with the top row first, as `Film`.
+//! This module is the only home of the `exr` and `image` crates (STYLE.md).
+
+mod atomic;
+mod exr_io;
+mod hash;
+mod image_io;
+mod layout;
+mod pfm;
+
+pub mod frame;
+
+pub use atomic::{read_file, write_atomic, Access, OutputError};
+pub use exr_io::{read_exr_f32_gray, read_exr_rgb_f32, write_exr_f32_gray, write_exr_rgb_f32};
+pub use hash::{sha256_bytes, sha256_file, write_json, FileRecord};
+pub use image_io::{
+    read_jpeg_rgb8, read_png_gray16, read_png_gray8, read_png_rgb8, write_jpeg_rgb8,
+    write_png_gray16, write_png_gray8, write_png_rgb8,
+};
+pub use layout::{baseline_dir_name, frame_stem, NativeLayout};
+pub use pfm::{decode_pfm_gray, encode_pfm_gray, read_pfm_gray, write_pfm_gray};
