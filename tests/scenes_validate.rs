@@ -7,7 +7,9 @@ use std::path::{Path, PathBuf};
 use glam::{DVec3, Vec3};
 use parallax::light::Light;
 use parallax::scene::load::parse_desc;
-use parallax::scene::{build_scene, load_scene, mask_bits, parse_scene_str, serialize_scene, LoadedScene, Mesh, Scene};
+use parallax::scene::{
+    build_scene, load_scene, mask_bits, parse_scene_str, serialize_scene, LoadedScene, Mesh, Scene,
+};
 use shaders_cpu::bsdf::Bsdf;
 use shaders_cpu::sky::Sky;
 
@@ -37,8 +39,14 @@ fn build(body: &str, origin: DVec3) -> Scene {
 }
 
 fn bounds(m: &Mesh) -> (DVec3, DVec3) {
-    let lo = m.p_render.iter().fold(DVec3::splat(f64::INFINITY), |a, &p| a.min(p));
-    let hi = m.p_render.iter().fold(DVec3::splat(f64::NEG_INFINITY), |a, &p| a.max(p));
+    let lo = m
+        .p_render
+        .iter()
+        .fold(DVec3::splat(f64::INFINITY), |a, &p| a.min(p));
+    let hi = m
+        .p_render
+        .iter()
+        .fold(DVec3::splat(f64::NEG_INFINITY), |a, &p| a.max(p));
     (lo, hi)
 }
 
@@ -55,8 +63,14 @@ fn scene_files(dir: &Path, out: &mut Vec<PathBuf>) {
 
 fn all_scene_files() -> Vec<PathBuf> {
     let mut files = Vec::new();
-    scene_files(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes"), &mut files);
-    assert!(files.len() >= 5, "expected the analytic scenes, found {files:?}");
+    scene_files(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes"),
+        &mut files,
+    );
+    assert!(
+        files.len() >= 5,
+        "expected the analytic scenes, found {files:?}"
+    );
     files
 }
 
@@ -152,11 +166,16 @@ transform = { translate = [0.0, 0.0, 3.2] }
 #[test]
 fn desc_to_toml_to_desc_is_identity() {
     let mut texts = vec![format!("{HEADER}{RICH}")];
-    texts.extend(all_scene_files().iter().map(|p| std::fs::read_to_string(p).unwrap()));
+    texts.extend(
+        all_scene_files()
+            .iter()
+            .map(|p| std::fs::read_to_string(p).unwrap()),
+    );
     for text in texts {
         let desc = parse_desc(&text, Path::new("x.toml")).unwrap_or_else(|e| panic!("{e}"));
         let written = serialize_scene(&desc);
-        let again = parse_desc(&written, Path::new("written.toml")).unwrap_or_else(|e| panic!("{e}\n{written}"));
+        let again = parse_desc(&written, Path::new("written.toml"))
+            .unwrap_or_else(|e| panic!("{e}\n{written}"));
         assert_eq!(desc, again, "{written}");
         parse_scene_str(&written, Path::new("written.toml")).unwrap_or_else(|e| panic!("{e}"));
     }
@@ -246,7 +265,9 @@ repeat = [{ count = 3, offset = [5.0, 0.0, 0.0] }, { count = 2, offset = [0.0, 1
         })
         .collect();
     centres.sort();
-    let mut expected: Vec<[i64; 3]> = (0..3).flat_map(|i| (0..2).map(move |j| [5 * i, 10 * j, 0])).collect();
+    let mut expected: Vec<[i64; 3]> = (0..3)
+        .flat_map(|i| (0..2).map(move |j| [5 * i, 10 * j, 0]))
+        .collect();
     expected.sort();
     assert_eq!(centres, expected);
 }
@@ -290,7 +311,11 @@ albedo = [0.2, 0.2, 0.9]
     assert!((lo - DVec3::new(-1.0, -2.0, 0.5)).length() < 1e-12, "{lo}");
     assert!((hi - DVec3::new(1.0, 2.0, 1.5)).length() < 1e-12, "{hi}");
     let wheel = &scene.spheres[0];
-    assert!((wheel.center - DVec3::new(-1.0, 1.5, 0.4)).length() < 1e-12, "{}", wheel.center);
+    assert!(
+        (wheel.center - DVec3::new(-1.0, 1.5, 0.4)).length() < 1e-12,
+        "{}",
+        wheel.center
+    );
     assert_eq!(scene.materials[wheel.material as usize].name, "grey");
     assert_eq!((wheel.semantic, wheel.instance), (10, 5));
     assert_eq!(scene.spheres_f32[0].w, 0.4);
@@ -316,7 +341,10 @@ transform = { translate = [200003.0, -300000.0, 10.0] }
     let (lo, hi) = bounds(&scene.meshes[0]);
     assert_eq!(lo, DVec3::new(0.0, -0.25, 2.25));
     assert_eq!(hi, DVec3::new(0.5, 0.25, 2.75));
-    assert_eq!(scene.meshes[0].p_f32[0], scene.meshes[0].p_render[0].as_vec3());
+    assert_eq!(
+        scene.meshes[0].p_f32[0],
+        scene.meshes[0].p_render[0].as_vec3()
+    );
     assert_eq!(scene.spheres[0].center, DVec3::new(3.0, 0.0, 0.0));
 }
 
@@ -344,14 +372,32 @@ outer_deg = 90.0
 "#,
         DVec3::new(100.0, 0.0, 0.0),
     );
-    let Light::Sun { dir_to_sun, angular_radius_rad, irradiance } = scene.lights[0] else {
+    let Light::Sun {
+        dir_to_sun,
+        angular_radius_rad,
+        irradiance,
+    } = scene.lights[0]
+    else {
         panic!("{:?}", scene.lights[0])
     };
     assert!((dir_to_sun - Vec3::Y).length() < 1e-7);
     assert!((angular_radius_rad - 0.5f32.to_radians()).abs() < 1e-7);
     assert_eq!(irradiance, Vec3::new(1.0, 2.0, 3.0));
-    assert_eq!(scene.lights[1], Light::Point { p: Vec3::new(5.0, 2.0, 3.0), intensity: Vec3::ONE });
-    let Light::Spot { p, dir, cos_inner, cos_outer, .. } = scene.lights[2] else {
+    assert_eq!(
+        scene.lights[1],
+        Light::Point {
+            p: Vec3::new(5.0, 2.0, 3.0),
+            intensity: Vec3::ONE
+        }
+    );
+    let Light::Spot {
+        p,
+        dir,
+        cos_inner,
+        cos_outer,
+        ..
+    } = scene.lights[2]
+    else {
         panic!("{:?}", scene.lights[2])
     };
     assert_eq!((p, dir), (Vec3::new(0.0, 0.0, 10.0), -Vec3::Z));
@@ -393,7 +439,10 @@ material = "grey"
     assert_eq!(find("chrome").mask, mask_bits::MIRROR);
     assert_eq!(find("brushed").mask, 0);
     assert_eq!(find("glass").mask, mask_bits::TRANSPARENT);
-    assert_eq!(find("puddle").mask, mask_bits::MIRROR | mask_bits::TRANSPARENT);
+    assert_eq!(
+        find("puddle").mask,
+        mask_bits::MIRROR | mask_bits::TRANSPARENT
+    );
     assert!(matches!(find("brushed").bsdf, Bsdf::Conductor { alpha, .. } if alpha == 0.25));
     assert!(matches!(find("glass").bsdf, Bsdf::Dielectric { eta, .. } if eta == 1.5));
 }
@@ -401,7 +450,11 @@ material = "grey"
 #[test]
 fn obj_with_mtl_becomes_meshes_with_named_materials() {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("sign.mtl"), "newmtl plate\nKd 0.8 0.8 0.8\nnewmtl light\nKd 0 0 0\nKe 4 4 4\n").unwrap();
+    std::fs::write(
+        dir.path().join("sign.mtl"),
+        "newmtl plate\nKd 0.8 0.8 0.8\nnewmtl light\nKd 0 0 0\nKe 4 4 4\n",
+    )
+    .unwrap();
     std::fs::write(
         dir.path().join("sign.obj"),
         "mtllib sign.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\n\
@@ -409,7 +462,8 @@ fn obj_with_mtl_becomes_meshes_with_named_materials() {
     )
     .unwrap();
     let scene_path = dir.path().join("s.toml");
-    let text = "[camera]\nposition = [0.0, 0.0, 0.0]\n[[object]]\nkind = \"obj\"\nfile = \"sign.obj\"\n\
+    let text =
+        "[camera]\nposition = [0.0, 0.0, 0.0]\n[[object]]\nkind = \"obj\"\nfile = \"sign.obj\"\n\
                 semantic = \"traffic_sign\"\ntransform = { translate = [10.0, 0.0, 0.0] }\n";
     std::fs::write(&scene_path, text).unwrap();
     // No sun, sky or point light: the emissive MTL material is the scene's light.
@@ -421,9 +475,20 @@ fn obj_with_mtl_becomes_meshes_with_named_materials() {
     assert_eq!(scene.triangle_count(), 3);
     let mesh = &scene.meshes[0];
     assert_eq!(mesh.semantic, 9);
-    let names: Vec<&str> = mesh.tri_material.iter().map(|&m| scene.materials[m as usize].name.as_str()).collect();
-    assert_eq!(names, ["sign.obj/plate", "sign.obj/plate", "sign.obj/light"]);
-    let light = scene.materials.iter().find(|m| m.name == "sign.obj/light").unwrap();
+    let names: Vec<&str> = mesh
+        .tri_material
+        .iter()
+        .map(|&m| scene.materials[m as usize].name.as_str())
+        .collect();
+    assert_eq!(
+        names,
+        ["sign.obj/plate", "sign.obj/plate", "sign.obj/light"]
+    );
+    let light = scene
+        .materials
+        .iter()
+        .find(|m| m.name == "sign.obj/light")
+        .unwrap();
     assert_eq!(light.le, Vec3::splat(4.0));
     assert!(mesh.p_render.iter().all(|p| p.x >= 10.0 && p.x <= 12.0));
 }

@@ -26,7 +26,11 @@ pub fn build_scene(scene: &LoadedScene, origin_world: DVec3) -> Result<Scene, Sc
     let desc = &scene.desc;
     let table = material_table(desc, &scene.objs);
     let materials: Vec<Material> = table.iter().map(|m| build_material(m)).collect();
-    let index: HashMap<&str, u32> = table.iter().enumerate().map(|(i, m)| (m.name.as_str(), i as u32)).collect();
+    let index: HashMap<&str, u32> = table
+        .iter()
+        .enumerate()
+        .map(|(i, m)| (m.name.as_str(), i as u32))
+        .collect();
     let mut meshes = Vec::new();
     let mut spheres = Vec::new();
     walk(desc, true, &mut |placed| {
@@ -34,12 +38,24 @@ pub fn build_scene(scene: &LoadedScene, origin_world: DVec3) -> Result<Scene, Sc
             let mapped = placed.map_material(name);
             index.get(mapped.as_str()).copied().ok_or_else(|| {
                 let key = format!("{}.material{}", placed.key, placed.via);
-                SceneError::at(&scene.path, SceneErrorKind::Invalid, key, format!("unknown material \"{mapped}\""))
+                SceneError::at(
+                    &scene.path,
+                    SceneErrorKind::Invalid,
+                    key,
+                    format!("unknown material \"{mapped}\""),
+                )
             })
         };
         let own = placed.object.material.as_deref().map(resolve).transpose()?;
         let to_mesh = |local: &LocalMesh, tri_material: Vec<u32>| {
-            render_mesh(local, tri_material, placed.world_from_local, origin_world, placed.semantic, placed.instance)
+            render_mesh(
+                local,
+                tri_material,
+                placed.world_from_local,
+                origin_world,
+                placed.semantic,
+                placed.instance,
+            )
         };
         let local = match &placed.object.shape {
             ShapeDesc::Sphere { radius } => {
@@ -65,7 +81,9 @@ pub fn build_scene(scene: &LoadedScene, origin_world: DVec3) -> Result<Scene, Sc
                     };
                     let base = merged.positions.len() as u32;
                     merged.positions.extend(&g.positions);
-                    merged.triangles.extend(g.triangles.iter().map(|t| t.map(|i| i + base)));
+                    merged
+                        .triangles
+                        .extend(g.triangles.iter().map(|t| t.map(|i| i + base)));
                     tri_material.extend(std::iter::repeat_n(m, g.triangles.len()));
                     merged.normals.extend(&g.normals);
                 }
@@ -78,34 +96,65 @@ pub fn build_scene(scene: &LoadedScene, origin_world: DVec3) -> Result<Scene, Sc
             }
             ShapeDesc::Quad { size } => mesh::quad(*size),
             ShapeDesc::Box { size } => mesh::cuboid(*size),
-            ShapeDesc::Cylinder { radius, height, segments, capped } => mesh::cylinder(*radius, *height, *segments, *capped),
-            ShapeDesc::Ellipsoid { radii, segments, rings } => mesh::ellipsoid(*radii, *segments, *rings),
+            ShapeDesc::Cylinder {
+                radius,
+                height,
+                segments,
+                capped,
+            } => mesh::cylinder(*radius, *height, *segments, *capped),
+            ShapeDesc::Ellipsoid {
+                radii,
+                segments,
+                rings,
+            } => mesh::ellipsoid(*radii, *segments, *rings),
             ShapeDesc::Instance { .. } => return Ok(()), // walk expands instances
         };
         let m = own.unwrap_or(0);
         meshes.push(to_mesh(&local, vec![m; local.triangles.len()]));
         Ok(())
     })?;
-    let spheres_f32 = spheres.iter().map(|s| s.center.as_vec3().extend(s.radius as f32)).collect::<Vec<Vec4>>();
+    let spheres_f32 = spheres
+        .iter()
+        .map(|s| s.center.as_vec3().extend(s.radius as f32))
+        .collect::<Vec<Vec4>>();
     Ok(Scene {
         origin_world,
         meshes,
         spheres,
         spheres_f32,
         materials,
-        lights: desc.lights.iter().map(|l| build_light(l, origin_world)).collect(),
+        lights: desc
+            .lights
+            .iter()
+            .map(|l| build_light(l, origin_world))
+            .collect(),
         sky: build_sky(desc.sky.as_ref()),
     })
 }
 
-fn render_mesh(local: &LocalMesh, tri_material: Vec<u32>, world_from_local: DAffine3, origin_world: DVec3, semantic: u8, instance: u16) -> Mesh {
-    let p_render: Vec<DVec3> = local.positions.iter().map(|&p| world_from_local.transform_point3(p) - origin_world).collect();
+fn render_mesh(
+    local: &LocalMesh,
+    tri_material: Vec<u32>,
+    world_from_local: DAffine3,
+    origin_world: DVec3,
+    semantic: u8,
+    instance: u16,
+) -> Mesh {
+    let p_render: Vec<DVec3> = local
+        .positions
+        .iter()
+        .map(|&p| world_from_local.transform_point3(p) - origin_world)
+        .collect();
     // Normals transform with the inverse transpose (non-uniform scale).
     let normal_from_local = world_from_local.matrix3.inverse().transpose();
     Mesh {
         p_f32: p_render.iter().map(|p| p.as_vec3()).collect(),
         p_render,
-        normals: local.normals.iter().map(|&n| (normal_from_local * n).normalize().as_vec3()).collect(),
+        normals: local
+            .normals
+            .iter()
+            .map(|&n| (normal_from_local * n).normalize().as_vec3())
+            .collect(),
         uvs: Vec::new(),
         triangles: local.triangles.clone(),
         tri_material,
@@ -121,17 +170,46 @@ fn v3(c: [f64; 3]) -> Vec3 {
 /// Resolves one material description (mask bits per GROUND_TRUTH.md).
 pub fn build_material(m: &MaterialDesc) -> Material {
     let (bsdf, le, two_sided_emission, mask) = match &m.kind {
-        MaterialKindDesc::Diffuse { albedo } => (Bsdf::Lambert { albedo: v3(*albedo) }, Vec3::ZERO, false, 0),
-        MaterialKindDesc::Conductor { preset, eta, k, roughness } => {
+        MaterialKindDesc::Diffuse { albedo } => (
+            Bsdf::Lambert {
+                albedo: v3(*albedo),
+            },
+            Vec3::ZERO,
+            false,
+            0,
+        ),
+        MaterialKindDesc::Conductor {
+            preset,
+            eta,
+            k,
+            roughness,
+        } => {
             let (eta, k) = match preset {
                 Some(p) => p.eta_k(),
                 None => (eta.unwrap_or([1.0; 3]), k.unwrap_or([0.0; 3])),
             };
             let alpha = (roughness * roughness) as f32;
-            let mask = if *roughness < MIRROR_ROUGHNESS { mask_bits::MIRROR } else { 0 };
-            (Bsdf::Conductor { eta: v3(eta), k: v3(k), alpha }, Vec3::ZERO, false, mask)
+            let mask = if *roughness < MIRROR_ROUGHNESS {
+                mask_bits::MIRROR
+            } else {
+                0
+            };
+            (
+                Bsdf::Conductor {
+                    eta: v3(eta),
+                    k: v3(k),
+                    alpha,
+                },
+                Vec3::ZERO,
+                false,
+                mask,
+            )
         }
-        MaterialKindDesc::Dielectric { ior, roughness, tint } => {
+        MaterialKindDesc::Dielectric {
+            ior,
+            roughness,
+            tint,
+        } => {
             let bsdf = Bsdf::Dielectric {
                 eta: *ior as f32,
                 alpha: (roughness * roughness) as f32,
@@ -139,7 +217,15 @@ pub fn build_material(m: &MaterialDesc) -> Material {
             };
             (bsdf, Vec3::ZERO, false, mask_bits::TRANSPARENT)
         }
-        MaterialKindDesc::Emissive { radiance, two_sided } => (Bsdf::Lambert { albedo: Vec3::ZERO }, v3(*radiance), *two_sided, 0),
+        MaterialKindDesc::Emissive {
+            radiance,
+            two_sided,
+        } => (
+            Bsdf::Lambert { albedo: Vec3::ZERO },
+            v3(*radiance),
+            *two_sided,
+            0,
+        ),
     };
     let mask = match &m.mask {
         Some(flags) => flags.iter().fold(0, |bits, f| {
@@ -169,16 +255,30 @@ pub fn dir_from_elevation_azimuth(elevation_deg: f64, azimuth_deg: f64) -> DVec3
 fn build_light(l: &LightDesc, origin_world: DVec3) -> Light {
     let p_render = |p: &[f64; 3]| (DVec3::from(*p) - origin_world).as_vec3();
     match l {
-        LightDesc::Sun { elevation_deg, azimuth_deg, irradiance, angular_diameter_deg } => Light::Sun {
+        LightDesc::Sun {
+            elevation_deg,
+            azimuth_deg,
+            irradiance,
+            angular_diameter_deg,
+        } => Light::Sun {
             dir_to_sun: dir_from_elevation_azimuth(*elevation_deg, *azimuth_deg).as_vec3(),
             angular_radius_rad: (angular_diameter_deg / 2.0).to_radians() as f32,
             irradiance: v3(*irradiance),
         },
-        LightDesc::Point { position, intensity } => Light::Point {
+        LightDesc::Point {
+            position,
+            intensity,
+        } => Light::Point {
             p: p_render(position),
             intensity: v3(*intensity),
         },
-        LightDesc::Spot { position, direction, intensity, inner_deg, outer_deg } => Light::Spot {
+        LightDesc::Spot {
+            position,
+            direction,
+            intensity,
+            inner_deg,
+            outer_deg,
+        } => Light::Spot {
             p: p_render(position),
             dir: DVec3::from(*direction).normalize().as_vec3(),
             intensity: v3(*intensity),
@@ -192,7 +292,11 @@ fn build_sky(sky: Option<&SkyDesc>) -> Sky {
     match sky {
         None => Sky::Constant { le: Vec3::ZERO },
         Some(SkyDesc::Constant { le }) => Sky::Constant { le: v3(*le) },
-        Some(SkyDesc::Gradient { zenith, horizon, ground }) => Sky::Gradient {
+        Some(SkyDesc::Gradient {
+            zenith,
+            horizon,
+            ground,
+        }) => Sky::Gradient {
             zenith: v3(*zenith),
             horizon: v3(*horizon),
             ground: v3(*ground),

@@ -47,7 +47,12 @@ pub struct SceneError {
 
 impl SceneError {
     /// An error at a key path.
-    pub fn at(file: &Path, kind: SceneErrorKind, key: impl Into<String>, message: impl Into<String>) -> Self {
+    pub fn at(
+        file: &Path,
+        kind: SceneErrorKind,
+        key: impl Into<String>,
+        message: impl Into<String>,
+    ) -> Self {
         SceneError {
             file: file.to_path_buf(),
             kind,
@@ -88,7 +93,12 @@ pub struct LoadedScene {
 /// Reads, parses and fully validates a scene file.
 pub fn load_scene(path: &Path) -> Result<LoadedScene, SceneError> {
     let text = std::fs::read_to_string(path).map_err(|e| {
-        SceneError::at(path, SceneErrorKind::Io, "", format!("cannot read scene file: {e}"))
+        SceneError::at(
+            path,
+            SceneErrorKind::Io,
+            "",
+            format!("cannot read scene file: {e}"),
+        )
     })?;
     parse_scene_str(&text, path)
 }
@@ -117,7 +127,7 @@ pub fn parse_desc(text: &str, path: &Path) -> Result<SceneDesc, SceneError> {
             kind: SceneErrorKind::Syntax,
             key: if key == "." { String::new() } else { key },
             line_col: inner.span().map(|s| line_col(text, s.start)),
-            message: inner.message().trim().to_string(),
+            message: inner.message().trim().replace('\n', "; "),
         }
     })
 }

@@ -60,7 +60,10 @@ pub fn cuboid(size: [f64; 3]) -> LocalMesh {
         [0, 4, 6, 2], // −x
         [1, 3, 7, 5], // +x
     ];
-    let triangles = faces.iter().flat_map(|f| [[f[0], f[1], f[2]], [f[0], f[2], f[3]]]).collect();
+    let triangles = faces
+        .iter()
+        .flat_map(|f| [[f[0], f[1], f[2]], [f[0], f[2], f[3]]])
+        .collect();
     LocalMesh {
         positions,
         normals: Vec::new(),
@@ -101,7 +104,11 @@ pub fn cylinder(radius: f64, height: f64, segments: u32, capped: bool) -> LocalM
             for i in 0..n {
                 let (a, b) = (centre + 1 + i, centre + 1 + (i + 1) % n);
                 // Counter-clockwise seen from outside: reversed on the bottom.
-                m.triangles.push(if z == 0.0 { [centre, b, a] } else { [centre, a, b] });
+                m.triangles.push(if z == 0.0 {
+                    [centre, b, a]
+                } else {
+                    [centre, a, b]
+                });
             }
         }
     }
@@ -123,7 +130,11 @@ pub fn ellipsoid(radii: [f64; 3], segments: u32, rings: u32) -> LocalMesh {
         let theta = std::f64::consts::PI * ring as f64 / rings as f64;
         for s in 0..segments {
             let phi = TAU * s as f64 / segments as f64;
-            push(DVec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos()));
+            push(DVec3::new(
+                theta.sin() * phi.cos(),
+                theta.sin() * phi.sin(),
+                theta.cos(),
+            ));
         }
     }
     push(-DVec3::Z);
@@ -131,11 +142,17 @@ pub fn ellipsoid(radii: [f64; 3], segments: u32, rings: u32) -> LocalMesh {
     let at = |ring: u32, s: u32| 1 + (ring - 1) * segments + s % segments;
     for s in 0..segments {
         m.triangles.push([0, at(1, s), at(1, s + 1)]);
-        m.triangles.push([south, at(rings - 1, s + 1), at(rings - 1, s)]);
+        m.triangles
+            .push([south, at(rings - 1, s + 1), at(rings - 1, s)]);
     }
     for ring in 1..rings - 1 {
         for s in 0..segments {
-            let (a, b, c, d) = (at(ring, s), at(ring + 1, s), at(ring + 1, s + 1), at(ring, s + 1));
+            let (a, b, c, d) = (
+                at(ring, s),
+                at(ring + 1, s),
+                at(ring + 1, s + 1),
+                at(ring, s + 1),
+            );
             m.triangles.push([a, b, c]);
             m.triangles.push([a, c, d]);
         }
@@ -153,7 +170,10 @@ mod tests {
             let [a, b, c] = t.map(|i| m.positions[i as usize]);
             let n = (b - a).cross(c - a);
             assert!(n.length() > 0.0, "degenerate triangle {t:?}");
-            assert!(n.dot((a + b + c) / 3.0 - centre) > 0.0, "inward triangle {t:?}");
+            assert!(
+                n.dot((a + b + c) / 3.0 - centre) > 0.0,
+                "inward triangle {t:?}"
+            );
         }
     }
 

@@ -58,10 +58,22 @@ pub fn count_triangles(text: &str) -> u64 {
 
 /// Loads and validates the OBJ file `obj_path` (named `file` at key `key` of
 /// the scene file `scene`).
-pub fn load_obj(scene: &Path, key: &str, file: &str, obj_path: &Path) -> Result<ObjAsset, SceneError> {
-    let err = |msg: String| SceneError::at(scene, SceneErrorKind::Obj, key, format!("{file}: {msg}"));
-    let text = std::fs::read_to_string(obj_path)
-        .map_err(|e| SceneError::at(scene, SceneErrorKind::Io, key, format!("cannot read OBJ {}: {e}", obj_path.display())))?;
+pub fn load_obj(
+    scene: &Path,
+    key: &str,
+    file: &str,
+    obj_path: &Path,
+) -> Result<ObjAsset, SceneError> {
+    let err =
+        |msg: String| SceneError::at(scene, SceneErrorKind::Obj, key, format!("{file}: {msg}"));
+    let text = std::fs::read_to_string(obj_path).map_err(|e| {
+        SceneError::at(
+            scene,
+            SceneErrorKind::Io,
+            key,
+            format!("cannot read OBJ {}: {e}", obj_path.display()),
+        )
+    })?;
     let options = tobj::LoadOptions {
         triangulate: true,
         single_index: true,
@@ -74,14 +86,21 @@ pub fn load_obj(scene: &Path, key: &str, file: &str, obj_path: &Path) -> Result<
         if let Some(name) = line.trim_start().strip_prefix("usemtl ") {
             let name = name.trim();
             if !mtl.iter().any(|m| m.name == name) {
-                return Err(err(format!("line {}: unknown MTL material \"{name}\"", i + 1)));
+                return Err(err(format!(
+                    "line {}: unknown MTL material \"{name}\"",
+                    i + 1
+                )));
             }
         }
     }
     let materials = mtl.iter().map(|m| material_from_mtl(file, m)).collect();
-    let mut asset = ObjAsset { materials, ..Default::default() };
+    let mut asset = ObjAsset {
+        materials,
+        ..Default::default()
+    };
     for model in &models {
-        let group = group_from_mesh(&model.mesh, &mut asset.dropped_degenerate).map_err(|m| err(format!("object \"{}\": {m}", model.name)))?;
+        let group = group_from_mesh(&model.mesh, &mut asset.dropped_degenerate)
+            .map_err(|m| err(format!("object \"{}\": {m}", model.name)))?;
         if !group.triangles.is_empty() {
             asset.groups.push(group);
         }
@@ -115,7 +134,9 @@ fn group_from_mesh(mesh: &tobj::Mesh, dropped: &mut usize) -> Result<ObjGroup, S
         .chunks_exact(3)
         .map(|c| DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64).normalize_or_zero())
         .collect();
-    if normals.len() != positions.len() || normals.iter().any(|n| *n == DVec3::ZERO || !n.is_finite()) {
+    if normals.len() != positions.len()
+        || normals.iter().any(|n| *n == DVec3::ZERO || !n.is_finite())
+    {
         // Missing or unusable shading normals: fall back to geometric ones.
         normals.clear();
     }
@@ -123,7 +144,10 @@ fn group_from_mesh(mesh: &tobj::Mesh, dropped: &mut usize) -> Result<ObjGroup, S
     for t in mesh.indices.chunks_exact(3) {
         let tri = [t[0], t[1], t[2]];
         if let Some(&bad) = tri.iter().find(|&&i| i as usize >= positions.len()) {
-            return Err(format!("vertex index {bad} out of range ({} vertices)", positions.len()));
+            return Err(format!(
+                "vertex index {bad} out of range ({} vertices)",
+                positions.len()
+            ));
         }
         let [a, b, c] = tri.map(|i| positions[i as usize]);
         let (e1, e2) = (b - a, c - a);
@@ -150,7 +174,12 @@ fn roughness_from_ns(ns: Option<f32>) -> f64 {
 }
 
 fn param(m: &tobj::Material, key: &str) -> Option<Vec<f64>> {
-    let v: Option<Vec<f64>> = m.unknown_param.get(key)?.split_whitespace().map(|s| s.parse().ok()).collect();
+    let v: Option<Vec<f64>> = m
+        .unknown_param
+        .get(key)?
+        .split_whitespace()
+        .map(|s| s.parse().ok())
+        .collect();
     v.filter(|v| !v.is_empty() && v.iter().all(|x| x.is_finite()))
 }
 
@@ -162,13 +191,26 @@ fn rgb(v: Option<[f32; 3]>, default: f64) -> [f64; 3] {
 pub fn material_from_mtl(file: &str, m: &tobj::Material) -> MaterialDesc {
     let illum = m.illumination_model.unwrap_or(2);
     let ke = m.emissive.unwrap_or([0.0; 3]).map(|x| (x as f64).max(0.0));
-    let tf = param(m, "Tf").map(|v| if v.len() >= 3 { [v[0], v[1], v[2]] } else { [v[0]; 3] });
+    let tf = param(m, "Tf").map(|v| {
+        if v.len() >= 3 {
+            [v[0], v[1], v[2]]
+        } else {
+            [v[0]; 3]
+        }
+    });
     let ks = rgb(m.specular, 0.0);
     let metallic = param(m, "Pm").is_some_and(|v| v[0] >= 0.5);
-    let roughness = param(m, "Pr").map_or_else(|| roughness_from_ns(m.shininess), |v| v[0].clamp(0.0, 1.0));
+    let roughness =
+        param(m, "Pr").map_or_else(|| roughness_from_ns(m.shininess), |v| v[0].clamp(0.0, 1.0));
     let kind = if ke.iter().any(|&x| x > 0.0) {
-        MaterialKindDesc::Emissive { radiance: ke, two_sided: false }
-    } else if m.dissolve.is_some_and(|d| d < 1.0) || matches!(illum, 4 | 6 | 7) || (m.optical_density.is_some() && tf.is_some()) {
+        MaterialKindDesc::Emissive {
+            radiance: ke,
+            two_sided: false,
+        }
+    } else if m.dissolve.is_some_and(|d| d < 1.0)
+        || matches!(illum, 4 | 6 | 7)
+        || (m.optical_density.is_some() && tf.is_some())
+    {
         MaterialKindDesc::Dielectric {
             ior: m.optical_density.map_or(1.5, |n| n as f64).max(1e-3),
             roughness,
@@ -179,9 +221,16 @@ pub fn material_from_mtl(file: &str, m: &tobj::Material) -> MaterialDesc {
         // F0 = k² / (4 + k²), inverted per channel.
         let f0 = if metallic { rgb(m.diffuse, 0.8) } else { ks };
         let k = f0.map(|f| 2.0 * (f.min(0.99) / (1.0 - f.min(0.99))).sqrt());
-        MaterialKindDesc::Conductor { preset: None, eta: Some([1.0; 3]), k: Some(k), roughness }
+        MaterialKindDesc::Conductor {
+            preset: None,
+            eta: Some([1.0; 3]),
+            k: Some(k),
+            roughness,
+        }
     } else {
-        MaterialKindDesc::Diffuse { albedo: rgb(m.diffuse, 0.8) }
+        MaterialKindDesc::Diffuse {
+            albedo: rgb(m.diffuse, 0.8),
+        }
     };
     MaterialDesc {
         name: format!("{file}/{}", m.name),

@@ -26,12 +26,22 @@ fn index(desc: &SceneDesc, name: &str) -> Option<usize> {
     desc.prefabs.iter().position(|p| p.name == name)
 }
 
-fn visit(desc: &SceneDesc, p: usize, state: &mut [u8], stack: &mut Vec<usize>, file: &Path) -> Result<(), SceneError> {
+fn visit(
+    desc: &SceneDesc,
+    p: usize,
+    state: &mut [u8],
+    stack: &mut Vec<usize>,
+    file: &Path,
+) -> Result<(), SceneError> {
     match state[p] {
         2 => return Ok(()),
         1 => {
             let start = stack.iter().position(|&q| q == p).unwrap_or(0);
-            let names: Vec<&str> = stack[start..].iter().chain([&p]).map(|&q| desc.prefabs[q].name.as_str()).collect();
+            let names: Vec<&str> = stack[start..]
+                .iter()
+                .chain([&p])
+                .map(|&q| desc.prefabs[q].name.as_str())
+                .collect();
             return Err(SceneError::at(
                 file,
                 SceneErrorKind::Invalid,
@@ -57,20 +67,33 @@ fn visit(desc: &SceneDesc, p: usize, state: &mut [u8], stack: &mut Vec<usize>, f
 
 /// Triangles (spheres count one) the objects build into, saturating.
 /// `obj_triangles` gives each OBJ file's count. Precondition: no cycles.
-pub fn estimate_triangles(desc: &SceneDesc, objects: &[ObjectDesc], obj_triangles: &BTreeMap<String, u64>) -> u64 {
+pub fn estimate_triangles(
+    desc: &SceneDesc,
+    objects: &[ObjectDesc],
+    obj_triangles: &BTreeMap<String, u64>,
+) -> u64 {
     let mut memo = vec![None; desc.prefabs.len()];
     estimate(desc, objects, obj_triangles, &mut memo)
 }
 
-fn estimate(desc: &SceneDesc, objects: &[ObjectDesc], objs: &BTreeMap<String, u64>, memo: &mut Vec<Option<u64>>) -> u64 {
+fn estimate(
+    desc: &SceneDesc,
+    objects: &[ObjectDesc],
+    objs: &BTreeMap<String, u64>,
+    memo: &mut Vec<Option<u64>>,
+) -> u64 {
     let mut sum = 0u64;
     for o in objects {
         let one = match &o.shape {
             ShapeDesc::Quad { .. } => 2,
             ShapeDesc::Box { .. } => 12,
             ShapeDesc::Sphere { .. } => 1,
-            ShapeDesc::Cylinder { segments, capped, .. } => cylinder_triangles(*segments, *capped),
-            ShapeDesc::Ellipsoid { segments, rings, .. } => ellipsoid_triangles(*segments, *rings),
+            ShapeDesc::Cylinder {
+                segments, capped, ..
+            } => cylinder_triangles(*segments, *capped),
+            ShapeDesc::Ellipsoid {
+                segments, rings, ..
+            } => ellipsoid_triangles(*segments, *rings),
             ShapeDesc::Obj { file } => objs.get(file).copied().unwrap_or(0),
             ShapeDesc::Instance { prefab, .. } => match index(desc, prefab) {
                 // Memoised per prefab: a deep DAG of instances stays linear.

@@ -10,7 +10,8 @@ use super::desc::{RepeatDesc, TransformDesc};
 /// The affine map parent_from_local of a transform description.
 pub fn parent_from_local(t: &TransformDesc) -> DAffine3 {
     let [rx, ry, rz] = t.rotate_deg.unwrap_or([0.0; 3]).map(f64::to_radians);
-    let rotation = DMat3::from_rotation_z(rz) * DMat3::from_rotation_y(ry) * DMat3::from_rotation_x(rx);
+    let rotation =
+        DMat3::from_rotation_z(rz) * DMat3::from_rotation_y(ry) * DMat3::from_rotation_x(rx);
     let scale = DVec3::from(t.scale.map_or([1.0; 3], |s| s.axes()));
     DAffine3 {
         matrix3: rotation * DMat3::from_diagonal(scale),
@@ -59,8 +60,14 @@ mod tests {
     #[test]
     fn repeat_grid_multiplies_counts() {
         let grid = [
-            RepeatDesc { count: 3, offset: [1.0, 0.0, 0.0] },
-            RepeatDesc { count: 2, offset: [0.0, 5.0, 0.0] },
+            RepeatDesc {
+                count: 3,
+                offset: [1.0, 0.0, 0.0],
+            },
+            RepeatDesc {
+                count: 2,
+                offset: [0.0, 5.0, 0.0],
+            },
         ];
         let offsets = repeat_offsets(&grid);
         assert_eq!(offsets.len(), 6);

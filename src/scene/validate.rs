@@ -7,7 +7,10 @@
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 
-use super::desc::{LightDesc, MaterialDesc, MaterialKindDesc, ObjectDesc, RigDesc, SceneDesc, ScaleDesc, ShapeDesc, SkyDesc};
+use super::desc::{
+    LightDesc, MaterialDesc, MaterialKindDesc, ObjectDesc, RigDesc, ScaleDesc, SceneDesc,
+    ShapeDesc, SkyDesc,
+};
 use super::load::{SceneError, SceneErrorKind as K};
 use super::obj::{count_triangles, load_obj, ObjAsset};
 use super::semantic::{class_id, CLASSES};
@@ -18,14 +21,14 @@ pub const MAX_PIXELS: u64 = 64_000_000;
 /// Largest accepted triangle count of a built scene.
 pub const MAX_TRIANGLES: u64 = 100_000_000;
 
-/// Bytes of film and ground-truth buffers per pixel of one frame: per view
-/// (left + one right per baseline) f64 RGB accumulation 24, f32 RGB 12,
-/// depth 4, normal 12, semantic 1, instance 2, mask 1, and per baseline
-/// disparity 4 + occlusion 1 (rounded to 8).
+/// Bytes of film and ground-truth buffers of one frame: per view (left and
+/// one right per baseline) f64 RGB accumulation 24, f32 RGB 12, depth 4,
+/// normal 12, semantic 1, instance 2, mask 1 (56 with padding); per baseline
+/// a left and a right disparity (4) and occlusion (1) (8 each with padding).
 pub fn frame_bytes(rig: &RigDesc) -> u64 {
     let baselines = rig.baselines_cm.len() as u64;
-    let per_view = 56 + 8 * baselines;
-    rig.width as u64 * rig.height as u64 * (1 + baselines) * per_view
+    let per_pixel = (1 + baselines) * 56 + 2 * baselines * 8;
+    rig.width as u64 * rig.height as u64 * per_pixel
 }
 
 struct V<'a> {
@@ -59,12 +62,19 @@ impl V<'_> {
 
     fn rig(&self, rig: &RigDesc) -> Result<(), SceneError> {
         if rig.width == 0 || rig.height == 0 {
-            let key = if rig.width == 0 { "camera.width" } else { "camera.height" };
+            let key = if rig.width == 0 {
+                "camera.width"
+            } else {
+                "camera.height"
+            };
             return Err(self.err(key, "image size must be at least 1 pixel"));
         }
         self.finite("camera.hfov_deg", &[rig.hfov_deg])?;
         if !(rig.hfov_deg > 0.0 && rig.hfov_deg < 180.0) {
-            return Err(self.err("camera.hfov_deg", format!("must be in (0, 180), got {}", rig.hfov_deg)));
+            return Err(self.err(
+                "camera.hfov_deg",
+                format!("must be in (0, 180), got {}", rig.hfov_deg),
+            ));
         }
         if rig.baselines_cm.is_empty() {
             return Err(self.err("camera.baselines_cm", "at least one baseline is needed"));
@@ -80,7 +90,10 @@ impl V<'_> {
                 self.file,
                 K::Resource,
                 "camera.width",
-                format!("{}×{} = {pixels} pixels exceeds the limit of {MAX_PIXELS} pixels", rig.width, rig.height),
+                format!(
+                    "{}×{} = {pixels} pixels exceeds the limit of {MAX_PIXELS} pixels",
+                    rig.width, rig.height
+                ),
             ));
         }
         let need = frame_bytes(rig);
@@ -107,7 +120,11 @@ impl V<'_> {
     fn sky(&self, sky: &SkyDesc) -> Result<(), SceneError> {
         match sky {
             SkyDesc::Constant { le } => self.range("sky.le", le, 0.0, f64::MAX),
-            SkyDesc::Gradient { zenith, horizon, ground } => {
+            SkyDesc::Gradient {
+                zenith,
+                horizon,
+                ground,
+            } => {
                 self.range("sky.zenith", zenith, 0.0, f64::MAX)?;
                 self.range("sky.horizon", horizon, 0.0, f64::MAX)?;
                 self.range("sky.ground", ground, 0.0, f64::MAX)
@@ -118,18 +135,37 @@ impl V<'_> {
     fn light(&self, i: usize, light: &LightDesc) -> Result<(), SceneError> {
         let k = |f: &str| format!("light[{i}].{f}");
         match light {
-            LightDesc::Sun { elevation_deg, azimuth_deg, irradiance, angular_diameter_deg } => {
+            LightDesc::Sun {
+                elevation_deg,
+                azimuth_deg,
+                irradiance,
+                angular_diameter_deg,
+            } => {
                 self.range(&k("elevation_deg"), &[*elevation_deg], -90.0, 90.0)?;
                 self.finite(&k("azimuth_deg"), &[*azimuth_deg])?;
                 self.range(&k("irradiance"), irradiance, 0.0, f64::MAX)?;
                 self.positive(&k("angular_diameter_deg"), &[*angular_diameter_deg])?;
-                self.range(&k("angular_diameter_deg"), &[*angular_diameter_deg], 0.0, 90.0)
+                self.range(
+                    &k("angular_diameter_deg"),
+                    &[*angular_diameter_deg],
+                    0.0,
+                    90.0,
+                )
             }
-            LightDesc::Point { position, intensity } => {
+            LightDesc::Point {
+                position,
+                intensity,
+            } => {
                 self.finite(&k("position"), position)?;
                 self.range(&k("intensity"), intensity, 0.0, f64::MAX)
             }
-            LightDesc::Spot { position, direction, intensity, inner_deg, outer_deg } => {
+            LightDesc::Spot {
+                position,
+                direction,
+                intensity,
+                inner_deg,
+                outer_deg,
+            } => {
                 self.finite(&k("position"), position)?;
                 self.finite(&k("direction"), direction)?;
                 if direction.iter().all(|&x| x == 0.0) {
@@ -146,11 +182,22 @@ impl V<'_> {
     fn material(&self, i: usize, m: &MaterialDesc) -> Result<(), SceneError> {
         let k = |f: &str| format!("material[{i}].{f}");
         if m.name.is_empty() || m.name.contains('/') {
-            return Err(self.err(k("name"), format!("\"{}\": names must be non-empty without '/' (reserved for OBJ materials)", m.name)));
+            return Err(self.err(
+                k("name"),
+                format!(
+                    "\"{}\": names must be non-empty without '/' (reserved for OBJ materials)",
+                    m.name
+                ),
+            ));
         }
         match &m.kind {
             MaterialKindDesc::Diffuse { albedo } => self.range(&k("albedo"), albedo, 0.0, 1.0),
-            MaterialKindDesc::Conductor { preset, eta, k: kk, roughness } => {
+            MaterialKindDesc::Conductor {
+                preset,
+                eta,
+                k: kk,
+                roughness,
+            } => {
                 self.range(&k("roughness"), &[*roughness], 0.0, 1.0)?;
                 match (preset, eta, kk) {
                     (Some(_), None, None) => Ok(()),
@@ -161,12 +208,18 @@ impl V<'_> {
                     _ => Err(self.err(k("preset"), "give either `preset` or both `eta` and `k`")),
                 }
             }
-            MaterialKindDesc::Dielectric { ior, roughness, tint } => {
+            MaterialKindDesc::Dielectric {
+                ior,
+                roughness,
+                tint,
+            } => {
                 self.positive(&k("ior"), &[*ior])?;
                 self.range(&k("roughness"), &[*roughness], 0.0, 1.0)?;
                 self.range(&k("tint"), tint, 0.0, 1.0)
             }
-            MaterialKindDesc::Emissive { radiance, .. } => self.range(&k("radiance"), radiance, 0.0, f64::MAX),
+            MaterialKindDesc::Emissive { radiance, .. } => {
+                self.range(&k("radiance"), radiance, 0.0, f64::MAX)
+            }
         }
     }
 
@@ -176,12 +229,21 @@ impl V<'_> {
         if let Some(s) = &o.semantic {
             if class_id(s).is_none() {
                 let known: Vec<&str> = CLASSES.iter().map(|c| c.0).collect();
-                return Err(self.err(k("semantic"), format!("unknown semantic class \"{s}\" (known: {})", known.join(", "))));
+                return Err(self.err(
+                    k("semantic"),
+                    format!(
+                        "unknown semantic class \"{s}\" (known: {})",
+                        known.join(", ")
+                    ),
+                ));
             }
         }
         let t = &o.transform;
         self.finite(&k("transform.translate"), &t.translate.unwrap_or_default())?;
-        self.finite(&k("transform.rotate_deg"), &t.rotate_deg.unwrap_or_default())?;
+        self.finite(
+            &k("transform.rotate_deg"),
+            &t.rotate_deg.unwrap_or_default(),
+        )?;
         if let Some(s) = t.scale {
             self.positive(&k("transform.scale"), &s.axes())?;
         }
@@ -201,30 +263,50 @@ impl V<'_> {
             ShapeDesc::Sphere { radius } => {
                 self.positive(&k("radius"), &[*radius])?;
                 if t.rotate_deg.is_some_and(|r| r != [0.0; 3]) {
-                    return Err(self.err(k("transform.rotate_deg"), "a sphere may only be translated and scaled uniformly"));
+                    return Err(self.err(
+                        k("transform.rotate_deg"),
+                        "a sphere may only be translated and scaled uniformly",
+                    ));
                 }
                 if let Some(ScaleDesc::Axes([a, b, c])) = t.scale {
                     if a != b || b != c {
-                        return Err(self.err(k("transform.scale"), "a sphere may only be scaled uniformly"));
+                        return Err(self.err(
+                            k("transform.scale"),
+                            "a sphere may only be scaled uniformly",
+                        ));
                     }
                 }
                 Ok(())
             }
-            ShapeDesc::Cylinder { radius, height, segments, .. } => {
+            ShapeDesc::Cylinder {
+                radius,
+                height,
+                segments,
+                ..
+            } => {
                 self.positive(&k("radius"), &[*radius])?;
                 self.positive(&k("height"), &[*height])?;
                 count_range(self, &k("segments"), *segments, 3)
             }
-            ShapeDesc::Ellipsoid { radii, segments, rings } => {
+            ShapeDesc::Ellipsoid {
+                radii,
+                segments,
+                rings,
+            } => {
                 self.positive(&k("radii"), radii)?;
                 count_range(self, &k("segments"), *segments, 3)?;
                 count_range(self, &k("rings"), *rings, 2)
             }
-            ShapeDesc::Obj { file } if file.is_empty() => Err(self.err(k("file"), "empty file name")),
+            ShapeDesc::Obj { file } if file.is_empty() => {
+                Err(self.err(k("file"), "empty file name"))
+            }
             ShapeDesc::Obj { .. } => Ok(()),
             ShapeDesc::Instance { prefab, .. } => {
                 if o.material.is_some() {
-                    return Err(self.err(k("material"), "not allowed on an instance (use material_map)"));
+                    return Err(self.err(
+                        k("material"),
+                        "not allowed on an instance (use material_map)",
+                    ));
                 }
                 if !desc.prefabs.iter().any(|p| &p.name == prefab) {
                     return Err(self.err(k("prefab"), format!("unknown prefab \"{prefab}\"")));
@@ -252,21 +334,37 @@ fn available_memory_bytes() -> Option<u64> {
 
 /// Every material of the built scene, in index order: the file's, then each
 /// OBJ file's MTL materials (OBJ files in key order).
-pub fn material_table<'a>(desc: &'a SceneDesc, objs: &'a BTreeMap<String, ObjAsset>) -> Vec<&'a MaterialDesc> {
-    desc.materials.iter().chain(objs.values().flat_map(|o| o.materials.iter())).collect()
+pub fn material_table<'a>(
+    desc: &'a SceneDesc,
+    objs: &'a BTreeMap<String, ObjAsset>,
+) -> Vec<&'a MaterialDesc> {
+    desc.materials
+        .iter()
+        .chain(objs.values().flat_map(|o| o.materials.iter()))
+        .collect()
 }
 
 /// Every object with its key: top level, then each prefab's.
 fn all_objects(desc: &SceneDesc) -> Vec<(String, &ObjectDesc)> {
-    let top = desc.objects.iter().enumerate().map(|(i, o)| (format!("object[{i}]"), o));
+    let top = desc
+        .objects
+        .iter()
+        .enumerate()
+        .map(|(i, o)| (format!("object[{i}]"), o));
     let inner = desc.prefabs.iter().enumerate().flat_map(|(p, pf)| {
-        pf.objects.iter().enumerate().map(move |(j, o)| (format!("prefab[{p}].object[{j}]"), o))
+        pf.objects
+            .iter()
+            .enumerate()
+            .map(move |(j, o)| (format!("prefab[{p}].object[{j}]"), o))
     });
     top.chain(inner).collect()
 }
 
 /// Validates everything; returns the loaded OBJ files and the triangle count.
-pub fn validate(desc: &SceneDesc, file: &Path) -> Result<(BTreeMap<String, ObjAsset>, u64), SceneError> {
+pub fn validate(
+    desc: &SceneDesc,
+    file: &Path,
+) -> Result<(BTreeMap<String, ObjAsset>, u64), SceneError> {
     let v = V { file };
     v.rig(&desc.camera)?;
     if desc.render.spp == 0 {
@@ -285,13 +383,25 @@ pub fn validate(desc: &SceneDesc, file: &Path) -> Result<(BTreeMap<String, ObjAs
     for (i, m) in desc.materials.iter().enumerate() {
         v.material(i, m)?;
         if let Some(j) = first.insert(&m.name, i) {
-            return Err(v.err(format!("material[{i}].name"), format!("duplicate material name \"{}\" (first at material[{j}])", m.name)));
+            return Err(v.err(
+                format!("material[{i}].name"),
+                format!(
+                    "duplicate material name \"{}\" (first at material[{j}])",
+                    m.name
+                ),
+            ));
         }
     }
     let mut prefab_first: HashMap<&str, usize> = HashMap::new();
     for (p, pf) in desc.prefabs.iter().enumerate() {
         if let Some(q) = prefab_first.insert(&pf.name, p) {
-            return Err(v.err(format!("prefab[{p}].name"), format!("duplicate prefab name \"{}\" (first at prefab[{q}])", pf.name)));
+            return Err(v.err(
+                format!("prefab[{p}].name"),
+                format!(
+                    "duplicate prefab name \"{}\" (first at prefab[{q}])",
+                    pf.name
+                ),
+            ));
         }
     }
     let objects = all_objects(desc);
@@ -307,32 +417,58 @@ pub fn validate(desc: &SceneDesc, file: &Path) -> Result<(BTreeMap<String, ObjAs
             if !obj_texts.contains_key(f) {
                 let path = obj_path(file, f);
                 let text = std::fs::read_to_string(&path).map_err(|e| {
-                    SceneError::at(file, K::Io, format!("{key}.file"), format!("cannot read OBJ {}: {e}", path.display()))
+                    SceneError::at(
+                        file,
+                        K::Io,
+                        format!("{key}.file"),
+                        format!("cannot read OBJ {}: {e}", path.display()),
+                    )
                 })?;
                 obj_texts.insert(f.clone(), (key.clone(), count_triangles(&text)));
             }
         }
     }
-    let counts: BTreeMap<String, u64> = obj_texts.iter().map(|(f, (_, n))| (f.clone(), *n)).collect();
+    let counts: BTreeMap<String, u64> = obj_texts
+        .iter()
+        .map(|(f, (_, n))| (f.clone(), *n))
+        .collect();
     let estimate = super::prefab::estimate_triangles(desc, &desc.objects, &counts);
     if estimate > MAX_TRIANGLES {
         return Err(SceneError::at(file, K::Resource, "object", format!("the scene would have about {estimate} triangles, above the limit of {MAX_TRIANGLES}")));
     }
     let mut objs = BTreeMap::new();
     for (f, (key, _)) in &obj_texts {
-        objs.insert(f.clone(), load_obj(file, &format!("{key}.file"), f, &obj_path(file, f))?);
+        objs.insert(
+            f.clone(),
+            load_obj(file, &format!("{key}.file"), f, &obj_path(file, f))?,
+        );
     }
-    let exact = super::prefab::estimate_triangles(desc, &desc.objects, &objs.iter().map(|(f, o)| (f.clone(), o.triangle_count())).collect());
+    let exact = super::prefab::estimate_triangles(
+        desc,
+        &desc.objects,
+        &objs
+            .iter()
+            .map(|(f, o)| (f.clone(), o.triangle_count()))
+            .collect(),
+    );
 
     // References that depend on instancing: materials through material maps.
     let table = material_table(desc, &objs);
-    let index: HashMap<&str, usize> = table.iter().enumerate().map(|(i, m)| (m.name.as_str(), i)).collect();
+    let index: HashMap<&str, usize> = table
+        .iter()
+        .enumerate()
+        .map(|(i, m)| (m.name.as_str(), i))
+        .collect();
     let mut used = vec![false; table.len()];
     walk(desc, false, &mut |placed| {
         let resolve = |name: &str, key: String| -> Result<usize, SceneError> {
             let mapped = placed.map_material(name);
             index.get(mapped.as_str()).copied().ok_or_else(|| {
-                let shown = if mapped == name { format!("\"{name}\"") } else { format!("\"{mapped}\" (mapped from \"{name}\")") };
+                let shown = if mapped == name {
+                    format!("\"{name}\"")
+                } else {
+                    format!("\"{mapped}\" (mapped from \"{name}\")")
+                };
                 v.err(key, format!("unknown material {shown}"))
             })
         };
@@ -343,7 +479,10 @@ pub fn validate(desc: &SceneDesc, file: &Path) -> Result<(BTreeMap<String, ObjAs
                 let asset = &objs[f];
                 for g in &asset.groups {
                     let Some(mi) = g.material else {
-                        return Err(v.err(mkey, format!("OBJ {f} has faces without `usemtl`; set `material`")));
+                        return Err(v.err(
+                            mkey,
+                            format!("OBJ {f} has faces without `usemtl`; set `material`"),
+                        ));
                     };
                     used[resolve(&asset.materials[mi].name, mkey.clone())?] = true;
                 }
@@ -355,8 +494,16 @@ pub fn validate(desc: &SceneDesc, file: &Path) -> Result<(BTreeMap<String, ObjAs
             let (a, b, c) = (m.x_axis, m.y_axis, m.z_axis);
             let s = a.length();
             let tol = 1e-9 * s;
-            if (b.length() - s).abs() > tol || (c.length() - s).abs() > tol || a.dot(b).abs() > tol * s || a.dot(c).abs() > tol * s || b.dot(c).abs() > tol * s {
-                return Err(v.err(format!("{}{}", placed.key, placed.via), "a sphere's enclosing transforms must scale uniformly"));
+            if (b.length() - s).abs() > tol
+                || (c.length() - s).abs() > tol
+                || a.dot(b).abs() > tol * s
+                || a.dot(c).abs() > tol * s
+                || b.dot(c).abs() > tol * s
+            {
+                return Err(v.err(
+                    format!("{}{}", placed.key, placed.via),
+                    "a sphere's enclosing transforms must scale uniformly",
+                ));
             }
         }
         Ok(())
@@ -364,7 +511,11 @@ pub fn validate(desc: &SceneDesc, file: &Path) -> Result<(BTreeMap<String, ObjAs
 
     let sky_lit = match &desc.sky {
         Some(SkyDesc::Constant { le }) => le.iter().any(|&x| x > 0.0),
-        Some(SkyDesc::Gradient { zenith, horizon, ground }) => zenith.iter().chain(horizon).chain(ground).any(|&x| x > 0.0),
+        Some(SkyDesc::Gradient {
+            zenith,
+            horizon,
+            ground,
+        }) => zenith.iter().chain(horizon).chain(ground).any(|&x| x > 0.0),
         None => false,
     };
     let emitting = table.iter().zip(&used).any(|(m, &u)| u && matches!(&m.kind, MaterialKindDesc::Emissive { radiance, .. } if radiance.iter().any(|&x| x > 0.0)));

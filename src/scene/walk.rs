@@ -65,7 +65,14 @@ pub fn walk<'a, E>(
         via: String::new(),
     };
     for (i, object) in desc.objects.iter().enumerate() {
-        walk_object(desc, object, format!("object[{i}]"), &top, expand_repeats, visit)?;
+        walk_object(
+            desc,
+            object,
+            format!("object[{i}]"),
+            &top,
+            expand_repeats,
+            visit,
+        )?;
     }
     Ok(())
 }
@@ -88,10 +95,19 @@ fn walk_object<'a, E>(
     let semantic = frame.semantic.or(object.semantic.as_deref());
     let instance = frame.instance.or(object.instance);
     for offset in offsets {
-        let world_from_local = frame.world_from_parent * DAffine3::from_translation(offset) * parent_from_local;
+        let world_from_local =
+            frame.world_from_parent * DAffine3::from_translation(offset) * parent_from_local;
         match &object.shape {
-            ShapeDesc::Instance { prefab, material_map } => {
-                let Some((p, prefab_desc)) = desc.prefabs.iter().enumerate().find(|(_, p)| &p.name == prefab) else {
+            ShapeDesc::Instance {
+                prefab,
+                material_map,
+            } => {
+                let Some((p, prefab_desc)) = desc
+                    .prefabs
+                    .iter()
+                    .enumerate()
+                    .find(|(_, p)| &p.name == prefab)
+                else {
                     continue; // reported by validation before any walk
                 };
                 let mut maps = frame.maps.clone();
@@ -104,7 +120,14 @@ fn walk_object<'a, E>(
                     via: format!("{}{key} → ", frame.via),
                 };
                 for (j, child) in prefab_desc.objects.iter().enumerate() {
-                    walk_object(desc, child, format!("prefab[{p}].object[{j}]"), &inner, expand_repeats, visit)?;
+                    walk_object(
+                        desc,
+                        child,
+                        format!("prefab[{p}].object[{j}]"),
+                        &inner,
+                        expand_repeats,
+                        visit,
+                    )?;
                 }
             }
             _ => visit(Placed {

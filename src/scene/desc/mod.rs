@@ -126,4 +126,3 @@ fn default_spp() -> u32 {
 fn default_max_depth() -> u32 {
     8
 }
-
