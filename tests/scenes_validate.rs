@@ -492,3 +492,83 @@ fn obj_with_mtl_becomes_meshes_with_named_materials() {
     assert_eq!(light.le, Vec3::splat(4.0));
     assert!(mesh.p_render.iter().all(|p| p.x >= 10.0 && p.x <= 12.0));
 }
+
+/// Nearest hit parameter of the ray o + t·d over every triangle and sphere
+/// (brute force, f64; Möller–Trumbore), `None` for sky.
+fn nearest_hit(scene: &Scene, o: DVec3, d: DVec3) -> Option<f64> {
+    let mut best = f64::INFINITY;
+    for m in &scene.meshes {
+        for t in &m.triangles {
+            let [a, b, c] = t.map(|i| m.p_render[i as usize]);
+            let (e1, e2) = (b - a, c - a);
+            let p = d.cross(e2);
+            let det = e1.dot(p);
+            if det.abs() < 1e-300 {
+                continue;
+            }
+            let s = o - a;
+            let u = s.dot(p) / det;
+            let q = s.cross(e1);
+            let v = d.dot(q) / det;
+            let t = e2.dot(q) / det;
+            if u >= 0.0 && v >= 0.0 && u + v <= 1.0 && t > 0.0 {
+                best = best.min(t);
+            }
+        }
+    }
+    for s in &scene.spheres {
+        let oc = s.center - o;
+        let (dd, b) = (d.length_squared(), d.dot(oc));
+        let disc = b * b - dd * (oc.length_squared() - s.radius * s.radius);
+        if disc >= 0.0 {
+            best = best.min((b - disc.sqrt()) / dd);
+        }
+    }
+    best.is_finite().then_some(best)
+}
+
+/// depth_z along camera direction (a, b, 1) for the unrotated rig of a shipped
+/// scene: world direction (1, −a, −b), so depth_z = t.
+fn depth_z(name: &str, a: f64, b: f64) -> Option<f64> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenes/analytic")
+        .join(name);
+    let loaded = load_scene(&path).unwrap_or_else(|e| panic!("{e}"));
+    let cam = &loaded.desc.camera;
+    assert_eq!([cam.yaw_deg, cam.pitch_deg, cam.roll_deg], [0.0; 3]);
+    let scene = build_scene(&loaded, DVec3::from(cam.position)).unwrap();
+    nearest_hit(&scene, DVec3::ZERO, DVec3::new(1.0, -a, -b))
+}
+
+#[test]
+fn analytic_scene_comments_match_the_built_geometry() {
+    let tan30 = 30f64.to_radians().tan();
+    let close = |z: Option<f64>, want: f64| {
+        let z = z.expect("expected a hit");
+        assert!((z - want).abs() <= 1e-9 * want, "{z} vs {want}");
+    };
+    for (a, b) in [(0.0, 0.0), (-0.5, 0.3), (0.57, -0.32), (0.123, 0.456)] {
+        close(depth_z("fronto_plane.toml", a, b), 10.0);
+        close(depth_z("tilted_plane.toml", a, b), 10.0 / (1.0 - tan30 * a));
+    }
+    // Sphere: s = (10, 0, 0), r = 2, d = (1, −a, −b).
+    for (a, b) in [(0.0, 0.0), (0.1, -0.05), (-0.15, 0.12)] {
+        let d = DVec3::new(1.0, -a, -b);
+        let ds = 10.0;
+        let want =
+            (ds - (ds * ds - d.length_squared() * (100.0 - 4.0)).sqrt()) / d.length_squared();
+        close(depth_z("sphere.toml", a, b), want);
+    }
+    assert_eq!(depth_z("sphere.toml", 0.3, 0.0), None);
+    // Boxes: through each front-face centre (x, y, 1.5) the direction is (1, −y/x, 0).
+    close(depth_z("boxes.toml", -1.5 / 5.0, 0.0), 5.0);
+    close(depth_z("boxes.toml", 0.0, 0.05), 10.0);
+    close(depth_z("boxes.toml", 4.0 / 20.0, -0.02), 20.0);
+    close(depth_z("boxes.toml", -0.5, 0.4), 60.0);
+    // Road: depth_z = 1.5 / b below the horizon up to the 10 km edge, sky above.
+    for b in [0.5, 0.01, 2e-4] {
+        close(depth_z("road_plane.toml", 0.3, b), 1.5 / b);
+    }
+    assert_eq!(depth_z("road_plane.toml", 0.0, 1e-4), None);
+    assert_eq!(depth_z("road_plane.toml", 0.0, -0.1), None);
+}
