@@ -434,3 +434,17 @@ fn missing_obj_file_is_an_io_error_naming_the_key() {
     let text = scene("[[object]]\nkind = \"obj\"\nfile = \"nowhere.obj\"\n");
     expect(&text, SceneErrorKind::Io, "object[0].file", "nowhere.obj");
 }
+
+#[test]
+fn material_map_key_that_renames_nothing_is_named() {
+    let text = scene(
+        "[[object]]\nkind = \"instance\"\nprefab = \"p\"\nmaterial_map = { gray = \"grey\" }\n\
+         [[prefab]]\nname = \"p\"\n[[prefab.object]]\nkind = \"box\"\nsize = [1.0, 1.0, 1.0]\nmaterial = \"grey\"\n",
+    );
+    expect(
+        &text,
+        SceneErrorKind::Invalid,
+        "object[0].material_map.gray",
+        "uses material \"gray\"",
+    );
+}

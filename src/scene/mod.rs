@@ -14,6 +14,7 @@ pub mod load;
 pub mod mesh;
 pub mod obj;
 pub mod prefab;
+mod resolve;
 pub mod semantic;
 pub mod transform;
 pub mod validate;

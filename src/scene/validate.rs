@@ -14,7 +14,6 @@ use super::desc::{
 use super::load::{SceneError, SceneErrorKind as K};
 use super::obj::{count_triangles, load_obj, ObjAsset};
 use super::semantic::{class_id, CLASSES};
-use super::walk::walk;
 
 /// Largest accepted image, pixels (64 megapixels).
 pub const MAX_PIXELS: u64 = 64_000_000;
@@ -452,62 +451,8 @@ pub fn validate(
             .collect(),
     );
 
-    // References that depend on instancing: materials through material maps.
     let table = material_table(desc, &objs);
-    let index: HashMap<&str, usize> = table
-        .iter()
-        .enumerate()
-        .map(|(i, m)| (m.name.as_str(), i))
-        .collect();
-    let mut used = vec![false; table.len()];
-    walk(desc, false, &mut |placed| {
-        let resolve = |name: &str, key: String| -> Result<usize, SceneError> {
-            let mapped = placed.map_material(name);
-            index.get(mapped.as_str()).copied().ok_or_else(|| {
-                let shown = if mapped == name {
-                    format!("\"{name}\"")
-                } else {
-                    format!("\"{mapped}\" (mapped from \"{name}\")")
-                };
-                v.err(key, format!("unknown material {shown}"))
-            })
-        };
-        let mkey = format!("{}.material{}", placed.key, placed.via);
-        match (&placed.object.shape, &placed.object.material) {
-            (_, Some(m)) => used[resolve(m, mkey)?] = true,
-            (ShapeDesc::Obj { file: f }, None) => {
-                let asset = &objs[f];
-                for g in &asset.groups {
-                    let Some(mi) = g.material else {
-                        return Err(v.err(
-                            mkey,
-                            format!("OBJ {f} has faces without `usemtl`; set `material`"),
-                        ));
-                    };
-                    used[resolve(&asset.materials[mi].name, mkey.clone())?] = true;
-                }
-            }
-            _ => {}
-        }
-        if let ShapeDesc::Sphere { .. } = placed.object.shape {
-            let m = placed.world_from_local.matrix3;
-            let (a, b, c) = (m.x_axis, m.y_axis, m.z_axis);
-            let s = a.length();
-            let tol = 1e-9 * s;
-            if (b.length() - s).abs() > tol
-                || (c.length() - s).abs() > tol
-                || a.dot(b).abs() > tol * s
-                || a.dot(c).abs() > tol * s
-                || b.dot(c).abs() > tol * s
-            {
-                return Err(v.err(
-                    format!("{}{}", placed.key, placed.via),
-                    "a sphere's enclosing transforms must scale uniformly",
-                ));
-            }
-        }
-        Ok(())
-    })?;
+    let used = super::resolve::check_references(desc, &objs, &table, file)?;
 
     let sky_lit = match &desc.sky {
         Some(SkyDesc::Constant { le }) => le.iter().any(|&x| x > 0.0),

@@ -42,6 +42,13 @@ pub struct SceneDesc {
     pub prefabs: Vec<PrefabDesc>,
 }
 
+impl SceneDesc {
+    /// This description as TOML (see `serialize_scene`).
+    pub fn to_toml(&self) -> String {
+        serialize_scene(self)
+    }
+}
+
 /// Writes a description back as TOML; `toml::from_str` of the result gives an
 /// equal `SceneDesc` (the resolved description written beside outputs).
 pub fn serialize_scene(desc: &SceneDesc) -> String {
