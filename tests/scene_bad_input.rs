@@ -337,6 +337,10 @@ fn no_light_is_an_error() {
     let unused = "[[material]]\nname = \"lamp\"\nkind = \"emissive\"\nradiance = [1.0, 1.0, 1.0]\n";
     let text = format!("{CAMERA}[sky]\nkind = \"constant\"\nle = [0.0, 0.0, 0.0]\n{unused}[[material]]\nname = \"grey\"\nkind = \"diffuse\"\nalbedo = [0.5, 0.5, 0.5]\n{QUAD}");
     expect(&text, SceneErrorKind::NoLight, "", "no light");
+    // A sun with zero irradiance is no light either.
+    let dark_sun = "[[light]]\nkind = \"sun\"\nelevation_deg = 30.0\nazimuth_deg = 0.0\nirradiance = [0.0, 0.0, 0.0]\n";
+    let text = format!("{CAMERA}{dark_sun}[[material]]\nname = \"grey\"\nkind = \"diffuse\"\nalbedo = [0.5, 0.5, 0.5]\n{QUAD}");
+    expect(&text, SceneErrorKind::NoLight, "", "no light");
 }
 
 #[test]

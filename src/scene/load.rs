@@ -120,12 +120,29 @@ pub fn parse_scene_str(text: &str, path: &Path) -> Result<LoadedScene, SceneErro
 pub fn parse_desc(text: &str, path: &Path) -> Result<SceneDesc, SceneError> {
     let de = toml::Deserializer::new(text);
     serde_path_to_error::deserialize(de).map_err(|e| {
-        let key = e.path().to_string();
+        let mut key = e.path().to_string();
         let inner = e.into_inner();
+        if key == "." {
+            key.clear();
+        }
+        // Inside flattened shapes the path stops at the object: name the field.
+        if let Some(field) = inner
+            .message()
+            .strip_prefix("unknown field `")
+            .and_then(|rest| rest.split('`').next())
+        {
+            if !key.ends_with(field) {
+                key = if key.is_empty() {
+                    field.to_string()
+                } else {
+                    format!("{key}.{field}")
+                };
+            }
+        }
         SceneError {
             file: path.to_path_buf(),
             kind: SceneErrorKind::Syntax,
-            key: if key == "." { String::new() } else { key },
+            key,
             line_col: inner.span().map(|s| line_col(text, s.start)),
             message: inner.message().trim().replace('\n', "; "),
         }

@@ -166,9 +166,11 @@ fn group_from_mesh(mesh: &tobj::Mesh, dropped: &mut usize) -> Result<ObjGroup, S
     })
 }
 
-/// GGX roughness from a Phong exponent (Walter et al. 2007, eq. for αp → αb).
+/// GGX roughness from a Phong exponent (Walter et al. 2007, αb = √(2/(αp + 2)));
+/// no `Ns` means a smooth surface.
 fn roughness_from_ns(ns: Option<f32>) -> f64 {
-    let ns = ns.unwrap_or(0.0).max(0.0) as f64;
+    let Some(ns) = ns else { return 0.0 };
+    let ns = ns.max(0.0) as f64;
     let alpha = (2.0 / (ns + 2.0)).sqrt();
     alpha.sqrt().clamp(0.0, 1.0)
 }

@@ -464,8 +464,14 @@ pub fn validate(
         None => false,
     };
     let emitting = table.iter().zip(&used).any(|(m, &u)| u && matches!(&m.kind, MaterialKindDesc::Emissive { radiance, .. } if radiance.iter().any(|&x| x > 0.0)));
-    if desc.lights.is_empty() && !sky_lit && !emitting {
-        return Err(SceneError::at(file, K::NoLight, "", "no light: no sun, point or spot light, no emissive material in use, and the sky is black"));
+    let lit = desc.lights.iter().any(|l| match l {
+        LightDesc::Sun { irradiance: c, .. }
+        | LightDesc::Point { intensity: c, .. }
+        | LightDesc::Spot { intensity: c, .. } => c.iter().any(|&x| x > 0.0),
+    });
+    if !lit && !sky_lit && !emitting {
+        let msg = "no light: no sun, point or spot light with power, no emissive material in use, and the sky is black";
+        return Err(SceneError::at(file, K::NoLight, "", msg));
     }
     Ok((objs, exact))
 }
