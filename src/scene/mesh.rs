@@ -1,1 +1,195 @@
-//! Primitive tessellation (placeholder).
+//! Primitive tessellation in the object's local frame, f64: quad, box,
+//! cylinder, ellipsoid. Triangles wind counter-clockwise seen from outside
+//! (geometric normal (b − a) × (c − a) points out). Flat shapes carry no
+//! normals; curved ones carry analytic per-vertex normals.
+
+use glam::DVec3;
+use std::f64::consts::TAU;
+
+/// A tessellated shape in its local frame.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LocalMesh {
+    /// Vertex positions, metres.
+    pub positions: Vec<DVec3>,
+    /// Unit per-vertex normals, or empty for flat shading.
+    pub normals: Vec<DVec3>,
+    /// Vertex indices.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+/// Triangle count of each tessellated shape (the resource guard uses these).
+pub fn cylinder_triangles(segments: u32, capped: bool) -> u64 {
+    segments as u64 * if capped { 4 } else { 2 }
+}
+
+/// Triangle count of an ellipsoid: fans at both poles, quads in between.
+pub fn ellipsoid_triangles(segments: u32, rings: u32) -> u64 {
+    2 * segments as u64 * (rings as u64 - 1)
+}
+
+/// A `size[0]` × `size[1]` rectangle in the xy plane, normal +z.
+pub fn quad(size: [f64; 2]) -> LocalMesh {
+    let (hx, hy) = (size[0] / 2.0, size[1] / 2.0);
+    LocalMesh {
+        positions: vec![
+            DVec3::new(-hx, -hy, 0.0),
+            DVec3::new(hx, -hy, 0.0),
+            DVec3::new(hx, hy, 0.0),
+            DVec3::new(-hx, hy, 0.0),
+        ],
+        normals: Vec::new(),
+        triangles: vec![[0, 1, 2], [0, 2, 3]],
+    }
+}
+
+/// An axis-aligned box centred at the origin.
+pub fn cuboid(size: [f64; 3]) -> LocalMesh {
+    let h = DVec3::from(size) / 2.0;
+    // Vertex i has x sign from bit 0, y from bit 1, z from bit 2.
+    let positions = (0..8)
+        .map(|i| {
+            let s = |bit: u32| if i >> bit & 1 == 1 { 1.0 } else { -1.0 };
+            DVec3::new(s(0), s(1), s(2)) * h
+        })
+        .collect();
+    let faces: [[u32; 4]; 6] = [
+        [0, 2, 3, 1], // −z
+        [4, 5, 7, 6], // +z
+        [0, 1, 5, 4], // −y
+        [2, 6, 7, 3], // +y
+        [0, 4, 6, 2], // −x
+        [1, 3, 7, 5], // +x
+    ];
+    let triangles = faces
+        .iter()
+        .flat_map(|f| [[f[0], f[1], f[2]], [f[0], f[2], f[3]]])
+        .collect();
+    LocalMesh {
+        positions,
+        normals: Vec::new(),
+        triangles,
+    }
+}
+
+/// A cylinder along +z from z = 0 to `height`, optionally capped.
+pub fn cylinder(radius: f64, height: f64, segments: u32, capped: bool) -> LocalMesh {
+    let mut m = LocalMesh::default();
+    let n = segments;
+    let dir = |i: u32| {
+        let phi = TAU * i as f64 / n as f64;
+        DVec3::new(phi.cos(), phi.sin(), 0.0)
+    };
+    // Side: vertex 2i at the base, 2i + 1 at the top, radial normals.
+    for i in 0..n {
+        let d = dir(i);
+        m.positions.push(d * radius);
+        m.positions.push(d * radius + DVec3::Z * height);
+        m.normals.extend([d, d]);
+    }
+    for i in 0..n {
+        let j = (i + 1) % n;
+        let (b0, t0, b1, t1) = (2 * i, 2 * i + 1, 2 * j, 2 * j + 1);
+        m.triangles.push([b0, b1, t1]);
+        m.triangles.push([b0, t1, t0]);
+    }
+    if capped {
+        for (z, normal) in [(0.0, -DVec3::Z), (height, DVec3::Z)] {
+            let centre = m.positions.len() as u32;
+            m.positions.push(DVec3::Z * z);
+            m.normals.push(normal);
+            for i in 0..n {
+                m.positions.push(dir(i) * radius + DVec3::Z * z);
+                m.normals.push(normal);
+            }
+            for i in 0..n {
+                let (a, b) = (centre + 1 + i, centre + 1 + (i + 1) % n);
+                // Counter-clockwise seen from outside: reversed on the bottom.
+                m.triangles.push(if z == 0.0 {
+                    [centre, b, a]
+                } else {
+                    [centre, a, b]
+                });
+            }
+        }
+    }
+    m
+}
+
+/// An ellipsoid with semi-axes `radii`, `segments` around z and `rings`
+/// from pole to pole; normals ∝ (x/a², y/b², z/c²).
+pub fn ellipsoid(radii: [f64; 3], segments: u32, rings: u32) -> LocalMesh {
+    let r = DVec3::from(radii);
+    let mut m = LocalMesh::default();
+    let mut push = |unit: DVec3| {
+        let p = unit * r;
+        m.positions.push(p);
+        m.normals.push((p / (r * r)).normalize());
+    };
+    push(DVec3::Z);
+    for ring in 1..rings {
+        let theta = std::f64::consts::PI * ring as f64 / rings as f64;
+        for s in 0..segments {
+            let phi = TAU * s as f64 / segments as f64;
+            push(DVec3::new(
+                theta.sin() * phi.cos(),
+                theta.sin() * phi.sin(),
+                theta.cos(),
+            ));
+        }
+    }
+    push(-DVec3::Z);
+    let south = m.positions.len() as u32 - 1;
+    let at = |ring: u32, s: u32| 1 + (ring - 1) * segments + s % segments;
+    for s in 0..segments {
+        m.triangles.push([0, at(1, s), at(1, s + 1)]);
+        m.triangles
+            .push([south, at(rings - 1, s + 1), at(rings - 1, s)]);
+    }
+    for ring in 1..rings - 1 {
+        for s in 0..segments {
+            let (a, b, c, d) = (
+                at(ring, s),
+                at(ring + 1, s),
+                at(ring + 1, s + 1),
+                at(ring, s + 1),
+            );
+            m.triangles.push([a, b, c]);
+            m.triangles.push([a, c, d]);
+        }
+    }
+    m
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every triangle's geometric normal points away from the centroid.
+    fn assert_outward(m: &LocalMesh, centre: DVec3) {
+        for t in &m.triangles {
+            let [a, b, c] = t.map(|i| m.positions[i as usize]);
+            let n = (b - a).cross(c - a);
+            assert!(n.length() > 0.0, "degenerate triangle {t:?}");
+            assert!(
+                n.dot((a + b + c) / 3.0 - centre) > 0.0,
+                "inward triangle {t:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn shapes_wind_outward_with_predicted_counts() {
+        let b = cuboid([1.0, 2.0, 3.0]);
+        assert_eq!(b.triangles.len(), 12);
+        assert_outward(&b, DVec3::ZERO);
+        let c = cylinder(1.0, 2.0, 12, true);
+        assert_eq!(c.triangles.len() as u64, cylinder_triangles(12, true));
+        assert_outward(&c, DVec3::Z);
+        let e = ellipsoid([1.0, 2.0, 0.5], 10, 6);
+        assert_eq!(e.triangles.len() as u64, ellipsoid_triangles(10, 6));
+        assert_outward(&e, DVec3::ZERO);
+        let q = quad([2.0, 4.0]);
+        let [a, b, c] = q.triangles[0].map(|i| q.positions[i as usize]);
+        assert!((b - a).cross(c - a).z > 0.0);
+    }
+}

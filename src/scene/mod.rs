@@ -1,6 +1,7 @@
 //! Scenes: serde descriptions (`desc`), validation with file and key-path
 //! errors (`load`), and the immutable, render-space `Scene` built from them
-//! (`build`), with OBJ import (`obj`) and primitive tessellation (`mesh`).
+//! (`build`), with OBJ import (`obj`), primitive tessellation (`mesh`),
+//! prefab checks (`prefab`), placement (`transform`) and semantic classes.
 //!
 //! A `Scene` is built once per frame around a render origin (the frame's left
 //! camera centre, world coordinates, f64): every position in it is
@@ -12,10 +13,16 @@ pub mod desc;
 pub mod load;
 pub mod mesh;
 pub mod obj;
+pub mod prefab;
+mod resolve;
+pub mod semantic;
+pub mod transform;
+pub mod validate;
+mod walk;
 
 pub use build::build_scene;
-pub use desc::SceneDesc;
-pub use load::{load_scene, SceneError};
+pub use desc::{serialize_scene, SceneDesc};
+pub use load::{load_scene, parse_scene_str, LoadedScene, SceneError, SceneErrorKind};
 
 use glam::{DVec3, Vec2, Vec3, Vec4};
 use shaders_cpu::bsdf::Bsdf;

@@ -3,8 +3,57 @@
 //!
 //! Units: metres, degrees in files (radians inside), world frame right-handed
 //! with z up. Positions are f64 so a scene may sit far from the origin.
+//! Families live in `object.rs`, `material.rs` and `light.rs` (lights and sky).
+
+mod light;
+mod material;
+mod object;
+
+pub use light::{LightDesc, SkyDesc};
+pub use material::{ConductorPreset, MaskFlag, MaterialDesc, MaterialKindDesc};
+pub use object::{ObjectDesc, PrefabDesc, RepeatDesc, ScaleDesc, ShapeDesc, TransformDesc};
 
 use serde::{Deserialize, Serialize};
+
+/// A whole scene file: `[camera]`, `[render]`, `[sky]`, `[[light]]`,
+/// `[[material]]`, `[[object]]` and `[[prefab]]`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneDesc {
+    /// The stereo rig.
+    pub camera: RigDesc,
+    /// Render settings.
+    #[serde(default)]
+    pub render: RenderDesc,
+    /// Environment radiance for rays leaving the scene (absent: black).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sky: Option<SkyDesc>,
+    /// Explicit lights: sun, point, spot.
+    #[serde(default, rename = "light", skip_serializing_if = "Vec::is_empty")]
+    pub lights: Vec<LightDesc>,
+    /// Named materials, referenced by objects.
+    #[serde(default, rename = "material", skip_serializing_if = "Vec::is_empty")]
+    pub materials: Vec<MaterialDesc>,
+    /// Objects placed in the world.
+    #[serde(default, rename = "object", skip_serializing_if = "Vec::is_empty")]
+    pub objects: Vec<ObjectDesc>,
+    /// Reusable groups of objects, placed by `kind = "instance"` objects.
+    #[serde(default, rename = "prefab", skip_serializing_if = "Vec::is_empty")]
+    pub prefabs: Vec<PrefabDesc>,
+}
+
+impl SceneDesc {
+    /// This description as TOML (see `serialize_scene`).
+    pub fn to_toml(&self) -> String {
+        serialize_scene(self)
+    }
+}
+
+/// Writes a description back as TOML; `toml::from_str` of the result gives an
+/// equal `SceneDesc` (the resolved description written beside outputs).
+pub fn serialize_scene(desc: &SceneDesc) -> String {
+    toml::to_string(desc).expect("a SceneDesc always serialises to TOML")
+}
 
 /// The stereo rig: left (reference) camera pose, intrinsics, baselines.
 ///
@@ -52,7 +101,7 @@ pub struct RenderDesc {
     #[serde(default = "default_max_depth")]
     pub max_depth: u32,
     /// Seed of every random stream. Absent: one is drawn and recorded.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub seed: Option<u64>,
 }
 
@@ -83,17 +132,4 @@ fn default_spp() -> u32 {
 }
 fn default_max_depth() -> u32 {
     8
-}
-
-// SceneDesc and the object/material/light/sky descriptions follow (scene helper).
-
-/// A whole scene file (placeholder until the scene format lands).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SceneDesc {
-    /// The stereo rig.
-    pub camera: RigDesc,
-    /// Render settings.
-    #[serde(default)]
-    pub render: RenderDesc,
 }

@@ -1,0 +1,116 @@
+//! Material descriptions: `[[material]]` with a unique `name` and a `kind`.
+//!
+//! Colours are linear RGB. Roughness is perceptual, in [0, 1]; the GGX alpha
+//! is roughness². Mask bits follow GROUND_TRUTH.md: dielectrics are
+//! transparent, conductors with roughness < 0.1 are mirrors, unless `mask`
+//! says otherwise.
+
+use serde::{Deserialize, Serialize};
+
+/// A named material.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct MaterialDesc {
+    /// Unique name, referenced by objects' `material`.
+    pub name: String,
+    /// Explicit GT mask flags, replacing the ones derived from the kind.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mask: Option<Vec<MaskFlag>>,
+    /// The scattering model and its parameters.
+    #[serde(flatten)]
+    pub kind: MaterialKindDesc,
+}
+
+/// A GT mask flag a material may set.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MaskFlag {
+    /// Transparent surface (glass, water).
+    Transparent,
+    /// Mirror-like surface (puddle, chrome).
+    Mirror,
+}
+
+/// The material family, selected by `kind`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum MaterialKindDesc {
+    /// Lambertian diffuse.
+    Diffuse {
+        /// Reflectance per channel, in [0, 1].
+        albedo: [f64; 3],
+    },
+    /// GGX conductor: either `preset` or both `eta` and `k`.
+    Conductor {
+        /// A named metal (approximate RGB optical constants).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        preset: Option<ConductorPreset>,
+        /// Real part of the index of refraction per channel, > 0.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        eta: Option<[f64; 3]>,
+        /// Absorption coefficient per channel, ≥ 0.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        k: Option<[f64; 3]>,
+        /// Perceptual roughness in [0, 1] (default 0).
+        #[serde(default)]
+        roughness: f64,
+    },
+    /// GGX dielectric (glass, water) with reflection and transmission.
+    Dielectric {
+        /// Index of refraction inside/outside, > 0 (default 1.5).
+        #[serde(default = "default_ior")]
+        ior: f64,
+        /// Perceptual roughness in [0, 1] (default 0).
+        #[serde(default)]
+        roughness: f64,
+        /// Transmission tint per channel in [0, 1] (default white).
+        #[serde(default = "default_tint")]
+        tint: [f64; 3],
+    },
+    /// An emitter (its surface scatters nothing: black Lambert).
+    Emissive {
+        /// Emitted radiance, W·m⁻²·sr⁻¹ per channel, each ≥ 0.
+        radiance: [f64; 3],
+        /// Whether both faces emit (default false: only the geometric front).
+        #[serde(default)]
+        two_sided: bool,
+    },
+}
+
+/// Named metals for conductors.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ConductorPreset {
+    /// Aluminium.
+    Aluminium,
+    /// Chromium.
+    Chrome,
+    /// Copper.
+    Copper,
+    /// Gold.
+    Gold,
+    /// Silver.
+    Silver,
+    /// Iron.
+    Iron,
+}
+
+impl ConductorPreset {
+    /// Approximate (eta, k) at about 650, 550 and 450 nm for the R, G, B channels.
+    pub fn eta_k(self) -> ([f64; 3], [f64; 3]) {
+        match self {
+            ConductorPreset::Aluminium => ([1.657, 0.880, 0.521], [9.224, 6.270, 4.837]),
+            ConductorPreset::Chrome => ([3.180, 3.120, 2.320], [3.330, 3.330, 3.135]),
+            ConductorPreset::Copper => ([0.200, 0.924, 1.102], [3.912, 2.452, 2.142]),
+            ConductorPreset::Gold => ([0.143, 0.374, 1.442], [3.983, 2.385, 1.603]),
+            ConductorPreset::Silver => ([0.155, 0.117, 0.138], [4.828, 3.122, 2.147]),
+            ConductorPreset::Iron => ([2.911, 2.950, 2.585], [3.089, 2.932, 2.767]),
+        }
+    }
+}
+
+fn default_ior() -> f64 {
+    1.5
+}
+fn default_tint() -> [f64; 3] {
+    [1.0; 3]
+}

@@ -1,0 +1,482 @@
+//! Full validation of a `SceneDesc`: ranges, references (materials, prefabs,
+//! semantic classes), prefab cycles, resource guards (pixels, frame memory,
+//! triangle count, all before allocating), OBJ loading, and "no light".
+//!
+//! Every error names the scene file and the key path of the offending value.
+
+use std::collections::{BTreeMap, HashMap};
+use std::path::Path;
+
+use super::desc::{
+    LightDesc, MaterialDesc, MaterialKindDesc, ObjectDesc, RigDesc, ScaleDesc, SceneDesc,
+    ShapeDesc, SkyDesc,
+};
+use super::load::{SceneError, SceneErrorKind as K};
+use super::obj::{count_triangles, load_obj, ObjAsset};
+use super::semantic::{class_id, CLASSES};
+
+/// Largest accepted image, pixels (64 megapixels).
+pub const MAX_PIXELS: u64 = 64_000_000;
+/// Largest accepted triangle count of a built scene.
+pub const MAX_TRIANGLES: u64 = 100_000_000;
+
+/// Bytes of film and ground-truth buffers of one frame: per view (left and
+/// one right per baseline) f64 RGB accumulation 24, f32 RGB 12, depth 4,
+/// normal 12, semantic 1, instance 2, mask 1 (56 with padding); per baseline
+/// a left and a right disparity (4) and occlusion (1) (8 each with padding).
+pub fn frame_bytes(rig: &RigDesc) -> u64 {
+    let baselines = rig.baselines_cm.len() as u64;
+    let per_pixel = (1 + baselines) * 56 + 2 * baselines * 8;
+    rig.width as u64 * rig.height as u64 * per_pixel
+}
+
+struct V<'a> {
+    file: &'a Path,
+}
+
+impl V<'_> {
+    fn err(&self, key: impl Into<String>, msg: impl Into<String>) -> SceneError {
+        SceneError::at(self.file, K::Invalid, key, msg)
+    }
+    fn finite(&self, key: &str, v: &[f64]) -> Result<(), SceneError> {
+        match v.iter().find(|x| !x.is_finite()) {
+            Some(x) => Err(self.err(key, format!("value {x} is not a finite number"))),
+            None => Ok(()),
+        }
+    }
+    fn positive(&self, key: &str, v: &[f64]) -> Result<(), SceneError> {
+        self.finite(key, v)?;
+        match v.iter().find(|&&x| x <= 0.0) {
+            Some(x) => Err(self.err(key, format!("must be > 0, got {x}"))),
+            None => Ok(()),
+        }
+    }
+    fn range(&self, key: &str, v: &[f64], lo: f64, hi: f64) -> Result<(), SceneError> {
+        self.finite(key, v)?;
+        match v.iter().find(|&&x| x < lo || x > hi) {
+            Some(x) => Err(self.err(key, format!("must be in [{lo}, {hi}], got {x}"))),
+            None => Ok(()),
+        }
+    }
+
+    fn rig(&self, rig: &RigDesc) -> Result<(), SceneError> {
+        if rig.width == 0 || rig.height == 0 {
+            let key = if rig.width == 0 {
+                "camera.width"
+            } else {
+                "camera.height"
+            };
+            return Err(self.err(key, "image size must be at least 1 pixel"));
+        }
+        self.finite("camera.hfov_deg", &[rig.hfov_deg])?;
+        if !(rig.hfov_deg > 0.0 && rig.hfov_deg < 180.0) {
+            return Err(self.err(
+                "camera.hfov_deg",
+                format!("must be in (0, 180), got {}", rig.hfov_deg),
+            ));
+        }
+        if rig.baselines_cm.is_empty() {
+            return Err(self.err("camera.baselines_cm", "at least one baseline is needed"));
+        }
+        self.positive("camera.baselines_cm", &rig.baselines_cm)?;
+        self.finite("camera.position", &rig.position)?;
+        self.finite("camera.yaw_deg", &[rig.yaw_deg])?;
+        self.range("camera.pitch_deg", &[rig.pitch_deg], -90.0, 90.0)?;
+        self.range("camera.roll_deg", &[rig.roll_deg], -180.0, 180.0)?;
+        let pixels = rig.width as u64 * rig.height as u64;
+        if pixels > MAX_PIXELS {
+            return Err(SceneError::at(
+                self.file,
+                K::Resource,
+                "camera.width",
+                format!(
+                    "{}×{} = {pixels} pixels exceeds the limit of {MAX_PIXELS} pixels",
+                    rig.width, rig.height
+                ),
+            ));
+        }
+        let need = frame_bytes(rig);
+        if let Some(avail) = available_memory_bytes() {
+            if need > avail {
+                return Err(SceneError::at(
+                    self.file,
+                    K::Resource,
+                    "camera.width",
+                    format!(
+                        "film and ground-truth buffers for {}×{} with {} baselines need {:.1} GiB, only {:.1} GiB of memory is available",
+                        rig.width,
+                        rig.height,
+                        rig.baselines_cm.len(),
+                        need as f64 / (1u64 << 30) as f64,
+                        avail as f64 / (1u64 << 30) as f64
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    fn sky(&self, sky: &SkyDesc) -> Result<(), SceneError> {
+        match sky {
+            SkyDesc::Constant { le } => self.range("sky.le", le, 0.0, f64::MAX),
+            SkyDesc::Gradient {
+                zenith,
+                horizon,
+                ground,
+            } => {
+                self.range("sky.zenith", zenith, 0.0, f64::MAX)?;
+                self.range("sky.horizon", horizon, 0.0, f64::MAX)?;
+                self.range("sky.ground", ground, 0.0, f64::MAX)
+            }
+        }
+    }
+
+    fn light(&self, i: usize, light: &LightDesc) -> Result<(), SceneError> {
+        let k = |f: &str| format!("light[{i}].{f}");
+        match light {
+            LightDesc::Sun {
+                elevation_deg,
+                azimuth_deg,
+                irradiance,
+                angular_diameter_deg,
+            } => {
+                self.range(&k("elevation_deg"), &[*elevation_deg], -90.0, 90.0)?;
+                self.finite(&k("azimuth_deg"), &[*azimuth_deg])?;
+                self.range(&k("irradiance"), irradiance, 0.0, f64::MAX)?;
+                self.positive(&k("angular_diameter_deg"), &[*angular_diameter_deg])?;
+                self.range(
+                    &k("angular_diameter_deg"),
+                    &[*angular_diameter_deg],
+                    0.0,
+                    90.0,
+                )
+            }
+            LightDesc::Point {
+                position,
+                intensity,
+            } => {
+                self.finite(&k("position"), position)?;
+                self.range(&k("intensity"), intensity, 0.0, f64::MAX)
+            }
+            LightDesc::Spot {
+                position,
+                direction,
+                intensity,
+                inner_deg,
+                outer_deg,
+            } => {
+                self.finite(&k("position"), position)?;
+                self.finite(&k("direction"), direction)?;
+                if direction.iter().all(|&x| x == 0.0) {
+                    return Err(self.err(k("direction"), "must not be the zero vector"));
+                }
+                self.range(&k("intensity"), intensity, 0.0, f64::MAX)?;
+                self.positive(&k("outer_deg"), &[*outer_deg])?;
+                self.range(&k("outer_deg"), &[*outer_deg], 0.0, 179.999)?;
+                self.range(&k("inner_deg"), &[*inner_deg], 0.0, *outer_deg)
+            }
+        }
+    }
+
+    fn material(&self, i: usize, m: &MaterialDesc) -> Result<(), SceneError> {
+        let k = |f: &str| format!("material[{i}].{f}");
+        if m.name.is_empty() || m.name.contains('/') {
+            return Err(self.err(
+                k("name"),
+                format!(
+                    "\"{}\": names must be non-empty without '/' (reserved for OBJ materials)",
+                    m.name
+                ),
+            ));
+        }
+        match &m.kind {
+            MaterialKindDesc::Diffuse { albedo } => self.range(&k("albedo"), albedo, 0.0, 1.0),
+            MaterialKindDesc::Conductor {
+                preset,
+                eta,
+                k: kk,
+                roughness,
+            } => {
+                self.range(&k("roughness"), &[*roughness], 0.0, 1.0)?;
+                match (preset, eta, kk) {
+                    (Some(_), None, None) => Ok(()),
+                    (None, Some(eta), Some(kk)) => {
+                        self.positive(&k("eta"), eta)?;
+                        self.range(&k("k"), kk, 0.0, f64::MAX)
+                    }
+                    _ => Err(self.err(k("preset"), "give either `preset` or both `eta` and `k`")),
+                }
+            }
+            MaterialKindDesc::Dielectric {
+                ior,
+                roughness,
+                tint,
+            } => {
+                self.positive(&k("ior"), &[*ior])?;
+                self.range(&k("roughness"), &[*roughness], 0.0, 1.0)?;
+                self.range(&k("tint"), tint, 0.0, 1.0)
+            }
+            MaterialKindDesc::Emissive { radiance, .. } => {
+                self.range(&k("radiance"), radiance, 0.0, f64::MAX)
+            }
+        }
+    }
+
+    /// Checks one object's own fields (not references that depend on instancing).
+    fn object(&self, key: &str, o: &ObjectDesc, desc: &SceneDesc) -> Result<(), SceneError> {
+        let k = |f: &str| format!("{key}.{f}");
+        if let Some(s) = &o.semantic {
+            if class_id(s).is_none() {
+                let known: Vec<&str> = CLASSES.iter().map(|c| c.0).collect();
+                return Err(self.err(
+                    k("semantic"),
+                    format!(
+                        "unknown semantic class \"{s}\" (known: {})",
+                        known.join(", ")
+                    ),
+                ));
+            }
+        }
+        let t = &o.transform;
+        self.finite(&k("transform.translate"), &t.translate.unwrap_or_default())?;
+        self.finite(
+            &k("transform.rotate_deg"),
+            &t.rotate_deg.unwrap_or_default(),
+        )?;
+        if let Some(s) = t.scale {
+            self.positive(&k("transform.scale"), &s.axes())?;
+        }
+        for (r, level) in o.repeat.iter().enumerate() {
+            if level.count == 0 {
+                return Err(self.err(k(&format!("repeat[{r}].count")), "must be ≥ 1"));
+            }
+            self.finite(&k(&format!("repeat[{r}].offset")), &level.offset)?;
+        }
+        let needs_material = !matches!(o.shape, ShapeDesc::Obj { .. } | ShapeDesc::Instance { .. });
+        if needs_material && o.material.is_none() {
+            return Err(self.err(k("material"), "missing material"));
+        }
+        match &o.shape {
+            ShapeDesc::Quad { size } => self.positive(&k("size"), size),
+            ShapeDesc::Box { size } => self.positive(&k("size"), size),
+            ShapeDesc::Sphere { radius } => {
+                self.positive(&k("radius"), &[*radius])?;
+                if t.rotate_deg.is_some_and(|r| r != [0.0; 3]) {
+                    return Err(self.err(
+                        k("transform.rotate_deg"),
+                        "a sphere may only be translated and scaled uniformly",
+                    ));
+                }
+                if let Some(ScaleDesc::Axes([a, b, c])) = t.scale {
+                    if a != b || b != c {
+                        return Err(self.err(
+                            k("transform.scale"),
+                            "a sphere may only be scaled uniformly",
+                        ));
+                    }
+                }
+                Ok(())
+            }
+            ShapeDesc::Cylinder {
+                radius,
+                height,
+                segments,
+                ..
+            } => {
+                self.positive(&k("radius"), &[*radius])?;
+                self.positive(&k("height"), &[*height])?;
+                count_range(self, &k("segments"), *segments, 3)
+            }
+            ShapeDesc::Ellipsoid {
+                radii,
+                segments,
+                rings,
+            } => {
+                self.positive(&k("radii"), radii)?;
+                count_range(self, &k("segments"), *segments, 3)?;
+                count_range(self, &k("rings"), *rings, 2)
+            }
+            ShapeDesc::Obj { file } if file.is_empty() => {
+                Err(self.err(k("file"), "empty file name"))
+            }
+            ShapeDesc::Obj { .. } => Ok(()),
+            ShapeDesc::Instance { prefab, .. } => {
+                if o.material.is_some() {
+                    return Err(self.err(
+                        k("material"),
+                        "not allowed on an instance (use material_map)",
+                    ));
+                }
+                if !desc.prefabs.iter().any(|p| &p.name == prefab) {
+                    return Err(self.err(k("prefab"), format!("unknown prefab \"{prefab}\"")));
+                }
+                Ok(())
+            }
+        }
+    }
+}
+
+fn count_range(v: &V, key: &str, n: u32, min: u32) -> Result<(), SceneError> {
+    if n < min || n > 1 << 16 {
+        return Err(v.err(key, format!("must be in [{min}, 65536], got {n}")));
+    }
+    Ok(())
+}
+
+/// `MemAvailable` from /proc/meminfo, if readable.
+fn available_memory_bytes() -> Option<u64> {
+    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024)
+}
+
+/// Every material of the built scene, in index order: the file's, then each
+/// OBJ file's MTL materials (OBJ files in key order).
+pub fn material_table<'a>(
+    desc: &'a SceneDesc,
+    objs: &'a BTreeMap<String, ObjAsset>,
+) -> Vec<&'a MaterialDesc> {
+    desc.materials
+        .iter()
+        .chain(objs.values().flat_map(|o| o.materials.iter()))
+        .collect()
+}
+
+/// Every object with its key: top level, then each prefab's.
+fn all_objects(desc: &SceneDesc) -> Vec<(String, &ObjectDesc)> {
+    let top = desc
+        .objects
+        .iter()
+        .enumerate()
+        .map(|(i, o)| (format!("object[{i}]"), o));
+    let inner = desc.prefabs.iter().enumerate().flat_map(|(p, pf)| {
+        pf.objects
+            .iter()
+            .enumerate()
+            .map(move |(j, o)| (format!("prefab[{p}].object[{j}]"), o))
+    });
+    top.chain(inner).collect()
+}
+
+/// Validates everything; returns the loaded OBJ files and the triangle count.
+pub fn validate(
+    desc: &SceneDesc,
+    file: &Path,
+) -> Result<(BTreeMap<String, ObjAsset>, u64), SceneError> {
+    let v = V { file };
+    v.rig(&desc.camera)?;
+    if desc.render.spp == 0 {
+        return Err(v.err("render.spp", "must be ≥ 1"));
+    }
+    if desc.render.max_depth == 0 {
+        return Err(v.err("render.max_depth", "must be ≥ 1"));
+    }
+    if let Some(sky) = &desc.sky {
+        v.sky(sky)?;
+    }
+    for (i, l) in desc.lights.iter().enumerate() {
+        v.light(i, l)?;
+    }
+    let mut first: HashMap<&str, usize> = HashMap::new();
+    for (i, m) in desc.materials.iter().enumerate() {
+        v.material(i, m)?;
+        if let Some(j) = first.insert(&m.name, i) {
+            return Err(v.err(
+                format!("material[{i}].name"),
+                format!(
+                    "duplicate material name \"{}\" (first at material[{j}])",
+                    m.name
+                ),
+            ));
+        }
+    }
+    let mut prefab_first: HashMap<&str, usize> = HashMap::new();
+    for (p, pf) in desc.prefabs.iter().enumerate() {
+        if let Some(q) = prefab_first.insert(&pf.name, p) {
+            return Err(v.err(
+                format!("prefab[{p}].name"),
+                format!(
+                    "duplicate prefab name \"{}\" (first at prefab[{q}])",
+                    pf.name
+                ),
+            ));
+        }
+    }
+    let objects = all_objects(desc);
+    for (key, o) in &objects {
+        v.object(key, o, desc)?;
+    }
+    super::prefab::check_cycles(desc, file)?;
+
+    // Resource guard on counts alone, before any OBJ parse or tessellation.
+    let mut obj_texts = BTreeMap::new();
+    for (key, o) in &objects {
+        if let ShapeDesc::Obj { file: f } = &o.shape {
+            if !obj_texts.contains_key(f) {
+                let path = obj_path(file, f);
+                let text = std::fs::read_to_string(&path).map_err(|e| {
+                    SceneError::at(
+                        file,
+                        K::Io,
+                        format!("{key}.file"),
+                        format!("cannot read OBJ {}: {e}", path.display()),
+                    )
+                })?;
+                obj_texts.insert(f.clone(), (key.clone(), count_triangles(&text)));
+            }
+        }
+    }
+    let counts: BTreeMap<String, u64> = obj_texts
+        .iter()
+        .map(|(f, (_, n))| (f.clone(), *n))
+        .collect();
+    let estimate = super::prefab::estimate_triangles(desc, &desc.objects, &counts);
+    if estimate > MAX_TRIANGLES {
+        return Err(SceneError::at(file, K::Resource, "object", format!("the scene would have about {estimate} triangles, above the limit of {MAX_TRIANGLES}")));
+    }
+    let mut objs = BTreeMap::new();
+    for (f, (key, _)) in &obj_texts {
+        objs.insert(
+            f.clone(),
+            load_obj(file, &format!("{key}.file"), f, &obj_path(file, f))?,
+        );
+    }
+    let exact = super::prefab::estimate_triangles(
+        desc,
+        &desc.objects,
+        &objs
+            .iter()
+            .map(|(f, o)| (f.clone(), o.triangle_count()))
+            .collect(),
+    );
+
+    let table = material_table(desc, &objs);
+    let used = super::resolve::check_references(desc, &objs, &table, file)?;
+
+    let sky_lit = match &desc.sky {
+        Some(SkyDesc::Constant { le }) => le.iter().any(|&x| x > 0.0),
+        Some(SkyDesc::Gradient {
+            zenith,
+            horizon,
+            ground,
+        }) => zenith.iter().chain(horizon).chain(ground).any(|&x| x > 0.0),
+        None => false,
+    };
+    let emitting = table.iter().zip(&used).any(|(m, &u)| u && matches!(&m.kind, MaterialKindDesc::Emissive { radiance, .. } if radiance.iter().any(|&x| x > 0.0)));
+    let lit = desc.lights.iter().any(|l| match l {
+        LightDesc::Sun { irradiance: c, .. }
+        | LightDesc::Point { intensity: c, .. }
+        | LightDesc::Spot { intensity: c, .. } => c.iter().any(|&x| x > 0.0),
+    });
+    if !lit && !sky_lit && !emitting {
+        let msg = "no light: no sun, point or spot light with power, no emissive material in use, and the sky is black";
+        return Err(SceneError::at(file, K::NoLight, "", msg));
+    }
+    Ok((objs, exact))
+}
+
+/// An OBJ path from the scene file's directory.
+pub fn obj_path(scene: &Path, file: &str) -> std::path::PathBuf {
+    scene.parent().unwrap_or(Path::new(".")).join(file)
+}
