@@ -16,6 +16,7 @@ use std::time::Instant;
 use crate::accel::{build_accel, Backend};
 use crate::camera::StereoRig;
 use crate::render::{render_frame, RenderSettings};
+use crate::scene::load::SceneErrorKind;
 use crate::scene::{build_scene, LoadedScene, SceneError};
 
 /// What one bench run measured.
@@ -61,7 +62,7 @@ pub fn run_bench(loaded: &LoadedScene, s: &BenchSettings) -> Result<BenchReport,
     let scene = build_scene(loaded, rig.left.center_world)?;
     let scene_build_s = t.elapsed().as_secs_f64();
     let t = Instant::now();
-    let accel = build_accel(s.backend, &scene.accel_geometry()).map_err(|e| SceneError::other(e.to_string()))?;
+    let accel = build_accel(s.backend, &scene.accel_geometry()).map_err(|e| SceneError::at(&loaded.path, SceneErrorKind::Resource, "", e.to_string()))?;
     let accel_build_s = t.elapsed().as_secs_f64();
     let raw = raw_throughput(&accel, &scene, &rig);
     // GT: every view and baseline of the rig, no path pass.

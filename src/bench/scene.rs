@@ -7,6 +7,7 @@ use std::path::Path;
 use glam::DVec3;
 use serde::Deserialize;
 
+use crate::scene::load::SceneErrorKind;
 use crate::scene::{parse_scene_str, LoadedScene, SceneError};
 
 /// The camera file format of the shared benchmark (OBJ frame: Y up).
@@ -50,8 +51,8 @@ fn default_camera() -> ObjCamera {
 
 /// Reads a camera file, naming it in errors.
 pub fn read_obj_camera(path: &Path) -> Result<ObjCamera, SceneError> {
-    let text = std::fs::read_to_string(path).map_err(|e| SceneError::other(format!("{}: {e}", path.display())))?;
-    serde_json::from_str(&text).map_err(|e| SceneError::other(format!("{}: {e}", path.display())))
+    let text = std::fs::read_to_string(path).map_err(|e| SceneError::at(path, SceneErrorKind::Io, "", e.to_string()))?;
+    serde_json::from_str(&text).map_err(|e| SceneError::at(path, SceneErrorKind::Io, "", e.to_string()))
 }
 
 /// Builds a scene description around `obj` seen from `camera` (default: the
@@ -62,12 +63,12 @@ pub fn bench_scene_from_obj(obj: &Path, camera: Option<&ObjCamera>) -> Result<Lo
     let left = cam
         .cameras
         .get("left")
-        .ok_or_else(|| SceneError::other("camera file: no cameras.left".to_string()))?;
+        .ok_or_else(|| SceneError::at(obj, SceneErrorKind::Invalid, "cameras.left", "the camera file has no left camera"))?;
     let p = z_up(left.position);
     let f = z_up(cam.forward).normalize();
     let yaw = f.y.atan2(f.x).to_degrees();
     let pitch = (-f.z).asin().to_degrees();
-    let obj_abs = std::fs::canonicalize(obj).map_err(|e| SceneError::other(format!("{}: {e}", obj.display())))?;
+    let obj_abs = std::fs::canonicalize(obj).map_err(|e| SceneError::at(obj, SceneErrorKind::Io, "", e.to_string()))?;
     let text = format!(
         r#"
 [camera]

@@ -78,7 +78,8 @@ fn apply_overrides(loaded: &mut LoadedScene, a: &RenderArgs) -> Result<(), CliEr
     if a.seed.is_some() {
         d.render.seed = a.seed;
     }
-    crate::scene::load::check_resources(&loaded.desc).map_err(|e| CliError::input(e.to_string()))
+    crate::scene::validate::check_rig(&loaded.desc.camera, &loaded.path)
+        .map_err(|e| CliError::input(format!("with the command-line overrides: {e}")))
 }
 
 /// A seed for runs that named none; recorded in the outputs (STYLE.md rule 7).

@@ -30,6 +30,11 @@ pub fn frame_bytes(rig: &RigDesc) -> u64 {
     rig.width as u64 * rig.height as u64 * per_pixel
 }
 
+/// Validates a rig on its own (e.g. after command-line overrides), naming `file`.
+pub fn check_rig(rig: &RigDesc, file: &Path) -> Result<(), SceneError> {
+    V { file }.rig(rig)
+}
+
 struct V<'a> {
     file: &'a Path,
 }
