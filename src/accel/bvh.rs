@@ -8,6 +8,8 @@
 //! keeps the box. Combined with the watertight triangle test this makes the
 //! BVH return exactly what the brute-force scan returns.
 
+use std::cmp::Ordering::{Equal, Less};
+
 use glam::Vec3;
 
 use super::bvh_build::{build_nodes, BuildRef, Node, MAX_DEPTH};
@@ -62,7 +64,7 @@ impl BvhAccel {
         mut tmax: f32,
         mut visit_leaf: impl FnMut(&[PackedPrim]) -> Option<f32>,
     ) {
-        if self.nodes.is_empty() || !(ray.tmin <= tmax) {
+        if self.nodes.is_empty() || !matches!(ray.tmin.partial_cmp(&tmax), Some(Less | Equal)) {
             return;
         }
         let inv_d = ray.d.recip();

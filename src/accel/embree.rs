@@ -78,7 +78,6 @@ impl EmbreeAccel {
             for (dst, s) in view.iter_mut().zip(geo.spheres) {
                 *dst = s.to_array();
             }
-            drop(view);
             scene.attach_geometry_by_id(&builder.commit(), geo.sphere_geom_id());
         }
         scene.commit();
@@ -173,18 +172,16 @@ fn triangle_geometry(
         .create_geometry(GeometryKind::TRIANGLE)
         .map_err(|e| embree_error("triangle geometry", e))?;
     builder.set_build_quality(BuildQuality::HIGH);
-    let mut vertices = builder
+    builder
         .set_new_buffer::<[f32; 3]>(BufferUsage::VERTEX, 0, Format::FLOAT3, 12, positions.len())
-        .map_err(|e| embree_error("vertex buffer", e))?;
-    for (dst, p) in vertices.iter_mut().zip(positions) {
-        *dst = p.to_array();
-    }
-    drop(vertices);
-    let mut indices = builder
+        .map_err(|e| embree_error("vertex buffer", e))?
+        .iter_mut()
+        .zip(positions)
+        .for_each(|(dst, p)| *dst = p.to_array());
+    builder
         .set_new_buffer::<[u32; 3]>(BufferUsage::INDEX, 0, Format::UINT3, 12, triangles.len())
-        .map_err(|e| embree_error("index buffer", e))?;
-    indices.copy_from_slice(triangles);
-    drop(indices);
+        .map_err(|e| embree_error("index buffer", e))?
+        .copy_from_slice(triangles);
     Ok(builder.commit())
 }
 

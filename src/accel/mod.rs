@@ -229,11 +229,7 @@ pub fn validate_geometry(geo: &AccelGeometry) -> Result<(), AccelError> {
             });
         }
     }
-    if let Some(index) = geo
-        .spheres
-        .iter()
-        .position(|s| !s.is_finite() || !(s.w >= 0.0))
-    {
+    if let Some(index) = geo.spheres.iter().position(|s| !s.is_finite() || s.w < 0.0) {
         return Err(AccelError::InvalidGeometry {
             geom_id: geo.sphere_geom_id(),
             index: index as u32,
