@@ -11,9 +11,24 @@
 //! sphere index as primitive id. Barycentrics follow Embree: `u` weights vertex
 //! 1, `v` weights vertex 2, `1 − u − v` weights vertex 0.
 
+mod brute;
+mod bvh;
+mod bvh_build;
+#[cfg(feature = "embree")]
+mod embree;
+mod prim;
+mod soup;
+
+use std::fmt;
+use std::str::FromStr;
+
 use glam::{Vec3, Vec4};
 
 pub use crate::geometry::Ray;
+pub use brute::BruteAccel;
+pub use bvh::BvhAccel;
+#[cfg(feature = "embree")]
+pub use embree::EmbreeAccel;
 
 /// A closest-hit record: cheap to copy; the scene turns it into a surface
 /// interaction.
@@ -83,4 +98,205 @@ pub trait Accel: Send + Sync {
     }
     /// Short backend name for logs and bench output ("embree", "bvh", "brute").
     fn backend_name(&self) -> &'static str;
+}
+
+/// Which traversal backend to build.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Backend {
+    /// Embree 3 (feature `embree`).
+    Embree,
+    /// The pure-Rust binned-SAH BVH.
+    Bvh,
+    /// Linear scan over every primitive (reference for tests).
+    Brute,
+}
+
+impl Backend {
+    /// Embree when the `embree` feature is compiled in, else the BVH.
+    pub fn default_backend() -> Backend {
+        if cfg!(feature = "embree") {
+            Backend::Embree
+        } else {
+            Backend::Bvh
+        }
+    }
+
+    /// The name used on the command line and in logs.
+    pub fn name(self) -> &'static str {
+        match self {
+            Backend::Embree => "embree",
+            Backend::Bvh => "bvh",
+            Backend::Brute => "brute",
+        }
+    }
+}
+
+impl fmt::Display for Backend {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Backend {
+    type Err = AccelError;
+
+    fn from_str(s: &str) -> Result<Backend, AccelError> {
+        match s {
+            "embree" => Ok(Backend::Embree),
+            "bvh" => Ok(Backend::Bvh),
+            "brute" => Ok(Backend::Brute),
+            other => Err(AccelError::UnknownBackend(other.to_string())),
+        }
+    }
+}
+
+/// Why an accelerator could not be built.
+#[derive(Clone, Debug, PartialEq)]
+pub enum AccelError {
+    /// A backend name that is not "embree", "bvh" or "brute".
+    UnknownBackend(String),
+    /// Embree was requested but the crate was built without feature `embree`.
+    EmbreeUnavailable,
+    /// A triangle references a vertex past the end of its mesh.
+    IndexOutOfRange {
+        /// Mesh index.
+        geom_id: u32,
+        /// Triangle index within the mesh.
+        prim_id: u32,
+    },
+    /// A vertex position, sphere centre or radius is NaN/infinite, or a radius is negative.
+    InvalidGeometry {
+        /// Geometry id (mesh index or the sphere set's id).
+        geom_id: u32,
+        /// Vertex index (meshes) or sphere index.
+        index: u32,
+    },
+    /// The backend itself failed (message from the library).
+    Backend(String),
+}
+
+impl fmt::Display for AccelError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            AccelError::UnknownBackend(s) => {
+                write!(
+                    f,
+                    "unknown accelerator backend {s:?} (expected embree, bvh or brute)"
+                )
+            }
+            AccelError::EmbreeUnavailable => {
+                write!(f, "the embree backend was requested but parallax was built without feature `embree`")
+            }
+            AccelError::IndexOutOfRange { geom_id, prim_id } => {
+                write!(
+                    f,
+                    "mesh {geom_id}, triangle {prim_id}: vertex index out of range"
+                )
+            }
+            AccelError::InvalidGeometry { geom_id, index } => {
+                write!(
+                    f,
+                    "geometry {geom_id}, element {index}: non-finite position or invalid radius"
+                )
+            }
+            AccelError::Backend(msg) => f.write_str(msg),
+        }
+    }
+}
+
+impl std::error::Error for AccelError {}
+
+/// Checks what every backend relies on: triangle indices in range (Embree does
+/// not bounds-check), finite positions, finite non-negative radii.
+pub fn validate_geometry(geo: &AccelGeometry) -> Result<(), AccelError> {
+    for (geom_id, mesh) in geo.meshes.iter().enumerate() {
+        let geom_id = geom_id as u32;
+        if let Some(index) = mesh.positions.iter().position(|p| !p.is_finite()) {
+            return Err(AccelError::InvalidGeometry {
+                geom_id,
+                index: index as u32,
+            });
+        }
+        let n = mesh.positions.len();
+        if let Some(prim_id) = mesh
+            .triangles
+            .iter()
+            .position(|t| t.iter().any(|&i| i as usize >= n))
+        {
+            return Err(AccelError::IndexOutOfRange {
+                geom_id,
+                prim_id: prim_id as u32,
+            });
+        }
+    }
+    if let Some(index) = geo.spheres.iter().position(|s| !s.is_finite() || s.w < 0.0) {
+        return Err(AccelError::InvalidGeometry {
+            geom_id: geo.sphere_geom_id(),
+            index: index as u32,
+        });
+    }
+    Ok(())
+}
+
+/// The accelerator the scene stores: one variant per backend, so hot loops
+/// dispatch with a match instead of a virtual call.
+#[derive(Debug)]
+pub enum AnyAccel {
+    /// Embree 3.
+    #[cfg(feature = "embree")]
+    Embree(EmbreeAccel),
+    /// Pure-Rust BVH.
+    Bvh(BvhAccel),
+    /// Brute-force reference.
+    Brute(BruteAccel),
+}
+
+/// Forwards one expression to whichever backend `$self` holds.
+macro_rules! dispatch {
+    ($self:expr, $a:ident => $e:expr) => {
+        match $self {
+            #[cfg(feature = "embree")]
+            AnyAccel::Embree($a) => $e,
+            AnyAccel::Bvh($a) => $e,
+            AnyAccel::Brute($a) => $e,
+        }
+    };
+}
+
+impl Accel for AnyAccel {
+    #[inline]
+    fn intersect(&self, ray: &Ray) -> Option<Hit> {
+        dispatch!(self, a => a.intersect(ray))
+    }
+
+    #[inline]
+    fn occluded(&self, ray: &Ray) -> bool {
+        dispatch!(self, a => a.occluded(ray))
+    }
+
+    fn intersect_batch(&self, rays: &[Ray], hits: &mut [Option<Hit>]) {
+        dispatch!(self, a => a.intersect_batch(rays, hits))
+    }
+
+    fn occluded_batch(&self, rays: &[Ray], out: &mut [bool]) {
+        dispatch!(self, a => a.occluded_batch(rays, out))
+    }
+
+    fn backend_name(&self) -> &'static str {
+        dispatch!(self, a => a.backend_name())
+    }
+}
+
+/// Validates `geo` and builds the requested backend over it. The result owns
+/// copies of the data (it does not borrow `geo`).
+pub fn build_accel(backend: Backend, geo: &AccelGeometry) -> Result<AnyAccel, AccelError> {
+    validate_geometry(geo)?;
+    match backend {
+        #[cfg(feature = "embree")]
+        Backend::Embree => Ok(AnyAccel::Embree(EmbreeAccel::build(geo)?)),
+        #[cfg(not(feature = "embree"))]
+        Backend::Embree => Err(AccelError::EmbreeUnavailable),
+        Backend::Bvh => Ok(AnyAccel::Bvh(BvhAccel::build(geo))),
+        Backend::Brute => Ok(AnyAccel::Brute(BruteAccel::build(geo))),
+    }
 }
