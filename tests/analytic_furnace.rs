@@ -17,7 +17,8 @@ fn interior_values(r: &Rendered, id: u16) -> Vec<f64> {
     let mut v = Vec::new();
     for j in 1..h - 1 {
         for i in 1..w - 1 {
-            let all = (0..9).all(|n| r.out.left.instance[(j + n / 3 - 1) * w + i + n % 3 - 1] == id);
+            let all =
+                (0..9).all(|n| r.out.left.instance[(j + n / 3 - 1) * w + i + n % 3 - 1] == id);
             if all {
                 v.push(img[j * w + i].y as f64);
             }
@@ -29,10 +30,19 @@ fn interior_values(r: &Rendered, id: u16) -> Vec<f64> {
 fn check(values: &[f64], expected: f64) {
     let (mean, se) = mean_stderr(values);
     let z = (mean - expected).abs() / se.max(1e-12);
-    eprintln!("n = {}, mean {mean:.5}, expected {expected:.5}, z = {z:.2}", values.len());
+    eprintln!(
+        "n = {}, mean {mean:.5}, expected {expected:.5}, z = {z:.2}",
+        values.len()
+    );
     assert!(values.len() > 200, "too few pixels");
-    assert!((mean - expected).abs() <= 0.01 * expected, "mean {mean} vs {expected}");
-    assert!(z <= 4.0 || (mean - expected).abs() <= 1e-4 * expected, "z-score {z}");
+    assert!(
+        (mean - expected).abs() <= 0.01 * expected,
+        "mean {mean} vs {expected}"
+    );
+    assert!(
+        z <= 4.0 || (mean - expected).abs() <= 1e-4 * expected,
+        "z-score {z}"
+    );
 }
 
 fn sphere_in_sky(material: &str, spp: u32, max_depth: u32) -> Rendered {
@@ -47,13 +57,21 @@ fn sphere_in_sky(material: &str, spp: u32, max_depth: u32) -> Rendered {
 
 #[test]
 fn white_furnace_lambert_sphere_reflects_albedo_times_sky() {
-    let r = sphere_in_sky("[[material]]\nname = \"m\"\nkind = \"diffuse\"\nalbedo = [0.8, 0.8, 0.8]", 64, 8);
+    let r = sphere_in_sky(
+        "[[material]]\nname = \"m\"\nkind = \"diffuse\"\nalbedo = [0.8, 0.8, 0.8]",
+        64,
+        8,
+    );
     check(&interior_values(&r, 7), 0.8);
 }
 
 #[test]
 fn white_furnace_unit_albedo_sphere_is_invisible() {
-    let r = sphere_in_sky("[[material]]\nname = \"m\"\nkind = \"diffuse\"\nalbedo = [1.0, 1.0, 1.0]", 32, 8);
+    let r = sphere_in_sky(
+        "[[material]]\nname = \"m\"\nkind = \"diffuse\"\nalbedo = [1.0, 1.0, 1.0]",
+        32,
+        8,
+    );
     check(&interior_values(&r, 7), 1.0);
 }
 

@@ -60,19 +60,33 @@ transform = { translate = [7.0, -1.5, 1.0] }
 }
 
 fn render_on(threads: usize) -> Rendered {
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
     pool.install(|| render(&scene(), Backend::default_backend(), 4))
 }
 
 fn assert_same(a: &Rendered, b: &Rendered) {
     assert_eq!(a.out.left, b.out.left, "left ground truth differs");
-    assert_eq!(a.out.baselines, b.out.baselines, "per-baseline ground truth differs");
+    assert_eq!(
+        a.out.baselines, b.out.baselines,
+        "per-baseline ground truth differs"
+    );
     assert_eq!(a.out.images.len(), b.out.images.len());
     for (x, y) in a.out.images.iter().zip(&b.out.images) {
-        let bits = |f: &parallax::film::Film| f.rgb.iter().flat_map(|p| p.to_array().map(f32::to_bits)).collect::<Vec<_>>();
+        let bits = |f: &parallax::film::Film| {
+            f.rgb
+                .iter()
+                .flat_map(|p| p.to_array().map(f32::to_bits))
+                .collect::<Vec<_>>()
+        };
         assert_eq!(bits(x), bits(y), "images differ");
     }
-    assert_eq!(a.out.exposure_scale.to_bits(), b.out.exposure_scale.to_bits());
+    assert_eq!(
+        a.out.exposure_scale.to_bits(),
+        b.out.exposure_scale.to_bits()
+    );
 }
 
 #[test]

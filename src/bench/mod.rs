@@ -62,7 +62,8 @@ pub fn run_bench(loaded: &LoadedScene, s: &BenchSettings) -> Result<BenchReport,
     let scene = build_scene(loaded, rig.left.center_world)?;
     let scene_build_s = t.elapsed().as_secs_f64();
     let t = Instant::now();
-    let accel = build_accel(s.backend, &scene.accel_geometry()).map_err(|e| SceneError::at(&loaded.path, SceneErrorKind::Resource, "", e.to_string()))?;
+    let accel = build_accel(s.backend, &scene.accel_geometry())
+        .map_err(|e| SceneError::at(&loaded.path, SceneErrorKind::Resource, "", e.to_string()))?;
     let accel_build_s = t.elapsed().as_secs_f64();
     let raw = raw_throughput(&accel, &scene, &rig);
     // GT: every view and baseline of the rig, no path pass.
@@ -78,7 +79,10 @@ pub fn run_bench(loaded: &LoadedScene, s: &BenchSettings) -> Result<BenchReport,
         left: rig.left,
         baselines_m: Vec::new(),
     };
-    let path_settings = RenderSettings { spp: s.spp, ..gt_settings };
+    let path_settings = RenderSettings {
+        spp: s.spp,
+        ..gt_settings
+    };
     let path = render_frame(&scene, &accel, &left_only, &path_settings, &|_, _| {});
     use crate::accel::Accel;
     Ok(BenchReport {
@@ -104,20 +108,47 @@ impl BenchReport {
         let samples = m(self.path_samples, self.path_s);
         let r = &self.raw;
         [
-            format!("scene: {} triangles, {threads} threads, backend {}", self.triangles, self.backend),
+            format!(
+                "scene: {} triangles, {threads} threads, backend {}",
+                self.triangles, self.backend
+            ),
             format!("scene build          {:8.3} s", self.scene_build_s),
             format!("BVH build            {:8.3} s", self.accel_build_s),
-            format!("GT pass              {gt:8.2} Mrays/s ({} rays in {:.3} s)", self.gt_rays, self.gt_s),
+            format!(
+                "GT pass              {gt:8.2} Mrays/s ({} rays in {:.3} s)",
+                self.gt_rays, self.gt_s
+            ),
             format!(
                 "path tracing         {path:8.2} Mrays/s, {samples:.3} Msamples/s ({} rays/sample)",
-                format_args!("{:.2}", self.path_rays as f64 / self.path_samples.max(1) as f64)
+                format_args!(
+                    "{:.2}",
+                    self.path_rays as f64 / self.path_samples.max(1) as f64
+                )
             ),
-            format!("raw primary single   {:8.2} Mrays/s", r.primary_single_mrays),
-            format!("raw primary packet8  {:8.2} Mrays/s", r.primary_packet_mrays),
-            format!("raw incoherent hit   {:8.2} Mrays/s", r.incoherent_closest_mrays),
-            format!("raw incoherent any   {:8.2} Mrays/s", r.incoherent_any_mrays),
-            format!("ratio GT / raw packet8        {:.2}", gt / r.primary_packet_mrays.max(1e-9)),
-            format!("ratio path / raw incoherent   {:.2}", path / r.incoherent_closest_mrays.max(1e-9)),
+            format!(
+                "raw primary single   {:8.2} Mrays/s",
+                r.primary_single_mrays
+            ),
+            format!(
+                "raw primary packet8  {:8.2} Mrays/s",
+                r.primary_packet_mrays
+            ),
+            format!(
+                "raw incoherent hit   {:8.2} Mrays/s",
+                r.incoherent_closest_mrays
+            ),
+            format!(
+                "raw incoherent any   {:8.2} Mrays/s",
+                r.incoherent_any_mrays
+            ),
+            format!(
+                "ratio GT / raw packet8        {:.2}",
+                gt / r.primary_packet_mrays.max(1e-9)
+            ),
+            format!(
+                "ratio path / raw incoherent   {:.2}",
+                path / r.incoherent_closest_mrays.max(1e-9)
+            ),
         ]
         .join("\n")
     }

@@ -45,7 +45,10 @@ fn unit_from_hash(h: u64) -> Vec3 {
 /// Measures raw rates on the left camera's primary rays and their bounces.
 pub fn raw_throughput(accel: &impl Accel, scene: &Scene, rig: &StereoRig) -> RawThroughput {
     let cam = RenderCamera::new(&rig.left, scene.origin_world);
-    let (w, h) = (cam.intrinsics.width as usize, cam.intrinsics.height as usize);
+    let (w, h) = (
+        cam.intrinsics.width as usize,
+        cam.intrinsics.height as usize,
+    );
     let o = cam.center_f32();
     let rows: Vec<Vec<Ray>> = (0..h)
         .map(|j| {

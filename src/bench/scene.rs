@@ -51,24 +51,34 @@ fn default_camera() -> ObjCamera {
 
 /// Reads a camera file, naming it in errors.
 pub fn read_obj_camera(path: &Path) -> Result<ObjCamera, SceneError> {
-    let text = std::fs::read_to_string(path).map_err(|e| SceneError::at(path, SceneErrorKind::Io, "", e.to_string()))?;
-    serde_json::from_str(&text).map_err(|e| SceneError::at(path, SceneErrorKind::Io, "", e.to_string()))
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| SceneError::at(path, SceneErrorKind::Io, "", e.to_string()))?;
+    serde_json::from_str(&text)
+        .map_err(|e| SceneError::at(path, SceneErrorKind::Io, "", e.to_string()))
 }
 
 /// Builds a scene description around `obj` seen from `camera` (default: the
 /// shared benchmark's driver view), with a sun and a gradient sky.
-pub fn bench_scene_from_obj(obj: &Path, camera: Option<&ObjCamera>) -> Result<LoadedScene, SceneError> {
+pub fn bench_scene_from_obj(
+    obj: &Path,
+    camera: Option<&ObjCamera>,
+) -> Result<LoadedScene, SceneError> {
     let default = default_camera();
     let cam = camera.unwrap_or(&default);
-    let left = cam
-        .cameras
-        .get("left")
-        .ok_or_else(|| SceneError::at(obj, SceneErrorKind::Invalid, "cameras.left", "the camera file has no left camera"))?;
+    let left = cam.cameras.get("left").ok_or_else(|| {
+        SceneError::at(
+            obj,
+            SceneErrorKind::Invalid,
+            "cameras.left",
+            "the camera file has no left camera",
+        )
+    })?;
     let p = z_up(left.position);
     let f = z_up(cam.forward).normalize();
     let yaw = f.y.atan2(f.x).to_degrees();
     let pitch = (-f.z).asin().to_degrees();
-    let obj_abs = std::fs::canonicalize(obj).map_err(|e| SceneError::at(obj, SceneErrorKind::Io, "", e.to_string()))?;
+    let obj_abs = std::fs::canonicalize(obj)
+        .map_err(|e| SceneError::at(obj, SceneErrorKind::Io, "", e.to_string()))?;
     let text = format!(
         r#"
 [camera]

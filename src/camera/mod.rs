@@ -56,7 +56,11 @@ impl Intrinsics {
 
     /// Camera-frame direction (z = 1) through image point (u, v) in pixels.
     pub fn dir_cam(&self, u: f64, v: f64) -> DVec3 {
-        DVec3::new((u - self.cx_px) / self.f_px, (v - self.cy_px) / self.f_px, 1.0)
+        DVec3::new(
+            (u - self.cx_px) / self.f_px,
+            (v - self.cy_px) / self.f_px,
+            1.0,
+        )
     }
 
     /// Image point of a camera-frame point (z > 0 for points in front).

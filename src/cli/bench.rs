@@ -39,11 +39,19 @@ pub struct BenchArgs {
 
 /// Runs `parallax bench`.
 pub fn run(a: BenchArgs) -> Result<(), CliError> {
-    let input = a.input.clone().unwrap_or_else(|| PathBuf::from("scenes/street.toml"));
-    let is_obj = input.extension().is_some_and(|e| e.eq_ignore_ascii_case("obj"));
+    let input = a
+        .input
+        .clone()
+        .unwrap_or_else(|| PathBuf::from("scenes/street.toml"));
+    let is_obj = input
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
     let mut loaded = if is_obj {
         let camera = match &a.camera {
-            Some(p) => Some(crate::bench::scene::read_obj_camera(p).map_err(|e| CliError::input(e.to_string()))?),
+            Some(p) => Some(
+                crate::bench::scene::read_obj_camera(p)
+                    .map_err(|e| CliError::input(e.to_string()))?,
+            ),
             None => None,
         };
         bench_scene_from_obj(&input, camera.as_ref())
@@ -58,7 +66,9 @@ pub fn run(a: BenchArgs) -> Result<(), CliError> {
         loaded.desc.camera.height = h;
     }
     if a.spp == 0 || a.max_depth == 0 || a.threads == 0 {
-        return Err(CliError::input("--spp, --max-depth and --threads must be at least 1"));
+        return Err(CliError::input(
+            "--spp, --max-depth and --threads must be at least 1",
+        ));
     }
     let settings = BenchSettings {
         spp: a.spp,

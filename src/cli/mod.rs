@@ -39,7 +39,11 @@ impl CliError {
 }
 
 #[derive(Parser, Debug)]
-#[command(name = "parallax", version, about = "Path-traced stereo datasets with exact ground truth")]
+#[command(
+    name = "parallax",
+    version,
+    about = "Path-traced stereo datasets with exact ground truth"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -63,7 +67,10 @@ where
         Ok(c) => c,
         Err(e) => {
             // --help and --version are not errors.
-            if matches!(e.kind(), clap::error::ErrorKind::DisplayHelp | clap::error::ErrorKind::DisplayVersion) {
+            if matches!(
+                e.kind(),
+                clap::error::ErrorKind::DisplayHelp | clap::error::ErrorKind::DisplayVersion
+            ) {
                 print!("{e}");
                 return Ok(());
             }
@@ -76,20 +83,24 @@ where
     }
 }
 
+/// Baselines in centimetres from the command line.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BaselinesCm(pub Vec<f64>);
+
 /// Parses a comma-separated list of baselines in centimetres (`10,54,100`).
-fn parse_baselines(s: &str) -> Result<Vec<f64>, String> {
+fn parse_baselines(s: &str) -> Result<BaselinesCm, String> {
     s.split(',')
         .map(|t| {
-            let v: f64 = t
-                .trim()
-                .parse()
-                .map_err(|_| format!("'{t}' is not a number (baselines are centimetres, e.g. 10,54,100)"))?;
+            let v: f64 = t.trim().parse().map_err(|_| {
+                format!("'{t}' is not a number (baselines are centimetres, e.g. 10,54,100)")
+            })?;
             if !(v.is_finite() && v > 0.0) {
                 return Err(format!("baseline {t} cm must be positive"));
             }
             Ok(v)
         })
-        .collect()
+        .collect::<Result<Vec<_>, _>>()
+        .map(BaselinesCm)
 }
 
 /// Builds the rayon pool for `--threads` (0 = all cores).

@@ -32,7 +32,7 @@ pub struct RenderArgs {
     pub height: Option<u32>,
     /// Baselines in centimetres, comma-separated (overrides the scene).
     #[arg(long, value_parser = parse_baselines)]
-    pub baselines: Option<Vec<f64>>,
+    pub baselines: Option<super::BaselinesCm>,
     /// Seed of every random stream (overrides the scene).
     #[arg(long)]
     pub seed: Option<u64>,
@@ -73,7 +73,7 @@ fn apply_overrides(loaded: &mut LoadedScene, a: &RenderArgs) -> Result<(), CliEr
         d.camera.height = positive("height", v)?;
     }
     if let Some(b) = &a.baselines {
-        d.camera.baselines_cm = b.clone();
+        d.camera.baselines_cm = b.0.clone();
     }
     if a.seed.is_some() {
         d.render.seed = a.seed;
@@ -94,8 +94,10 @@ fn draw_seed() -> u64 {
 fn progress_bar(total: u64) -> ProgressBar {
     let pb = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::stderr());
     pb.set_style(
-        ProgressStyle::with_template("{spinner} {msg} [{bar:30}] {pos}/{len} views, {elapsed} (eta {eta})")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+        ProgressStyle::with_template(
+            "{spinner} {msg} [{bar:30}] {pos}/{len} views, {elapsed} (eta {eta})",
+        )
+        .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
     pb
 }
@@ -118,9 +120,11 @@ pub fn run(a: RenderArgs) -> Result<(), CliError> {
 fn render_to(loaded: &LoadedScene, a: &RenderArgs, seed: u64) -> Result<(), CliError> {
     let started = Instant::now();
     let rig = StereoRig::from_desc(&loaded.desc.camera);
-    let scene = build_scene(loaded, rig.left.center_world).map_err(|e| CliError::input(e.to_string()))?;
+    let scene =
+        build_scene(loaded, rig.left.center_world).map_err(|e| CliError::input(e.to_string()))?;
     let t_build = Instant::now();
-    let accel = build_accel(a.backend, &scene.accel_geometry()).map_err(|e| CliError::failure(e.to_string()))?;
+    let accel = build_accel(a.backend, &scene.accel_geometry())
+        .map_err(|e| CliError::failure(e.to_string()))?;
     let build_s = t_build.elapsed().as_secs_f64();
     let settings = RenderSettings {
         spp: loaded.desc.render.spp,
@@ -131,12 +135,20 @@ fn render_to(loaded: &LoadedScene, a: &RenderArgs, seed: u64) -> Result<(), CliE
     let n_views = 1 + rig.baselines_m.len();
     let pb = progress_bar(n_views as u64);
     pb.set_message(format!("{} tris", scene.triangle_count()));
-    let out = render_frame(&scene, &accel, &rig, &settings, &|done, _| pb.set_position(done as u64));
+    let out = render_frame(&scene, &accel, &rig, &settings, &|done, _| {
+        pb.set_position(done as u64)
+    });
     pb.finish_and_clear();
     let meta = camera_file(&rig, &out, seed, 0, settings.spp, settings.max_depth);
     write_native_frame(&a.output, 0, &rig, &out, meta, WriteOptions { hdr: a.hdr })
         .map_err(|e| CliError::failure(e.to_string()))?;
-    summary(&a.output, &out.stats, started.elapsed().as_secs_f64(), build_s, accel.backend_name());
+    summary(
+        &a.output,
+        &out.stats,
+        started.elapsed().as_secs_f64(),
+        build_s,
+        accel.backend_name(),
+    );
     Ok(())
 }
 

@@ -61,7 +61,9 @@ pub fn surface_interaction(scene: &Scene, ray: &Ray, hit: &Hit) -> SurfaceIntera
         let p = [mesh.p_f32[i0], mesh.p_f32[i1], mesh.p_f32[i2]];
         let b = [1.0 - hit.u - hit.v, hit.u, hit.v];
         let p_hit = p[0] * b[0] + p[1] * b[1] + p[2] * b[2];
-        let n_geo = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or(hit.n_geo.normalize_or(Vec3::Z));
+        let n_geo = (p[1] - p[0])
+            .cross(p[2] - p[0])
+            .normalize_or(hit.n_geo.normalize_or(Vec3::Z));
         let mut n_shading = n_geo;
         if !mesh.normals.is_empty() {
             let n = mesh.normals[i0] * b[0] + mesh.normals[i1] * b[1] + mesh.normals[i2] * b[2];

@@ -46,7 +46,10 @@ impl ViewGt {
 
     /// Disparity f·B/Z in pixels, f64 arithmetic rounded once; 0 for sky.
     pub fn disparity(&self, f_px: f64, baseline_m: f64) -> Vec<f32> {
-        self.depth_z.iter().map(|&z| disparity_px(f_px, baseline_m, z)).collect()
+        self.depth_z
+            .iter()
+            .map(|&z| disparity_px(f_px, baseline_m, z))
+            .collect()
     }
 }
 
@@ -126,7 +129,11 @@ pub fn view_gt(scene: &Scene, accel: &impl Accel, cam: &RenderCamera, labels: bo
                 for i in 0..n {
                     let Some(hit) = hits[i] else { continue };
                     let si = surface_interaction(scene, &rays[i], &hit);
-                    let facing = if si.n_shading.dot(rays[i].d) > 0.0 { -1.0 } else { 1.0 };
+                    let facing = if si.n_shading.dot(rays[i].d) > 0.0 {
+                        -1.0
+                    } else {
+                        1.0
+                    };
                     normal[i] = si.n_shading * facing;
                     sem[i] = si.semantic;
                     inst[i] = si.instance;

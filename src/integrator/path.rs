@@ -64,7 +64,14 @@ impl<A: Accel> PathContext<'_, A> {
                 let w = if prev_delta {
                     1.0
                 } else {
-                    let pdf_l = self.lights.pdf_triangle(scene, hit.geom_id, hit.prim_id, prev_p, si.p, si.n_geo);
+                    let pdf_l = self.lights.pdf_triangle(
+                        scene,
+                        hit.geom_id,
+                        hit.prim_id,
+                        prev_p,
+                        si.p,
+                        si.n_geo,
+                    );
                     power_heuristic(1.0, prev_pdf, 1.0, pdf_l)
                 };
                 l += beta * mat.le * w;
@@ -87,7 +94,9 @@ impl<A: Accel> PathContext<'_, A> {
             }
             let u_lobe = stream.next_1d();
             let u_bsdf = stream.next_2d();
-            let Some(bs) = bsdf.sample(wo_local, u_lobe, u_bsdf) else { break };
+            let Some(bs) = bsdf.sample(wo_local, u_lobe, u_bsdf) else {
+                break;
+            };
             if bs.pdf <= 0.0 {
                 break;
             }
@@ -124,7 +133,8 @@ impl<A: Accel> PathContext<'_, A> {
             return sky + sun;
         }
         let (pdf_sky, pdf_sun) = self.lights.pdf_infinite(self.scene, d);
-        sky * power_heuristic(1.0, prev_pdf, 1.0, pdf_sky) + sun * power_heuristic(1.0, prev_pdf, 1.0, pdf_sun)
+        sky * power_heuristic(1.0, prev_pdf, 1.0, pdf_sky)
+            + sun * power_heuristic(1.0, prev_pdf, 1.0, pdf_sun)
     }
 
     /// Next-event estimation: one light sample, shadow-tested, MIS-weighted.

@@ -48,10 +48,23 @@ pub use set::{LightSample, LightSet};
 
 use shaders_cpu::sampling::{sample_uniform_cone, uniform_cone_pdf, Frame};
 
-/// Radiance of a uniform sun disk of angular radius `alpha` giving irradiance `e`:
-/// E = L·π·sin²α for a disk seen at normal incidence.
+/// Cosine of the sun cone's half-angle as sampled in f32, and that cone's solid angle.
+///
+/// For the sun (α ≈ 0.0047 rad) 1 − cos α ≈ 1e-5 sits a few hundred f32 ulps
+/// below 1, so the rounded cosine changes the cone's solid angle by up to 0.5%.
+/// Radiance, pdf and the sampled region are therefore all derived from the
+/// rounded cosine (1 − c is exact in f32 by Sterbenz's lemma).
+pub fn sun_cone(angular_radius_rad: f32) -> (f32, f32) {
+    let cos_max = angular_radius_rad.cos();
+    let solid_angle = 2.0 * std::f64::consts::PI * (1.0 - cos_max as f64);
+    (cos_max, solid_angle as f32)
+}
+
+/// Radiance of a uniform sun disk giving irradiance `irradiance` on a surface
+/// facing it: E = L·π·sin²α = L·Ω·(1 + cos α)/2 for the sampled cone.
 pub fn sun_radiance(irradiance: Vec3, angular_radius_rad: f32) -> Vec3 {
-    irradiance / (std::f32::consts::PI * angular_radius_rad.sin().powi(2))
+    let (cos_max, solid_angle) = sun_cone(angular_radius_rad);
+    irradiance / (solid_angle * 0.5 * (1.0 + cos_max))
 }
 
 /// Direction and radiance of a sample of one explicit light seen from `p`:

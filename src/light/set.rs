@@ -79,12 +79,13 @@ impl LightSet {
         });
         let mut tri_entry = vec![Vec::new(); scene.meshes.len()];
         for (g, mesh) in scene.meshes.iter().enumerate() {
-            let emissive = |t: usize| scene.materials[mesh.tri_material[t] as usize].le != Vec3::ZERO;
+            let emissive =
+                |t: usize| scene.materials[mesh.tri_material[t] as usize].le != Vec3::ZERO;
             if !(0..mesh.triangles.len()).any(emissive) {
                 continue;
             }
-            tri_entry[g] = vec![u32::MAX; mesh.triangles.len()];
-            for t in 0..mesh.triangles.len() {
+            let mut slots = vec![u32::MAX; mesh.triangles.len()];
+            for (t, slot) in slots.iter_mut().enumerate() {
                 if !emissive(t) {
                     continue;
                 }
@@ -94,17 +95,21 @@ impl LightSet {
                 if area <= 0.0 {
                     continue;
                 }
-                tri_entry[g][t] = entries.len() as u32;
+                *slot = entries.len() as u32;
                 weights.push(std::f32::consts::PI * sides * area * luminance(mat.le));
                 entries.push(Entry::Triangle {
                     geom: g as u32,
                     prim: t as u32,
                 });
             }
+            tri_entry[g] = slots;
         }
         let total: f64 = weights.iter().map(|&w| w.max(0.0) as f64).sum();
         let pmf: Vec<f32> = if total > 0.0 {
-            weights.iter().map(|&w| (w.max(0.0) as f64 / total) as f32).collect()
+            weights
+                .iter()
+                .map(|&w| (w.max(0.0) as f64 / total) as f32)
+                .collect()
         } else {
             vec![1.0 / weights.len().max(1) as f32; weights.len()]
         };
@@ -228,8 +233,20 @@ impl LightSet {
 
     /// Pdf per solid angle (with pmf) that NEE would have chosen point `q` on
     /// emissive triangle (geom, prim), seen from `p` with light normal `n_light`.
-    pub fn pdf_triangle(&self, scene: &Scene, geom: u32, prim: u32, p: Vec3, q: Vec3, n_light: Vec3) -> f32 {
-        let Some(&idx) = self.tri_entry.get(geom as usize).and_then(|v| v.get(prim as usize)) else {
+    pub fn pdf_triangle(
+        &self,
+        scene: &Scene,
+        geom: u32,
+        prim: u32,
+        p: Vec3,
+        q: Vec3,
+        n_light: Vec3,
+    ) -> f32 {
+        let Some(&idx) = self
+            .tri_entry
+            .get(geom as usize)
+            .and_then(|v| v.get(prim as usize))
+        else {
             return 0.0;
         };
         if idx == u32::MAX {
@@ -254,7 +271,12 @@ fn scene_radius(scene: &Scene) -> f32 {
         .iter()
         .flat_map(|m| m.p_f32.iter())
         .map(|p| p.length())
-        .chain(scene.spheres_f32.iter().map(|s| s.truncate().length() + s.w))
+        .chain(
+            scene
+                .spheres_f32
+                .iter()
+                .map(|s| s.truncate().length() + s.w),
+        )
         .fold(0.0f32, f32::max);
     r.clamp(1.0, 100.0)
 }

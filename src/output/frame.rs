@@ -7,8 +7,8 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 
 use super::{
-    write_exr_f32_gray, write_exr_rgb_f32, write_json, write_pfm_gray, write_png_gray16, write_png_gray8,
-    write_png_rgb8, NativeLayout,
+    write_exr_f32_gray, write_exr_rgb_f32, write_json, write_pfm_gray, write_png_gray16,
+    write_png_gray8, write_png_rgb8, NativeLayout,
 };
 use crate::camera::{Camera, StereoRig};
 use crate::film::tonemap_to_srgb8;
@@ -85,7 +85,10 @@ pub fn write_native_frame(
     opts: WriteOptions,
 ) -> std::io::Result<Vec<PathBuf>> {
     let layout = NativeLayout::new(root);
-    let (w, h) = (rig.left.intrinsics.width as usize, rig.left.intrinsics.height as usize);
+    let (w, h) = (
+        rig.left.intrinsics.width as usize,
+        rig.left.intrinsics.height as usize,
+    );
     let mut written = Vec::new();
     let mut put = |p: PathBuf, r: std::io::Result<()>| -> std::io::Result<()> {
         r?;
@@ -96,7 +99,10 @@ pub fn write_native_frame(
     let p = layout.left_depth(frame);
     put(p.clone(), write_exr_f32_gray(&p, w, h, &depth))?;
     let p = layout.left_normal(frame);
-    put(p.clone(), write_exr_rgb_f32(&p, w, h, &out.left.normal_world))?;
+    put(
+        p.clone(),
+        write_exr_rgb_f32(&p, w, h, &out.left.normal_world),
+    )?;
     let p = layout.left_semantic(frame);
     put(p.clone(), write_png_gray8(&p, w, h, &out.left.semantic))?;
     let p = layout.left_instance(frame);
@@ -137,7 +143,14 @@ pub fn write_native_frame(
 }
 
 /// Builds the camera metadata of a frame.
-pub fn camera_file(rig: &StereoRig, out: &FrameOutput, seed: u64, frame: u32, spp: u32, max_depth: u32) -> CameraFile {
+pub fn camera_file(
+    rig: &StereoRig,
+    out: &FrameOutput,
+    seed: u64,
+    frame: u32,
+    spp: u32,
+    max_depth: u32,
+) -> CameraFile {
     CameraFile {
         width: rig.left.intrinsics.width,
         height: rig.left.intrinsics.height,

@@ -102,7 +102,8 @@ pub fn render_frame(
     let mut baselines = Vec::with_capacity(rig.baselines_m.len());
     for (b, &baseline_m) in rig.baselines_m.iter().enumerate() {
         let right = view_gt(scene, accel, &cams[1 + b], false);
-        let (occlusion, occ_rays) = occlusion_mask(accel, &cams[0], &cams[1 + b], &left, baseline_m);
+        let (occlusion, occ_rays) =
+            occlusion_mask(accel, &cams[0], &cams[1 + b], &left, baseline_m);
         stats.gt_rays += right.depth_z.len() as u64 + occ_rays;
         baselines.push(BaselineGt {
             baseline_m,
@@ -133,7 +134,8 @@ pub fn render_frame(
             };
             let (film, rays) = render_view(&ctx, cam, key, settings.spp);
             stats.path_rays += rays;
-            stats.samples += cam.intrinsics.width as u64 * cam.intrinsics.height as u64 * settings.spp as u64;
+            stats.samples +=
+                cam.intrinsics.width as u64 * cam.intrinsics.height as u64 * settings.spp as u64;
             images.push(film);
         }
         progress(n_views, n_views);
@@ -150,7 +152,12 @@ pub fn render_frame(
 }
 
 /// Path-traces one view; pixels are independent, so any thread count gives the same film.
-fn render_view<A: Accel>(ctx: &PathContext<'_, A>, cam: &RenderCamera, key: StreamKey, spp: u32) -> (Film, u64) {
+fn render_view<A: Accel>(
+    ctx: &PathContext<'_, A>,
+    cam: &RenderCamera,
+    key: StreamKey,
+    spp: u32,
+) -> (Film, u64) {
     let (w, h) = (cam.intrinsics.width, cam.intrinsics.height);
     let o = cam.center_f32();
     let rows: Vec<(Vec<Vec3>, u64)> = (0..h)

@@ -39,7 +39,9 @@ pub fn mix64(mut z: u64) -> u64 {
 
 /// Hashes several words into one 64-bit key.
 pub fn hash_words(words: &[u64]) -> u64 {
-    words.iter().fold(0x51_7cc1_b727_220a, |h, &w| mix64(h ^ mix64(w)))
+    words
+        .iter()
+        .fold(0x51_7cc1_b727_220a, |h, &w| mix64(h ^ mix64(w)))
 }
 
 impl SampleStream {
@@ -100,10 +102,18 @@ mod tests {
 
     #[test]
     fn streams_are_reproducible_and_distinct_per_view_and_pixel() {
-        let a: Vec<f32> = (0..8).map(|s| SampleStream::new(key(0), 5, 9, s).next_1d()).collect();
-        let b: Vec<f32> = (0..8).map(|s| SampleStream::new(key(0), 5, 9, s).next_1d()).collect();
-        let c: Vec<f32> = (0..8).map(|s| SampleStream::new(key(1), 5, 9, s).next_1d()).collect();
-        let d: Vec<f32> = (0..8).map(|s| SampleStream::new(key(0), 6, 9, s).next_1d()).collect();
+        let a: Vec<f32> = (0..8)
+            .map(|s| SampleStream::new(key(0), 5, 9, s).next_1d())
+            .collect();
+        let b: Vec<f32> = (0..8)
+            .map(|s| SampleStream::new(key(0), 5, 9, s).next_1d())
+            .collect();
+        let c: Vec<f32> = (0..8)
+            .map(|s| SampleStream::new(key(1), 5, 9, s).next_1d())
+            .collect();
+        let d: Vec<f32> = (0..8)
+            .map(|s| SampleStream::new(key(0), 6, 9, s).next_1d())
+            .collect();
         assert_eq!(a, b);
         assert_ne!(a, c);
         assert_ne!(a, d);

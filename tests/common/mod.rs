@@ -1,6 +1,8 @@
 //! Shared set-up for integration tests: inline scenes, one-call frame renders.
 #![allow(dead_code)]
 
+pub mod boxes;
+
 use std::path::Path;
 
 use parallax::accel::{build_accel, AnyAccel, Backend};
@@ -34,7 +36,12 @@ pub fn render(loaded: &LoadedScene, backend: Backend, spp: u32) -> Rendered {
         frame: 0,
     };
     let out = render_frame(&scene, &accel, &rig, &settings, &|_, _| {});
-    Rendered { rig, scene, accel, out }
+    Rendered {
+        rig,
+        scene,
+        accel,
+        out,
+    }
 }
 
 /// A camera block for a level rig at `position` looking along +x.
@@ -52,3 +59,14 @@ pub fn mean_stderr(v: &[f64]) -> (f64, f64) {
     let var = v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0);
     (mean, (var / n).sqrt())
 }
+
+/// A grey diffuse material under a white constant sky.
+pub const GREY_UNDER_SKY: &str = r#"
+[sky]
+kind = "constant"
+le = [1.0, 1.0, 1.0]
+[[material]]
+name = "grey"
+kind = "diffuse"
+albedo = [0.5, 0.5, 0.5]
+"#;
