@@ -97,9 +97,9 @@ seed = 1
 
 [sky]
 kind = "gradient"
-zenith = [0.25, 0.45, 0.9]
-horizon = [0.8, 0.85, 0.95]
-ground = [0.2, 0.2, 0.2]
+zenith = [9.0, 16.0, 38.0]
+horizon = [30.0, 33.0, 37.0]
+ground = [6.0, 5.6, 5.2]
 
 [[light]]
 kind = "sun"

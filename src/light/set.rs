@@ -104,15 +104,7 @@ impl LightSet {
             }
             tri_entry[g] = slots;
         }
-        let total: f64 = weights.iter().map(|&w| w.max(0.0) as f64).sum();
-        let pmf: Vec<f32> = if total > 0.0 {
-            weights
-                .iter()
-                .map(|&w| (w.max(0.0) as f64 / total) as f32)
-                .collect()
-        } else {
-            vec![1.0 / weights.len().max(1) as f32; weights.len()]
-        };
+        let pmf = selection_pmf(&weights);
         let mut acc = 0.0f64;
         let cdf = pmf
             .iter()
@@ -261,6 +253,21 @@ impl LightSet {
         }
         self.pmf[idx as usize] * dist2 / (cos_l * area)
     }
+}
+
+/// Selection probabilities: half by power, half uniform. Power alone starves
+/// the sky next to the sun (≈ 9% of picks) although it is the only light in
+/// every shadow; the uniform half keeps each light's share ≥ 1/(2N).
+fn selection_pmf(weights: &[f32]) -> Vec<f32> {
+    let n = weights.len().max(1) as f64;
+    let total: f64 = weights.iter().map(|&w| w.max(0.0) as f64).sum();
+    weights
+        .iter()
+        .map(|&w| {
+            let by_power = if total > 0.0 { w.max(0.0) as f64 / total } else { 1.0 / n };
+            (0.5 * by_power + 0.5 / n) as f32
+        })
+        .collect()
 }
 
 /// Radius of the scene's bounding sphere around the render origin, clamped to a
