@@ -62,6 +62,12 @@ fn apply_overrides(loaded: &mut LoadedScene, a: &RenderArgs) -> Result<(), CliEr
     };
     if let Some(v) = a.spp {
         d.render.spp = positive("spp", v)?;
+        if v > crate::sampler::MAX_SPP {
+            return Err(CliError::input(format!(
+                "--spp must be at most {}",
+                crate::sampler::MAX_SPP
+            )));
+        }
     }
     if let Some(v) = a.max_depth {
         d.render.max_depth = positive("max-depth", v)?;

@@ -16,10 +16,11 @@ use crate::light::LightSet;
 use crate::sampler::SampleStream;
 use crate::scene::Scene;
 
-/// Dimensions reserved per bounce (light choice 1, light 2, lobe 1, BSDF 2, RR 1).
-const DIMS_PER_BOUNCE: u32 = 8;
-/// Dimensions used by the camera before the first bounce (pixel jitter).
-pub const CAMERA_DIMS: u32 = 2;
+/// 4D sample sets per bounce: (light choice, light u, light v, lobe) and
+/// (BSDF u, BSDF v, roulette, unused).
+const DIMS_PER_BOUNCE: u32 = 2;
+/// 4D sets used by the camera before the first bounce (pixel jitter).
+pub const CAMERA_DIMS: u32 = 1;
 /// Bounces before Russian roulette may end a path.
 const RR_START: u32 = 3;
 
@@ -87,13 +88,13 @@ impl<A: Accel> PathContext<'_, A> {
             let frame = Frame::from_z(si.n_shading);
             let wo_local = frame.to_local(wo);
             stream.set_dimension(CAMERA_DIMS + bounces * DIMS_PER_BOUNCE);
-            let u_light = stream.next_1d();
-            let u_light2 = stream.next_2d();
+            let [u_select, u_lx, u_ly, u_lobe] = stream.next_4d();
+            let [u_bx, u_by, u_rr, _] = stream.next_4d();
             if !bsdf.is_delta() {
-                l += beta * self.direct(&si, &bsdf, &frame, wo_local, u_light, u_light2, rays);
+                let u_light = glam::Vec2::new(u_lx, u_ly);
+                l += beta * self.direct(&si, &bsdf, &frame, wo_local, u_select, u_light, rays);
             }
-            let u_lobe = stream.next_1d();
-            let u_bsdf = stream.next_2d();
+            let u_bsdf = glam::Vec2::new(u_bx, u_by);
             let Some(bs) = bsdf.sample(wo_local, u_lobe, u_bsdf) else {
                 break;
             };
@@ -115,7 +116,7 @@ impl<A: Accel> PathContext<'_, A> {
             bounces += 1;
             if bounces >= RR_START {
                 let q = (1.0 - beta.max_element()).clamp(0.0, 0.95);
-                if stream.next_1d() < q {
+                if u_rr < q {
                     break;
                 }
                 beta /= 1.0 - q;

@@ -264,7 +264,11 @@ fn selection_pmf(weights: &[f32]) -> Vec<f32> {
     weights
         .iter()
         .map(|&w| {
-            let by_power = if total > 0.0 { w.max(0.0) as f64 / total } else { 1.0 / n };
+            let by_power = if total > 0.0 {
+                w.max(0.0) as f64 / total
+            } else {
+                1.0 / n
+            };
             (0.5 * by_power + 0.5 / n) as f32
         })
         .collect()

@@ -4,9 +4,10 @@
 //! tile rendered it, and every view gets an independent stream so noise is not
 //! correlated between left and right images.
 //!
-//! Each 1D/2D request draws from Owen-scrambled Sobol (Burley 2020, via
-//! `sobol_burley`) with its own scramble seed per dimension pair: the
-//! "padded" construction of pbrt-v4's `PaddedSobolSampler`.
+//! Each request draws a 4D point of Owen-scrambled Sobol (Burley 2020, via
+//! `sobol_burley`) with its own scramble seed per request: the "padded"
+//! construction of pbrt-v4's `PaddedSobolSampler`, in 4D sets. Sample indices
+//! must stay below 2^16 (the sequence length of `sobol_burley`).
 
 use glam::Vec2;
 
@@ -20,6 +21,9 @@ pub struct StreamKey {
     /// View index: 0 = left, 1 + b = right camera of baseline b.
     pub view: u32,
 }
+
+/// Largest supported number of samples per pixel.
+pub const MAX_SPP: u32 = 1 << 16;
 
 /// A path's sample stream: sample index fixed, dimension advancing per request.
 #[derive(Clone, Debug)]
@@ -64,21 +68,22 @@ impl SampleStream {
         mix64(self.pixel_key ^ (self.dimension as u64).wrapping_mul(0x2545_f491_4f6c_dd1d)) as u32
     }
 
-    /// The next 1D sample in [0, 1).
-    pub fn next_1d(&mut self) -> f32 {
+    /// The next four jointly stratified samples in [0, 1)⁴ (one SIMD evaluation).
+    pub fn next_4d(&mut self) -> [f32; 4] {
         let seed = self.scramble_seed();
         self.dimension += 1;
-        sobol_burley::sample(self.sample_index, 0, seed)
+        sobol_burley::sample_4d(self.sample_index, 0, seed)
+    }
+
+    /// The next 1D sample in [0, 1).
+    pub fn next_1d(&mut self) -> f32 {
+        self.next_4d()[0]
     }
 
     /// The next 2D sample in [0, 1)².
     pub fn next_2d(&mut self) -> Vec2 {
-        let seed = self.scramble_seed();
-        self.dimension += 1;
-        Vec2::new(
-            sobol_burley::sample(self.sample_index, 0, seed),
-            sobol_burley::sample(self.sample_index, 1, seed),
-        )
+        let u = self.next_4d();
+        Vec2::new(u[0], u[1])
     }
 
     /// Jumps to a fixed dimension (e.g. the start of a bounce), so that the

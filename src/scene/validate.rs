@@ -371,8 +371,15 @@ pub fn validate(
 ) -> Result<(BTreeMap<String, ObjAsset>, u64), SceneError> {
     let v = V { file };
     v.rig(&desc.camera)?;
-    if desc.render.spp == 0 {
-        return Err(v.err("render.spp", "must be ≥ 1"));
+    if desc.render.spp == 0 || desc.render.spp > crate::sampler::MAX_SPP {
+        return Err(v.err(
+            "render.spp",
+            format!(
+                "must be in [1, {}], got {}",
+                crate::sampler::MAX_SPP,
+                desc.render.spp
+            ),
+        ));
     }
     if desc.render.max_depth == 0 {
         return Err(v.err("render.max_depth", "must be ≥ 1"));
