@@ -156,7 +156,13 @@ fn out_of_range_camera_and_render_values_are_named() {
         &scene(&format!("[render]\nspp = 0\n{QUAD}")),
         SceneErrorKind::Invalid,
         "render.spp",
-        "≥ 1",
+        "must be in [1, 65536]",
+    );
+    expect(
+        &scene(&format!("[render]\nspp = 70000\n{QUAD}")),
+        SceneErrorKind::Invalid,
+        "render.spp",
+        "must be in [1, 65536]",
     );
     expect(
         &scene(&format!("[render]\nmax_depth = 0\n{QUAD}")),
