@@ -95,18 +95,7 @@ fn check_maps_used(
     applied: &HashSet<(MapRef, String)>,
     file: &Path,
 ) -> Result<(), SceneError> {
-    let top = desc
-        .objects
-        .iter()
-        .enumerate()
-        .map(|(i, o)| (format!("object[{i}]"), o));
-    let inner = desc.prefabs.iter().enumerate().flat_map(|(p, pf)| {
-        pf.objects
-            .iter()
-            .enumerate()
-            .map(move |(j, o)| (format!("prefab[{p}].object[{j}]"), o))
-    });
-    for (key, o) in top.chain(inner) {
+    for (key, o) in super::validate::all_objects(desc) {
         let ShapeDesc::Instance {
             prefab,
             material_map,

@@ -349,7 +349,7 @@ pub fn material_table<'a>(
 }
 
 /// Every object with its key: top level, then each prefab's.
-fn all_objects(desc: &SceneDesc) -> Vec<(String, &ObjectDesc)> {
+pub(crate) fn all_objects(desc: &SceneDesc) -> Vec<(String, &ObjectDesc)> {
     let top = desc
         .objects
         .iter()
