@@ -116,11 +116,51 @@ pub(crate) fn intersect_triangle(
     if !(t >= ray.tmin && t <= ray.tmax) {
         return None;
     }
+    // Reject hits whose t is not conservatively positive (pbrt-v4 §6.5.3,
+    // "Ensuring a conservative t"): a ray spawned at an error-bounded origin
+    // must not re-hit the surface it leaves through rounding in this test.
+    if t <= conservative_t_error(ax, ay, az, bx, by, bz, cx, cy, cz, [e0, e1, e2], inv_det) {
+        return None;
+    }
     Some(TriHit {
         t,
         u: e1 * inv_det,
         v: e2 * inv_det,
     })
+}
+
+/// gamma(n) = n·u / (1 − n·u), u the f32 unit roundoff (pbrt-v4 eq. 6.28).
+const fn gamma(n: i32) -> f32 {
+    let u = f32::EPSILON * 0.5;
+    (n as f32 * u) / (1.0 - n as f32 * u)
+}
+
+/// Bound on the rounding error of the watertight test's t (pbrt-v4 §6.8.4,
+/// `Triangle::Intersect`), from the sheared vertex coordinates.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+fn conservative_t_error(
+    ax: f32,
+    ay: f32,
+    az: f32,
+    bx: f32,
+    by: f32,
+    bz: f32,
+    cx: f32,
+    cy: f32,
+    cz: f32,
+    e: [f32; 3],
+    inv_det: f32,
+) -> f32 {
+    let max_zt = az.abs().max(bz.abs()).max(cz.abs());
+    let delta_z = gamma(3) * max_zt;
+    let max_xt = ax.abs().max(bx.abs()).max(cx.abs());
+    let max_yt = ay.abs().max(by.abs()).max(cy.abs());
+    let delta_x = gamma(5) * (max_xt + max_zt);
+    let delta_y = gamma(5) * (max_yt + max_zt);
+    let delta_e = 2.0 * (gamma(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
+    let max_e = e[0].abs().max(e[1].abs()).max(e[2].abs());
+    3.0 * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * inv_det.abs()
 }
 
 /// Geometric normal of a triangle as Embree reports it: `(p1 − p0) × (p2 − p0)`,
