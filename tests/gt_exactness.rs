@@ -133,22 +133,37 @@ fn depth_and_disparity_exact_on_fronto_parallel_plane() {
 
 #[test]
 fn depth_and_disparity_exact_far_from_the_origin() {
-    let offset = DVec3::new(2.0e5, -1.5e5, 30.0);
-    let r = fronto_plane(offset);
+    let r = fronto_plane(FAR);
     check_all(&r, |c, _, _| Some(10.0 - (c.x - r.rig.left.center_world.x)));
 }
 
+/// A scene far from the world origin: ~2e5 m, where f32 world coordinates
+/// would have 1.5 cm steps.
+const FAR: DVec3 = DVec3::new(2.0e5, -1.5e5, 30.0);
+
 #[test]
 fn depth_and_disparity_exact_on_tilted_plane() {
-    // Plane through P0 = (12, 0, 1.65) with normal n (tilted 35° about z and 20° up).
+    tilted_plane(DVec3::ZERO);
+}
+
+#[test]
+fn depth_and_disparity_exact_on_tilted_plane_far_from_the_origin() {
+    tilted_plane(FAR);
+}
+
+fn tilted_plane(offset: DVec3) {
+    // Plane through P0 = (12, 0, 1.65) + offset with normal n (tilted 35° about z and 20° up).
     let n = DVec3::new(-(35f64.to_radians().cos()), 35f64.to_radians().sin(), 0.3).normalize();
-    let p0 = DVec3::new(12.0, 0.0, 1.65);
+    let p0 = DVec3::new(12.0, 0.0, 1.65) + offset;
     // quad normal +z rotated: rotate about y then z to match n.
     let elev = n.z.asin();
     let az = n.y.atan2(n.x);
     let text = format!(
-        "{}{GREY_UNDER_SKY}\n[[object]]\nkind = \"quad\"\nsize = [600.0, 600.0]\nmaterial = \"grey\"\ntransform = {{ translate = [12.0, 0.0, 1.65], rotate_deg = [0.0, {:?}, {:?}] }}\n",
-        camera_block(W, H, [0.0, 0.0, 1.65]),
+        "{}{GREY_UNDER_SKY}\n[[object]]\nkind = \"quad\"\nsize = [600.0, 600.0]\nmaterial = \"grey\"\ntransform = {{ translate = [{:?}, {:?}, {:?}], rotate_deg = [0.0, {:?}, {:?}] }}\n",
+        camera_block(W, H, (DVec3::new(0.0, 0.0, 1.65) + offset).to_array()),
+        p0.x,
+        p0.y,
+        p0.z,
         90.0 - elev.to_degrees(),
         az.to_degrees()
     );
@@ -162,11 +177,23 @@ fn depth_and_disparity_exact_on_tilted_plane() {
 
 #[test]
 fn depth_and_disparity_exact_on_analytic_sphere() {
-    let center = DVec3::new(15.0, 1.0, 2.0);
+    analytic_sphere(DVec3::ZERO);
+}
+
+#[test]
+fn depth_and_disparity_exact_on_analytic_sphere_far_from_the_origin() {
+    analytic_sphere(FAR);
+}
+
+fn analytic_sphere(offset: DVec3) {
+    let center = DVec3::new(15.0, 1.0, 2.0) + offset;
     let radius = 4.0;
     let text = format!(
-        "{}{GREY_UNDER_SKY}\n[[object]]\nkind = \"sphere\"\nradius = {radius:?}\nmaterial = \"grey\"\ntransform = {{ translate = [15.0, 1.0, 2.0] }}\n",
-        camera_block(W, H, [0.0, 0.0, 1.65])
+        "{}{GREY_UNDER_SKY}\n[[object]]\nkind = \"sphere\"\nradius = {radius:?}\nmaterial = \"grey\"\ntransform = {{ translate = [{:?}, {:?}, {:?}] }}\n",
+        camera_block(W, H, (DVec3::new(0.0, 0.0, 1.65) + offset).to_array()),
+        center.x,
+        center.y,
+        center.z
     );
     let r = render(&scene_from_toml(&text), Backend::default_backend(), 0);
     check_all(&r, |c, i, j| {
