@@ -11,7 +11,7 @@ use shaders_cpu::bsdf::Bsdf;
 use shaders_cpu::sampling::{power_heuristic, Frame};
 
 use crate::accel::{Accel, Ray};
-use crate::geometry::surface_interaction;
+use crate::geometry::SurfaceTable;
 use crate::light::LightSet;
 use crate::sampler::SampleStream;
 use crate::scene::Scene;
@@ -32,6 +32,8 @@ pub struct PathContext<'a, A: Accel> {
     pub accel: &'a A,
     /// Its lights.
     pub lights: &'a LightSet,
+    /// Its triangles' compact hit records.
+    pub surfaces: &'a SurfaceTable,
     /// Maximum number of scattering events.
     pub max_depth: u32,
 }
@@ -57,7 +59,7 @@ impl<A: Accel> PathContext<'_, A> {
                 l += beta * self.escaped(ray.d, prev_pdf, prev_delta);
                 break;
             };
-            let mut si = surface_interaction(scene, &ray, &hit);
+            let mut si = self.surfaces.interaction(scene, &ray, &hit);
             let wo = -ray.d;
             let mat = &scene.materials[si.material as usize];
             let front = wo.dot(si.n_geo) > 0.0;

@@ -14,6 +14,7 @@ use rayon::prelude::*;
 use crate::accel::Accel;
 use crate::camera::StereoRig;
 use crate::film::Film;
+use crate::geometry::SurfaceTable;
 use crate::integrator::gt::{occlusion_mask, view_gt, ViewGt};
 use crate::integrator::path::PathContext;
 use crate::integrator::RenderCamera;
@@ -119,10 +120,12 @@ pub fn render_frame(
     let mut images = Vec::new();
     if settings.spp > 0 {
         let lights = LightSet::build(scene);
+        let surfaces = SurfaceTable::build(scene);
         let ctx = PathContext {
             scene,
             accel,
             lights: &lights,
+            surfaces: &surfaces,
             max_depth: settings.max_depth,
         };
         for (view, cam) in cams.iter().enumerate() {
