@@ -7,10 +7,12 @@
 mod exact;
 mod interaction;
 mod offset;
+mod table;
 
 pub use exact::{ray_plane_t, ray_sphere_t};
 pub use interaction::{surface_interaction, SurfaceInteraction};
 pub use offset::{gamma, offset_ray_origin, position_error};
+pub use table::SurfaceTable;
 
 use glam::Vec3;
 

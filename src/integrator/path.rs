@@ -10,8 +10,8 @@ use glam::Vec3;
 use shaders_cpu::bsdf::Bsdf;
 use shaders_cpu::sampling::{power_heuristic, Frame};
 
-use crate::accel::{Accel, Ray};
-use crate::geometry::surface_interaction;
+use crate::accel::{Accel, Hit, Ray};
+use crate::geometry::SurfaceTable;
 use crate::light::LightSet;
 use crate::sampler::SampleStream;
 use crate::scene::Scene;
@@ -32,6 +32,8 @@ pub struct PathContext<'a, A: Accel> {
     pub accel: &'a A,
     /// Its lights.
     pub lights: &'a LightSet,
+    /// Its triangles' compact hit records.
+    pub surfaces: &'a SurfaceTable,
     /// Maximum number of scattering events.
     pub max_depth: u32,
 }
@@ -43,8 +45,22 @@ fn is_two_sided(bsdf: &Bsdf) -> bool {
 
 impl<A: Accel> PathContext<'_, A> {
     /// Radiance arriving along `ray` (unit direction); adds traced rays to `rays`.
-    pub fn li(&self, mut ray: Ray, stream: &mut SampleStream, rays: &mut u64) -> Vec3 {
+    pub fn li(&self, ray: Ray, stream: &mut SampleStream, rays: &mut u64) -> Vec3 {
+        let hit = self.accel.intersect(&ray);
+        self.li_from_hit(ray, hit, stream, rays)
+    }
+
+    /// [`PathContext::li`] when the closest hit of `ray` is already known
+    /// (e.g. from a packet of camera rays); `first_hit` counts as a traced ray.
+    pub fn li_from_hit(
+        &self,
+        mut ray: Ray,
+        first_hit: Option<Hit>,
+        stream: &mut SampleStream,
+        rays: &mut u64,
+    ) -> Vec3 {
         let scene = self.scene;
+        let mut known_hit = Some(first_hit);
         let mut l = Vec3::ZERO;
         let mut beta = Vec3::ONE;
         let mut prev_pdf = 0.0f32;
@@ -53,11 +69,15 @@ impl<A: Accel> PathContext<'_, A> {
         let mut bounces = 0u32;
         loop {
             *rays += 1;
-            let Some(hit) = self.accel.intersect(&ray) else {
+            let hit = match known_hit.take() {
+                Some(hit) => hit,
+                None => self.accel.intersect(&ray),
+            };
+            let Some(hit) = hit else {
                 l += beta * self.escaped(ray.d, prev_pdf, prev_delta);
                 break;
             };
-            let mut si = surface_interaction(scene, &ray, &hit);
+            let mut si = self.surfaces.interaction(scene, &ray, &hit);
             let wo = -ray.d;
             let mat = &scene.materials[si.material as usize];
             let front = wo.dot(si.n_geo) > 0.0;

@@ -14,6 +14,7 @@ use rayon::prelude::*;
 use crate::accel::Accel;
 use crate::camera::StereoRig;
 use crate::film::Film;
+use crate::geometry::SurfaceTable;
 use crate::integrator::gt::{occlusion_mask, view_gt, ViewGt};
 use crate::integrator::path::PathContext;
 use crate::integrator::RenderCamera;
@@ -119,10 +120,12 @@ pub fn render_frame(
     let mut images = Vec::new();
     if settings.spp > 0 {
         let lights = LightSet::build(scene);
+        let surfaces = SurfaceTable::build(scene);
         let ctx = PathContext {
             scene,
             accel,
             lights: &lights,
+            surfaces: &surfaces,
             max_depth: settings.max_depth,
         };
         for (view, cam) in cams.iter().enumerate() {
@@ -151,7 +154,23 @@ pub fn render_frame(
     }
 }
 
+/// Pixels per chunk of camera rays traced together as packets (with spp
+/// samples each, the chunk fills `PACKET_PIXELS · spp / 8` 8-wide packets).
+const PACKET_PIXELS: u32 = 8;
+
+/// Per-thread buffers for one chunk of camera rays.
+#[derive(Default)]
+struct ChunkScratch {
+    rays: Vec<crate::accel::Ray>,
+    hits: Vec<Option<crate::accel::Hit>>,
+    streams: Vec<SampleStream>,
+}
+
 /// Path-traces one view; pixels are independent, so any thread count gives the same film.
+///
+/// The camera rays of a few neighbouring pixels go through the accelerator's
+/// batch query (Embree: coherent 8-wide packets); every later bounce is traced
+/// ray by ray. A pixel's samples are summed in sample order either way.
 fn render_view<A: Accel>(
     ctx: &PathContext<'_, A>,
     cam: &RenderCamera,
@@ -162,11 +181,14 @@ fn render_view<A: Accel>(
     let o = cam.center_f32();
     let rows: Vec<(Vec<Vec3>, u64)> = (0..h)
         .into_par_iter()
-        .map(|j| {
+        .map_init(ChunkScratch::default, |scratch, j| {
             let mut rays = 0u64;
-            let row = (0..w)
-                .map(|i| {
-                    let mut sum = Vec3::ZERO;
+            let mut row = Vec::with_capacity(w as usize);
+            for i0 in (0..w).step_by(PACKET_PIXELS as usize) {
+                let i1 = (i0 + PACKET_PIXELS).min(w);
+                scratch.rays.clear();
+                scratch.streams.clear();
+                for i in i0..i1 {
                     for s in 0..spp {
                         let mut stream = SampleStream::new(key, i, j, s);
                         let jitter = stream.next_2d();
@@ -174,15 +196,30 @@ fn render_view<A: Accel>(
                             .dir(i as f64 + jitter.x as f64, j as f64 + jitter.y as f64)
                             .as_vec3()
                             .normalize();
-                        let li = ctx.li(crate::accel::Ray::new(o, d), &mut stream, &mut rays);
+                        scratch.rays.push(crate::accel::Ray::new(o, d));
+                        scratch.streams.push(stream);
+                    }
+                }
+                scratch.hits.clear();
+                scratch.hits.resize(scratch.rays.len(), None);
+                ctx.accel.intersect_batch(&scratch.rays, &mut scratch.hits);
+                let per_pixel = scratch
+                    .rays
+                    .chunks(spp as usize)
+                    .zip(scratch.hits.chunks(spp as usize))
+                    .zip(scratch.streams.chunks_mut(spp as usize));
+                for ((ray_px, hit_px), stream_px) in per_pixel {
+                    let mut sum = Vec3::ZERO;
+                    for ((ray, hit), stream) in ray_px.iter().zip(hit_px).zip(stream_px) {
+                        let li = ctx.li_from_hit(*ray, *hit, stream, &mut rays);
                         // A non-finite sample would poison the pixel: drop it.
                         if li.is_finite() {
                             sum += li;
                         }
                     }
-                    sum / spp as f32
-                })
-                .collect();
+                    row.push(sum / spp as f32);
+                }
+            }
             (row, rays)
         })
         .collect();

@@ -8,8 +8,19 @@
 //! `sobol_burley`) with its own scramble seed per request: the "padded"
 //! construction of pbrt-v4's `PaddedSobolSampler`, in 4D sets. Sample indices
 //! must stay below 2^16 (the sequence length of `sobol_burley`).
+//!
+//! `sobol_4d` computes exactly `sobol_burley::sample_4d(index, 0, seed)` but
+//! replaces the library's bit loop over the shuffled index (about eight
+//! data-dependent branches per draw) by two 256-entry tables: Sobol points are
+//! XORs of one direction vector per set index bit, so the 16-bit index splits
+//! into its two bytes.
+
+use std::sync::LazyLock;
 
 use glam::Vec2;
+use sobol_burley::parts::{
+    hash, hash_int4, owen_scramble_int4_rev, owen_scramble_rev, sobol_rev, Int4,
+};
 
 /// Which stream a pixel sample belongs to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -72,7 +83,7 @@ impl SampleStream {
     pub fn next_4d(&mut self) -> [f32; 4] {
         let seed = self.scramble_seed();
         self.dimension += 1;
-        sobol_burley::sample_4d(self.sample_index, 0, seed)
+        sobol_4d(self.sample_index, seed)
     }
 
     /// The next 1D sample in [0, 1).
@@ -91,6 +102,37 @@ impl SampleStream {
     pub fn set_dimension(&mut self, dimension: u32) {
         self.dimension = dimension;
     }
+}
+
+/// Reversed-bit Sobol points of dimensions 0..4 for the high (`[0]`) and low
+/// (`[1]`) byte of a reversed 16-bit sample index.
+#[repr(align(16))]
+struct SobolTables([[[u32; 4]; 256]; 2]);
+
+static SOBOL_TABLES: LazyLock<SobolTables> = LazyLock::new(|| {
+    let mut t = SobolTables([[[0; 4]; 256]; 2]);
+    for b in 0..256u32 {
+        for d in 0..4u32 {
+            t.0[0][b as usize][d as usize] = sobol_rev(b << 24, d);
+            t.0[1][b as usize][d as usize] = sobol_rev(b << 16, d);
+        }
+    }
+    t
+});
+
+/// `sobol_burley::sample_4d(sample_index, 0, seed)`, bit for bit, by table.
+pub fn sobol_4d(sample_index: u32, seed: u32) -> [f32; 4] {
+    debug_assert!(sample_index < MAX_SPP);
+    let rev = owen_scramble_rev(sample_index.reverse_bits(), hash(seed ^ 0x79c6_8e4a));
+    let t = &SOBOL_TABLES.0;
+    let sobol =
+        Int4::from(t[0][(rev >> 24) as usize]) ^ Int4::from(t[1][((rev >> 16) & 0xff) as usize]);
+    // The library's scramble for dimension set 0.
+    let seed4: Int4 = [seed.wrapping_mul(0x9c8f_2d3b); 4].into();
+    let scramble = seed4 ^ [0x912f_69ba, 0x174f_18ab, 0x691e_72ca, 0xb40c_c1b8].into();
+    owen_scramble_int4_rev(sobol, hash_int4(scramble))
+        .reverse_bits()
+        .to_f32_norm()
 }
 
 #[cfg(test)]
@@ -122,6 +164,17 @@ mod tests {
         assert_eq!(a, b);
         assert_ne!(a, c);
         assert_ne!(a, d);
+    }
+
+    #[test]
+    fn table_sobol_equals_the_library_bit_for_bit() {
+        let mut seed = 0x1234_5678u32;
+        for index in (0..MAX_SPP).step_by(7).chain([0, 1, MAX_SPP - 1]) {
+            seed = sobol_burley::parts::hash(seed ^ index);
+            let ours = sobol_4d(index, seed).map(f32::to_bits);
+            let lib = sobol_burley::sample_4d(index, 0, seed).map(f32::to_bits);
+            assert_eq!(ours, lib, "index {index} seed {seed:#x}");
+        }
     }
 
     #[test]
