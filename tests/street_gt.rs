@@ -75,7 +75,9 @@ fn street_reprojection_hits_the_same_point_for_every_non_occluded_pixel() {
     }
 }
 
-/// Distance from the hit point to the nearest edge of its triangle (metres).
+/// Closest approach (metres) between the ray o + s·d and the edges of the
+/// triangle it hit: a ray grazing a silhouette passes close to an edge even
+/// where the two hit points lie far apart along the surface.
 fn distance_to_edge(
     scene: &parallax::scene::Scene,
     o: DVec3,
@@ -86,13 +88,21 @@ fn distance_to_edge(
         return f64::INFINITY; // spheres have no edges
     };
     let [a, b, c] = m.triangles[hit.prim_id as usize].map(|i| m.p_render[i as usize]);
-    let p = o + d * exact_t(scene, o, d, hit);
+    let d = d.normalize();
     [(a, b), (b, c), (c, a)]
         .iter()
         .map(|&(u, v)| {
-            let e = v - u;
-            let t = ((p - u).dot(e) / e.length_squared()).clamp(0.0, 1.0);
-            (u + e * t - p).length()
+            // Line–segment closest points: minimise |w0 + s·d − t·e|², t ∈ [0, 1].
+            let (e, w0) = (v - u, o - u);
+            let (bb, cc, dd, ee) = (d.dot(e), e.dot(e), d.dot(w0), e.dot(w0));
+            let denom = cc - bb * bb;
+            let t = if denom > 1e-12 * cc {
+                ((ee - bb * dd) / denom).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let s = bb * t - dd;
+            (w0 + d * s - e * t).length()
         })
         .fold(f64::INFINITY, f64::min)
 }
