@@ -16,9 +16,10 @@ use crate::light::LightSet;
 use crate::sampler::SampleStream;
 use crate::scene::Scene;
 
-/// 4D sample sets per bounce: (light choice, light u, light v, lobe) and
-/// (BSDF u, BSDF v, roulette, unused).
-const DIMS_PER_BOUNCE: u32 = 2;
+/// 4D sample sets per bounce: (light choice, light u, light v, lobe),
+/// (BSDF u, BSDF v, roulette, unused), then two sets of two 2D samples for the
+/// distant lights (up to `MAX_DISTANT` = 4).
+const DIMS_PER_BOUNCE: u32 = 4;
 /// 4D sets used by the camera before the first bounce (pixel jitter).
 pub const CAMERA_DIMS: u32 = 1;
 /// Bounces before Russian roulette may end a path.
@@ -74,7 +75,7 @@ impl<A: Accel> PathContext<'_, A> {
                 None => self.accel.intersect(&ray),
             };
             let Some(hit) = hit else {
-                l += beta * self.escaped(ray.d, prev_pdf, prev_delta);
+                l += beta * self.lights.escaped(scene, ray.d, prev_pdf, prev_delta);
                 break;
             };
             let mut si = self.surfaces.interaction(scene, &ray, &hit);
@@ -111,8 +112,21 @@ impl<A: Accel> PathContext<'_, A> {
             let [u_select, u_lx, u_ly, u_lobe] = stream.next_4d();
             let [u_bx, u_by, u_rr, _] = stream.next_4d();
             if !bsdf.is_delta() {
-                let u_light = glam::Vec2::new(u_lx, u_ly);
-                l += beta * self.direct(&si, &bsdf, &frame, wo_local, u_select, u_light, rays);
+                let lights = self.lights;
+                let [a0, a1, a2, a3] = stream.next_4d();
+                let [b0, b1, b2, b3] = stream.next_4d();
+                let u_distant = [
+                    glam::Vec2::new(a0, a1),
+                    glam::Vec2::new(a2, a3),
+                    glam::Vec2::new(b0, b1),
+                    glam::Vec2::new(b2, b3),
+                ];
+                for (k, &u) in u_distant.iter().enumerate().take(lights.distant_count()) {
+                    let ls = lights.sample_distant(scene, k, si.p, u);
+                    l += beta * self.direct(&si, &bsdf, &frame, wo_local, ls, rays);
+                }
+                let ls = lights.sample(scene, si.p, u_select, glam::Vec2::new(u_lx, u_ly));
+                l += beta * self.direct(&si, &bsdf, &frame, wo_local, ls, rays);
             }
             let u_bsdf = glam::Vec2::new(u_bx, u_by);
             let Some(bs) = bsdf.sample(wo_local, u_lobe, u_bsdf) else {
@@ -146,31 +160,17 @@ impl<A: Accel> PathContext<'_, A> {
         l
     }
 
-    /// Sky and sun radiance for an escaping direction, MIS-weighted against NEE.
-    fn escaped(&self, d: Vec3, prev_pdf: f32, prev_delta: bool) -> Vec3 {
-        let sky = self.scene.sky.le(d);
-        let sun = self.lights.sun_le(d);
-        if prev_delta {
-            return sky + sun;
-        }
-        let (pdf_sky, pdf_sun) = self.lights.pdf_infinite(self.scene, d);
-        sky * power_heuristic(1.0, prev_pdf, 1.0, pdf_sky)
-            + sun * power_heuristic(1.0, prev_pdf, 1.0, pdf_sun)
-    }
-
-    /// Next-event estimation: one light sample, shadow-tested, MIS-weighted.
-    #[allow(clippy::too_many_arguments)]
+    /// Next-event estimation for one light sample: shadow-tested, MIS-weighted.
     fn direct(
         &self,
         si: &crate::geometry::SurfaceInteraction,
         bsdf: &Bsdf,
         frame: &Frame,
         wo_local: Vec3,
-        u_select: f32,
-        u: glam::Vec2,
+        ls: Option<crate::light::LightSample>,
         rays: &mut u64,
     ) -> Vec3 {
-        let Some(ls) = self.lights.sample(self.scene, si.p, u_select, u) else {
+        let Some(ls) = ls else {
             return Vec3::ZERO;
         };
         if ls.pdf <= 0.0 || ls.li == Vec3::ZERO {

@@ -44,7 +44,7 @@ pub enum Light {
 
 mod set;
 
-pub use set::{LightSample, LightSet};
+pub use set::{LightSample, LightSet, MAX_DISTANT};
 
 use shaders_cpu::sampling::{sample_uniform_cone, uniform_cone_pdf, Frame};
 

@@ -1,10 +1,16 @@
-//! The set of lights next-event estimation chooses from: explicit lights, the
-//! sky, and every emissive triangle, selected in proportion to emitted power
-//! (pbrt-v4's `PowerLightSampler`). Probabilities returned include the
-//! selection pmf, so callers combine them directly in MIS weights.
+//! The lights next-event estimation samples. Distant lights (the sky and up to
+//! `MAX_DISTANT − 1` suns) are sampled at every vertex: outdoors they are the
+//! only light in every shadow, and one-sample selection would give the sky a
+//! small share next to the sun. Local lights (point, spot, emissive triangles)
+//! are selected one per vertex, half in proportion to emitted power
+//! (pbrt-v4's `PowerLightSampler`), half uniformly. Probabilities returned
+//! include the selection pmf (1 for distant lights), so callers combine them
+//! directly in MIS weights.
 
 use glam::{Vec2, Vec3};
-use shaders_cpu::sampling::{luminance, sample_uniform_triangle};
+use shaders_cpu::sampling::{
+    luminance, power_heuristic, sample_uniform_triangle, uniform_cone_pdf,
+};
 
 use super::{power, sample_explicit, sun_radiance, Light};
 use crate::scene::Scene;
@@ -32,14 +38,23 @@ pub struct LightSample {
     pub delta: bool,
 }
 
+/// Most distant lights sampled at every vertex; further suns join the
+/// selected (local) group.
+pub const MAX_DISTANT: usize = 4;
+
 /// All lights of a scene with their selection distribution.
 #[derive(Clone, Debug)]
 pub struct LightSet {
+    /// Sampled at every vertex (pmf 1).
+    distant: Vec<Entry>,
+    /// One of these is selected per vertex.
     entries: Vec<Entry>,
     cdf: Vec<f32>,
     pmf: Vec<f32>,
-    sky_index: Option<usize>,
-    sun: Option<(usize, Vec3, f32, Vec3)>,
+    /// pmf of the sky (1 when it emits, else 0).
+    sky_pmf: f32,
+    /// Every sun, for rays that escape into one.
+    suns: Vec<SunDisk>,
     /// Per mesh, the entry index of each triangle (empty for non-emissive meshes).
     tri_entry: Vec<Vec<u32>>,
 }
@@ -50,13 +65,26 @@ fn triangle_area(scene: &Scene, geom: u32, prim: u32) -> f32 {
     0.5 * (b - a).cross(c - a).length()
 }
 
+/// A sun as escaping rays see it.
+#[derive(Clone, Copy, Debug)]
+struct SunDisk {
+    axis: Vec3,
+    cos_max: f32,
+    le: Vec3,
+    /// Probability NEE picks it (1 in the distant group).
+    pmf: f32,
+}
+
 impl LightSet {
     /// Collects every light of `scene`.
     pub fn build(scene: &Scene) -> Self {
         let radius = scene_radius(scene);
+        let mut distant = Vec::new();
         let mut entries = Vec::new();
         let mut weights = Vec::new();
-        let mut sun = None;
+        let mut suns = Vec::new();
+        let sky_emits = sky_mean_luminance(scene) > 0.0;
+        let room_for_suns = MAX_DISTANT - sky_emits as usize;
         for light in &scene.lights {
             if let Light::Sun {
                 dir_to_sun,
@@ -64,19 +92,27 @@ impl LightSet {
                 irradiance,
             } = *light
             {
-                let le = sun_radiance(irradiance, angular_radius_rad);
-                sun = Some((entries.len(), dir_to_sun, angular_radius_rad.cos(), le));
+                let in_distant = suns.len() < room_for_suns;
+                suns.push((
+                    SunDisk {
+                        axis: dir_to_sun,
+                        cos_max: angular_radius_rad.cos(),
+                        le: sun_radiance(irradiance, angular_radius_rad),
+                        pmf: 1.0,
+                    },
+                    (!in_distant).then_some(entries.len()),
+                ));
+                if in_distant {
+                    distant.push(Entry::Explicit(*light));
+                    continue;
+                }
             }
             weights.push(power(light, radius));
             entries.push(Entry::Explicit(*light));
         }
-        let sky_lum = sky_mean_luminance(scene);
-        let sky_index = (sky_lum > 0.0).then(|| {
-            let pi = std::f32::consts::PI;
-            weights.push(pi * radius * radius * pi * sky_lum);
-            entries.push(Entry::Sky);
-            entries.len() - 1
-        });
+        if sky_emits {
+            distant.push(Entry::Sky);
+        }
         let mut tri_entry = vec![Vec::new(); scene.meshes.len()];
         for (g, mesh) in scene.meshes.iter().enumerate() {
             let emissive =
@@ -113,22 +149,35 @@ impl LightSet {
                 acc as f32
             })
             .collect();
+        let suns = suns
+            .into_iter()
+            .map(|(disk, local)| SunDisk {
+                pmf: local.map_or(1.0, |i| pmf[i]),
+                ..disk
+            })
+            .collect();
         LightSet {
+            distant,
             entries,
             cdf,
             pmf,
-            sky_index,
-            sun,
+            sky_pmf: if sky_emits { 1.0 } else { 0.0 },
+            suns,
             tri_entry,
         }
     }
 
-    /// Number of selectable lights.
+    /// Number of distant lights sampled at every vertex (≤ `MAX_DISTANT`).
+    pub fn distant_count(&self) -> usize {
+        self.distant.len()
+    }
+
+    /// Number of local lights one is selected from.
     pub fn len(&self) -> usize {
         self.entries.len()
     }
 
-    /// Whether there is nothing to sample.
+    /// Whether there are no local lights.
     pub fn is_empty(&self) -> bool {
         self.entries.is_empty()
     }
@@ -138,7 +187,12 @@ impl LightSet {
         i.min(self.entries.len() - 1)
     }
 
-    /// Samples a light as seen from `p`.
+    /// Samples distant light `k` (< `distant_count()`) as seen from `p`.
+    pub fn sample_distant(&self, scene: &Scene, k: usize, p: Vec3, u: Vec2) -> Option<LightSample> {
+        sample_entry(scene, &self.distant[k], 1.0, p, u)
+    }
+
+    /// Selects one local light and samples it as seen from `p`.
     pub fn sample(&self, scene: &Scene, p: Vec3, u_select: f32, u: Vec2) -> Option<LightSample> {
         if self.entries.is_empty() {
             return None;
@@ -148,79 +202,30 @@ impl LightSet {
         if pmf == 0.0 {
             return None;
         }
-        match self.entries[idx] {
-            Entry::Explicit(light) => {
-                let (wi, li, pdf, dist, delta) = sample_explicit(&light, p, u)?;
-                Some(LightSample {
-                    wi,
-                    li,
-                    pdf: pdf * pmf,
-                    dist,
-                    delta,
-                })
-            }
-            Entry::Sky => {
-                let (wi, li, pdf) = scene.sky.sample(u);
-                (pdf > 0.0).then_some(LightSample {
-                    wi,
-                    li,
-                    pdf: pdf * pmf,
-                    dist: f32::INFINITY,
-                    delta: false,
-                })
-            }
-            Entry::Triangle { geom, prim } => {
-                let m = &scene.meshes[geom as usize];
-                let [a, b, c] = m.triangles[prim as usize].map(|i| m.p_f32[i as usize]);
-                let bary = sample_uniform_triangle(u);
-                let q = a * bary[0] + b * bary[1] + c * bary[2];
-                let cross = (b - a).cross(c - a);
-                let area = 0.5 * cross.length();
-                let n = cross / (2.0 * area);
-                let d = q - p;
-                let dist2 = d.length_squared();
-                if dist2 == 0.0 || area == 0.0 {
-                    return None;
-                }
-                let dist = dist2.sqrt();
-                let wi = d / dist;
-                let cos_l = -n.dot(wi);
-                let mat = &scene.materials[m.tri_material[prim as usize] as usize];
-                if cos_l <= 0.0 && !mat.two_sided_emission || cos_l == 0.0 {
-                    return None;
-                }
-                Some(LightSample {
-                    wi,
-                    li: mat.le,
-                    pdf: pmf * dist2 / (cos_l.abs() * area),
-                    dist,
-                    delta: false,
-                })
-            }
-        }
+        sample_entry(scene, &self.entries[idx], pmf, p, u)
     }
 
-    /// Radiance of the sun disk in direction `dir` (zero outside it).
-    pub fn sun_le(&self, dir: Vec3) -> Vec3 {
-        match self.sun {
-            Some((_, axis, cos_max, le)) if dir.dot(axis) >= cos_max => le,
-            _ => Vec3::ZERO,
-        }
-    }
-
-    /// Pdf (with pmf) that NEE would have produced escaping direction `dir`
-    /// through the sky entry and the sun entry.
-    pub fn pdf_infinite(&self, scene: &Scene, dir: Vec3) -> (f32, f32) {
-        let sky = self
-            .sky_index
-            .map_or(0.0, |i| self.pmf[i] * scene.sky.pdf(dir));
-        let sun = match self.sun {
-            Some((i, axis, cos_max, _)) if dir.dot(axis) >= cos_max => {
-                self.pmf[i] * shaders_cpu::sampling::uniform_cone_pdf(cos_max)
+    /// Radiance of the sky and sun disks for a ray escaping along `dir` that
+    /// was sampled with solid-angle pdf `prev_pdf` (or by a delta lobe / the
+    /// camera), MIS-weighted against next-event estimation.
+    pub fn escaped(&self, scene: &Scene, dir: Vec3, prev_pdf: f32, prev_delta: bool) -> Vec3 {
+        let weight = |pdf_light: f32| {
+            if prev_delta {
+                1.0
+            } else {
+                power_heuristic(1.0, prev_pdf, 1.0, pdf_light)
             }
-            _ => 0.0,
         };
-        (sky, sun)
+        let mut l = scene.sky.le(dir);
+        if !prev_delta && l != Vec3::ZERO {
+            l *= weight(self.sky_pmf * scene.sky.pdf(dir));
+        }
+        for sun in &self.suns {
+            if dir.dot(sun.axis) >= sun.cos_max {
+                l += sun.le * weight(sun.pmf * uniform_cone_pdf(sun.cos_max));
+            }
+        }
+        l
     }
 
     /// Pdf per solid angle (with pmf) that NEE would have chosen point `q` on
@@ -252,6 +257,60 @@ impl LightSet {
             return 0.0;
         }
         self.pmf[idx as usize] * dist2 / (cos_l * area)
+    }
+}
+
+/// Samples one entry with selection probability `pmf`.
+fn sample_entry(scene: &Scene, entry: &Entry, pmf: f32, p: Vec3, u: Vec2) -> Option<LightSample> {
+    match *entry {
+        Entry::Explicit(light) => {
+            let (wi, li, pdf, dist, delta) = sample_explicit(&light, p, u)?;
+            Some(LightSample {
+                wi,
+                li,
+                pdf: pdf * pmf,
+                dist,
+                delta,
+            })
+        }
+        Entry::Sky => {
+            let (wi, li, pdf) = scene.sky.sample(u);
+            (pdf > 0.0).then_some(LightSample {
+                wi,
+                li,
+                pdf: pdf * pmf,
+                dist: f32::INFINITY,
+                delta: false,
+            })
+        }
+        Entry::Triangle { geom, prim } => {
+            let m = &scene.meshes[geom as usize];
+            let [a, b, c] = m.triangles[prim as usize].map(|i| m.p_f32[i as usize]);
+            let bary = sample_uniform_triangle(u);
+            let q = a * bary[0] + b * bary[1] + c * bary[2];
+            let cross = (b - a).cross(c - a);
+            let area = 0.5 * cross.length();
+            let d = q - p;
+            let dist2 = d.length_squared();
+            if dist2 == 0.0 || area == 0.0 {
+                return None;
+            }
+            let n = cross / (2.0 * area);
+            let dist = dist2.sqrt();
+            let wi = d / dist;
+            let cos_l = -n.dot(wi);
+            let mat = &scene.materials[m.tri_material[prim as usize] as usize];
+            if cos_l <= 0.0 && !mat.two_sided_emission || cos_l == 0.0 {
+                return None;
+            }
+            Some(LightSample {
+                wi,
+                li: mat.le,
+                pdf: pmf * dist2 / (cos_l.abs() * area),
+                dist,
+                delta: false,
+            })
+        }
     }
 }
 
