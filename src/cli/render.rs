@@ -18,7 +18,7 @@ use crate::scene::{build_scene, load_scene, LoadedScene};
 #[derive(Args, Debug)]
 pub struct RenderArgs {
     /// Scene description (TOML); omit when rendering a town with --town.
-    #[arg(required_unless_present = "town", conflicts_with = "town")]
+    #[arg(conflicts_with = "town")]
     pub scene: Option<PathBuf>,
     /// Render a town frame: a town name (SCENES/NAME.toml) or town file path.
     #[arg(long)]
