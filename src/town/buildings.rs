@@ -144,19 +144,16 @@ fn building(
         WALLS[r.index(WALLS.len())]
     };
     out.push(slab(plot.min, plot.max, 0.0, h, wall, id));
-    let roof = if !tower && floors <= 3 && r.chance(0.5) {
-        "roof_tile"
+    if !tower && floors <= 2 && d <= 14.0 && r.chance(0.7) {
+        out.push(gable_roof(plot, h, id));
     } else {
-        "roof"
-    };
-    out.push(slab(
-        [plot.min[0] - 0.2, plot.min[1] - 0.2],
-        [plot.max[0] + 0.2, plot.max[1] + 0.2],
-        h,
-        h + 0.4,
-        roof,
-        id,
-    ));
+        let roof = [plot.min[0] - 0.2, plot.min[1] - 0.2];
+        let roof_max = [plot.max[0] + 0.2, plot.max[1] + 0.2];
+        out.push(slab(roof, roof_max, h, h + 0.4, "roof", id));
+    }
+    if !tower && floors >= 3 && r.chance(0.4) {
+        balconies(plot, south, floors, id, out);
+    }
     if floors > 1 {
         let ledge = cuboid(
             [w + 0.3, d + 0.3, 0.2],
@@ -225,6 +222,45 @@ fn building(
             ));
         }
     }
+}
+
+/// A 45° gable roof with its ridge along x: a square prism turned 45° about
+/// x whose upper half (a triangle of half-width d/2) stands on the walls; the
+/// lower half lies inside the body (or below the ground).
+fn gable_roof(plot: &Rect, h: f64, id: Label) -> ObjectDesc {
+    let [w, d] = plot.size();
+    let c = plot.center();
+    let side = d / std::f64::consts::SQRT_2;
+    let mut o = cuboid([w + 0.3, side, side], [c[0], c[1], h], 0.0, "roof_tile", id);
+    o.transform.rotate_deg = Some([45.0, 0.0, 0.0]);
+    o
+}
+
+/// Balconies (slab and railing) on the street facade, every other window
+/// column, from the second floor up.
+fn balconies(plot: &Rect, south: bool, floors: u32, id: Label, out: &mut Vec<ObjectDesc>) {
+    let w = plot.size()[0];
+    let cols = ((w - 1.5) / 6.0).floor() as u32;
+    if cols == 0 || floors < 3 {
+        return;
+    }
+    let (wall_y, sign) = if south {
+        (plot.min[1], -1.0)
+    } else {
+        (plot.max[1], 1.0)
+    };
+    let x0 = plot.center()[0] - (cols as f64 - 1.0) * 3.0;
+    let slab_at = [x0, wall_y + sign * 0.6, 2.0 * FLOOR_M + 0.08];
+    let rail_at = [x0, wall_y + sign * 1.17, 2.0 * FLOOR_M + 0.6];
+    let levels = [(cols, [6.0, 0.0, 0.0]), (floors - 2, [0.0, 0.0, FLOOR_M])];
+    out.push(repeated(
+        cuboid([2.4, 1.2, 0.15], slab_at, 0.0, "concrete", id),
+        &levels,
+    ));
+    out.push(repeated(
+        cuboid([2.4, 0.05, 0.9], rail_at, 0.0, "steel_dark", id),
+        &levels,
+    ));
 }
 
 /// A tower facade: a glass band over the upper floors with mullions every 1.5 m.
