@@ -90,17 +90,13 @@ fn every_object_and_every_built_mesh_has_a_class() {
             assert_ne!(m.semantic, 0, "a mesh of {name} has class 'other'");
             seen[m.semantic as usize] = true;
         }
-        for class in [
-            "road",
-            "lane_marking",
-            "sidewalk",
-            "terrain",
-            "vegetation",
-            "pole",
-        ] {
+        for class in ["road", "lane_marking", "terrain", "vegetation", "pole"] {
             let id = class_id(class).unwrap() as usize;
             assert!(seen[id], "{name} has no {class}");
         }
+        // Country roads have gravel shoulders (terrain), not sidewalks.
+        let sidewalk = class_id("sidewalk").unwrap() as usize;
+        assert_eq!(seen[sidewalk], desc.sidewalks, "{name}: sidewalks");
         for class in [
             "building",
             "vehicle",

@@ -28,9 +28,14 @@ pub struct TownDesc {
     /// Lane width, metres, in [2.8, 4.5] (default 3.5).
     #[serde(default = "default_lane_width")]
     pub lane_width_m: f64,
-    /// Sidewalk width (curb included), metres, in [1.5, 8] (default 3).
+    /// Sidewalk width (curb included), metres, in [1.5, 8] (default 3); the
+    /// width of the gravel shoulder when `sidewalks = false`.
     #[serde(default = "default_sidewalk")]
     pub sidewalk_width_m: f64,
+    /// Raised sidewalks with curbs, crosswalks and pedestrians (default true);
+    /// false gives country roads with flat gravel shoulders and no pedestrians.
+    #[serde(default = "yes")]
+    pub sidewalks: bool,
     /// Fraction of building lots that hold a building, in [0, 1].
     pub building_density: f64,
     /// Floors of ordinary buildings, [min, max], 1 ≤ min ≤ max ≤ 12.
@@ -99,6 +104,9 @@ pub enum SkyKind {
     Hazy,
 }
 
+fn yes() -> bool {
+    true
+}
 fn one() -> u32 {
     1
 }

@@ -24,7 +24,7 @@ pub fn furniture_objects(desc: &TownDesc, l: &Layout, seed: u64) -> Vec<ObjectDe
     for j in 0..=l.ny {
         let y = j as f64 * p;
         for side in [-1.0, 1.0] {
-            let place = |a: f64, off: f64| [a, y + side * (hw + off), 0.14];
+            let place = |a: f64, off: f64| [a, y + side * (hw + off), l.walk_z()];
             // Street-light arm over the road: north side heading 0 (arm −y).
             let lamp_heading = if side > 0.0 { 0.0 } else { 180.0 };
             line(
@@ -41,7 +41,7 @@ pub fn furniture_objects(desc: &TownDesc, l: &Layout, seed: u64) -> Vec<ObjectDe
     for i in 0..=l.nx {
         let x = i as f64 * p;
         for side in [-1.0, 1.0] {
-            let place = |a: f64, off: f64| [x + side * (hw + off), a, 0.14];
+            let place = |a: f64, off: f64| [x + side * (hw + off), a, l.walk_z()];
             // East side (side > 0): arm towards −x, heading 270.
             let lamp_heading = if side > 0.0 { 270.0 } else { 90.0 };
             line(
@@ -62,9 +62,21 @@ pub fn furniture_objects(desc: &TownDesc, l: &Layout, seed: u64) -> Vec<ObjectDe
             let (x, y) = (i as f64 * p, j as f64 * p);
             if j == 0 {
                 // Southbound traffic arrives at the T from the north.
-                out.push(instance("stop_sign", [x - c, y + c, 0.14], 270.0, &[], ts));
+                out.push(instance(
+                    "stop_sign",
+                    [x - c, y + c, l.walk_z()],
+                    270.0,
+                    &[],
+                    ts,
+                ));
             } else if j == l.ny {
-                out.push(instance("stop_sign", [x + c, y - c, 0.14], 90.0, &[], ts));
+                out.push(instance(
+                    "stop_sign",
+                    [x + c, y - c, l.walk_z()],
+                    90.0,
+                    &[],
+                    ts,
+                ));
             } else {
                 for (at, heading) in [
                     ([x - c, y - c], 0.0),
@@ -74,7 +86,7 @@ pub fn furniture_objects(desc: &TownDesc, l: &Layout, seed: u64) -> Vec<ObjectDe
                 ] {
                     out.push(instance(
                         "traffic_light",
-                        [at[0], at[1], 0.14],
+                        [at[0], at[1], l.walk_z()],
                         heading,
                         &[],
                         tl,

@@ -69,8 +69,10 @@ pub struct Layout {
     pub lane_w_m: f64,
     /// Lanes per direction.
     pub lanes: u32,
-    /// Sidewalk width (curb included), metres.
+    /// Sidewalk (or shoulder) width, metres.
     pub sidewalk_m: f64,
+    /// Raised sidewalks with curbs (false: flat shoulders).
+    pub sidewalks: bool,
 }
 
 impl Layout {
@@ -85,6 +87,15 @@ impl Layout {
             lane_w_m: desc.lane_width_m,
             lanes: desc.lanes_per_direction,
             sidewalk_m: desc.sidewalk_width_m,
+            sidewalks: desc.sidewalks,
+        }
+    }
+    /// Height of the sidewalk top (0 for shoulders), metres.
+    pub fn walk_z(&self) -> f64 {
+        if self.sidewalks {
+            0.14
+        } else {
+            0.0
         }
     }
     /// Length of the grid along x (west to east edge junctions), metres.

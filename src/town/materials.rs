@@ -80,6 +80,7 @@ pub fn town_materials(desc: &TownDesc) -> Vec<MaterialDesc> {
         diffuse("paint_yellow_road", [0.75, 0.55, 0.1]),
         diffuse("curb", [0.55, 0.54, 0.52]),
         diffuse("sidewalk", [0.42, 0.41, 0.39]),
+        diffuse("gravel", [0.3, 0.28, 0.25]),
         diffuse("ground", ground),
         diffuse("lawn", [0.1, 0.22, 0.06]),
         diffuse("brick_red", [0.42, 0.17, 0.11]),

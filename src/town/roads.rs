@@ -1,7 +1,8 @@
 //! The road network of a grid town: asphalt per segment and junction, lane
 //! markings (dashed or double solid centre lines, dashed lane dividers, solid
 //! edge lines, stop lines and zebra crosswalks at junctions), curbs, sidewalks
-//! and corner pieces, and the terrain around everything.
+//! and corner pieces (flat gravel shoulders on country roads), and the
+//! terrain around everything.
 //!
 //! A road segment is described in (along, across) coordinates: `along` runs
 //! with the road's positive direction (+x or +y), `across` points to its left
@@ -191,6 +192,17 @@ fn segment_objects(l: &Layout, s: &Segment) -> Vec<ObjectDesc> {
             continue;
         }
         let (dir, edge) = if end == 0 { (1.0, s.a0) } else { (-1.0, s.a1) };
+        let a = edge + dir * STOP_LINE_AT_M;
+        // Traffic entering at a0 drives in −along, on the left (across > 0).
+        let lanes = if end == 0 {
+            (0.2, hw - 0.2)
+        } else {
+            (-hw + 0.2, -0.2)
+        };
+        o.push(s.slab((a - 0.2, a + 0.2), lanes, PAINT_Z, "paint_white_road", mark));
+        if !l.sidewalks {
+            continue; // no crosswalks on country roads
+        }
         let (c0, c1) = (edge + dir * CROSSWALK_M.0, edge + dir * CROSSWALK_M.1);
         let n = ((2.0 * hw - 0.5) / 1.0).floor() as u32;
         let first = -hw + 0.5;
@@ -206,25 +218,36 @@ fn segment_objects(l: &Layout, s: &Segment) -> Vec<ObjectDesc> {
             Axis::Y => [-1.0, 0.0, 0.0],
         };
         o.push(repeated(stripe, &[(n, across)]));
-        let a = edge + dir * STOP_LINE_AT_M;
-        // Traffic entering at a0 drives in −along, on the left (across > 0).
-        let lanes = if end == 0 {
-            (0.2, hw - 0.2)
-        } else {
-            (-hw + 0.2, -0.2)
-        };
-        o.push(s.slab((a - 0.2, a + 0.2), lanes, PAINT_Z, "paint_white_road", mark));
     }
-    // Curbs and sidewalks on both sides.
+    // Curbs and sidewalks (or flat shoulders) on both sides.
     let sw = l.sidewalk_m;
     for sign in [-1.0f64, 1.0] {
+        let sorted = |(a, b): (f64, f64)| (a.min(b), a.max(b));
+        if !l.sidewalks {
+            let shoulder = sorted((sign * hw, sign * (hw + sw)));
+            let (p, q) = (s.xy(s.a0, shoulder.0), s.xy(s.a1, shoulder.1));
+            let (min, max) = (
+                [p[0].min(q[0]), p[1].min(q[1])],
+                [p[0].max(q[0]), p[1].max(q[1])],
+            );
+            o.push(ground_quad(min, max, 0.0, "gravel", class("terrain")));
+            continue;
+        }
         let curb = (sign * hw, sign * (hw + 0.25));
         let walk = (sign * (hw + 0.25), sign * (hw + sw));
-        let sorted = |(a, b): (f64, f64)| (a.min(b), a.max(b));
         o.push(s.slab((s.a0, s.a1), sorted(curb), (0.0, 0.15), "curb", side));
         o.push(s.slab((s.a0, s.a1), sorted(walk), (0.0, 0.14), "sidewalk", side));
     }
     o
+}
+
+/// A raised sidewalk piece, or a flat gravel shoulder on country roads.
+fn walk_piece(l: &Layout, min: [f64; 2], max: [f64; 2]) -> ObjectDesc {
+    if l.sidewalks {
+        slab(min, max, 0.0, 0.14, "sidewalk", class("sidewalk"))
+    } else {
+        ground_quad(min, max, 0.0, "gravel", class("terrain"))
+    }
 }
 
 /// A solid line split into equal pieces of at most 10 m.
@@ -268,13 +291,10 @@ fn junction_objects(l: &Layout, i: usize, j: usize, out: &mut Vec<ObjectDesc>) {
     for sx in [-1.0, 1.0] {
         for sy in [-1.0, 1.0] {
             let (cx, cy) = (x + sx * (hw + sw / 2.0), y + sy * (hw + sw / 2.0));
-            out.push(slab(
+            out.push(walk_piece(
+                l,
                 [cx - sw / 2.0, cy - sw / 2.0],
                 [cx + sw / 2.0, cy + sw / 2.0],
-                0.0,
-                0.14,
-                "sidewalk",
-                side,
             ));
         }
     }
@@ -286,6 +306,11 @@ fn junction_objects(l: &Layout, i: usize, j: usize, out: &mut Vec<ObjectDesc>) {
         None
     };
     if let Some(sy) = missing {
+        if !l.sidewalks {
+            let (w0, w1) = (y + sy * hw, y + sy * (hw + sw));
+            out.push(walk_piece(l, [x - hw, w0.min(w1)], [x + hw, w0.max(w1)]));
+            return;
+        }
         let (c0, c1) = (y + sy * hw, y + sy * (hw + 0.25));
         out.push(slab(
             [x - hw, c0.min(c1)],
@@ -296,13 +321,6 @@ fn junction_objects(l: &Layout, i: usize, j: usize, out: &mut Vec<ObjectDesc>) {
             side,
         ));
         let (w0, w1) = (y + sy * (hw + 0.25), y + sy * (hw + sw));
-        out.push(slab(
-            [x - hw, w0.min(w1)],
-            [x + hw, w0.max(w1)],
-            0.0,
-            0.14,
-            "sidewalk",
-            side,
-        ));
+        out.push(walk_piece(l, [x - hw, w0.min(w1)], [x + hw, w0.max(w1)]));
     }
 }

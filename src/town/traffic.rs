@@ -272,6 +272,9 @@ const SHIRTS: &[&str] = &[
 
 fn pedestrians(desc: &TownDesc, l: &Layout, seed: u64, t: f64) -> Vec<PedestrianPose> {
     let mut out = Vec::new();
+    if !l.sidewalks {
+        return out;
+    }
     let inset = l.road_w_m / 2.0 + l.sidewalk_m / 2.0 + 0.1;
     let side = l.pitch_m - 2.0 * inset;
     let perimeter = 4.0 * side;
