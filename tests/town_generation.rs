@@ -147,3 +147,38 @@ fn bad_town_files_are_rejected_naming_the_field() {
     assert_eq!("pitch30".parse::<CameraConfig>(), Ok(CameraConfig::Pitch30));
     assert!("pitch45".parse::<CameraConfig>().is_err());
 }
+
+#[test]
+fn town01_river_lies_under_a_bridge_on_every_street() {
+    use parallax::accel::{build_accel, Accel, Backend, Ray};
+    use parallax::town::layout::Layout;
+    let desc = town("town01");
+    let layout = Layout::new(&desc);
+    let band = layout.river_band().expect("town01 has a river");
+    let loaded = load_town_frame(&desc, 0, 0, CameraConfig::Normal, Path::new("t.toml")).unwrap();
+    let scene = build_scene(&loaded, DVec3::ZERO).unwrap();
+    let accel = build_accel(Backend::default_backend(), &scene.accel_geometry()).unwrap();
+    let y = band.center()[1];
+    // Straight down from 10 m: (t, class) of the first hit.
+    let down = |x: f64| {
+        let hit = accel
+            .intersect(&Ray::new(
+                glam::Vec3::new(x as f32, y as f32, 10.0),
+                glam::Vec3::NEG_Z,
+            ))
+            .expect("something below");
+        (hit.t, scene.meshes[hit.geom_id as usize].semantic)
+    };
+    for i in 0..=layout.nx {
+        let x = i as f64 * layout.pitch_m;
+        // On the bridge, beside the centre line where no vehicle reaches.
+        let (t, c) = down(x + 0.25);
+        assert_eq!(c, class_id("road").unwrap(), "street {i}");
+        assert!((t - 10.0).abs() < 1e-4, "bridge deck at z = {}", 10.0 - t);
+        if i < layout.nx {
+            let (t, c) = down(x + layout.pitch_m / 2.0);
+            assert_eq!(c, class_id("water").unwrap(), "between streets {i}");
+            assert!((t - 11.2).abs() < 1e-4, "water at z = {}", 10.0 - t);
+        }
+    }
+}

@@ -26,7 +26,7 @@ pub const BUILDING_ID_BASE: u16 = 1000;
 pub fn block_objects(desc: &TownDesc, l: &Layout, seed: u64) -> Vec<ObjectDesc> {
     let mut out = Vec::new();
     let mut next_id = BUILDING_ID_BASE;
-    for j in 0..l.ny {
+    for j in (0..l.ny).filter(|&j| Some(j) != l.river_row) {
         for i in 0..l.nx {
             let mut r = Rng::new(&[seed, tag::BLOCK, i as u64, j as u64]);
             let a = l.block_interior(i, j);

@@ -48,6 +48,10 @@ pub struct TownDesc {
     pub tower_floors: [u32; 2],
     /// Trees and parks, in [0, 1].
     pub vegetation_density: f64,
+    /// A river along x in place of the middle block row, crossed by every
+    /// y-road on a bridge (default false; needs at least 3 block rows).
+    #[serde(default)]
+    pub river: bool,
     /// Ground cover between and around the blocks.
     #[serde(default)]
     pub terrain: TerrainKind,
@@ -170,6 +174,9 @@ impl TownDesc {
         range("fps", self.fps, 1e-3, 120.0)?;
         range("sun_elevation_deg", self.sun_elevation_deg, 1.0, 90.0)?;
         range("sun_azimuth_deg", self.sun_azimuth_deg, -360.0, 360.0)?;
+        if self.river && (self.extent_m[1] / self.block_size_m).round() < 3.0 {
+            return Err("river: needs at least 3 block rows (extent_m[1] / block_size_m)".into());
+        }
         let [lo, hi] = self.floors;
         if !(1 <= lo && lo <= hi && hi <= 12) {
             return Err(format!("floors: need 1 ≤ min ≤ max ≤ 12, got [{lo}, {hi}]"));

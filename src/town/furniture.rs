@@ -55,6 +55,16 @@ pub fn furniture_objects(desc: &TownDesc, l: &Layout, seed: u64) -> Vec<ObjectDe
             );
         }
     }
+    // No trees or signs on bridges.
+    if let Some(band) = l.river_band() {
+        out.retain(|o| {
+            let on_bridge = o
+                .transform
+                .translate
+                .is_some_and(|t| t[1] > band.min[1] && t[1] < band.max[1]);
+            !on_bridge || o.semantic.as_deref() == Some("pole")
+        });
+    }
     let (tl, ts) = (class("traffic_light"), class("traffic_sign"));
     let c = hw + 0.5;
     for j in 0..=l.ny {

@@ -9,6 +9,8 @@ use super::desc::TownDesc;
 
 /// Length of the road stubs past the east and west town edges, metres.
 pub const STUB_M: f64 = 40.0;
+/// How far the terrain (and a river) reaches past the town, metres.
+pub const GROUND_MARGIN_M: f64 = 400.0;
 
 /// An axis-aligned rectangle in the ground plane, world metres.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -73,6 +75,8 @@ pub struct Layout {
     pub sidewalk_m: f64,
     /// Raised sidewalks with curbs (false: flat shoulders).
     pub sidewalks: bool,
+    /// The block row replaced by a river, if any.
+    pub river_row: Option<usize>,
 }
 
 impl Layout {
@@ -88,7 +92,24 @@ impl Layout {
             lanes: desc.lanes_per_direction,
             sidewalk_m: desc.sidewalk_width_m,
             sidewalks: desc.sidewalks,
+            river_row: None,
         }
+        .with_river(desc.river)
+    }
+    fn with_river(mut self, river: bool) -> Self {
+        self.river_row = river.then_some(self.ny / 2);
+        self
+    }
+    /// The river's water surface in plan (between the sidewalks of its two
+    /// x-roads, past the town on both sides), if the town has one.
+    pub fn river_band(&self) -> Option<Rect> {
+        let j = self.river_row?;
+        let a = self.block_interior(0, j);
+        let b = self.bounds();
+        Some(Rect {
+            min: [b.min[0] - GROUND_MARGIN_M, a.min[1]],
+            max: [b.max[0] + GROUND_MARGIN_M, a.max[1]],
+        })
     }
     /// Height of the sidewalk top (0 for shoulders), metres.
     pub fn walk_z(&self) -> f64 {

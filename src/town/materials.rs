@@ -81,6 +81,8 @@ pub fn town_materials(desc: &TownDesc) -> Vec<MaterialDesc> {
         diffuse("curb", [0.55, 0.54, 0.52]),
         diffuse("sidewalk", [0.42, 0.41, 0.39]),
         diffuse("gravel", [0.3, 0.28, 0.25]),
+        diffuse("mud", [0.1, 0.085, 0.06]),
+        glass("water", [0.55, 0.7, 0.62]),
         diffuse("ground", ground),
         diffuse("lawn", [0.1, 0.22, 0.06]),
         diffuse("brick_red", [0.42, 0.17, 0.11]),

@@ -12,7 +12,7 @@
 
 use crate::scene::desc::ObjectDesc;
 
-use super::layout::{Layout, STUB_M};
+use super::layout::{Layout, Rect, GROUND_MARGIN_M, STUB_M};
 use super::parts::{class, ground_quad, repeated, slab, Label};
 
 /// Along which world axis a road runs.
@@ -75,14 +75,17 @@ const STOP_LINE_AT_M: f64 = 4.0;
 pub fn road_objects(l: &Layout) -> Vec<ObjectDesc> {
     let mut out = Vec::new();
     let b = l.bounds();
-    let margin = 400.0;
-    out.push(ground_quad(
-        [b.min[0] - margin, b.min[1] - margin],
-        [b.max[0] + margin, b.max[1] + margin],
-        -0.02,
-        "ground",
-        class("terrain"),
-    ));
+    let m = GROUND_MARGIN_M;
+    let (lo, hi) = ([b.min[0] - m, b.min[1] - m], [b.max[0] + m, b.max[1] + m]);
+    match l.river_band() {
+        None => out.push(ground_quad(lo, hi, -0.02, "ground", class("terrain"))),
+        Some(band) => {
+            let t = class("terrain");
+            out.push(ground_quad(lo, [hi[0], band.min[1]], -0.02, "ground", t));
+            out.push(ground_quad([lo[0], band.max[1]], hi, -0.02, "ground", t));
+            river_objects(l, &band, &mut out);
+        }
+    }
     let (p, hw) = (l.pitch_m, l.road_w_m / 2.0);
     for j in 0..=l.ny {
         let y = j as f64 * p;
@@ -239,6 +242,59 @@ fn segment_objects(l: &Layout, s: &Segment) -> Vec<ObjectDesc> {
         o.push(s.slab((s.a0, s.a1), sorted(walk), (0.0, 0.14), "sidewalk", side));
     }
     o
+}
+
+/// River bed, water surface, stone embankments and, where each y-road
+/// crosses, a bridge deck under the road and sidewalks with parapets.
+fn river_objects(l: &Layout, band: &Rect, out: &mut Vec<ObjectDesc>) {
+    let (bed_z, water_z) = (-3.0, -1.2);
+    out.push(ground_quad(
+        band.min,
+        band.max,
+        bed_z,
+        "mud",
+        class("terrain"),
+    ));
+    out.push(ground_quad(
+        band.min,
+        band.max,
+        water_z,
+        "water",
+        class("water"),
+    ));
+    for y in [band.min[1], band.max[1]] {
+        let (y0, y1) = if y == band.min[1] {
+            (y, y + 0.4)
+        } else {
+            (y - 0.4, y)
+        };
+        out.push(slab(
+            [band.min[0], y0],
+            [band.max[0], y1],
+            bed_z,
+            0.0,
+            "stone",
+            class("terrain"),
+        ));
+    }
+    let reach = l.road_w_m / 2.0 + l.sidewalk_m;
+    for i in 0..=l.nx {
+        let x = i as f64 * l.pitch_m;
+        let (min, max) = ([x - reach, band.min[1]], [x + reach, band.max[1]]);
+        out.push(slab(min, max, -0.8, -0.005, "concrete", class("road")));
+        for sx in [-1.0, 1.0] {
+            let xe = x + sx * (reach - 0.1);
+            let parapet = slab(
+                [xe - 0.1, band.min[1]],
+                [xe + 0.1, band.max[1]],
+                0.0,
+                1.1,
+                "concrete",
+                class("sidewalk"),
+            );
+            out.push(parapet);
+        }
+    }
 }
 
 /// A raised sidewalk piece, or a flat gravel shoulder on country roads.
