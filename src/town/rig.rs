@@ -102,3 +102,30 @@ pub fn rig_desc(config: CameraConfig, ego: &VehiclePose) -> RigDesc {
         roll_deg,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::town::vehicles::BodyKind;
+
+    #[test]
+    fn names_round_trip_and_rigs_sit_on_the_ego() {
+        let ego = VehiclePose {
+            id: 1,
+            body: BodyKind::Sedan,
+            paint: "paint_red",
+            position: [10.0, -1.75, 0.0],
+            heading_deg: 90.0,
+            lane: 0,
+        };
+        for c in CONFIGS {
+            assert_eq!(c.name().parse::<CameraConfig>(), Ok(c));
+            let r = rig_desc(c, &ego);
+            let (h, pitch, roll) = c.pose();
+            assert_eq!(r.position, [10.0, -1.75, h]);
+            assert_eq!((r.yaw_deg, r.pitch_deg, r.roll_deg), (90.0, pitch, roll));
+        }
+        assert_eq!(CameraConfig::Roll30.pose(), (1.65, 0.0, 30.0));
+        assert_eq!(CameraConfig::Pitch30.pose(), (10.0, 30.0, 0.0));
+    }
+}
