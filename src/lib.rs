@@ -13,3 +13,4 @@ pub mod output;
 pub mod render;
 pub mod sampler;
 pub mod scene;
+pub mod town;

@@ -1,9 +1,10 @@
-//! The command line (the only home of `clap`): `render` and `bench`.
+//! The command line (the only home of `clap`): `render`, `town` and `bench`.
 //! Errors surface as one message naming the file, field or argument, and a
 //! non-zero exit code; nothing is written before the inputs are validated.
 
 mod bench;
 mod render;
+mod town;
 
 use clap::{Parser, Subcommand};
 
@@ -53,6 +54,8 @@ struct Cli {
 enum Command {
     /// Render one stereo frame of a scene in the native layout.
     Render(render::RenderArgs),
+    /// Generate a town frame: sizes, build times, optional OBJ export.
+    Town(town::TownArgs),
     /// Measure BVH build, ground-truth and path-tracing throughput against raw traversal.
     Bench(bench::BenchArgs),
 }
@@ -80,6 +83,7 @@ where
     match cli.command {
         Command::Render(a) => render::run(a),
         Command::Bench(a) => bench::run(a),
+        Command::Town(a) => town::run(a),
     }
 }
 

@@ -1,4 +1,5 @@
-//! `parallax render SCENE.toml -o DIR`: one frame in the native layout.
+//! `parallax render SCENE.toml -o DIR` or `parallax render --town NAME --frame K
+//! --config C -o DIR`: one frame in the native layout.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -16,8 +17,22 @@ use crate::scene::{build_scene, load_scene, LoadedScene};
 /// Arguments of `parallax render`.
 #[derive(Args, Debug)]
 pub struct RenderArgs {
-    /// Scene description (TOML).
-    pub scene: PathBuf,
+    /// Scene description (TOML); omit when rendering a town with --town.
+    #[arg(conflicts_with = "town")]
+    pub scene: Option<PathBuf>,
+    /// Render a town frame: a town name (SCENES/NAME.toml) or town file path.
+    #[arg(long)]
+    pub town: Option<String>,
+    /// Frame index of the town sequence (with --town).
+    #[arg(long, default_value_t = 0, requires = "town")]
+    pub frame: u32,
+    /// Camera configuration on the ego vehicle (with --town): normal, roll05,
+    /// roll15, roll30, pitch00, pitch30.
+    #[arg(long, default_value = "normal", requires = "town")]
+    pub config: crate::town::CameraConfig,
+    /// Directory holding the town files (with --town).
+    #[arg(long, default_value = "scenes")]
+    pub scenes: PathBuf,
     /// Output directory (created; frame 000000 is written in the native layout).
     #[arg(short, long)]
     pub output: PathBuf,
@@ -33,7 +48,8 @@ pub struct RenderArgs {
     /// Baselines in centimetres, comma-separated (overrides the scene).
     #[arg(long, value_parser = parse_baselines)]
     pub baselines: Option<super::BaselinesCm>,
-    /// Seed of every random stream (overrides the scene).
+    /// Seed of every random stream (overrides the scene); with --town also
+    /// the town's seed (absent: one is drawn and recorded).
     #[arg(long)]
     pub seed: Option<u64>,
     /// Maximum path depth (overrides the scene).
@@ -110,7 +126,21 @@ fn progress_bar(total: u64) -> ProgressBar {
 
 /// Runs `parallax render`.
 pub fn run(a: RenderArgs) -> Result<(), CliError> {
-    let mut loaded = load_scene(&a.scene).map_err(|e| CliError::input(e.to_string()))?;
+    let (mut loaded, frame) = match (&a.town, &a.scene) {
+        (Some(name), _) => {
+            let path = crate::town::town_path(name, &a.scenes);
+            let desc = crate::town::load_town(&path).map_err(CliError::input)?;
+            let seed = a.seed.unwrap_or_else(draw_seed);
+            let loaded = crate::town::load_town_frame(&desc, seed, a.frame as u64, a.config, &path)
+                .map_err(|e| CliError::input(e.to_string()))?;
+            (loaded, a.frame)
+        }
+        (None, Some(scene)) => (
+            load_scene(scene).map_err(|e| CliError::input(e.to_string()))?,
+            0,
+        ),
+        (None, None) => return Err(CliError::input("give a SCENE file or --town NAME")),
+    };
     apply_overrides(&mut loaded, &a)?;
     if a.output.is_file() {
         return Err(CliError::input(format!(
@@ -120,10 +150,10 @@ pub fn run(a: RenderArgs) -> Result<(), CliError> {
     }
     let seed = loaded.desc.render.seed.unwrap_or_else(draw_seed);
     let pool = thread_pool(a.threads)?;
-    pool.install(|| render_to(&loaded, &a, seed))
+    pool.install(|| render_to(&loaded, &a, seed, frame))
 }
 
-fn render_to(loaded: &LoadedScene, a: &RenderArgs, seed: u64) -> Result<(), CliError> {
+fn render_to(loaded: &LoadedScene, a: &RenderArgs, seed: u64, frame: u32) -> Result<(), CliError> {
     let started = Instant::now();
     let rig = StereoRig::from_desc(&loaded.desc.camera);
     let scene =
@@ -136,7 +166,7 @@ fn render_to(loaded: &LoadedScene, a: &RenderArgs, seed: u64) -> Result<(), CliE
         spp: loaded.desc.render.spp,
         max_depth: loaded.desc.render.max_depth,
         seed,
-        frame: 0,
+        frame,
     };
     let n_views = 1 + rig.baselines_m.len();
     let pb = progress_bar(n_views as u64);
@@ -145,9 +175,16 @@ fn render_to(loaded: &LoadedScene, a: &RenderArgs, seed: u64) -> Result<(), CliE
         pb.set_position(done as u64)
     });
     pb.finish_and_clear();
-    let meta = camera_file(&rig, &out, seed, 0, settings.spp, settings.max_depth);
-    write_native_frame(&a.output, 0, &rig, &out, meta, WriteOptions { hdr: a.hdr })
-        .map_err(|e| CliError::failure(e.to_string()))?;
+    let meta = camera_file(&rig, &out, seed, frame, settings.spp, settings.max_depth);
+    write_native_frame(
+        &a.output,
+        frame,
+        &rig,
+        &out,
+        meta,
+        WriteOptions { hdr: a.hdr },
+    )
+    .map_err(|e| CliError::failure(e.to_string()))?;
     summary(
         &a.output,
         &out.stats,

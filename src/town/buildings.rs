@@ -1,0 +1,323 @@
+//! Buildings and parks on the blocks: rows of lots along the two streets of
+//! each block, each lot holding a building (body, roof, floor ledges, windows
+//! on every facade, a door and shop windows on the street side) or planting;
+//! towers get a glass curtain wall with mullions. Some blocks are parks.
+//!
+//! A building's front faces the street its row lines (−y for the south row,
+//! +y for the north row). Floor height 3.2 m; windows come from the "window"
+//! prefab (facade in its local x–z plane, facing −y).
+
+use crate::scene::desc::ObjectDesc;
+
+use super::desc::TownDesc;
+use super::layout::{Layout, Rect};
+use super::materials::{TOWER_FRAMES, WALLS};
+use super::parts::{class, cuboid, ground_quad, instance, repeated, slab, Label};
+use super::rng::{tag, Rng};
+
+/// Floor height, metres.
+pub const FLOOR_M: f64 = 3.2;
+/// Gap between a building and the sidewalk, metres.
+const SETBACK_M: f64 = 1.0;
+/// First instance id of buildings.
+pub const BUILDING_ID_BASE: u16 = 1000;
+
+/// Every building, park and lot planting of the town.
+pub fn block_objects(desc: &TownDesc, l: &Layout, seed: u64) -> Vec<ObjectDesc> {
+    let mut out = Vec::new();
+    let mut next_id = BUILDING_ID_BASE;
+    for j in (0..l.ny).filter(|&j| Some(j) != l.river_row) {
+        for i in 0..l.nx {
+            let mut r = Rng::new(&[seed, tag::BLOCK, i as u64, j as u64]);
+            let a = l.block_interior(i, j);
+            let lot = Rect {
+                min: [a.min[0] + SETBACK_M, a.min[1] + SETBACK_M],
+                max: [a.max[0] - SETBACK_M, a.max[1] - SETBACK_M],
+            };
+            if r.chance(desc.vegetation_density * 0.25) || desc.building_density == 0.0 {
+                park(desc, &lot, &mut r, &mut out);
+                continue;
+            }
+            let depth_total = lot.size()[1];
+            let rows: Vec<(f64, f64, bool)> = if depth_total < 24.0 {
+                vec![(lot.min[1], lot.max[1], true)]
+            } else {
+                let d1 = r.range(10.0, 18.0).min(depth_total / 2.0 - 1.0);
+                let d2 = r.range(10.0, 18.0).min(depth_total / 2.0 - 1.0);
+                vec![
+                    (lot.min[1], lot.min[1] + d1, true),
+                    (lot.max[1] - d2, lot.max[1], false),
+                ]
+            };
+            for (y0, y1, south) in rows {
+                let mut x = lot.min[0];
+                while lot.max[0] - x > 6.0 {
+                    let mut w = r.range(10.0, 24.0);
+                    if lot.max[0] - (x + w) < 8.0 {
+                        w = lot.max[0] - x;
+                    }
+                    let plot = Rect {
+                        min: [x, y0],
+                        max: [x + w, y1],
+                    };
+                    if r.chance(desc.building_density) {
+                        let id = Label {
+                            class: "building",
+                            instance: next_id,
+                        };
+                        next_id = next_id.saturating_add(1);
+                        building(desc, &plot, south, &mut r, id, &mut out);
+                    } else if r.chance(desc.vegetation_density) {
+                        let c = plot.center();
+                        out.push(instance(
+                            "bush",
+                            [c[0], c[1], 0.0],
+                            0.0,
+                            &[],
+                            class("vegetation"),
+                        ));
+                    }
+                    x += w + if r.chance(0.4) {
+                        r.range(1.5, 4.0)
+                    } else {
+                        0.0
+                    };
+                }
+            }
+        }
+    }
+    out
+}
+
+fn park(desc: &TownDesc, lot: &Rect, r: &mut Rng, out: &mut Vec<ObjectDesc>) {
+    out.push(ground_quad(
+        lot.min,
+        lot.max,
+        -0.01,
+        "lawn",
+        class("terrain"),
+    ));
+    let [w, h] = lot.size();
+    let n = ((w * h / 120.0) * desc.vegetation_density).round() as usize;
+    for _ in 0..n {
+        let at = [
+            r.range(lot.min[0] + 2.0, lot.max[0] - 2.0),
+            r.range(lot.min[1] + 2.0, lot.max[1] - 2.0),
+            0.0,
+        ];
+        let name = ["tree_round", "tree_cone", "bush"][r.index(3)];
+        out.push(instance(
+            name,
+            at,
+            r.range(0.0, 360.0),
+            &[],
+            class("vegetation"),
+        ));
+    }
+}
+
+fn building(
+    desc: &TownDesc,
+    plot: &Rect,
+    south: bool,
+    r: &mut Rng,
+    id: Label,
+    out: &mut Vec<ObjectDesc>,
+) {
+    let tower = r.chance(desc.tower_fraction);
+    let [lo, hi] = if tower {
+        desc.tower_floors
+    } else {
+        desc.floors
+    };
+    // Skewed towards the low end: most buildings are short.
+    let floors = lo
+        + ((hi - lo + 1) as f64 * r.f64().powf(1.6))
+            .floor()
+            .min((hi - lo) as f64) as u32;
+    let h = floors as f64 * FLOOR_M;
+    let [w, d] = plot.size();
+    let (cx, cy) = (plot.center()[0], plot.center()[1]);
+    let wall = if tower {
+        TOWER_FRAMES[r.index(TOWER_FRAMES.len())]
+    } else {
+        WALLS[r.index(WALLS.len())]
+    };
+    out.push(slab(plot.min, plot.max, 0.0, h, wall, id));
+    if !tower && floors <= 2 && d <= 14.0 && r.chance(0.7) {
+        out.push(gable_roof(plot, h, id));
+    } else {
+        let roof = [plot.min[0] - 0.2, plot.min[1] - 0.2];
+        let roof_max = [plot.max[0] + 0.2, plot.max[1] + 0.2];
+        out.push(slab(roof, roof_max, h, h + 0.4, "roof", id));
+    }
+    if !tower && floors >= 3 && r.chance(0.4) {
+        balconies(plot, south, floors, id, out);
+    }
+    if floors > 1 {
+        let ledge = cuboid(
+            [w + 0.3, d + 0.3, 0.2],
+            [cx, cy, FLOOR_M],
+            0.0,
+            "window_frame",
+            id,
+        );
+        out.push(repeated(ledge, &[(floors - 1, [0.0, 0.0, FLOOR_M])]));
+    }
+    // Facades: (centre of the wall line, heading of the window prefab, length).
+    let facades = [
+        ([cx, plot.min[1]], 0.0, w, south),
+        ([plot.max[0], cy], 90.0, d, false),
+        ([cx, plot.max[1]], 180.0, w, !south),
+        ([plot.min[0], cy], 270.0, d, false),
+    ];
+    for (c, heading, len, front) in facades {
+        let along = heading_dir(heading);
+        if tower {
+            curtain_wall(c, heading, len, floors, id, out);
+            continue;
+        }
+        let cols = ((len - 1.5) / 3.0).floor().max(0.0) as u32;
+        let first_row = if front { 1 } else { 0 };
+        if cols > 0 && floors > first_row {
+            let start = -(cols as f64 - 1.0) * 3.0 / 2.0;
+            let at = [
+                c[0] + along[0] * start,
+                c[1] + along[1] * start,
+                first_row as f64 * FLOOR_M + 1.7,
+            ];
+            let win = instance("window", at, heading, &[], id);
+            let step = [along[0] * 3.0, along[1] * 3.0, 0.0];
+            out.push(repeated(
+                win,
+                &[(cols, step), (floors - first_row, [0.0, 0.0, FLOOR_M])],
+            ));
+        }
+        if front {
+            // Door in the middle, shop windows either side, and a canopy.
+            let n = normal_out(heading);
+            let door_at = [c[0] + n[0] * 0.03, c[1] + n[1] * 0.03, 1.25];
+            out.push(cuboid([1.6, 0.1, 2.5], door_at, heading, "door", id));
+            for side in [-1.0, 1.0] {
+                let off = side * (len / 4.0 + 0.4);
+                if len / 2.0 - 1.6 > 2.0 {
+                    let shop_w = (len / 2.0 - 2.4).min(6.0);
+                    let at = [
+                        c[0] + along[0] * off + n[0] * 0.05,
+                        c[1] + along[1] * off + n[1] * 0.05,
+                        1.6,
+                    ];
+                    out.push(cuboid([shop_w, 0.04, 2.0], at, heading, "glass", id));
+                    let back = [at[0] - n[0] * 0.035, at[1] - n[1] * 0.035, 1.6];
+                    out.push(cuboid([shop_w, 0.02, 2.0], back, heading, "interior", id));
+                }
+            }
+            let canopy = [c[0] + n[0] * 0.6, c[1] + n[1] * 0.6, 2.85];
+            out.push(cuboid(
+                [2.4, 1.2, 0.12],
+                canopy,
+                heading,
+                "window_frame",
+                id,
+            ));
+        }
+    }
+}
+
+/// A 45° gable roof with its ridge along x: a square prism turned 45° about
+/// x whose upper half (a triangle of half-width d/2) stands on the walls; the
+/// lower half lies inside the body (or below the ground).
+fn gable_roof(plot: &Rect, h: f64, id: Label) -> ObjectDesc {
+    let [w, d] = plot.size();
+    let c = plot.center();
+    let side = d / std::f64::consts::SQRT_2;
+    let mut o = cuboid([w + 0.3, side, side], [c[0], c[1], h], 0.0, "roof_tile", id);
+    o.transform.rotate_deg = Some([45.0, 0.0, 0.0]);
+    o
+}
+
+/// Balconies (slab and railing) on the street facade, every other window
+/// column, from the second floor up.
+fn balconies(plot: &Rect, south: bool, floors: u32, id: Label, out: &mut Vec<ObjectDesc>) {
+    let w = plot.size()[0];
+    let cols = ((w - 1.5) / 6.0).floor() as u32;
+    if cols == 0 || floors < 3 {
+        return;
+    }
+    let (wall_y, sign) = if south {
+        (plot.min[1], -1.0)
+    } else {
+        (plot.max[1], 1.0)
+    };
+    let x0 = plot.center()[0] - (cols as f64 - 1.0) * 3.0;
+    let slab_at = [x0, wall_y + sign * 0.6, 2.0 * FLOOR_M + 0.08];
+    let rail_at = [x0, wall_y + sign * 1.17, 2.0 * FLOOR_M + 0.6];
+    let levels = [(cols, [6.0, 0.0, 0.0]), (floors - 2, [0.0, 0.0, FLOOR_M])];
+    out.push(repeated(
+        cuboid([2.4, 1.2, 0.15], slab_at, 0.0, "concrete", id),
+        &levels,
+    ));
+    out.push(repeated(
+        cuboid([2.4, 0.05, 0.9], rail_at, 0.0, "steel_dark", id),
+        &levels,
+    ));
+}
+
+/// A tower facade: a glass band over the upper floors with mullions every 1.5 m.
+fn curtain_wall(
+    c: [f64; 2],
+    heading: f64,
+    len: f64,
+    floors: u32,
+    id: Label,
+    out: &mut Vec<ObjectDesc>,
+) {
+    let n = normal_out(heading);
+    let along = heading_dir(heading);
+    let h = (floors - 1) as f64 * FLOOR_M;
+    let z = FLOOR_M + h / 2.0;
+    let glass_at = [c[0] + n[0] * 0.06, c[1] + n[1] * 0.06, z];
+    out.push(cuboid(
+        [len - 1.0, 0.04, h - 0.4],
+        glass_at,
+        heading,
+        "glass_tower",
+        id,
+    ));
+    let cols = ((len - 1.0) / 1.5).floor() as u32;
+    if cols > 1 {
+        let start = -(cols as f64 - 1.0) * 1.5 / 2.0;
+        let at = [
+            c[0] + along[0] * start + n[0] * 0.1,
+            c[1] + along[1] * start + n[1] * 0.1,
+            z,
+        ];
+        let mullion = cuboid([0.08, 0.12, h - 0.4], at, heading, "steel_dark", id);
+        out.push(repeated(
+            mullion,
+            &[(cols, [along[0] * 1.5, along[1] * 1.5, 0.0])],
+        ));
+    }
+    // Ground floor: a glazed lobby.
+    let lobby = [c[0] + n[0] * 0.03, c[1] + n[1] * 0.03, 1.5];
+    out.push(cuboid(
+        [len - 2.0, 0.04, 2.6],
+        lobby,
+        heading,
+        "glass_tower",
+        id,
+    ));
+}
+
+/// Unit vector along a facade whose window prefab has heading `deg` (the
+/// prefab's local +x in the world).
+fn heading_dir(deg: f64) -> [f64; 2] {
+    let a = deg.to_radians();
+    [a.cos().round(), a.sin().round()]
+}
+
+/// Outward normal of a facade (the prefab's local −y in the world).
+fn normal_out(deg: f64) -> [f64; 2] {
+    let a = deg.to_radians();
+    [a.sin().round(), -a.cos().round()]
+}

@@ -1,0 +1,215 @@
+//! Town descriptions: the short TOML parameter file (`scenes/townNN.toml`)
+//! the generator turns into a full `SceneDesc`, with its validation.
+//!
+//! Units: metres, km/h for speeds, degrees in files. The town grid's road
+//! centrelines run along world x (east–west) and y (north–south), z up.
+
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+
+/// A town parameter file. Every field is documented as the town-format manual.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TownDesc {
+    /// Town name (`town01` …), used in messages and metadata.
+    pub name: String,
+    /// Road network style. `grid` is generated as written; `organic` and
+    /// `highway` currently use the grid generator with their other parameters.
+    #[serde(default)]
+    pub road_style: RoadStyle,
+    /// Size of the road grid along x and y, metres (rounded to whole blocks).
+    pub extent_m: [f64; 2],
+    /// Distance between parallel road centrelines, metres, ≥ `min_block_size_m`.
+    pub block_size_m: f64,
+    /// Lanes per travel direction, 1–3.
+    #[serde(default = "one")]
+    pub lanes_per_direction: u32,
+    /// Lane width, metres, in [2.8, 4.5] (default 3.5).
+    #[serde(default = "default_lane_width")]
+    pub lane_width_m: f64,
+    /// Sidewalk width (curb included), metres, in [1.5, 8] (default 3); the
+    /// width of the gravel shoulder when `sidewalks = false`.
+    #[serde(default = "default_sidewalk")]
+    pub sidewalk_width_m: f64,
+    /// Raised sidewalks with curbs, crosswalks and pedestrians (default true);
+    /// false gives country roads with flat gravel shoulders and no pedestrians.
+    #[serde(default = "yes")]
+    pub sidewalks: bool,
+    /// Fraction of building lots that hold a building, in [0, 1].
+    pub building_density: f64,
+    /// Floors of ordinary buildings, [min, max], 1 ≤ min ≤ max ≤ 12.
+    pub floors: [u32; 2],
+    /// Fraction of buildings that are towers, in [0, 1] (default 0).
+    #[serde(default)]
+    pub tower_fraction: f64,
+    /// Floors of towers, [min, max], 8 ≤ min ≤ max ≤ 60 (default [15, 30]).
+    #[serde(default = "default_tower_floors")]
+    pub tower_floors: [u32; 2],
+    /// Trees and parks, in [0, 1].
+    pub vegetation_density: f64,
+    /// A river along x in place of the middle block row, crossed by every
+    /// y-road on a bridge (default false; needs at least 3 block rows).
+    #[serde(default)]
+    pub river: bool,
+    /// Ground cover between and around the blocks.
+    #[serde(default)]
+    pub terrain: TerrainKind,
+    /// Fraction of traffic slots holding a vehicle, in [0, 1].
+    pub traffic_density: f64,
+    /// Cruising speed of all traffic and the ego vehicle, km/h, in [5, 130].
+    pub speed_kmh: f64,
+    /// Frames per second of sequences, in (0, 120] (default 10).
+    #[serde(default = "default_fps")]
+    pub fps: f64,
+    /// Sun elevation above the horizon, degrees, in (0, 90].
+    pub sun_elevation_deg: f64,
+    /// Sun azimuth counter-clockwise from +x, degrees.
+    pub sun_azimuth_deg: f64,
+    /// Sky appearance.
+    #[serde(default)]
+    pub sky: SkyKind,
+}
+
+/// Road network style.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RoadStyle {
+    /// A rectangular grid of streets with T and cross junctions.
+    #[default]
+    Grid,
+    /// Irregular streets (currently generated as a grid).
+    Organic,
+    /// Multi-lane roads with few junctions (currently generated as a grid).
+    Highway,
+}
+
+/// Ground cover.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TerrainKind {
+    /// Green lawn.
+    #[default]
+    Grass,
+    /// Dry, yellowish grass.
+    Dry,
+    /// Ploughed fields (brown).
+    Field,
+}
+
+/// Sky appearance (a gradient sky scaled to the sun).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SkyKind {
+    /// Deep blue clear sky.
+    #[default]
+    Clear,
+    /// Pale, hazy sky.
+    Hazy,
+}
+
+fn yes() -> bool {
+    true
+}
+fn one() -> u32 {
+    1
+}
+fn default_lane_width() -> f64 {
+    3.5
+}
+fn default_sidewalk() -> f64 {
+    3.0
+}
+fn default_tower_floors() -> [u32; 2] {
+    [15, 30]
+}
+fn default_fps() -> f64 {
+    10.0
+}
+
+/// Longest vehicle body, metres (the bus); sets the junction time windows.
+pub const MAX_VEHICLE_LENGTH_M: f64 = 12.0;
+/// Clearance added on each side of the junction window, metres.
+pub const JUNCTION_MARGIN_M: f64 = 1.5;
+
+impl TownDesc {
+    /// Road width, kerb to kerb, metres.
+    pub fn road_width_m(&self) -> f64 {
+        2.0 * self.lanes_per_direction as f64 * self.lane_width_m
+    }
+
+    /// Smallest block size for which crossing traffic can share junctions
+    /// in alternating time windows (see `traffic`).
+    pub fn min_block_size_m(&self) -> f64 {
+        2.0 * (self.road_width_m() + MAX_VEHICLE_LENGTH_M + 2.0 * JUNCTION_MARGIN_M)
+    }
+
+    /// Checks every range; the message names the field.
+    pub fn validate(&self) -> Result<(), String> {
+        let range = |name: &str, v: f64, lo: f64, hi: f64| {
+            if v.is_finite() && v >= lo && v <= hi {
+                Ok(())
+            } else {
+                Err(format!("{name}: must be in [{lo}, {hi}], got {v}"))
+            }
+        };
+        range(
+            "lanes_per_direction",
+            self.lanes_per_direction as f64,
+            1.0,
+            3.0,
+        )?;
+        range("lane_width_m", self.lane_width_m, 2.8, 4.5)?;
+        range("sidewalk_width_m", self.sidewalk_width_m, 1.5, 8.0)?;
+        let min_block = self.min_block_size_m();
+        range("block_size_m", self.block_size_m, min_block, 1000.0)?;
+        for (i, e) in self.extent_m.iter().enumerate() {
+            range(&format!("extent_m[{i}]"), *e, self.block_size_m, 5000.0)?;
+        }
+        range("building_density", self.building_density, 0.0, 1.0)?;
+        range("tower_fraction", self.tower_fraction, 0.0, 1.0)?;
+        range("vegetation_density", self.vegetation_density, 0.0, 1.0)?;
+        range("traffic_density", self.traffic_density, 0.0, 1.0)?;
+        range("speed_kmh", self.speed_kmh, 5.0, 130.0)?;
+        range("fps", self.fps, 1e-3, 120.0)?;
+        range("sun_elevation_deg", self.sun_elevation_deg, 1.0, 90.0)?;
+        range("sun_azimuth_deg", self.sun_azimuth_deg, -360.0, 360.0)?;
+        if self.river && (self.extent_m[1] / self.block_size_m).round() < 3.0 {
+            return Err("river: needs at least 3 block rows (extent_m[1] / block_size_m)".into());
+        }
+        let [lo, hi] = self.floors;
+        if !(1 <= lo && lo <= hi && hi <= 12) {
+            return Err(format!("floors: need 1 ≤ min ≤ max ≤ 12, got [{lo}, {hi}]"));
+        }
+        let [lo, hi] = self.tower_floors;
+        if !(8 <= lo && lo <= hi && hi <= 60) {
+            return Err(format!(
+                "tower_floors: need 8 ≤ min ≤ max ≤ 60, got [{lo}, {hi}]"
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Parses and validates town text; errors name `path` and the field.
+pub fn parse_town_str(text: &str, path: &Path) -> Result<TownDesc, String> {
+    let de = toml::Deserializer::new(text);
+    let desc: TownDesc = serde_path_to_error::deserialize(de).map_err(|e| {
+        let key = e.path().to_string();
+        format!(
+            "{}: {key}: {}",
+            path.display(),
+            e.into_inner().message().trim()
+        )
+    })?;
+    desc.validate()
+        .map_err(|m| format!("{}: {m}", path.display()))?;
+    Ok(desc)
+}
+
+/// Reads, parses and validates a town file.
+pub fn load_town(path: &Path) -> Result<TownDesc, String> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| format!("{}: cannot read town file: {e}", path.display()))?;
+    parse_town_str(&text, path)
+}

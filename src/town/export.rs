@@ -1,0 +1,123 @@
+//! OBJ + MTL export of a built frame, so another renderer can render the
+//! same geometry: world coordinates (render space + origin, f64 printed with
+//! round-trip precision), one `o` per mesh named after its semantic class and
+//! instance id, `usemtl` per material run. Analytic spheres are not exported.
+//!
+//! MTL mapping (what `scene::obj` reads back): diffuse → Kd; conductor →
+//! Pm 1 with Kd = normal-incidence reflectance and Pr roughness; dielectric →
+//! d 0, Ni ior, Tf tint, Pr roughness; emissive → Ke radiance.
+
+use std::fmt::Write as _;
+use std::io;
+use std::path::Path;
+
+use crate::scene::desc::{MaterialDesc, MaterialKindDesc};
+use crate::scene::semantic::class_name;
+use crate::scene::{LoadedScene, Scene};
+
+/// What an export wrote.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExportStats {
+    /// Triangles written.
+    pub triangles: u64,
+    /// Vertices written.
+    pub vertices: u64,
+    /// Materials written.
+    pub materials: usize,
+}
+
+/// Writes `scene` (built from `loaded`) to `obj_path` and its materials to
+/// the same path with extension `.mtl`.
+pub fn write_obj(loaded: &LoadedScene, scene: &Scene, obj_path: &Path) -> io::Result<ExportStats> {
+    let table = crate::scene::validate::material_table(&loaded.desc, &loaded.objs);
+    let mtl_path = obj_path.with_extension("mtl");
+    let mtl_name = mtl_path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "scene.mtl".into());
+    let mut mtl = String::new();
+    for m in &table {
+        mtl_entry(&mut mtl, m);
+    }
+    let mut obj = format!("# parallax town export\nmtllib {mtl_name}\n");
+    let (mut base, mut triangles) = (1u64, 0u64);
+    for (g, m) in scene.meshes.iter().enumerate() {
+        let class = class_name(m.semantic).unwrap_or("other");
+        let _ = writeln!(obj, "o {g}_{class}_{}", m.instance);
+        for p in &m.p_render {
+            let w = *p + scene.origin_world;
+            let _ = writeln!(obj, "v {} {} {}", w.x, w.y, w.z);
+        }
+        let mut current = u32::MAX;
+        for (t, &mi) in m.triangles.iter().zip(&m.tri_material) {
+            if mi != current {
+                current = mi;
+                let _ = writeln!(obj, "usemtl {}", mtl_ident(&table[mi as usize].name));
+            }
+            let [a, b, c] = t.map(|i| i as u64 + base);
+            let _ = writeln!(obj, "f {a} {b} {c}");
+        }
+        base += m.p_render.len() as u64;
+        triangles += m.triangles.len() as u64;
+    }
+    std::fs::write(&mtl_path, mtl)?;
+    std::fs::write(obj_path, obj)?;
+    Ok(ExportStats {
+        triangles,
+        vertices: base - 1,
+        materials: table.len(),
+    })
+}
+
+/// MTL names may not contain whitespace.
+fn mtl_ident(name: &str) -> String {
+    name.replace(char::is_whitespace, "_")
+}
+
+fn mtl_entry(out: &mut String, m: &MaterialDesc) {
+    let _ = writeln!(out, "newmtl {}", mtl_ident(&m.name));
+    let rgb = |c: [f64; 3]| format!("{} {} {}", c[0], c[1], c[2]);
+    match &m.kind {
+        MaterialKindDesc::Diffuse { albedo } => {
+            let _ = writeln!(out, "Kd {}\nillum 1", rgb(*albedo));
+        }
+        MaterialKindDesc::Conductor {
+            preset,
+            eta,
+            k,
+            roughness,
+        } => {
+            let (eta, k) = match preset {
+                Some(p) => p.eta_k(),
+                None => (eta.unwrap_or([1.0; 3]), k.unwrap_or([0.0; 3])),
+            };
+            // Normal-incidence Fresnel reflectance of a conductor.
+            let f0: Vec<f64> = (0..3)
+                .map(|i| {
+                    let (n, kk) = (eta[i], k[i]);
+                    ((n - 1.0).powi(2) + kk * kk) / ((n + 1.0).powi(2) + kk * kk)
+                })
+                .collect();
+            let _ = writeln!(
+                out,
+                "Kd {}\nPm 1\nPr {roughness}\nillum 3",
+                rgb([f0[0], f0[1], f0[2]])
+            );
+        }
+        MaterialKindDesc::Dielectric {
+            ior,
+            roughness,
+            tint,
+        } => {
+            let _ = writeln!(
+                out,
+                "Kd 0 0 0\nd 0\nNi {ior}\nTf {}\nPr {roughness}\nillum 7",
+                rgb(*tint)
+            );
+        }
+        MaterialKindDesc::Emissive { radiance, .. } => {
+            let _ = writeln!(out, "Kd 0 0 0\nKe {}\nillum 1", rgb(*radiance));
+        }
+    }
+    out.push('\n');
+}

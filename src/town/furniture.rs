@@ -1,0 +1,176 @@
+//! Street furniture and street trees: trees and street lights along the
+//! sidewalks, traffic lights at every cross junction (one per approach, on
+//! its right-hand corner), stop signs where y-roads meet the outer x-roads
+//! (T junctions), and a few information signs.
+//!
+//! Headings follow the prefabs of `props.rs`: a street light's arm reaches
+//! along local −y, a traffic light's along local +y, signs and signal heads
+//! face local −x.
+
+use crate::scene::desc::ObjectDesc;
+
+use super::desc::TownDesc;
+use super::layout::{Layout, STUB_M};
+use super::parts::{class, instance};
+use super::rng::{tag, Rng};
+
+/// Every street tree, light, signal and sign of the town.
+pub fn furniture_objects(desc: &TownDesc, l: &Layout, seed: u64) -> Vec<ObjectDesc> {
+    let mut out = Vec::new();
+    let (p, hw) = (l.pitch_m, l.road_w_m / 2.0);
+    let mut r = Rng::new(&[seed, tag::FURNITURE]);
+    // Along x-roads (stubs included) and y-roads, per side of the road:
+    // (start, end along the road, world position of (along, side)).
+    for j in 0..=l.ny {
+        let y = j as f64 * p;
+        for side in [-1.0, 1.0] {
+            let place = |a: f64, off: f64| [a, y + side * (hw + off), l.walk_z()];
+            // Street-light arm over the road: north side heading 0 (arm −y).
+            let lamp_heading = if side > 0.0 { 0.0 } else { 180.0 };
+            line(
+                desc,
+                l,
+                &mut r,
+                (-STUB_M, l.len_x() + STUB_M),
+                place,
+                lamp_heading,
+                &mut out,
+            );
+        }
+    }
+    for i in 0..=l.nx {
+        let x = i as f64 * p;
+        for side in [-1.0, 1.0] {
+            let place = |a: f64, off: f64| [x + side * (hw + off), a, l.walk_z()];
+            // East side (side > 0): arm towards −x, heading 270.
+            let lamp_heading = if side > 0.0 { 270.0 } else { 90.0 };
+            line(
+                desc,
+                l,
+                &mut r,
+                (0.0, l.len_y()),
+                place,
+                lamp_heading,
+                &mut out,
+            );
+        }
+    }
+    // No trees or signs on bridges.
+    if let Some(band) = l.river_band() {
+        out.retain(|o| {
+            let on_bridge = o
+                .transform
+                .translate
+                .is_some_and(|t| t[1] > band.min[1] && t[1] < band.max[1]);
+            !on_bridge || o.semantic.as_deref() == Some("pole")
+        });
+    }
+    let (tl, ts) = (class("traffic_light"), class("traffic_sign"));
+    let c = hw + 0.5;
+    for j in 0..=l.ny {
+        for i in 0..=l.nx {
+            let (x, y) = (i as f64 * p, j as f64 * p);
+            if j == 0 {
+                // Southbound traffic arrives at the T from the north.
+                out.push(instance(
+                    "stop_sign",
+                    [x - c, y + c, l.walk_z()],
+                    270.0,
+                    &[],
+                    ts,
+                ));
+            } else if j == l.ny {
+                out.push(instance(
+                    "stop_sign",
+                    [x + c, y - c, l.walk_z()],
+                    90.0,
+                    &[],
+                    ts,
+                ));
+            } else {
+                for (at, heading) in [
+                    ([x - c, y - c], 0.0),
+                    ([x + c, y + c], 180.0),
+                    ([x + c, y - c], 90.0),
+                    ([x - c, y + c], 270.0),
+                ] {
+                    out.push(instance(
+                        "traffic_light",
+                        [at[0], at[1], l.walk_z()],
+                        heading,
+                        &[],
+                        tl,
+                    ));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Trees, lights and the odd sign along one side of one road, skipping the
+/// junction areas (every multiple of the pitch).
+fn line(
+    desc: &TownDesc,
+    l: &Layout,
+    r: &mut Rng,
+    (a0, a1): (f64, f64),
+    place: impl Fn(f64, f64) -> [f64; 3],
+    lamp_heading: f64,
+    out: &mut Vec<ObjectDesc>,
+) {
+    let keep_clear = l.road_w_m / 2.0 + l.sidewalk_m + 6.0;
+    let near_junction = |a: f64| {
+        let m = a.rem_euclid(l.pitch_m);
+        m < keep_clear || m > l.pitch_m - keep_clear
+    };
+    let off = 0.6;
+    // Street lights every 30 m, offset per side so the two rows alternate.
+    let mut a = a0 + r.range(5.0, 30.0);
+    while a < a1 {
+        if !near_junction(a) {
+            out.push(instance(
+                "street_light",
+                place(a, 0.35),
+                lamp_heading,
+                &[],
+                class("pole"),
+            ));
+        }
+        a += 30.0;
+    }
+    if desc.vegetation_density > 0.0 {
+        let spacing = 9.0 / desc.vegetation_density.max(0.15);
+        let mut a = a0 + r.range(2.0, spacing);
+        while a < a1 {
+            if !near_junction(a) && r.chance(0.85) {
+                let name = if r.chance(0.7) {
+                    "tree_round"
+                } else {
+                    "tree_cone"
+                };
+                out.push(instance(
+                    name,
+                    place(a, off + 0.3),
+                    r.range(0.0, 360.0),
+                    &[],
+                    class("vegetation"),
+                ));
+            }
+            a += spacing * r.range(0.8, 1.2);
+        }
+    }
+    let mut a = a0 + r.range(20.0, 120.0);
+    while a < a1 {
+        if !near_junction(a) {
+            out.push(instance(
+                "info_sign",
+                place(a, 0.3),
+                lamp_heading + 90.0,
+                &[],
+                class("traffic_sign"),
+            ));
+        }
+        a += r.range(80.0, 200.0);
+    }
+}

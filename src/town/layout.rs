@@ -1,0 +1,170 @@
+//! The grid layout of a town: road centrelines, widths, blocks, and the road
+//! surface rectangles (used by tests to check that the ego stays on the road).
+//!
+//! x-roads (east–west) lie at y = j·P for j = 0..=ny and run past the town
+//! edge by `stub_m` on both ends; y-roads (north–south) lie at x = i·P for
+//! i = 0..=nx and end at the outer x-roads (T junctions there). P = block pitch.
+
+use super::desc::TownDesc;
+
+/// Length of the road stubs past the east and west town edges, metres.
+pub const STUB_M: f64 = 40.0;
+/// How far the terrain (and a river) reaches past the town, metres.
+pub const GROUND_MARGIN_M: f64 = 400.0;
+
+/// An axis-aligned rectangle in the ground plane, world metres.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Rect {
+    /// Minimum corner (x, y).
+    pub min: [f64; 2],
+    /// Maximum corner (x, y).
+    pub max: [f64; 2],
+}
+
+impl Rect {
+    /// The rectangle centred at `c` with side lengths `size`.
+    pub fn centered(c: [f64; 2], size: [f64; 2]) -> Self {
+        Rect {
+            min: [c[0] - size[0] / 2.0, c[1] - size[1] / 2.0],
+            max: [c[0] + size[0] / 2.0, c[1] + size[1] / 2.0],
+        }
+    }
+    /// Centre (x, y).
+    pub fn center(&self) -> [f64; 2] {
+        [
+            (self.min[0] + self.max[0]) / 2.0,
+            (self.min[1] + self.max[1]) / 2.0,
+        ]
+    }
+    /// Side lengths.
+    pub fn size(&self) -> [f64; 2] {
+        [self.max[0] - self.min[0], self.max[1] - self.min[1]]
+    }
+    /// Whether the interiors overlap (touching edges do not count).
+    pub fn overlaps(&self, o: &Rect) -> bool {
+        self.min[0] < o.max[0]
+            && o.min[0] < self.max[0]
+            && self.min[1] < o.max[1]
+            && o.min[1] < self.max[1]
+    }
+    /// Whether `o` lies inside this rectangle (within `eps`).
+    pub fn contains(&self, o: &Rect, eps: f64) -> bool {
+        o.min[0] >= self.min[0] - eps
+            && o.min[1] >= self.min[1] - eps
+            && o.max[0] <= self.max[0] + eps
+            && o.max[1] <= self.max[1] + eps
+    }
+}
+
+/// Derived grid dimensions of a town.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Layout {
+    /// Blocks along x.
+    pub nx: usize,
+    /// Blocks along y.
+    pub ny: usize,
+    /// Centreline pitch P, metres.
+    pub pitch_m: f64,
+    /// Road width kerb to kerb, metres.
+    pub road_w_m: f64,
+    /// Lane width, metres.
+    pub lane_w_m: f64,
+    /// Lanes per direction.
+    pub lanes: u32,
+    /// Sidewalk (or shoulder) width, metres.
+    pub sidewalk_m: f64,
+    /// Raised sidewalks with curbs (false: flat shoulders).
+    pub sidewalks: bool,
+    /// The block row replaced by a river, if any.
+    pub river_row: Option<usize>,
+}
+
+impl Layout {
+    /// The layout of a (validated) town description.
+    pub fn new(desc: &TownDesc) -> Self {
+        let p = desc.block_size_m;
+        Layout {
+            nx: ((desc.extent_m[0] / p).round() as usize).max(1),
+            ny: ((desc.extent_m[1] / p).round() as usize).max(1),
+            pitch_m: p,
+            road_w_m: desc.road_width_m(),
+            lane_w_m: desc.lane_width_m,
+            lanes: desc.lanes_per_direction,
+            sidewalk_m: desc.sidewalk_width_m,
+            sidewalks: desc.sidewalks,
+            river_row: None,
+        }
+        .with_river(desc.river)
+    }
+    fn with_river(mut self, river: bool) -> Self {
+        self.river_row = river.then_some(self.ny / 2);
+        self
+    }
+    /// The river's water surface in plan (between the sidewalks of its two
+    /// x-roads, past the town on both sides), if the town has one.
+    pub fn river_band(&self) -> Option<Rect> {
+        let j = self.river_row?;
+        let a = self.block_interior(0, j);
+        let b = self.bounds();
+        Some(Rect {
+            min: [b.min[0] - GROUND_MARGIN_M, a.min[1]],
+            max: [b.max[0] + GROUND_MARGIN_M, a.max[1]],
+        })
+    }
+    /// Height of the sidewalk top (0 for shoulders), metres.
+    pub fn walk_z(&self) -> f64 {
+        if self.sidewalks {
+            0.14
+        } else {
+            0.0
+        }
+    }
+    /// Length of the grid along x (west to east edge junctions), metres.
+    pub fn len_x(&self) -> f64 {
+        self.nx as f64 * self.pitch_m
+    }
+    /// Length of the grid along y, metres.
+    pub fn len_y(&self) -> f64 {
+        self.ny as f64 * self.pitch_m
+    }
+    /// Road surface of x-road j (stubs included).
+    pub fn x_road(&self, j: usize) -> Rect {
+        let y = j as f64 * self.pitch_m;
+        Rect {
+            min: [-STUB_M, y - self.road_w_m / 2.0],
+            max: [self.len_x() + STUB_M, y + self.road_w_m / 2.0],
+        }
+    }
+    /// Road surface of y-road i (ending at the outer x-roads' far kerbs).
+    pub fn y_road(&self, i: usize) -> Rect {
+        let x = i as f64 * self.pitch_m;
+        Rect {
+            min: [x - self.road_w_m / 2.0, -self.road_w_m / 2.0],
+            max: [x + self.road_w_m / 2.0, self.len_y() + self.road_w_m / 2.0],
+        }
+    }
+    /// Every road surface rectangle (x-roads, then y-roads; they overlap at junctions).
+    pub fn road_rects(&self) -> Vec<Rect> {
+        (0..=self.ny)
+            .map(|j| self.x_road(j))
+            .chain((0..=self.nx).map(|i| self.y_road(i)))
+            .collect()
+    }
+    /// Lot area of block (i, j) inside the sidewalks.
+    pub fn block_interior(&self, i: usize, j: usize) -> Rect {
+        let edge = self.road_w_m / 2.0 + self.sidewalk_m;
+        let (x0, y0) = (i as f64 * self.pitch_m, j as f64 * self.pitch_m);
+        Rect {
+            min: [x0 + edge, y0 + edge],
+            max: [x0 + self.pitch_m - edge, y0 + self.pitch_m - edge],
+        }
+    }
+    /// Bounds of everything generated (roads, sidewalks, lots), metres.
+    pub fn bounds(&self) -> Rect {
+        let e = self.road_w_m / 2.0 + self.sidewalk_m;
+        Rect {
+            min: [-STUB_M, -e],
+            max: [self.len_x() + STUB_M, self.len_y() + e],
+        }
+    }
+}

@@ -1,0 +1,170 @@
+//! The town material library (linear RGB albedos, GGX conductors, glass)
+//! and the sky and sun of a town. Palettes name the materials buildings and
+//! vehicles draw from per instance.
+
+use crate::scene::desc::{ConductorPreset, LightDesc, MaterialDesc, MaterialKindDesc, SkyDesc};
+
+use super::desc::{SkyKind, TerrainKind, TownDesc};
+
+/// Wall materials buildings choose from.
+pub const WALLS: &[&str] = &[
+    "brick_red",
+    "brick_brown",
+    "plaster_cream",
+    "plaster_white",
+    "plaster_blue",
+    "plaster_ochre",
+    "concrete",
+    "stone",
+];
+/// Curtain-wall frame materials of towers.
+pub const TOWER_FRAMES: &[&str] = &["concrete", "steel_dark", "plaster_white", "stone"];
+/// Car paints vehicles choose from.
+pub const PAINTS: &[&str] = &[
+    "paint_red",
+    "paint_blue",
+    "paint_white",
+    "paint_black",
+    "paint_silver",
+    "paint_grey",
+    "paint_green",
+    "paint_yellow",
+    "paint_orange",
+    "paint_darkblue",
+];
+
+fn diffuse(name: &str, albedo: [f64; 3]) -> MaterialDesc {
+    MaterialDesc {
+        name: name.to_string(),
+        mask: None,
+        kind: MaterialKindDesc::Diffuse { albedo },
+    }
+}
+
+fn metal(name: &str, preset: ConductorPreset, roughness: f64) -> MaterialDesc {
+    MaterialDesc {
+        name: name.to_string(),
+        mask: None,
+        kind: MaterialKindDesc::Conductor {
+            preset: Some(preset),
+            eta: None,
+            k: None,
+            roughness,
+        },
+    }
+}
+
+fn glass(name: &str, tint: [f64; 3]) -> MaterialDesc {
+    MaterialDesc {
+        name: name.to_string(),
+        mask: None,
+        kind: MaterialKindDesc::Dielectric {
+            ior: 1.5,
+            roughness: 0.0,
+            tint,
+        },
+    }
+}
+
+/// Every material a town uses (names unique).
+pub fn town_materials(desc: &TownDesc) -> Vec<MaterialDesc> {
+    let ground = match desc.terrain {
+        TerrainKind::Grass => [0.12, 0.2, 0.07],
+        TerrainKind::Dry => [0.3, 0.27, 0.15],
+        TerrainKind::Field => [0.22, 0.15, 0.09],
+    };
+    vec![
+        diffuse("asphalt", [0.08, 0.08, 0.085]),
+        diffuse("asphalt_patch", [0.11, 0.11, 0.11]),
+        diffuse("paint_white_road", [0.78, 0.78, 0.74]),
+        diffuse("paint_yellow_road", [0.75, 0.55, 0.1]),
+        diffuse("curb", [0.55, 0.54, 0.52]),
+        diffuse("sidewalk", [0.42, 0.41, 0.39]),
+        diffuse("gravel", [0.3, 0.28, 0.25]),
+        diffuse("mud", [0.1, 0.085, 0.06]),
+        glass("water", [0.55, 0.7, 0.62]),
+        diffuse("ground", ground),
+        diffuse("lawn", [0.1, 0.22, 0.06]),
+        diffuse("brick_red", [0.42, 0.17, 0.11]),
+        diffuse("brick_brown", [0.3, 0.18, 0.12]),
+        diffuse("plaster_cream", [0.72, 0.66, 0.52]),
+        diffuse("plaster_white", [0.78, 0.77, 0.74]),
+        diffuse("plaster_blue", [0.42, 0.52, 0.62]),
+        diffuse("plaster_ochre", [0.62, 0.45, 0.22]),
+        diffuse("concrete", [0.5, 0.5, 0.48]),
+        diffuse("stone", [0.56, 0.52, 0.45]),
+        metal("steel_dark", ConductorPreset::Iron, 0.5),
+        diffuse("roof", [0.2, 0.19, 0.19]),
+        diffuse("roof_tile", [0.38, 0.14, 0.08]),
+        diffuse("window_frame", [0.85, 0.85, 0.82]),
+        diffuse("interior", [0.04, 0.035, 0.03]),
+        diffuse("door", [0.25, 0.14, 0.07]),
+        glass("glass", [0.9, 0.95, 0.95]),
+        glass("glass_tower", [0.55, 0.7, 0.75]),
+        diffuse("bark", [0.22, 0.15, 0.09]),
+        diffuse("foliage", [0.09, 0.22, 0.05]),
+        diffuse("foliage_light", [0.16, 0.3, 0.07]),
+        diffuse("foliage_dark", [0.05, 0.14, 0.04]),
+        metal("pole_metal", ConductorPreset::Aluminium, 0.45),
+        diffuse("pole_paint", [0.12, 0.13, 0.12]),
+        diffuse("lamp_glass", [0.9, 0.9, 0.85]),
+        diffuse("signal_housing", [0.06, 0.06, 0.05]),
+        diffuse("signal_red", [0.6, 0.04, 0.03]),
+        diffuse("signal_amber", [0.6, 0.4, 0.03]),
+        diffuse("signal_green", [0.05, 0.5, 0.15]),
+        diffuse("sign_red", [0.55, 0.03, 0.03]),
+        diffuse("sign_white", [0.8, 0.8, 0.8]),
+        diffuse("sign_blue", [0.04, 0.15, 0.5]),
+        diffuse("paint_red", [0.55, 0.04, 0.03]),
+        diffuse("paint_blue", [0.05, 0.12, 0.45]),
+        diffuse("paint_white", [0.8, 0.8, 0.78]),
+        diffuse("paint_black", [0.03, 0.03, 0.035]),
+        metal("paint_silver", ConductorPreset::Aluminium, 0.3),
+        diffuse("paint_grey", [0.3, 0.31, 0.32]),
+        diffuse("paint_green", [0.08, 0.3, 0.12]),
+        diffuse("paint_yellow", [0.75, 0.6, 0.08]),
+        diffuse("paint_orange", [0.7, 0.25, 0.04]),
+        diffuse("paint_darkblue", [0.02, 0.04, 0.15]),
+        diffuse("cargo", [0.7, 0.7, 0.68]),
+        diffuse("rubber", [0.03, 0.03, 0.03]),
+        metal("chrome", ConductorPreset::Chrome, 0.05),
+        diffuse("plastic_black", [0.05, 0.05, 0.05]),
+        diffuse("headlight", [0.9, 0.9, 0.88]),
+        diffuse("taillight", [0.6, 0.02, 0.02]),
+        diffuse("skin", [0.55, 0.38, 0.28]),
+        diffuse("cloth_dark", [0.08, 0.08, 0.1]),
+        diffuse("cloth_blue", [0.1, 0.15, 0.35]),
+        diffuse("cloth_red", [0.45, 0.08, 0.06]),
+    ]
+}
+
+/// The town's gradient sky (W·m⁻²·sr⁻¹): a clear sky gives about a tenth of
+/// the sun's irradiance as diffuse light.
+pub fn town_sky(desc: &TownDesc) -> SkyDesc {
+    match desc.sky {
+        SkyKind::Clear => SkyDesc::Gradient {
+            zenith: [9.0, 16.0, 38.0],
+            horizon: [30.0, 33.0, 37.0],
+            ground: [6.0, 5.6, 5.2],
+        },
+        SkyKind::Hazy => SkyDesc::Gradient {
+            zenith: [20.0, 24.0, 32.0],
+            horizon: [36.0, 37.0, 38.0],
+            ground: [7.0, 6.8, 6.5],
+        },
+    }
+}
+
+/// The sun of the town.
+pub fn town_sun(desc: &TownDesc) -> LightDesc {
+    let irradiance = match desc.sky {
+        SkyKind::Clear => [980.0, 930.0, 850.0],
+        SkyKind::Hazy => [700.0, 680.0, 640.0],
+    };
+    LightDesc::Sun {
+        elevation_deg: desc.sun_elevation_deg,
+        azimuth_deg: desc.sun_azimuth_deg,
+        irradiance,
+        angular_diameter_deg: 0.533,
+    }
+}

@@ -1,0 +1,156 @@
+//! Procedural towns: a short parameter file (`TownDesc`) plus a seed become
+//! a full scene description (`SceneDesc`) for any frame, so validation,
+//! materials, building and semantic labels all reuse the scene machinery.
+//!
+//! Static geometry (roads, blocks, furniture) depends on (desc, seed) only;
+//! moving objects come from `traffic::frame_at(desc, seed, frame)` in closed
+//! form. World frame: z up, metres, the road grid starts at the origin. The
+//! ego vehicle carries the cameras and is not part of the scene (its roof
+//! would fill the bottom rows of the `normal` view).
+
+pub mod buildings;
+pub mod desc;
+pub mod export;
+pub mod furniture;
+pub mod layout;
+pub mod materials;
+pub mod parts;
+pub mod props;
+pub mod rig;
+pub mod rng;
+pub mod roads;
+pub mod traffic;
+pub mod vehicles;
+
+use std::path::{Path, PathBuf};
+
+pub use desc::{load_town, parse_town_str, TownDesc};
+pub use rig::{rig_desc, CameraConfig, CONFIGS};
+pub use traffic::{frame_at, TownFrame, VehiclePose};
+
+use crate::scene::desc::{ObjectDesc, RenderDesc, SceneDesc};
+use crate::scene::{LoadedScene, Scene, SceneError};
+
+use layout::Layout;
+use parts::{instance, Label};
+
+/// First instance id of vehicles (id = base + stable vehicle id).
+pub const VEHICLE_ID_BASE: u32 = 30_000;
+/// First instance id of pedestrians.
+pub const PEDESTRIAN_ID_BASE: u32 = 55_000;
+
+/// Objects that do not move: roads, markings, sidewalks, terrain, buildings,
+/// vegetation and street furniture.
+pub fn static_objects(desc: &TownDesc, seed: u64) -> Vec<ObjectDesc> {
+    let l = Layout::new(desc);
+    let mut out = roads::road_objects(&l);
+    out.extend(buildings::block_objects(desc, &l, seed));
+    out.extend(furniture::furniture_objects(desc, &l, seed));
+    out
+}
+
+/// The vehicles (ego excluded) and pedestrians of one frame as instances.
+pub fn dynamic_objects(frame: &TownFrame) -> Vec<ObjectDesc> {
+    let mut out = Vec::with_capacity(frame.vehicles.len() + frame.pedestrians.len());
+    for v in &frame.vehicles {
+        let l = Label {
+            class: "vehicle",
+            instance: (VEHICLE_ID_BASE + v.id).min(PEDESTRIAN_ID_BASE - 1) as u16,
+        };
+        let map = [("car_paint", v.paint)];
+        out.push(instance(
+            v.body.prefab(),
+            v.position,
+            v.heading_deg,
+            &map,
+            l,
+        ));
+    }
+    for p in &frame.pedestrians {
+        let l = Label {
+            class: "pedestrian",
+            instance: (PEDESTRIAN_ID_BASE + p.id).min(u16::MAX as u32) as u16,
+        };
+        out.push(instance(
+            "pedestrian",
+            p.position,
+            p.heading_deg,
+            &[("shirt", p.shirt)],
+            l,
+        ));
+    }
+    out
+}
+
+/// The resolved scene description of one town frame seen from `config`.
+pub fn town_scene(desc: &TownDesc, seed: u64, frame: u64, config: CameraConfig) -> SceneDesc {
+    let tf = frame_at(desc, seed, frame);
+    let mut objects = static_objects(desc, seed);
+    objects.extend(dynamic_objects(&tf));
+    let mut prefabs = props::street_prefabs();
+    prefabs.extend(vehicles::vehicle_prefabs());
+    SceneDesc {
+        camera: rig_desc(config, &tf.ego),
+        render: RenderDesc {
+            spp: 16,
+            max_depth: 5,
+            seed: Some(seed),
+        },
+        sky: Some(materials::town_sky(desc)),
+        lights: vec![materials::town_sun(desc)],
+        materials: materials::town_materials(desc),
+        objects,
+        prefabs,
+    }
+}
+
+/// The town frame as a validated scene, named `town_file` in messages.
+pub fn load_town_frame(
+    desc: &TownDesc,
+    seed: u64,
+    frame: u64,
+    config: CameraConfig,
+    town_file: &Path,
+) -> Result<LoadedScene, SceneError> {
+    let scene = town_scene(desc, seed, frame, config);
+    let (objs, triangle_estimate) = crate::scene::validate::validate(&scene, town_file)?;
+    Ok(LoadedScene {
+        path: town_file.to_path_buf(),
+        desc: scene,
+        objs,
+        triangle_estimate,
+    })
+}
+
+/// `scenes/NAME.toml` for a bare town name; a path ending in `.toml` as is.
+pub fn town_path(name: &str, scenes_dir: &Path) -> PathBuf {
+    if name.ends_with(".toml") {
+        PathBuf::from(name)
+    } else {
+        scenes_dir.join(format!("{name}.toml"))
+    }
+}
+
+/// A hash of a built scene's geometry: every f64 position (world), triangle,
+/// semantic class and instance id, in order (FNV-1a over the bits).
+pub fn geometry_hash(scene: &Scene) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    let mut eat = |x: u64| {
+        for b in x.to_le_bytes() {
+            h = (h ^ b as u64).wrapping_mul(0x100_0000_01b3);
+        }
+    };
+    for m in &scene.meshes {
+        eat(m.semantic as u64 | (m.instance as u64) << 8);
+        for p in &m.p_render {
+            let w = *p + scene.origin_world;
+            eat(w.x.to_bits());
+            eat(w.y.to_bits());
+            eat(w.z.to_bits());
+        }
+        for t in &m.triangles {
+            eat(t[0] as u64 | (t[1] as u64) << 21 | (t[2] as u64) << 42);
+        }
+    }
+    h
+}

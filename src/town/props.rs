@@ -1,0 +1,141 @@
+//! Prefabs of the street scene: a facade window, trees of two shapes, a
+//! bush, a street light, a traffic light, a stop sign, a pedestrian.
+//!
+//! Local frames: z up, origin on the ground; a window's facade is the local
+//! x–z plane with the window standing out towards −y; a street light's arm
+//! reaches towards local −y, a traffic light's towards local +y (over the road).
+
+use crate::scene::desc::PrefabDesc;
+
+use super::parts::{blob, class, cuboid, cylinder, repeated, Label};
+
+fn prefab(name: &str, objects: Vec<crate::scene::desc::ObjectDesc>) -> PrefabDesc {
+    PrefabDesc {
+        name: name.to_string(),
+        objects,
+    }
+}
+
+/// Every street prefab.
+pub fn street_prefabs() -> Vec<PrefabDesc> {
+    let b = class("building");
+    let v = class("vegetation");
+    let p = class("pole");
+    let tl = class("traffic_light");
+    let ts = class("traffic_sign");
+    let ped = class("pedestrian");
+    let window = vec![
+        // Dark interior panel on the wall behind a glass pane, frame proud of it.
+        cuboid([1.2, 0.02, 1.6], [0.0, -0.02, 0.0], 0.0, "interior", b),
+        cuboid([1.2, 0.02, 1.6], [0.0, -0.05, 0.0], 0.0, "glass", b),
+        cuboid(
+            [1.4, 0.15, 0.1],
+            [0.0, -0.075, 0.85],
+            0.0,
+            "window_frame",
+            b,
+        ),
+        cuboid(
+            [1.55, 0.25, 0.1],
+            [0.0, -0.125, -0.85],
+            0.0,
+            "window_frame",
+            b,
+        ),
+        repeated(
+            cuboid(
+                [0.1, 0.15, 1.6],
+                [-0.65, -0.075, 0.0],
+                0.0,
+                "window_frame",
+                b,
+            ),
+            &[(2, [1.3, 0.0, 0.0])],
+        ),
+    ];
+    let tree_round = vec![
+        cylinder(0.16, 3.4, 10, [0.0, 0.0, 0.0], "bark", v),
+        blob([1.9, 1.9, 1.6], [0.0, 0.0, 4.5], "foliage", v),
+        blob([1.3, 1.3, 1.2], [0.8, 0.5, 5.5], "foliage_light", v),
+        blob([1.2, 1.2, 1.1], [-0.8, -0.6, 5.3], "foliage", v),
+    ];
+    let tree_cone = vec![
+        cylinder(0.18, 2.0, 10, [0.0, 0.0, 0.0], "bark", v),
+        blob([1.8, 1.8, 1.5], [0.0, 0.0, 3.2], "foliage_dark", v),
+        blob([1.4, 1.4, 1.3], [0.0, 0.0, 4.7], "foliage_dark", v),
+        blob([0.9, 0.9, 1.1], [0.0, 0.0, 6.0], "foliage", v),
+    ];
+    let bush = vec![
+        blob([0.9, 0.9, 0.6], [0.0, 0.0, 0.5], "foliage", v),
+        blob([0.6, 0.6, 0.5], [0.5, 0.3, 0.6], "foliage_light", v),
+    ];
+    let street_light = vec![
+        cylinder(0.09, 8.0, 12, [0.0, 0.0, 0.0], "pole_metal", p),
+        cuboid([0.1, 2.2, 0.1], [0.0, -1.1, 7.9], 0.0, "pole_metal", p),
+        cuboid([0.35, 0.6, 0.14], [0.0, -2.1, 7.8], 0.0, "lamp_glass", p),
+    ];
+    // Pole on the corner, mast arm over the approach lanes (local +y), heads
+    // facing −x (towards the traffic that approaches along +x).
+    let mut traffic_light = vec![
+        cylinder(0.11, 6.0, 12, [0.0, 0.0, 0.0], "pole_paint", p),
+        cuboid([0.14, 4.5, 0.14], [0.0, 2.25, 5.8], 0.0, "pole_paint", p),
+        cuboid([0.3, 0.4, 1.1], [0.0, 4.0, 5.15], 0.0, "signal_housing", tl),
+        cuboid([0.3, 0.4, 1.1], [0.0, -0.3, 2.8], 0.0, "signal_housing", tl),
+    ];
+    for (k, m) in ["signal_red", "signal_amber", "signal_green"]
+        .iter()
+        .enumerate()
+    {
+        let z = 5.5 - 0.33 * k as f64;
+        traffic_light.push(cuboid([0.04, 0.24, 0.24], [-0.17, 4.0, z], 0.0, m, tl));
+        traffic_light.push(cuboid(
+            [0.04, 0.24, 0.24],
+            [-0.17, -0.3, z - 2.35],
+            0.0,
+            m,
+            tl,
+        ));
+    }
+    // An octagonal stop sign facing −x.
+    let stop_sign = vec![
+        cylinder(0.04, 2.3, 8, [0.0, 0.0, 0.0], "pole_metal", p),
+        sign_disc(0.38, [-0.05, 0.0, 2.3], "sign_red", ts),
+        sign_disc(0.3, [-0.07, 0.0, 2.3], "sign_white", ts),
+    ];
+    let info_sign = vec![
+        cylinder(0.04, 2.4, 8, [0.0, 0.0, 0.0], "pole_metal", p),
+        cuboid([0.04, 0.6, 0.6], [-0.05, 0.0, 2.3], 0.0, "sign_blue", ts),
+    ];
+    let pedestrian = pedestrian(ped);
+    vec![
+        prefab("window", window),
+        prefab("tree_round", tree_round),
+        prefab("tree_cone", tree_cone),
+        prefab("bush", bush),
+        prefab("street_light", street_light),
+        prefab("traffic_light", traffic_light),
+        prefab("stop_sign", stop_sign),
+        prefab("info_sign", info_sign),
+        prefab("pedestrian", pedestrian),
+    ]
+}
+
+/// An octagon (8-sided cylinder) facing −x, centred at `at`.
+fn sign_disc(r: f64, at: [f64; 3], mat: &str, l: Label) -> crate::scene::desc::ObjectDesc {
+    let mut o = cylinder(r, 0.02, 8, [0.0; 3], mat, l);
+    o.transform.translate = Some(at);
+    o.transform.rotate_deg = Some([0.0, 90.0, 0.0]);
+    o
+}
+
+/// A walking figure about 1.75 m tall facing +x; shirt material "shirt".
+fn pedestrian(l: Label) -> Vec<crate::scene::desc::ObjectDesc> {
+    vec![
+        cuboid([0.16, 0.14, 0.85], [0.12, -0.1, 0.43], 0.0, "cloth_dark", l),
+        cuboid([0.16, 0.14, 0.85], [-0.1, 0.1, 0.43], 0.0, "cloth_dark", l),
+        cuboid([0.26, 0.42, 0.62], [0.0, 0.0, 1.17], 0.0, "shirt", l),
+        cuboid([0.1, 0.1, 0.6], [0.05, -0.26, 1.15], 0.0, "shirt", l),
+        cuboid([0.1, 0.1, 0.6], [-0.05, 0.26, 1.15], 0.0, "shirt", l),
+        blob([0.1, 0.09, 0.12], [0.0, 0.0, 1.62], "skin", l),
+    ]
+}

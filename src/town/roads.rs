@@ -1,0 +1,382 @@
+//! The road network of a grid town: asphalt per segment and junction, lane
+//! markings (dashed or double solid centre lines, dashed lane dividers, solid
+//! edge lines, stop lines and zebra crosswalks at junctions), curbs, sidewalks
+//! and corner pieces (flat gravel shoulders on country roads), and the
+//! terrain around everything.
+//!
+//! A road segment is described in (along, across) coordinates: `along` runs
+//! with the road's positive direction (+x or +y), `across` points to its left
+//! (+y for x-roads, −x for y-roads), so right-hand traffic in the positive
+//! direction drives at across < 0. Markings are 8 mm boxes lying on the road
+//! and split into pieces ≤ 10 m (long slivers are ill-conditioned in f32).
+
+use crate::scene::desc::ObjectDesc;
+
+use super::layout::{Layout, Rect, GROUND_MARGIN_M, STUB_M};
+use super::parts::{class, ground_quad, repeated, slab, Label};
+
+/// Along which world axis a road runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Axis {
+    /// East–west (along x).
+    X,
+    /// North–south (along y).
+    Y,
+}
+
+/// One straight piece of road between two ends.
+struct Segment {
+    axis: Axis,
+    /// Centreline coordinate (y for x-roads, x for y-roads).
+    c: f64,
+    /// Extent along the road.
+    a0: f64,
+    a1: f64,
+    /// Whether each end meets a junction (crosswalk and stop line there).
+    junction: [bool; 2],
+}
+
+impl Segment {
+    /// World (x, y) of road coordinates.
+    fn xy(&self, along: f64, across: f64) -> [f64; 2] {
+        match self.axis {
+            Axis::X => [along, self.c + across],
+            Axis::Y => [self.c - across, along],
+        }
+    }
+    /// A box over along ∈ [a, b], across ∈ [u, v], between two heights.
+    fn slab(
+        &self,
+        (a, b): (f64, f64),
+        (u, v): (f64, f64),
+        z: (f64, f64),
+        m: &str,
+        l: Label,
+    ) -> ObjectDesc {
+        let (p, q) = (self.xy(a, u), self.xy(b, v));
+        let min = [p[0].min(q[0]), p[1].min(q[1])];
+        let max = [p[0].max(q[0]), p[1].max(q[1])];
+        slab(min, max, z.0, z.1, m, l)
+    }
+    /// World offset of one step `d` along the road.
+    fn step(&self, d: f64) -> [f64; 3] {
+        match self.axis {
+            Axis::X => [d, 0.0, 0.0],
+            Axis::Y => [0.0, d, 0.0],
+        }
+    }
+}
+
+const PAINT_Z: (f64, f64) = (0.0, 0.008);
+const CROSSWALK_M: (f64, f64) = (0.5, 3.5);
+const STOP_LINE_AT_M: f64 = 4.0;
+
+/// Every road, marking, curb, sidewalk and terrain object of the town.
+pub fn road_objects(l: &Layout) -> Vec<ObjectDesc> {
+    let mut out = Vec::new();
+    let b = l.bounds();
+    let m = GROUND_MARGIN_M;
+    let (lo, hi) = ([b.min[0] - m, b.min[1] - m], [b.max[0] + m, b.max[1] + m]);
+    match l.river_band() {
+        None => out.push(ground_quad(lo, hi, -0.02, "ground", class("terrain"))),
+        Some(band) => {
+            let t = class("terrain");
+            out.push(ground_quad(lo, [hi[0], band.min[1]], -0.02, "ground", t));
+            out.push(ground_quad([lo[0], band.max[1]], hi, -0.02, "ground", t));
+            river_objects(l, &band, &mut out);
+        }
+    }
+    let (p, hw) = (l.pitch_m, l.road_w_m / 2.0);
+    for j in 0..=l.ny {
+        let y = j as f64 * p;
+        out.extend(segment_objects(
+            l,
+            &Segment {
+                axis: Axis::X,
+                c: y,
+                a0: -STUB_M,
+                a1: -hw,
+                junction: [false, true],
+            },
+        ));
+        for i in 0..l.nx {
+            let x = i as f64 * p;
+            let s = Segment {
+                axis: Axis::X,
+                c: y,
+                a0: x + hw,
+                a1: x + p - hw,
+                junction: [true, true],
+            };
+            out.extend(segment_objects(l, &s));
+        }
+        let e = l.len_x();
+        out.extend(segment_objects(
+            l,
+            &Segment {
+                axis: Axis::X,
+                c: y,
+                a0: e + hw,
+                a1: e + STUB_M,
+                junction: [true, false],
+            },
+        ));
+    }
+    for i in 0..=l.nx {
+        let x = i as f64 * p;
+        for j in 0..l.ny {
+            let y = j as f64 * p;
+            let s = Segment {
+                axis: Axis::Y,
+                c: x,
+                a0: y + hw,
+                a1: y + p - hw,
+                junction: [true, true],
+            };
+            out.extend(segment_objects(l, &s));
+        }
+    }
+    for j in 0..=l.ny {
+        for i in 0..=l.nx {
+            junction_objects(l, i, j, &mut out);
+        }
+    }
+    out
+}
+
+fn segment_objects(l: &Layout, s: &Segment) -> Vec<ObjectDesc> {
+    let road = class("road");
+    let mark = class("lane_marking");
+    let side = class("sidewalk");
+    let hw = l.road_w_m / 2.0;
+    let mut o = Vec::new();
+    let (p, q) = (s.xy(s.a0, -hw), s.xy(s.a1, hw));
+    o.push(ground_quad(
+        [p[0].min(q[0]), p[1].min(q[1])],
+        [p[0].max(q[0]), p[1].max(q[1])],
+        0.0,
+        "asphalt",
+        road,
+    ));
+    // Lines stop short of crosswalks and stop lines at junction ends.
+    let clear = STOP_LINE_AT_M + 0.6;
+    let s0 = s.a0 + if s.junction[0] { clear } else { 0.0 };
+    let s1 = s.a1 - if s.junction[1] { clear } else { 0.0 };
+    if s1 - s0 > 1.0 {
+        if l.lanes == 1 {
+            o.extend(dashed(s, s0, s1, 0.0, 0.12, "paint_white_road", mark));
+        } else {
+            for u in [-0.12, 0.12] {
+                o.extend(solid(s, s0, s1, u, 0.12, "paint_yellow_road", mark));
+            }
+            for k in 1..l.lanes {
+                for sign in [-1.0, 1.0] {
+                    let u = sign * k as f64 * l.lane_w_m;
+                    o.extend(dashed(s, s0, s1, u, 0.12, "paint_white_road", mark));
+                }
+            }
+        }
+        for sign in [-1.0, 1.0] {
+            o.extend(solid(
+                s,
+                s0,
+                s1,
+                sign * (hw - 0.25),
+                0.15,
+                "paint_white_road",
+                mark,
+            ));
+        }
+    }
+    // Crosswalk stripes (parallel to traffic, 0.5 m wide every 1 m) and the
+    // stop line across the lanes entering the junction.
+    for (end, &at_junction) in s.junction.iter().enumerate() {
+        if !at_junction {
+            continue;
+        }
+        let (dir, edge) = if end == 0 { (1.0, s.a0) } else { (-1.0, s.a1) };
+        let a = edge + dir * STOP_LINE_AT_M;
+        // Traffic entering at a0 drives in −along, on the left (across > 0).
+        let lanes = if end == 0 {
+            (0.2, hw - 0.2)
+        } else {
+            (-hw + 0.2, -0.2)
+        };
+        o.push(s.slab((a - 0.2, a + 0.2), lanes, PAINT_Z, "paint_white_road", mark));
+        if !l.sidewalks {
+            continue; // no crosswalks on country roads
+        }
+        let (c0, c1) = (edge + dir * CROSSWALK_M.0, edge + dir * CROSSWALK_M.1);
+        let n = ((2.0 * hw - 0.5) / 1.0).floor() as u32;
+        let first = -hw + 0.5;
+        let stripe = s.slab(
+            (c0.min(c1), c0.max(c1)),
+            (first, first + 0.5),
+            PAINT_Z,
+            "paint_white_road",
+            mark,
+        );
+        let across = match s.axis {
+            Axis::X => [0.0, 1.0, 0.0],
+            Axis::Y => [-1.0, 0.0, 0.0],
+        };
+        o.push(repeated(stripe, &[(n, across)]));
+    }
+    // Curbs and sidewalks (or flat shoulders) on both sides.
+    let sw = l.sidewalk_m;
+    for sign in [-1.0f64, 1.0] {
+        let sorted = |(a, b): (f64, f64)| (a.min(b), a.max(b));
+        if !l.sidewalks {
+            let shoulder = sorted((sign * hw, sign * (hw + sw)));
+            let (p, q) = (s.xy(s.a0, shoulder.0), s.xy(s.a1, shoulder.1));
+            let (min, max) = (
+                [p[0].min(q[0]), p[1].min(q[1])],
+                [p[0].max(q[0]), p[1].max(q[1])],
+            );
+            o.push(ground_quad(min, max, 0.0, "gravel", class("terrain")));
+            continue;
+        }
+        let curb = (sign * hw, sign * (hw + 0.25));
+        let walk = (sign * (hw + 0.25), sign * (hw + sw));
+        o.push(s.slab((s.a0, s.a1), sorted(curb), (0.0, 0.15), "curb", side));
+        o.push(s.slab((s.a0, s.a1), sorted(walk), (0.0, 0.14), "sidewalk", side));
+    }
+    o
+}
+
+/// River bed, water surface, stone embankments and, where each y-road
+/// crosses, a bridge deck under the road and sidewalks with parapets.
+fn river_objects(l: &Layout, band: &Rect, out: &mut Vec<ObjectDesc>) {
+    let (bed_z, water_z) = (-3.0, -1.2);
+    out.push(ground_quad(
+        band.min,
+        band.max,
+        bed_z,
+        "mud",
+        class("terrain"),
+    ));
+    out.push(ground_quad(
+        band.min,
+        band.max,
+        water_z,
+        "water",
+        class("water"),
+    ));
+    for y in [band.min[1], band.max[1]] {
+        let (y0, y1) = if y == band.min[1] {
+            (y, y + 0.4)
+        } else {
+            (y - 0.4, y)
+        };
+        out.push(slab(
+            [band.min[0], y0],
+            [band.max[0], y1],
+            bed_z,
+            0.0,
+            "stone",
+            class("terrain"),
+        ));
+    }
+    let reach = l.road_w_m / 2.0 + l.sidewalk_m;
+    for i in 0..=l.nx {
+        let x = i as f64 * l.pitch_m;
+        let (min, max) = ([x - reach, band.min[1]], [x + reach, band.max[1]]);
+        out.push(slab(min, max, -0.8, -0.005, "concrete", class("road")));
+        for sx in [-1.0, 1.0] {
+            let xe = x + sx * (reach - 0.1);
+            let parapet = slab(
+                [xe - 0.1, band.min[1]],
+                [xe + 0.1, band.max[1]],
+                0.0,
+                1.1,
+                "concrete",
+                class("sidewalk"),
+            );
+            out.push(parapet);
+        }
+    }
+}
+
+/// A raised sidewalk piece, or a flat gravel shoulder on country roads.
+fn walk_piece(l: &Layout, min: [f64; 2], max: [f64; 2]) -> ObjectDesc {
+    if l.sidewalks {
+        slab(min, max, 0.0, 0.14, "sidewalk", class("sidewalk"))
+    } else {
+        ground_quad(min, max, 0.0, "gravel", class("terrain"))
+    }
+}
+
+/// A solid line split into equal pieces of at most 10 m.
+fn solid(s: &Segment, a: f64, b: f64, u: f64, w: f64, m: &str, l: Label) -> Vec<ObjectDesc> {
+    let n = ((b - a) / 10.0).ceil().max(1.0);
+    let piece = (b - a) / n;
+    let first = s.slab((a, a + piece), (u - w / 2.0, u + w / 2.0), PAINT_Z, m, l);
+    vec![repeated(first, &[(n as u32, s.step(piece))])]
+}
+
+/// A dashed line: 3 m dashes every 6 m, centred in [a, b].
+fn dashed(s: &Segment, a: f64, b: f64, u: f64, w: f64, m: &str, l: Label) -> Vec<ObjectDesc> {
+    let n = ((b - a + 3.0) / 6.0).floor() as u32;
+    if n == 0 {
+        return Vec::new();
+    }
+    let start = a + ((b - a) - (n as f64 * 6.0 - 3.0)) / 2.0;
+    let first = s.slab(
+        (start, start + 3.0),
+        (u - w / 2.0, u + w / 2.0),
+        PAINT_Z,
+        m,
+        l,
+    );
+    vec![repeated(first, &[(n, s.step(6.0))])]
+}
+
+/// Junction asphalt, sidewalk corners and, where an arm is missing (T
+/// junctions on the outer x-roads), a sidewalk with curb across it.
+fn junction_objects(l: &Layout, i: usize, j: usize, out: &mut Vec<ObjectDesc>) {
+    let (hw, sw) = (l.road_w_m / 2.0, l.sidewalk_m);
+    let (x, y) = (i as f64 * l.pitch_m, j as f64 * l.pitch_m);
+    out.push(ground_quad(
+        [x - hw, y - hw],
+        [x + hw, y + hw],
+        0.0,
+        "asphalt",
+        class("road"),
+    ));
+    let side = class("sidewalk");
+    for sx in [-1.0, 1.0] {
+        for sy in [-1.0, 1.0] {
+            let (cx, cy) = (x + sx * (hw + sw / 2.0), y + sy * (hw + sw / 2.0));
+            out.push(walk_piece(
+                l,
+                [cx - sw / 2.0, cy - sw / 2.0],
+                [cx + sw / 2.0, cy + sw / 2.0],
+            ));
+        }
+    }
+    let missing: Option<f64> = if j == 0 {
+        Some(-1.0)
+    } else if j == l.ny {
+        Some(1.0)
+    } else {
+        None
+    };
+    if let Some(sy) = missing {
+        if !l.sidewalks {
+            let (w0, w1) = (y + sy * hw, y + sy * (hw + sw));
+            out.push(walk_piece(l, [x - hw, w0.min(w1)], [x + hw, w0.max(w1)]));
+            return;
+        }
+        let (c0, c1) = (y + sy * hw, y + sy * (hw + 0.25));
+        out.push(slab(
+            [x - hw, c0.min(c1)],
+            [x + hw, c0.max(c1)],
+            0.0,
+            0.15,
+            "curb",
+            side,
+        ));
+        let (w0, w1) = (y + sy * (hw + 0.25), y + sy * (hw + sw));
+        out.push(walk_piece(l, [x - hw, w0.min(w1)], [x + hw, w0.max(w1)]));
+    }
+}

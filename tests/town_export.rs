@@ -1,0 +1,68 @@
+//! OBJ + MTL export of a town frame, re-imported through the scene's OBJ
+//! loader: the same triangle count, the same bounds (to f32 precision of the
+//! loader), every material resolved, and a scene referencing the export
+//! builds with the same triangle count.
+
+use std::path::Path;
+
+use glam::DVec3;
+use parallax::scene::build_scene;
+use parallax::scene::obj::load_obj;
+use parallax::town::export::write_obj;
+use parallax::town::{load_town, load_town_frame, CameraConfig};
+
+fn bounds(points: impl Iterator<Item = DVec3>) -> (DVec3, DVec3) {
+    points.fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), p| (lo.min(p), hi.max(p)),
+    )
+}
+
+#[test]
+fn export_then_reimport_keeps_triangle_count_and_bounds() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/town02.toml");
+    let desc = load_town(&path).unwrap_or_else(|e| panic!("{e}"));
+    let loaded = load_town_frame(&desc, 5, 12, CameraConfig::Normal, &path).unwrap();
+    let scene = build_scene(&loaded, DVec3::new(100.0, 50.0, 1.65)).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let obj = dir.path().join("town02.obj");
+    let stats = write_obj(&loaded, &scene, &obj).expect("export writes");
+    assert_eq!(stats.triangles, scene.triangle_count() as u64);
+    assert!(dir.path().join("town02.mtl").is_file());
+
+    let asset = load_obj(&dir.path().join("s.toml"), "object[0]", "town02.obj", &obj)
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(asset.dropped_degenerate, 0);
+    assert_eq!(asset.triangle_count(), scene.triangle_count() as u64);
+    assert_eq!(asset.materials.len(), stats.materials);
+    assert!(asset.groups.iter().all(|g| g.material.is_some()));
+
+    let want = bounds(
+        scene
+            .meshes
+            .iter()
+            .flat_map(|m| m.p_render.iter().map(|&p| p + scene.origin_world)),
+    );
+    let got = bounds(
+        asset
+            .groups
+            .iter()
+            .flat_map(|g| g.positions.iter().copied()),
+    );
+    // The loader may parse in f32: allow its rounding at a few hundred metres.
+    for (a, b) in [(want.0, got.0), (want.1, got.1)] {
+        assert!((a - b).abs().max_element() < 1e-3, "bounds {a} vs {b}");
+    }
+    assert!((want.1 - want.0).x > 200.0, "the export covers the town");
+
+    // Materials come back with their kinds: the glass stays a dielectric.
+    let glass = asset
+        .materials
+        .iter()
+        .find(|m| m.name.ends_with("/glass"))
+        .expect("glass exported");
+    assert!(matches!(
+        glass.kind,
+        parallax::scene::desc::MaterialKindDesc::Dielectric { .. }
+    ));
+}
