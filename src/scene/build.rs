@@ -184,10 +184,7 @@ pub fn build_material(m: &MaterialDesc) -> Material {
             k,
             roughness,
         } => {
-            let (eta, k) = match preset {
-                Some(p) => p.eta_k(),
-                None => (eta.unwrap_or([1.0; 3]), k.unwrap_or([0.0; 3])),
-            };
+            let (eta, k) = crate::scene::desc::conductor_eta_k(preset, eta, k);
             let alpha = (roughness * roughness) as f32;
             let mask = if *roughness < MIRROR_ROUGHNESS {
                 mask_bits::MIRROR

@@ -87,10 +87,7 @@ fn mtl_entry(out: &mut String, m: &MaterialDesc) {
             k,
             roughness,
         } => {
-            let (eta, k) = match preset {
-                Some(p) => p.eta_k(),
-                None => (eta.unwrap_or([1.0; 3]), k.unwrap_or([0.0; 3])),
-            };
+            let (eta, k) = crate::scene::desc::conductor_eta_k(preset, eta, k);
             // Normal-incidence Fresnel reflectance of a conductor.
             let f0: Vec<f64> = (0..3)
                 .map(|i| {

@@ -95,16 +95,39 @@ pub enum ConductorPreset {
 }
 
 impl ConductorPreset {
-    /// Approximate (eta, k) at about 650, 550 and 450 nm for the R, G, B channels.
-    pub fn eta_k(self) -> ([f64; 3], [f64; 3]) {
+    /// The preset's name in `shaders_cpu`'s table of measured metals.
+    pub fn name(self) -> &'static str {
         match self {
-            ConductorPreset::Aluminium => ([1.657, 0.880, 0.521], [9.224, 6.270, 4.837]),
-            ConductorPreset::Chrome => ([3.180, 3.120, 2.320], [3.330, 3.330, 3.135]),
-            ConductorPreset::Copper => ([0.200, 0.924, 1.102], [3.912, 2.452, 2.142]),
-            ConductorPreset::Gold => ([0.143, 0.374, 1.442], [3.983, 2.385, 1.603]),
-            ConductorPreset::Silver => ([0.155, 0.117, 0.138], [4.828, 3.122, 2.147]),
-            ConductorPreset::Iron => ([2.911, 2.950, 2.585], [3.089, 2.932, 2.767]),
+            ConductorPreset::Aluminium => "aluminium",
+            ConductorPreset::Chrome => "chrome",
+            ConductorPreset::Copper => "copper",
+            ConductorPreset::Gold => "gold",
+            ConductorPreset::Silver => "silver",
+            ConductorPreset::Iron => "iron",
         }
+    }
+
+    /// RGB (eta, k) from `shaders_cpu`'s measured-metal table (one source of truth).
+    pub fn eta_k(self) -> ([f64; 3], [f64; 3]) {
+        match shaders_cpu::bsdf::Bsdf::conductor_preset(self.name(), 0.0) {
+            Some(shaders_cpu::bsdf::Bsdf::Conductor { eta, k, .. }) => {
+                (eta.as_dvec3().to_array(), k.as_dvec3().to_array())
+            }
+            _ => unreachable!("every preset is in shaders_cpu's table"),
+        }
+    }
+}
+
+/// A conductor's (eta, k): the preset's when named, else the given values
+/// (defaults: eta 1, k 0).
+pub fn conductor_eta_k(
+    preset: &Option<ConductorPreset>,
+    eta: &Option<[f64; 3]>,
+    k: &Option<[f64; 3]>,
+) -> ([f64; 3], [f64; 3]) {
+    match preset {
+        Some(p) => p.eta_k(),
+        None => (eta.unwrap_or([1.0; 3]), k.unwrap_or([0.0; 3])),
     }
 }
 

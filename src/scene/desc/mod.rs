@@ -10,7 +10,7 @@ mod material;
 mod object;
 
 pub use light::{LightDesc, SkyDesc};
-pub use material::{ConductorPreset, MaskFlag, MaterialDesc, MaterialKindDesc};
+pub use material::{conductor_eta_k, ConductorPreset, MaskFlag, MaterialDesc, MaterialKindDesc};
 pub use object::{ObjectDesc, PrefabDesc, RepeatDesc, ScaleDesc, ShapeDesc, TransformDesc};
 
 use serde::{Deserialize, Serialize};
