@@ -4,6 +4,7 @@
 //! - a point light: L = ρ/π · I·cosθ/d²;
 //! - an emissive quad: L = ρ/π · E with E from Lambert's polygon formula,
 //!   E = L_e/2 · Σ_k angle(u_k, u_k+1) · n·normalize(u_k × u_k+1).
+//!
 //! A camera 3 m up looks straight down on a Lambert plane; interior plane pixels
 //! are compared by the mean of rendered/expected (within 1%, z-score ≤ 4).
 
