@@ -114,7 +114,12 @@ impl<A: Accel> PathContext<'_, A> {
             if !bsdf.is_delta() {
                 let lights = self.lights;
                 let [a0, a1, a2, a3] = stream.next_4d();
-                let [b0, b1, b2, b3] = stream.next_4d();
+                // The last set of the bounce: skipping it shifts nothing.
+                let [b0, b1, b2, b3] = if lights.distant_count() > 2 {
+                    stream.next_4d()
+                } else {
+                    [0.0; 4]
+                };
                 let u_distant = [
                     glam::Vec2::new(a0, a1),
                     glam::Vec2::new(a2, a3),
