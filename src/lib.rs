@@ -1,6 +1,8 @@
 //! parallax: a CPU path tracer for synthetic stereo driving datasets with exact
 //! ground truth. See `../shared/DESIGN.md` for the map of modules.
 
+#![warn(missing_docs)]
+
 pub mod accel;
 pub mod bench;
 pub mod camera;
