@@ -108,6 +108,22 @@ fn good_scene_renders_every_native_file() {
     ] {
         assert!(c.out().join(f).is_file(), "missing {f}");
     }
+    let meta: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(c.out().join("cameras/000000.json")).unwrap())
+            .unwrap();
+    for key in [
+        "k",
+        "left_pose",
+        "right",
+        "exposure_scale",
+        "seed",
+        "sun_direction_world",
+        "weather",
+    ] {
+        assert!(meta.get(key).is_some(), "camera file lacks {key}");
+    }
+    assert_eq!(meta["seed"], 1);
+    assert_eq!(meta["right"].as_array().unwrap().len(), 2);
 }
 
 #[test]

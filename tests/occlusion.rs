@@ -74,3 +74,38 @@ fn occlusion_mask_matches_brute_force() {
         );
     }
 }
+
+/// On an unobstructed road plane the only occlusion is leaving the right image,
+/// decided with the stored (f32) disparity: a point landing exactly on the
+/// right image's left edge (x − d = 0) is visible. At 400×226 with B = 0.54 m,
+/// pixel (4, 125) has Z = 1.5 m and d = 4.5 = x exactly.
+#[test]
+fn occlusion_agrees_with_the_stored_disparity_at_the_image_edge() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/scenes/analytic/road_plane.toml"
+    );
+    let mut loaded = parallax::scene::load_scene(std::path::Path::new(path)).unwrap();
+    loaded.desc.camera.width = 400;
+    loaded.desc.camera.height = 226;
+    loaded.desc.camera.baselines_cm = vec![54.0];
+    let r = render(&loaded, Backend::default_backend(), 0);
+    let gt = &r.out.baselines[0];
+    let w = 400usize;
+    let mut edge_ties = 0;
+    for (k, &occ) in gt.occlusion.iter().enumerate() {
+        let x = (k % w) as f64 + 0.5;
+        let d = gt.disparity_left[k] as f64;
+        let outside = r.out.left.depth_z[k].is_finite() && x - d < 0.0;
+        edge_ties += (r.out.left.depth_z[k].is_finite() && x == d) as usize;
+        assert_eq!(
+            occ == 255,
+            outside,
+            "pixel {k}: occlusion {occ}, x {x}, d {d}"
+        );
+    }
+    assert!(
+        edge_ties > 0,
+        "the scene should have pixels with x − d = 0 exactly"
+    );
+}

@@ -175,7 +175,15 @@ fn render_to(loaded: &LoadedScene, a: &RenderArgs, seed: u64, frame: u32) -> Res
         pb.set_position(done as u64)
     });
     pb.finish_and_clear();
-    let meta = camera_file(&rig, &out, seed, frame, settings.spp, settings.max_depth);
+    let meta = camera_file(
+        &scene,
+        &rig,
+        &out,
+        seed,
+        frame,
+        settings.spp,
+        settings.max_depth,
+    );
     write_native_frame(
         &a.output,
         frame,

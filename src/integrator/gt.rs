@@ -158,10 +158,23 @@ pub fn view_gt(scene: &Scene, accel: &impl Accel, cam: &RenderCamera, labels: bo
     gt
 }
 
+/// Segments C_R → X end at this fraction of |X − C_R| (the contract's 1e-4
+/// relative tolerance).
+const OCCLUSION_T_MAX: f64 = 1.0 - 1e-4;
+
+/// Whether the nearest surface on segment `ray` (origin `o`, direction `seg`,
+/// f64) lies before `OCCLUSION_T_MAX` when re-intersected exactly.
+fn blocked_exactly(scene: &Scene, accel: &impl Accel, ray: &Ray, o: DVec3, seg: DVec3) -> bool {
+    accel
+        .intersect(ray)
+        .is_some_and(|hit| exact_t(scene, o, seg, &hit) < OCCLUSION_T_MAX)
+}
+
 /// Left-view occlusion for the right camera `right`: 255 where the left
 /// surface point is outside the right image or hidden from the right camera.
 /// Returns the mask and the number of shadow rays traced.
 pub fn occlusion_mask(
+    scene: &Scene,
     accel: &impl Accel,
     left: &RenderCamera,
     right: &RenderCamera,
@@ -184,23 +197,34 @@ pub fn occlusion_mask(
                     continue;
                 }
                 let x = i as f64 + 0.5;
-                if x - f * baseline_m / z < 0.0 {
+                // The stored (rounded) disparity decides, so mask and file agree.
+                if x - (disparity_px(f, baseline_m, z) as f64) < 0.0 {
                     *o = 255;
                     continue;
                 }
                 let p = left.center + left.dir(x, v) * z;
                 let seg = p - c_r;
-                rays.push(Ray::segment(c_r.as_vec3(), seg.as_vec3(), 1.0 - 1e-4));
-                idx.push(i);
+                rays.push(Ray::segment(
+                    c_r.as_vec3(),
+                    seg.as_vec3(),
+                    OCCLUSION_T_MAX as f32,
+                ));
+                idx.push((i, seg));
             }
             let mut blocked = vec![false; rays.len()];
             accel.occluded_batch(&rays, &mut blocked);
-            for (k, &i) in idx.iter().enumerate() {
+            let mut traced = rays.len() as u64;
+            for (k, &(i, seg)) in idx.iter().enumerate() {
+                // Confirm in f64: the nearest blocker must lie before the
+                // tolerance, not just round there in f32.
                 if blocked[k] {
-                    occ[i] = 255;
+                    traced += 1;
+                    if blocked_exactly(scene, accel, &rays[k], c_r, seg) {
+                        occ[i] = 255;
+                    }
                 }
             }
-            (occ, rays.len() as u64)
+            (occ, traced)
         })
         .collect();
     let rays = rows.iter().map(|r| r.1).sum();

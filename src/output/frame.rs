@@ -12,7 +12,9 @@ use super::{
 };
 use crate::camera::{Camera, StereoRig};
 use crate::film::tonemap_to_srgb8;
+use crate::light::Light;
 use crate::render::FrameOutput;
+use crate::scene::Scene;
 
 /// Per-frame metadata written to `cameras/NNNNNN.json`.
 #[derive(Clone, Debug, Serialize)]
@@ -33,6 +35,11 @@ pub struct CameraFile {
     pub exposure_scale: f32,
     /// Exposure in EV (log2 of the scale).
     pub exposure_ev: f32,
+    /// Unit vector towards the (first) sun in world coordinates, if the scene has one.
+    pub sun_direction_world: Option<[f64; 3]>,
+    /// Weather preset and its drawn parameters; null while the frame uses the
+    /// scene's own sky and lights (no preset applied).
+    pub weather: Option<serde_json::Value>,
     /// Seed of every random stream of this frame.
     pub seed: u64,
     /// Frame index.
@@ -144,6 +151,7 @@ pub fn write_native_frame(
 
 /// Builds the camera metadata of a frame.
 pub fn camera_file(
+    scene: &Scene,
     rig: &StereoRig,
     out: &FrameOutput,
     seed: u64,
@@ -166,6 +174,11 @@ pub fn camera_file(
             .collect(),
         exposure_scale: out.exposure_scale,
         exposure_ev: out.exposure_scale.log2(),
+        sun_direction_world: scene.lights.iter().find_map(|l| match l {
+            Light::Sun { dir_to_sun, .. } => Some(dir_to_sun.as_dvec3().to_array()),
+            _ => None,
+        }),
+        weather: None,
         seed,
         frame,
         spp,

@@ -104,7 +104,7 @@ pub fn render_frame(
     for (b, &baseline_m) in rig.baselines_m.iter().enumerate() {
         let right = view_gt(scene, accel, &cams[1 + b], false);
         let (occlusion, occ_rays) =
-            occlusion_mask(accel, &cams[0], &cams[1 + b], &left, baseline_m);
+            occlusion_mask(scene, accel, &cams[0], &cams[1 + b], &left, baseline_m);
         stats.gt_rays += right.depth_z.len() as u64 + occ_rays;
         baselines.push(BaselineGt {
             baseline_m,
