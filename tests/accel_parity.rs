@@ -359,6 +359,34 @@ fn rays_through_shared_edges_and_vertices_never_leak() {
 }
 
 #[test]
+fn concurrent_queries_match_serial_queries() {
+    fn assert_send_sync<T: Send + Sync>() {}
+    assert_send_sync::<AnyAccel>();
+    let scene = TestScene::random(9, 2000, 40);
+    let geo = scene.geometry();
+    let rays = random_rays(&scene, 10, 4000);
+    for backend in all_backends() {
+        let accel = build(backend, &geo);
+        let serial: Vec<Option<Hit>> = rays.iter().map(|r| accel.intersect(r)).collect();
+        let mut parallel = vec![None; rays.len()];
+        let half = rays.len() / 2;
+        let (lo, hi) = parallel.split_at_mut(half);
+        std::thread::scope(|s| {
+            let accel = &accel;
+            s.spawn(|| accel.intersect_batch(&rays[..half], lo));
+            s.spawn(|| {
+                for (r, h) in rays[half..].iter().zip(hi.iter_mut()) {
+                    *h = accel.intersect(r);
+                }
+            });
+        });
+        for ((ray, &a), &b) in rays.iter().zip(&serial).zip(&parallel) {
+            assert_hits_agree(a, b, ray, 1e-6, backend.name());
+        }
+    }
+}
+
+#[test]
 fn empty_geometry_misses_everything() {
     let geo = AccelGeometry::default();
     let empty_mesh = AccelGeometry {
