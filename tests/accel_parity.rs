@@ -165,20 +165,21 @@ fn build(backend: Backend, geo: &AccelGeometry) -> AnyAccel {
     build_accel(backend, geo).unwrap_or_else(|e| panic!("{backend}: {e}"))
 }
 
-/// Agreement of two closest hits: same t within `rel_tol` (plus a tiny
-/// absolute slack near t = 0), and the same primitive unless the hits are
+/// Agreement of two closest hits: same t within `rel_tol` (divided by the
+/// incidence cosine, plus a tiny absolute slack near t = 0), and the same primitive unless the hits are
 /// coincident (shared edges, overlapping triangles). Returns whether the ids
 /// matched.
 fn assert_hits_agree(a: Option<Hit>, b: Option<Hit>, ray: &Ray, rel_tol: f32, what: &str) -> bool {
     match (a, b) {
         (None, None) => true,
         (Some(a), Some(b)) => {
-            let tol = rel_tol * a.t.abs().max(b.t.abs()) + 1e-6;
+            // A hit-point error δ across the surface moves t by δ / cos θ: grazing
+            // hits are ill-conditioned for any algorithm, so scale by 1 / cos θ.
+            let cos = a.n_geo.normalize().dot(ray.d.normalize()).abs().max(1e-3);
+            let tol = rel_tol * a.t.abs().max(b.t.abs()) / cos + 1e-6;
             assert!(
                 (a.t - b.t).abs() <= tol,
-                "{what}: t {} vs {} for {ray:?}",
-                a.t,
-                b.t
+                "{what}: {a:?} vs {b:?} for {ray:?}",
             );
             let same = (a.geom_id, a.prim_id) == (b.geom_id, b.prim_id);
             if same {
@@ -298,7 +299,7 @@ fn embree_matches_bvh_on_random_soup() {
             embree.intersect(ray),
             bvh.intersect(ray),
             ray,
-            1e-5,
+            1e-6,
             "embree vs bvh",
         ) {
             id_mismatches += 1;
@@ -354,6 +355,34 @@ fn rays_through_shared_edges_and_vertices_never_leak() {
                 accel.occluded(&from_outside),
                 "{backend}: any-hit leak through {target}"
             );
+        }
+    }
+}
+
+#[test]
+fn concurrent_queries_match_serial_queries() {
+    fn assert_send_sync<T: Send + Sync>() {}
+    assert_send_sync::<AnyAccel>();
+    let scene = TestScene::random(9, 2000, 40);
+    let geo = scene.geometry();
+    let rays = random_rays(&scene, 10, 4000);
+    for backend in all_backends() {
+        let accel = build(backend, &geo);
+        let serial: Vec<Option<Hit>> = rays.iter().map(|r| accel.intersect(r)).collect();
+        let mut parallel = vec![None; rays.len()];
+        let half = rays.len() / 2;
+        let (lo, hi) = parallel.split_at_mut(half);
+        std::thread::scope(|s| {
+            let accel = &accel;
+            s.spawn(|| accel.intersect_batch(&rays[..half], lo));
+            s.spawn(|| {
+                for (r, h) in rays[half..].iter().zip(hi.iter_mut()) {
+                    *h = accel.intersect(r);
+                }
+            });
+        });
+        for ((ray, &a), &b) in rays.iter().zip(&serial).zip(&parallel) {
+            assert_hits_agree(a, b, ray, 1e-6, backend.name());
         }
     }
 }

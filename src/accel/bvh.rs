@@ -118,23 +118,29 @@ impl BvhAccel {
     }
 }
 
+/// (low, high) of a slab's two distances. NaN (0·∞: origin on a slab plane,
+/// direction parallel to it) lands in `low` if it is `a` and in `high` if it is
+/// `b` — both places where the min/max that follow ignore it, so the box is kept.
+#[inline(always)]
+fn ordered(a: f32, b: f32) -> (f32, f32) {
+    if a > b {
+        (b, a)
+    } else {
+        (a, b)
+    }
+}
+
 /// Entry distance of the ray into the node's box within `[tmin, tmax]`, if any.
 #[inline(always)]
 fn slab_test(node: &Node, o: Vec3, inv_d: Vec3, tmin: f32, tmax: f32) -> Option<f32> {
     let t0 = (node.min - o) * inv_d;
     let t1 = (node.max - o) * inv_d;
-    let mut t_near = tmin;
-    let mut t_far = tmax;
-    for axis in 0..3 {
-        let (a, b) = (t0[axis], t1[axis]);
-        // NaN (0·∞: origin on a slab plane, direction parallel) must keep the
-        // box: the comparisons below pass NaN into `lo`/`hi` only where
-        // `f32::max`/`f32::min` then ignore it.
-        let lo = if a > b { b } else { a };
-        let hi = if a > b { a } else { b };
-        t_near = t_near.max(lo);
-        t_far = t_far.min(hi * FAR_INFLATE);
-    }
+    let (lx, hx) = ordered(t0.x, t1.x);
+    let (ly, hy) = ordered(t0.y, t1.y);
+    let (lz, hz) = ordered(t0.z, t1.z);
+    // `f32::max`/`f32::min` return the other operand when one is NaN.
+    let t_near = tmin.max(lx).max(ly).max(lz);
+    let t_far = (hx.min(hy).min(hz) * FAR_INFLATE).min(tmax);
     (t_near <= t_far).then_some(t_near)
 }
 

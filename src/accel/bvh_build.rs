@@ -11,6 +11,8 @@ use glam::Vec3;
 const BIN_COUNT: usize = 16;
 /// Largest leaf the SAH may choose; bigger sets are always split.
 pub(crate) const MAX_LEAF: usize = 8;
+/// SAH cost of one box test relative to one primitive test.
+const TRAVERSAL_COST: f32 = 0.3;
 /// Subtrees at least this big are built on another rayon task.
 const PARALLEL_MIN: usize = 32 * 1024;
 /// Beyond this depth the builder splits at the object median, bounding depth by
@@ -210,9 +212,9 @@ fn choose_split(
             }
         }
     }
-    // SAH with traversal cost 1 and intersection cost 1 per primitive.
+    // SAH with intersection cost 1 per primitive.
     let leaf_cost = n as f32;
-    let split_cost = 1.0 + best.0 / bounds.half_area().max(f32::MIN_POSITIVE);
+    let split_cost = TRAVERSAL_COST + best.0 / bounds.half_area().max(f32::MIN_POSITIVE);
     if best.0.is_infinite() || (n <= MAX_LEAF && leaf_cost <= split_cost) {
         if n <= MAX_LEAF {
             return None;

@@ -4,7 +4,8 @@
 //! One device and one scene: triangle geometry `i` for mesh `i` and one
 //! `SPHERE_POINT` geometry (float4 centre + radius) with id `meshes.len()`,
 //! attached by id so Embree's ids are exactly the `mod.rs` conventions. Data is
-//! copied into Embree-owned buffers, so the accelerator borrows nothing.
+//! copied into Embree-owned buffers, so the accelerator borrows nothing. The
+//! scene is built with `RTC_SCENE_FLAG_ROBUST` (watertight on shared edges).
 //! Single rays use `rtcIntersect1`/`rtcOccluded1` with an incoherent context;
 //! batches go through 8-wide packets (`rtcIntersect8`/`rtcOccluded8`) with a
 //! coherent context and a valid mask for the tail.
