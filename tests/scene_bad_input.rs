@@ -1,6 +1,8 @@
 //! Bad input: one test per class of error, each asserting that the message
 //! names the scene file and the offending key path (or line and column).
 
+mod common;
+
 use std::path::Path;
 
 use parallax::scene::{load_scene, parse_scene_str, SceneError, SceneErrorKind};
@@ -8,15 +10,8 @@ use parallax::scene::{load_scene, parse_scene_str, SceneError, SceneErrorKind};
 const FILE: &str = "scenes/bad.toml";
 
 const CAMERA: &str = "[camera]\nposition = [0.0, 0.0, 1.5]\n";
-const LIT: &str = r#"
-[sky]
-kind = "constant"
-le = [1.0, 1.0, 1.0]
-[[material]]
-name = "grey"
-kind = "diffuse"
-albedo = [0.5, 0.5, 0.5]
-"#;
+/// A grey material under a white sky: the lit part every case starts from.
+const LIT: &str = common::GREY_UNDER_SKY;
 
 /// Parses `text` as scenes/bad.toml and returns its error.
 fn error_of(text: &str) -> SceneError {

@@ -13,6 +13,7 @@
 use glam::{Vec3, Vec4};
 
 use super::Ray;
+use crate::geometry::gamma;
 
 /// A ray prepared for the watertight triangle test: the permutation that makes
 /// `kz` the dominant direction axis and the shear constants.
@@ -127,12 +128,6 @@ pub(crate) fn intersect_triangle(
         u: e1 * inv_det,
         v: e2 * inv_det,
     })
-}
-
-/// gamma(n) = n·u / (1 − n·u), u the f32 unit roundoff (pbrt-v4 eq. 6.28).
-const fn gamma(n: i32) -> f32 {
-    let u = f32::EPSILON * 0.5;
-    (n as f32 * u) / (1.0 - n as f32 * u)
 }
 
 /// Bound on the rounding error of the watertight test's t (pbrt-v4 §6.8.4,

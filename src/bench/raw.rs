@@ -33,13 +33,13 @@ fn rate(rays: usize, f: impl FnOnce()) -> f64 {
     rays as f64 / t.elapsed().as_secs_f64().max(1e-9) / 1e6
 }
 
+/// A uniform direction from the bits of a hash.
 fn unit_from_hash(h: u64) -> Vec3 {
-    let u = (h >> 40) as f32 / (1u64 << 24) as f32;
-    let v = ((h >> 16) & 0xff_ffff) as f32 / (1u64 << 24) as f32;
-    let z = 1.0 - 2.0 * u;
-    let r = (1.0 - z * z).max(0.0).sqrt();
-    let phi = std::f32::consts::TAU * v;
-    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+    let u = glam::Vec2::new(
+        (h >> 40) as f32 / (1u64 << 24) as f32,
+        ((h >> 16) & 0xff_ffff) as f32 / (1u64 << 24) as f32,
+    );
+    shaders_cpu::sampling::sample_uniform_sphere(u)
 }
 
 /// Measures raw rates on the left camera's primary rays and their bounces.

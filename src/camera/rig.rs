@@ -65,11 +65,6 @@ impl StereoRig {
             .chain((0..self.baselines_m.len()).map(|b| self.right(b)))
             .collect()
     }
-
-    /// Baseline in whole centimetres, as used in directory names.
-    pub fn baseline_cm(&self, index: usize) -> u32 {
-        (self.baselines_m[index] * 100.0).round() as u32
-    }
 }
 
 #[cfg(test)]

@@ -9,7 +9,6 @@
 //! film of any level maps to 0.18. Luminance is Rec.709 (ITU-R BT.709 Y).
 
 use super::Film;
-use glam::Vec3;
 
 /// The key value a of Reinhard et al. 2002: the log-average maps to this.
 pub const MIDDLE_GREY: f32 = 0.18;
@@ -23,11 +22,8 @@ pub const EXPOSURE_FLOOR_FRACTION: f64 = 1e-3;
 /// a guard against overflow only; realistic frames are far inside it.
 pub const EXPOSURE_EV_MAX: f32 = 40.0;
 
-/// Rec.709 relative luminance Y of linear RGB.
-#[inline]
-pub fn luminance_rec709(rgb: Vec3) -> f32 {
-    0.2126 * rgb.x + 0.7152 * rgb.y + 0.0722 * rgb.z
-}
+/// Rec.709 relative luminance Y of linear RGB (the one definition lives in `shaders_cpu`).
+pub use shaders_cpu::sampling::luminance as luminance_rec709;
 
 /// Exposure in stops of a linear scale factor: `exposure_ev = log2(scale)`.
 /// Positive EV brightens. Precondition: `scale > 0`.
@@ -72,6 +68,7 @@ pub fn auto_exposure(film: &Film) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::Vec3;
 
     #[test]
     fn rec709_luminance_weights_sum_to_one() {

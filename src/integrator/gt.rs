@@ -95,16 +95,15 @@ fn trace_row(
     let w = cam.intrinsics.width;
     let o = cam.center_f32();
     let v = j as f64 + 0.5;
-    let rays: Vec<Ray> = (0..w)
-        .map(|i| Ray::new(o, cam.dir(i as f64 + 0.5, v).as_vec3()))
-        .collect();
+    let dirs: Vec<DVec3> = (0..w).map(|i| cam.dir(i as f64 + 0.5, v)).collect();
+    let rays: Vec<Ray> = dirs.iter().map(|d| Ray::new(o, d.as_vec3())).collect();
     let mut hits = vec![None; w as usize];
     accel.intersect_batch(&rays, &mut hits);
     let depth = hits
         .iter()
-        .enumerate()
-        .map(|(i, h)| match h {
-            Some(h) => exact_t(scene, cam.center, cam.dir(i as f64 + 0.5, v), h),
+        .zip(&dirs)
+        .map(|(h, &d)| match h {
+            Some(h) => exact_t(scene, cam.center, d, h),
             None => f64::INFINITY,
         })
         .collect();

@@ -83,7 +83,7 @@ impl LightSet {
         let mut entries = Vec::new();
         let mut weights = Vec::new();
         let mut suns = Vec::new();
-        let sky_emits = sky_mean_luminance(scene) > 0.0;
+        let sky_emits = scene.sky.luminance_avg() > 0.0;
         let room_for_suns = MAX_DISTANT - sky_emits as usize;
         for light in &scene.lights {
             if let Light::Sun {
@@ -349,19 +349,4 @@ fn scene_radius(scene: &Scene) -> f32 {
         )
         .fold(0.0f32, f32::max);
     r.clamp(1.0, 100.0)
-}
-
-/// Mean sky luminance over the sphere, by a fixed Fibonacci-lattice quadrature.
-fn sky_mean_luminance(scene: &Scene) -> f32 {
-    const N: usize = 256;
-    let golden = std::f32::consts::PI * (3.0 - 5f32.sqrt());
-    let sum: f32 = (0..N)
-        .map(|k| {
-            let z = 1.0 - (2 * k + 1) as f32 / N as f32;
-            let r = (1.0 - z * z).max(0.0).sqrt();
-            let phi = golden * k as f32;
-            luminance(scene.sky.le(Vec3::new(r * phi.cos(), r * phi.sin(), z)))
-        })
-        .sum();
-    sum / N as f32
 }

@@ -10,7 +10,7 @@ use super::{
     write_exr_f32_gray, write_exr_rgb_f32, write_json, write_pfm_gray, write_png_gray16,
     write_png_gray8, write_png_rgb8, NativeLayout,
 };
-use crate::camera::{Camera, StereoRig};
+use crate::camera::StereoRig;
 use crate::film::tonemap_to_srgb8;
 use crate::light::Light;
 use crate::render::FrameOutput;
@@ -70,10 +70,6 @@ pub const CONVENTIONS: &str = "world: right-handed, z up, metres; camera: OpenCV
 pixel (i,j) centre at (i+0.5, j+0.5); depth_z along the optical axis, +inf for sky; \
 disparity = f*B/Z px (left pixel x lands at x-d in the right image; right pixel x at x+d in the left); \
 occlusion 255 = occluded; mask bits: 1 sky, 2 rain, 4 transparent, 8 mirror-like";
-
-fn pose_of(c: &Camera) -> [[f64; 4]; 4] {
-    c.pose_matrix()
-}
 
 /// Options for writing a frame.
 #[derive(Clone, Copy, Debug, Default)]
@@ -164,12 +160,12 @@ pub fn camera_file(
         height: rig.left.intrinsics.height,
         k: rig.left.intrinsics.k_matrix(),
         f_px: rig.left.intrinsics.f_px,
-        left_pose: pose_of(&rig.left),
+        left_pose: rig.left.pose_matrix(),
         right: (0..rig.baselines_m.len())
             .map(|b| RightCamera {
                 baseline_m: rig.baselines_m[b],
-                dir: format!("baseline_{:03}", rig.baseline_cm(b)),
-                pose: pose_of(&rig.right(b)),
+                dir: super::baseline_dir_name(rig.baselines_m[b] * 100.0),
+                pose: rig.right(b).pose_matrix(),
             })
             .collect(),
         exposure_scale: out.exposure_scale,
