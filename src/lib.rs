@@ -16,3 +16,4 @@ pub mod render;
 pub mod sampler;
 pub mod scene;
 pub mod town;
+pub mod weather;

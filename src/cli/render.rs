@@ -64,6 +64,10 @@ pub struct RenderArgs {
     /// Also write linear HDR radiance (EXR) for every view.
     #[arg(long)]
     pub hdr: bool,
+    /// Weather preset replacing the scene's sun and sky: clear, cloudy, foggy,
+    /// humid, night, storm, sunset (its drawn parameters go into the camera file).
+    #[arg(long)]
+    pub weather: Option<crate::weather::Weather>,
 }
 
 /// Applies command-line overrides to the loaded description and validates them.
@@ -149,11 +153,21 @@ pub fn run(a: RenderArgs) -> Result<(), CliError> {
         )));
     }
     let seed = loaded.desc.render.seed.unwrap_or_else(draw_seed);
+    let weather = a.weather.map(|w| crate::weather::draw_params(w, seed));
+    if let Some(p) = &weather {
+        crate::weather::apply(&mut loaded.desc, p);
+    }
     let pool = thread_pool(a.threads)?;
-    pool.install(|| render_to(&loaded, &a, seed, frame))
+    pool.install(|| render_to(&loaded, &a, seed, frame, weather.as_ref()))
 }
 
-fn render_to(loaded: &LoadedScene, a: &RenderArgs, seed: u64, frame: u32) -> Result<(), CliError> {
+fn render_to(
+    loaded: &LoadedScene,
+    a: &RenderArgs,
+    seed: u64,
+    frame: u32,
+    weather: Option<&crate::weather::WeatherParams>,
+) -> Result<(), CliError> {
     let started = Instant::now();
     let rig = StereoRig::from_desc(&loaded.desc.camera);
     let scene =
@@ -175,15 +189,7 @@ fn render_to(loaded: &LoadedScene, a: &RenderArgs, seed: u64, frame: u32) -> Res
         pb.set_position(done as u64)
     });
     pb.finish_and_clear();
-    let meta = camera_file(
-        &scene,
-        &rig,
-        &out,
-        seed,
-        frame,
-        settings.spp,
-        settings.max_depth,
-    );
+    let meta = camera_file(&scene, &rig, &out, &settings, weather);
     write_native_frame(
         &a.output,
         frame,

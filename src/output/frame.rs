@@ -13,8 +13,9 @@ use super::{
 use crate::camera::StereoRig;
 use crate::film::tonemap_to_srgb8;
 use crate::light::Light;
-use crate::render::FrameOutput;
+use crate::render::{FrameOutput, RenderSettings};
 use crate::scene::Scene;
+use crate::weather::WeatherParams;
 
 /// Per-frame metadata written to `cameras/NNNNNN.json`.
 #[derive(Clone, Debug, Serialize)]
@@ -37,9 +38,9 @@ pub struct CameraFile {
     pub exposure_ev: f32,
     /// Unit vector towards the (first) sun in world coordinates, if the scene has one.
     pub sun_direction_world: Option<[f64; 3]>,
-    /// Weather preset and its drawn parameters; null while the frame uses the
+    /// Weather preset and its drawn parameters; null when the frame uses the
     /// scene's own sky and lights (no preset applied).
-    pub weather: Option<serde_json::Value>,
+    pub weather: Option<WeatherParams>,
     /// Seed of every random stream of this frame.
     pub seed: u64,
     /// Frame index.
@@ -150,10 +151,8 @@ pub fn camera_file(
     scene: &Scene,
     rig: &StereoRig,
     out: &FrameOutput,
-    seed: u64,
-    frame: u32,
-    spp: u32,
-    max_depth: u32,
+    settings: &RenderSettings,
+    weather: Option<&WeatherParams>,
 ) -> CameraFile {
     CameraFile {
         width: rig.left.intrinsics.width,
@@ -174,11 +173,11 @@ pub fn camera_file(
             Light::Sun { dir_to_sun, .. } => Some(dir_to_sun.as_dvec3().to_array()),
             _ => None,
         }),
-        weather: None,
-        seed,
-        frame,
-        spp,
-        max_depth,
+        weather: weather.cloned(),
+        seed: settings.seed,
+        frame: settings.frame,
+        spp: settings.spp,
+        max_depth: settings.max_depth,
         semantic_classes: crate::scene::semantic::CLASSES
             .iter()
             .map(|(n, id)| (n.to_string(), *id))

@@ -1,0 +1,187 @@
+//! Weather presets: the seven weathers of DATASET.md as named parameter sets
+//! with seeded variation, applied to a scene description before it is built.
+//!
+//! A preset draws its parameters once per (seed) — a dataset passes one seed
+//! per sequence, so a video does not change weather between frames — and
+//! records them in the frame's camera file. The ground truth never depends on
+//! the weather: only lights, sky and media change, never surfaces.
+
+mod sun;
+
+use std::fmt;
+use std::str::FromStr;
+
+use serde::{Deserialize, Serialize};
+
+use crate::scene::desc::{LightDesc, SceneDesc, SkyDesc};
+use crate::town::rng::Rng;
+
+/// Stream tag of the weather draws (apart from the town generator's tags).
+const WEATHER_TAG: u64 = 0x5745_4154_4845_5200;
+
+pub use sun::{sun_irradiance, twilight_sky};
+
+/// One of the seven weathers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Weather {
+    /// Clear sky, sun high or mid.
+    Clear,
+    /// Broken to full cloud cover, sun diffused.
+    Cloudy,
+    /// Visibility 50–150 m.
+    Foggy,
+    /// Wet roads, puddles, haze.
+    Humid,
+    /// Moon, sky glow and artificial lights.
+    Night,
+    /// Rain, wet roads, dark overcast, haze.
+    Storm,
+    /// Low sun, long shadows, warm sky.
+    Sunset,
+}
+
+impl Weather {
+    /// Every weather, in DATASET.md order.
+    pub const ALL: [Weather; 7] = [
+        Weather::Clear,
+        Weather::Cloudy,
+        Weather::Foggy,
+        Weather::Humid,
+        Weather::Night,
+        Weather::Storm,
+        Weather::Sunset,
+    ];
+
+    /// The preset's name as used on the command line and in paths.
+    pub fn name(self) -> &'static str {
+        match self {
+            Weather::Clear => "clear",
+            Weather::Cloudy => "cloudy",
+            Weather::Foggy => "foggy",
+            Weather::Humid => "humid",
+            Weather::Night => "night",
+            Weather::Storm => "storm",
+            Weather::Sunset => "sunset",
+        }
+    }
+}
+
+impl fmt::Display for Weather {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Weather {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        Weather::ALL
+            .into_iter()
+            .find(|w| w.name() == s)
+            .ok_or_else(|| {
+                let names: Vec<&str> = Weather::ALL.iter().map(|w| w.name()).collect();
+                format!(
+                    "unknown weather '{s}' (expected one of {})",
+                    names.join(", ")
+                )
+            })
+    }
+}
+
+/// The drawn parameters of one preset, recorded in every frame's camera file.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct WeatherParams {
+    /// Preset name.
+    pub preset: Weather,
+    /// Sun elevation above the horizon, degrees (negative below).
+    pub sun_elevation_deg: f64,
+    /// Direction towards the sun, degrees counter-clockwise from world +x.
+    pub sun_azimuth_deg: f64,
+    /// Fraction of the sky covered by cloud, 0–1.
+    pub cloud_cover: f64,
+    /// Meteorological visibility in metres (Koschmieder), none for clear air.
+    pub visibility_m: Option<f64>,
+    /// Surface wetness, 0 (dry) – 1 (standing water).
+    pub wetness: f64,
+    /// Rain rate, mm/h (0 without rain).
+    pub rain_mm_per_h: f64,
+}
+
+/// Draws the parameters of `weather` from `seed` (the same seed gives the same
+/// look; a dataset passes one seed per sequence).
+pub fn draw_params(weather: Weather, seed: u64) -> WeatherParams {
+    let mut rng = Rng::new(&[seed, WEATHER_TAG, weather as u64]);
+    let azimuth = rng.range(0.0, 360.0);
+    let (elevation, cover, visibility, wetness, rain) = match weather {
+        Weather::Clear => (rng.range(25.0, 70.0), rng.range(0.0, 0.1), None, 0.0, 0.0),
+        Weather::Cloudy => (rng.range(20.0, 65.0), rng.range(0.6, 1.0), None, 0.0, 0.0),
+        Weather::Foggy => (
+            rng.range(10.0, 45.0),
+            rng.range(0.3, 0.8),
+            Some(rng.range(50.0, 150.0)),
+            rng.range(0.1, 0.3),
+            0.0,
+        ),
+        Weather::Humid => (
+            rng.range(15.0, 55.0),
+            rng.range(0.3, 0.7),
+            Some(rng.range(1500.0, 4000.0)),
+            rng.range(0.5, 0.9),
+            0.0,
+        ),
+        Weather::Night => (rng.range(-40.0, -18.0), rng.range(0.0, 0.4), None, 0.0, 0.0),
+        Weather::Storm => (
+            rng.range(15.0, 50.0),
+            1.0,
+            Some(rng.range(800.0, 2500.0)),
+            rng.range(0.8, 1.0),
+            rng.range(4.0, 16.0),
+        ),
+        Weather::Sunset => (rng.range(-2.0, 6.0), rng.range(0.0, 0.3), None, 0.0, 0.0),
+    };
+    WeatherParams {
+        preset: weather,
+        sun_elevation_deg: elevation,
+        sun_azimuth_deg: azimuth,
+        cloud_cover: cover,
+        visibility_m: visibility,
+        wetness,
+        rain_mm_per_h: rain,
+    }
+}
+
+/// Replaces the sun(s) and sky of `desc` with the weather's. Point, spot and
+/// emissive lights of the scene stay (street lights, vehicle lights).
+pub fn apply(desc: &mut SceneDesc, p: &WeatherParams) {
+    desc.lights.retain(|l| !matches!(l, LightDesc::Sun { .. }));
+    let clear_fraction = 1.0 - 0.8 * p.cloud_cover;
+    let direct = sun_irradiance(p.sun_elevation_deg).map(|e| e * clear_fraction);
+    if direct.iter().any(|&e| e > 0.0) {
+        desc.lights.push(LightDesc::Sun {
+            elevation_deg: p.sun_elevation_deg,
+            azimuth_deg: p.sun_azimuth_deg,
+            irradiance: direct,
+            angular_diameter_deg: 0.533,
+        });
+    }
+    desc.sky = Some(twilight_sky(p.sun_elevation_deg, p.cloud_cover));
+    if p.preset == Weather::Night {
+        // A full moon opposite the sun: about 2.5e-6 of the sun's irradiance.
+        desc.lights.push(LightDesc::Sun {
+            elevation_deg: -p.sun_elevation_deg,
+            azimuth_deg: (p.sun_azimuth_deg + 180.0) % 360.0,
+            irradiance: [2.4e-3, 2.3e-3, 2.1e-3],
+            angular_diameter_deg: 0.52,
+        });
+    }
+}
+
+/// A gradient sky description from three RGB radiances.
+pub(crate) fn gradient(zenith: [f64; 3], horizon: [f64; 3], ground: [f64; 3]) -> SkyDesc {
+    SkyDesc::Gradient {
+        zenith,
+        horizon,
+        ground,
+    }
+}
