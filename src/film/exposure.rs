@@ -39,6 +39,19 @@ pub fn exposure_ev(scale: f32) -> f32 {
 /// ignored; negative luminance counts as 0. Fireflies barely move the result:
 /// they enter through a log average and do not reach the 99th percentile.
 pub fn auto_exposure(film: &Film) -> f32 {
+    match log_average_luminance(film) {
+        Some(log_average) => {
+            let scale = MIDDLE_GREY as f64 / log_average;
+            let limit = (EXPOSURE_EV_MAX as f64).exp2();
+            scale.clamp(1.0 / limit, limit) as f32
+        }
+        None => 1.0,
+    }
+}
+
+/// Reinhard's log-average luminance L̄ of `film` (floored as described above),
+/// or `None` when the film is (almost) black.
+pub fn log_average_luminance(film: &Film) -> Option<f64> {
     let mut lum: Vec<f32> = film
         .rgb
         .iter()
@@ -47,22 +60,19 @@ pub fn auto_exposure(film: &Film) -> f32 {
         .map(|l| l.max(0.0))
         .collect();
     if lum.is_empty() {
-        return 1.0;
+        return None;
     }
     // 99th percentile by selection, O(n): the bright reference for the floor.
     let k = ((lum.len() - 1) as f64 * 0.99).round() as usize;
     let (_, &mut reference, _) = lum.select_nth_unstable_by(k, f32::total_cmp);
     if reference <= 0.0 {
-        return 1.0;
+        return None;
     }
     let floor = reference as f64 * EXPOSURE_FLOOR_FRACTION;
     // Sum in f64: over 1.44 M terms the rounding stays far below f32 precision,
     // so a uniform film maps to 0.18 to f32 precision.
     let sum_ln: f64 = lum.iter().map(|&l| (l as f64).max(floor).ln()).sum();
-    let log_average = (sum_ln / lum.len() as f64).exp();
-    let scale = MIDDLE_GREY as f64 / log_average;
-    let limit = (EXPOSURE_EV_MAX as f64).exp2();
-    scale.clamp(1.0 / limit, limit) as f32
+    Some((sum_ln / lum.len() as f64).exp())
 }
 
 #[cfg(test)]

@@ -7,16 +7,18 @@
 //! Exposure is computed once per frame from the LEFT view and applied to every
 //! view, so a surface has the same brightness in both images (GROUND_TRUTH.md).
 
+mod adaptation;
 mod aov;
 mod exposure;
 mod tone;
 
+pub use adaptation::{adaptation_factor, frame_exposure, CD_M2_PER_UNIT, DAYLIGHT_CD_M2};
 pub use aov::{
     Aov, MASK_MIRROR, MASK_RAIN, MASK_SKY, MASK_TRANSPARENT, OCCLUSION_OCCLUDED, OCCLUSION_VISIBLE,
 };
 pub use exposure::{
-    auto_exposure, exposure_ev, luminance_rec709, EXPOSURE_EV_MAX, EXPOSURE_FLOOR_FRACTION,
-    MIDDLE_GREY,
+    auto_exposure, exposure_ev, log_average_luminance, luminance_rec709, EXPOSURE_EV_MAX,
+    EXPOSURE_FLOOR_FRACTION, MIDDLE_GREY,
 };
 pub use tone::{quantize_u8, srgb_oetf, tone_curve_aces, tonemap_to_srgb8};
 

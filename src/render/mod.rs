@@ -144,7 +144,7 @@ pub fn render_frame(
         progress(n_views, n_views);
     }
     stats.path_seconds = t1.elapsed().as_secs_f64();
-    let exposure_scale = images.first().map_or(1.0, crate::film::auto_exposure);
+    let exposure_scale = images.first().map_or(1.0, crate::film::frame_exposure);
     FrameOutput {
         left,
         baselines,
