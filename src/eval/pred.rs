@@ -57,7 +57,7 @@ fn decode_npy(bytes: &[u8]) -> io::Result<(usize, usize, Vec<f32>)> {
         return Err(bad(format!("expected a 2-D array, found shape {shape:?}")));
     };
     let (h, w) = (h as usize, w as usize);
-    let descr = npy.dtype().descr();
+    let descr = npy.dtype().descr().trim_matches('\'').to_string();
     let values: Vec<f32> = match descr.get(1..) {
         Some("f4") => npy.into_vec::<f32>()?,
         Some("f8") => npy
