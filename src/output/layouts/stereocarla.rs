@@ -112,9 +112,11 @@ fn link_or_copy(src: &Path, dst: &Path) -> io::Result<()> {
         }
         let _ = fs::remove_file(&tmp);
         fs::hard_link(src, &tmp)?;
-        fs::rename(&tmp, dst).inspect_err(|_| {
-            let _ = fs::remove_file(&tmp);
-        })
+        let renamed = fs::rename(&tmp, dst);
+        // POSIX rename is a no-op when tmp and dst already name the same
+        // inode, leaving tmp behind: remove it in every case.
+        let _ = fs::remove_file(&tmp);
+        renamed
     })();
     match linked {
         Ok(()) => Ok(()),
@@ -238,6 +240,9 @@ mod tests {
         );
         let d = decode_stereocarla_depth(&[1000, 0], 54.0, 1385.64);
         assert!((d[0] - 74.82456).abs() < 1e-3);
-        assert!(d[1] > 1e10, "sky decodes far above the {STEREOCARLA_VALID_MAX_PX} px limit");
+        assert!(
+            d[1] > 1e10,
+            "sky decodes far above the {STEREOCARLA_VALID_MAX_PX} px limit"
+        );
     }
 }
