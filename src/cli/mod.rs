@@ -1,9 +1,11 @@
-//! The command line (the only home of `clap`): `render`, `town` and `bench`.
+//! The command line (the only home of `clap`): `render`, `town`, `bench`, `eval` and `stats`.
 //! Errors surface as one message naming the file, field or argument, and a
 //! non-zero exit code; nothing is written before the inputs are validated.
 
 mod bench;
+mod eval;
 mod render;
+mod stats;
 mod town;
 
 use clap::{Parser, Subcommand};
@@ -58,6 +60,10 @@ enum Command {
     Town(town::TownArgs),
     /// Measure BVH build, ground-truth and path-tracing throughput against raw traversal.
     Bench(bench::BenchArgs),
+    /// Score predicted disparities against a native ground-truth tree.
+    Eval(eval::EvalArgs),
+    /// Disparity statistics and frame counts of a native dataset.
+    Stats(stats::StatsArgs),
 }
 
 /// Runs the CLI on `args` (including the program name).
@@ -84,6 +90,8 @@ where
         Command::Render(a) => render::run(a),
         Command::Bench(a) => bench::run(a),
         Command::Town(a) => town::run(a),
+        Command::Eval(a) => eval::run(a),
+        Command::Stats(a) => stats::run(a),
     }
 }
 

@@ -15,6 +15,7 @@ mod layout;
 mod pfm;
 
 pub mod frame;
+pub mod layouts;
 
 pub use atomic::{read_file, write_atomic, Access, OutputError};
 pub use exr_io::{read_exr_f32_gray, read_exr_rgb_f32, write_exr_f32_gray, write_exr_rgb_f32};

@@ -1,0 +1,218 @@
+//! `parallax eval` figures against hand-computed values on small arrays, the
+//! prediction readers' round trips, and bad inputs through the real binary.
+
+use std::path::Path;
+use std::process::Command;
+
+use parallax::eval::pred::read_prediction;
+use parallax::eval::{evaluate, image_counts, MetricAccumulator, Metrics};
+use parallax::output::{
+    write_atomic, write_exr_f32_gray, write_pfm_gray, write_png_gray16, write_png_gray8,
+};
+
+fn close(m: &Metrics, want: [f64; 5]) {
+    let got = [m.epe, m.d1, m.bad1, m.bad2, m.bad3];
+    for (g, w) in got.iter().zip(want) {
+        assert!((g - w).abs() < 1e-9, "got {got:?}, want {want:?}");
+    }
+}
+
+#[test]
+fn metrics_match_hand_values_with_d1_both_conditions_noc_and_invalid_pixels() {
+    // err: 0.5 | 3.5 (> 3 and > 5 % of 10: D1) | 4 (> 3 but < 5 % of 100: not D1,
+    // occluded) | invalid gt 0 | invalid gt inf | 0 | NaN prediction → 0 px, err 2.
+    let gt = [10.0, 10.0, 100.0, 0.0, f32::INFINITY, 50.0, 2.0];
+    let pred = [10.5, 13.5, 104.0, 7.0, 7.0, 50.0, f32::NAN];
+    let occ = [0, 0, 255, 0, 0, 0, 0];
+    let (all, noc) = image_counts(&gt, &pred, &occ);
+    assert_eq!((all.n, noc.n), (5, 4));
+    // all: EPE 10/5; D1 1/5; bad1 3/5 (3.5, 4, 2); bad2 2/5 (2 is not > 2); bad3 2/5.
+    close(&all.metrics(), [2.0, 20.0, 60.0, 40.0, 40.0]);
+    // noc drops the 4 px pixel: EPE 6/4; D1 1/4; bad1 2/4; bad2 1/4; bad3 1/4.
+    close(&noc.metrics(), [1.5, 25.0, 50.0, 25.0, 25.0]);
+}
+
+#[test]
+fn pooled_and_per_image_means_differ_as_computed_by_hand() {
+    let mut acc = MetricAccumulator::default();
+    // Image A: one pixel, error 4 (a D1 outlier). Image B: three exact pixels.
+    let (a, _) = image_counts(&[10.0], &[14.0], &[0]);
+    let (b, _) = image_counts(&[10.0, 20.0, 30.0], &[10.0, 20.0, 30.0], &[0, 0, 0]);
+    let (empty, _) = image_counts(&[0.0], &[1.0], &[0]);
+    acc.add_image(&a);
+    acc.add_image(&b);
+    acc.add_image(&empty);
+    close(&acc.pooled(), [1.0, 25.0, 25.0, 25.0, 25.0]);
+    close(&acc.per_image_mean(), [2.0, 50.0, 50.0, 50.0, 50.0]);
+    assert_eq!((acc.images, acc.images_with_pixels()), (3, 2));
+}
+
+fn npy_bytes(descr: &str, fortran: bool, h: usize, w: usize, data: &[u8]) -> Vec<u8> {
+    let mut header = format!(
+        "{{'descr': '{descr}', 'fortran_order': {}, 'shape': ({h}, {w}), }}",
+        if fortran { "True" } else { "False" }
+    );
+    while (10 + header.len() + 1) % 64 != 0 {
+        header.push(' ');
+    }
+    header.push('\n');
+    let mut out = b"\x93NUMPY\x01\x00".to_vec();
+    out.extend_from_slice(&(header.len() as u16).to_le_bytes());
+    out.extend_from_slice(header.as_bytes());
+    out.extend_from_slice(data);
+    out
+}
+
+#[test]
+fn prediction_readers_round_trip_every_format() {
+    let dir = tempfile::tempdir().unwrap();
+    let (w, h) = (3, 2);
+    let v: Vec<f32> = vec![0.0, 1.5, 2.25, 100.0, 255.5, 7.75];
+    let p = dir.path().join("a.pfm");
+    write_pfm_gray(&p, w, h, &v).unwrap();
+    assert_eq!(read_prediction(&p).unwrap(), (w, h, v.clone()));
+    let p = dir.path().join("a.exr");
+    write_exr_f32_gray(&p, w, h, &v).unwrap();
+    assert_eq!(read_prediction(&p).unwrap(), (w, h, v.clone()));
+    // KITTI ×256: these values are multiples of 1/256, so exact; 0 stays 0.
+    let p = dir.path().join("a.png");
+    let k: Vec<u16> = v.iter().map(|x| (x * 256.0) as u16).collect();
+    write_png_gray16(&p, w, h, &k).unwrap();
+    assert_eq!(read_prediction(&p).unwrap(), (w, h, v.clone()));
+    // .npy: float32 C order, float64 C order, float32 Fortran order.
+    let f32_c: Vec<u8> = v.iter().flat_map(|x| x.to_le_bytes()).collect();
+    let f64_c: Vec<u8> = v.iter().flat_map(|x| (*x as f64).to_le_bytes()).collect();
+    let mut f32_f = Vec::new();
+    for i in 0..w {
+        for j in 0..h {
+            f32_f.extend_from_slice(&v[j * w + i].to_le_bytes());
+        }
+    }
+    for (name, descr, fortran, data) in [
+        ("c32.npy", "<f4", false, f32_c),
+        ("c64.npy", "<f8", false, f64_c),
+        ("f32.npy", "<f4", true, f32_f),
+    ] {
+        let p = dir.path().join(name);
+        write_atomic(&p, &npy_bytes(descr, fortran, h, w, &data)).unwrap();
+        assert_eq!(read_prediction(&p).unwrap(), (w, h, v.clone()), "{name}");
+    }
+    let p = dir.path().join("i32.npy");
+    write_atomic(&p, &npy_bytes("<i4", false, h, w, &[0u8; 24])).unwrap();
+    let e = read_prediction(&p).unwrap_err().to_string();
+    assert!(e.contains("i32.npy") && e.contains("float"), "{e}");
+}
+
+/// Writes one native GT image (disparity + occlusion) below `root/seq`.
+fn gt_image(root: &Path, seq: &str, b: &str, disp: &[f32], occ: &[u8]) {
+    let base = root.join(seq).join(b);
+    write_pfm_gray(&base.join("disp/000000.pfm"), 2, 2, disp).unwrap();
+    write_png_gray8(&base.join("occ/000000.png"), 2, 2, occ).unwrap();
+}
+
+#[test]
+fn dataset_groups_are_parsed_from_paths_and_missing_predictions_counted() {
+    let gt = tempfile::tempdir().unwrap();
+    let pred = tempfile::tempdir().unwrap();
+    let s1 = "town01/normal_clear/0000";
+    let s2 = "town02/roll05_foggy/0001";
+    gt_image(
+        gt.path(),
+        s1,
+        "baseline_010",
+        &[10.0, 10.0, 0.0, 20.0],
+        &[0, 0, 0, 255],
+    );
+    gt_image(
+        gt.path(),
+        s2,
+        "baseline_010",
+        &[4.0, 4.0, 4.0, 4.0],
+        &[0; 4],
+    );
+    gt_image(gt.path(), s2, "baseline_054", &[1.0; 4], &[0; 4]);
+    // s1: errors 2, 0, (invalid), 10 (occluded, D1) — as a 16-bit KITTI PNG.
+    let k: Vec<u16> = [12.0f32, 10.0, 3.0, 30.0]
+        .iter()
+        .map(|x| (x * 256.0) as u16)
+        .collect();
+    write_png_gray16(
+        &pred.path().join(s1).join("baseline_010/disp/000000.png"),
+        2,
+        2,
+        &k,
+    )
+    .unwrap();
+    // s2 baseline_010: every error 1 — as PFM; baseline_054 missing.
+    write_pfm_gray(
+        &pred.path().join(s2).join("baseline_010/disp/000000.pfm"),
+        2,
+        2,
+        &[5.0; 4],
+    )
+    .unwrap();
+    let r = evaluate(gt.path(), pred.path()).unwrap();
+    assert_eq!((r.gt_images, r.images_evaluated), (3, 2));
+    assert_eq!(
+        r.missing_predictions,
+        vec![format!("{s2}/baseline_054/disp/000000")]
+    );
+    // Pooled all: errors 2, 0, 10, 1, 1, 1, 1 → 16/7 px; bad1 2/7; D1 1/7.
+    let o = &r.overall.all.pooled;
+    assert!((o.epe - 16.0 / 7.0).abs() < 1e-12);
+    assert!((o.bad1 - 200.0 / 7.0).abs() < 1e-9 && (o.d1 - 100.0 / 7.0).abs() < 1e-9);
+    // Per image: EPE 4 and 1 → 2.5.
+    assert!((r.overall.all.per_image_mean.epe - 2.5).abs() < 1e-12);
+    // noc drops the 10 px pixel: errors 2, 0, 1, 1, 1, 1 → 1 px.
+    assert!((r.overall.noc.pooled.epe - 1.0).abs() < 1e-12);
+    assert_eq!(r.per_town["town01"].images, 1);
+    assert!((r.per_town["town01"].all.pooled.epe - 4.0).abs() < 1e-12);
+    assert_eq!(r.per_config["roll05"].pixels_all, 4);
+    assert_eq!(r.per_weather["foggy"].images, 1);
+    assert_eq!(r.per_baseline.len(), 1, "baseline_054 had no prediction");
+}
+
+fn run_eval(args: &[&str]) -> (i32, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_parallax"))
+        .arg("eval")
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn eval_cli_bad_inputs_exit_2_naming_the_path() {
+    let gt = tempfile::tempdir().unwrap();
+    let pred = tempfile::tempdir().unwrap();
+    gt_image(gt.path(), "", "baseline_010", &[1.0; 4], &[0; 4]);
+    let (g, p) = (gt.path().to_str().unwrap(), pred.path().to_str().unwrap());
+    let (code, err) = run_eval(&["--gt", "/no/such/gt", "--pred", p]);
+    assert_eq!(code, 2);
+    assert!(err.contains("/no/such/gt"), "{err}");
+    // Wrong size.
+    let bad = pred.path().join("baseline_010/disp/000000.pfm");
+    write_pfm_gray(&bad, 3, 1, &[1.0; 3]).unwrap();
+    let (code, err) = run_eval(&["--gt", g, "--pred", p]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains(bad.to_str().unwrap()) && err.contains("3×1"),
+        "{err}"
+    );
+    // Unreadable (garbage bytes).
+    write_atomic(&bad, b"not a pfm").unwrap();
+    let (code, err) = run_eval(&["--gt", g, "--pred", p]);
+    assert_eq!(code, 2);
+    assert!(err.contains(bad.to_str().unwrap()), "{err}");
+    // A good prediction: exit 0 and a JSON report.
+    write_pfm_gray(&bad, 2, 2, &[1.0; 4]).unwrap();
+    let json = pred.path().join("report.json");
+    let (code, err) = run_eval(&["--gt", g, "--pred", p, "--json", json.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(json).unwrap()).unwrap();
+    assert_eq!(v["overall"]["all"]["pooled"]["epe"].as_f64(), Some(0.0));
+    assert_eq!(v["per_town"]["-"]["images"].as_u64(), Some(1));
+}

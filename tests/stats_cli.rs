@@ -1,0 +1,134 @@
+//! `parallax stats` through the real binary on a small hand-made native tree
+//! (PFMs written here), against numpy-style hand values: valid = finite and
+//! > 0; median = mean of the two middle values for an even count.
+
+use std::fs;
+use std::path::Path;
+use std::process::Command;
+
+use parallax::output::write_pfm_gray;
+
+fn pfm(root: &Path, rel: &str, v: [f32; 4]) {
+    write_pfm_gray(&root.join(rel), 2, 2, &v).unwrap();
+}
+
+fn stats(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_parallax"))
+        .arg("stats")
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn near(v: &serde_json::Value, want: f64) {
+    let got = v.as_f64().unwrap_or(f64::NAN);
+    assert!((got - want).abs() < 1e-9, "got {got}, want {want}");
+}
+
+#[test]
+fn stats_match_numpy_style_hand_values_and_count_frames() {
+    let d = tempfile::tempdir().unwrap();
+    let r = d.path();
+    let s1 = "town01/normal_clear/0000";
+    pfm(
+        r,
+        &format!("{s1}/baseline_010/disp/000000.pfm"),
+        [0.0, 2.0, 4.0, f32::NAN],
+    );
+    pfm(
+        r,
+        &format!("{s1}/baseline_054/disp/000000.pfm"),
+        [0.0, 10.75, 21.5, 3.0],
+    );
+    pfm(
+        r,
+        &format!("{s1}/baseline_010/disp/000001.pfm"),
+        [1.0, 1.0, 1.0, f32::INFINITY],
+    );
+    pfm(
+        r,
+        "town02/pitch30_night/0003/baseline_010/disp/000000.pfm",
+        [100.0, 0.5, 0.0, -1.0],
+    );
+    // Not disparities: must be ignored.
+    pfm(
+        r,
+        &format!("{s1}/baseline_010/disp_right/000000.pfm"),
+        [9e3; 4],
+    );
+    let json = r.join("stats.json");
+    let plots = r.join("plots");
+    let (code, out, err) = stats(&[
+        r.to_str().unwrap(),
+        "--json",
+        json.to_str().unwrap(),
+        "--plot",
+        plots.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("overall") && out.contains("baseline_054"),
+        "{out}"
+    );
+    let v: serde_json::Value = serde_json::from_slice(&fs::read(&json).unwrap()).unwrap();
+    // baseline_010 valid: 2, 4, 1, 1, 1, 100, 0.5 → sorted 0.5 1 1 1 2 4 100.
+    let b010 = &v["per_baseline"]["baseline_010"];
+    assert_eq!(b010["pixels"].as_u64(), Some(7));
+    near(&b010["min"], 0.5);
+    near(&b010["max"], 100.0);
+    near(&b010["mean"], 109.5 / 7.0);
+    near(&b010["median"], 1.0);
+    // baseline_054 valid: 10.75, 21.5, 3 → median 10.75, mean 11.75.
+    let b054 = &v["per_baseline"]["baseline_054"];
+    near(&b054["median"], 10.75);
+    near(&b054["mean"], 11.75);
+    // overall, 10 values: 0.5 1 1 1 2 | 3 4 10.75 21.5 100 → median 2.5.
+    let o = &v["overall"];
+    assert_eq!(o["pixels"].as_u64(), Some(10));
+    near(&o["median"], 2.5);
+    near(&o["mean"], 144.75 / 10.0);
+    assert_eq!(v["frames"].as_u64(), Some(3));
+    assert_eq!(v["disparity_images"].as_u64(), Some(4));
+    assert_eq!(v["frames_per_town"]["town01"].as_u64(), Some(2));
+    assert_eq!(v["frames_per_town"]["town02"].as_u64(), Some(1));
+    assert_eq!(v["frames_per_config"]["pitch30"].as_u64(), Some(1));
+    assert_eq!(v["frames_per_weather"]["clear"].as_u64(), Some(2));
+    near(&v["median_bin_width_px"], 1.0 / 32.0);
+    // Plots: one PNG and one CSV per histogram; the CSV bars hold every pixel.
+    for name in ["overall", "baseline_010", "baseline_054"] {
+        assert!(plots.join(format!("hist_{name}.png")).is_file());
+    }
+    let csv = fs::read_to_string(plots.join("hist_overall.csv")).unwrap();
+    let total: u64 = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.rsplit(',').next().unwrap().parse::<u64>().unwrap())
+        .sum();
+    assert_eq!(total, 10);
+}
+
+#[test]
+fn stats_bad_inputs_exit_2_naming_the_path() {
+    let (code, _, err) = stats(&["/no/such/dataset"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("/no/such/dataset"), "{err}");
+    let d = tempfile::tempdir().unwrap();
+    let (code, _, err) = stats(&[d.path().to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains(d.path().to_str().unwrap()) && err.contains("no native disparity"),
+        "{err}"
+    );
+    // A corrupt disparity names the file.
+    let bad = d.path().join("baseline_010/disp/000000.pfm");
+    fs::create_dir_all(bad.parent().unwrap()).unwrap();
+    fs::write(&bad, b"Pf\n2 2\n-1.0\nxx").unwrap();
+    let (code, _, err) = stats(&[d.path().to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(err.contains(bad.to_str().unwrap()), "{err}");
+}
