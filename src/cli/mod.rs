@@ -1,10 +1,13 @@
-//! The command line (the only home of `clap`): `render`, `town` and `bench`.
+//! The command line (the only home of `clap`): `render`, `town`, `bench`,
+//! `dataset` and `verify`.
 //! Errors surface as one message naming the file, field or argument, and a
 //! non-zero exit code; nothing is written before the inputs are validated.
 
 mod bench;
+mod dataset;
 mod render;
 mod town;
+mod verify;
 
 use clap::{Parser, Subcommand};
 
@@ -58,6 +61,10 @@ enum Command {
     Town(town::TownArgs),
     /// Measure BVH build, ground-truth and path-tracing throughput against raw traversal.
     Bench(bench::BenchArgs),
+    /// Generate (or resume) a dataset from a configuration or preset; --shard i/N is 1-based.
+    Dataset(dataset::DatasetArgs),
+    /// Check a dataset's manifests and checksums; --repair re-renders bad frames.
+    Verify(verify::VerifyArgs),
 }
 
 /// Runs the CLI on `args` (including the program name).
@@ -84,6 +91,8 @@ where
         Command::Render(a) => render::run(a),
         Command::Bench(a) => bench::run(a),
         Command::Town(a) => town::run(a),
+        Command::Dataset(a) => dataset::run(a),
+        Command::Verify(a) => verify::run(a),
     }
 }
 
