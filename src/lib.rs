@@ -6,8 +6,8 @@
 pub mod accel;
 pub mod bench;
 pub mod camera;
-pub mod dataset;
 pub mod cli;
+pub mod dataset;
 pub mod film;
 pub mod geometry;
 pub mod integrator;

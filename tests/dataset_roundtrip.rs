@@ -10,21 +10,35 @@ use dataset_common::*;
 #[test]
 fn run_verifies_whole_and_second_run_skips_every_frame() {
     let dir = tempfile::tempdir().unwrap();
-    let cfg = write_config(dir.path(), "c.toml", &tiny_config(&["normal", "pitch30"], 2));
+    let cfg = write_config(
+        dir.path(),
+        "c.toml",
+        &tiny_config(&["normal", "pitch30"], 2),
+    );
     let out = dir.path().join("out");
     let o = dataset(&cfg, &out, &[]);
     ok(&o);
-    assert!(text(&o).contains("4 frames done, 0 skipped, 0 failed"), "{}", text(&o));
+    assert!(
+        text(&o).contains("4 frames done, 0 skipped, 0 failed"),
+        "{}",
+        text(&o)
+    );
     assert_eq!(manifest_lines(&out), 4);
     // 7 + 5 per baseline files per frame, plus dataset.json.
     assert_eq!(data_files(&out).len(), 4 * (7 + 5 * 2) + 1);
-    assert!(out.join("town01/pitch30_clear/0000/baseline_054/disp/000001.pfm").is_file());
+    assert!(out
+        .join("town01/pitch30_clear/0000/baseline_054/disp/000001.pfm")
+        .is_file());
     let v = verify(&out, &[]);
     ok(&v);
     assert!(text(&v).contains("4 frames ok"), "{}", text(&v));
     let again = dataset(&cfg, &out, &["--check-hashes"]);
     ok(&again);
-    assert!(text(&again).contains("0 frames done, 4 skipped"), "{}", text(&again));
+    assert!(
+        text(&again).contains("0 frames done, 4 skipped"),
+        "{}",
+        text(&again)
+    );
     assert_eq!(manifest_lines(&out), 4);
 }
 
@@ -38,7 +52,9 @@ fn three_shards_unite_to_the_one_shard_bytes() {
     for i in 1..=3 {
         let s = format!("{i}/3");
         ok(&dataset(&cfg, &many, &["--shard", &s]));
-        assert!(many.join(format!("manifest/shard-{i}-of-3.jsonl")).is_file());
+        assert!(many
+            .join(format!("manifest/shard-{i}-of-3.jsonl"))
+            .is_file());
     }
     assert_eq!(manifest_lines(&many), 4);
     let (a, b) = (data_files(&one), data_files(&many));
@@ -63,7 +79,12 @@ fn tampering_is_detected_and_repaired_to_the_original_bytes() {
     std::fs::write(&rgb, &bytes).unwrap();
     let disp = seq.join("baseline_010/disp/000001.pfm");
     let len = std::fs::metadata(&disp).unwrap().len();
-    std::fs::OpenOptions::new().write(true).open(&disp).unwrap().set_len(len / 2).unwrap();
+    std::fs::OpenOptions::new()
+        .write(true)
+        .open(&disp)
+        .unwrap()
+        .set_len(len / 2)
+        .unwrap();
     std::fs::remove_file(seq.join("baseline_054/rgb/000002.png")).unwrap();
     std::fs::write(seq.join("left/rgb/stray.png"), b"not a frame").unwrap();
 
@@ -71,9 +92,21 @@ fn tampering_is_detected_and_repaired_to_the_original_bytes() {
     assert_eq!(v.status.code(), Some(1), "{}", text(&v));
     let t = text(&v);
     assert!(t.contains("left/rgb/000000.png: SHA-256 differs"), "{t}");
-    assert!(t.contains(&format!("baseline_010/disp/000001.pfm: {} bytes, expected {len}", len / 2)), "{t}");
-    assert!(t.contains("baseline_054/rgb/000002.png: file is missing"), "{t}");
-    assert!(t.contains("extra      town01/normal_clear/0000/left/rgb/stray.png"), "{t}");
+    assert!(
+        t.contains(&format!(
+            "baseline_010/disp/000001.pfm: {} bytes, expected {len}",
+            len / 2
+        )),
+        "{t}"
+    );
+    assert!(
+        t.contains("baseline_054/rgb/000002.png: file is missing"),
+        "{t}"
+    );
+    assert!(
+        t.contains("extra      town01/normal_clear/0000/left/rgb/stray.png"),
+        "{t}"
+    );
     assert!(t.contains("0 frames ok"), "{t}");
 
     let r = verify(&out, &["--repair"]);
@@ -93,18 +126,28 @@ fn different_configuration_in_a_used_directory_is_refused_unless_forced() {
     ok(&dataset(&a, &out, &[]));
     let refused = dataset(&b, &out, &[]);
     assert_eq!(refused.status.code(), Some(2));
-    assert!(text(&refused).contains("different configuration"), "{}", text(&refused));
+    assert!(
+        text(&refused).contains("different configuration"),
+        "{}",
+        text(&refused)
+    );
     assert!(!out.join("town01/roll05_clear").exists());
     let forced = dataset(&b, &out, &["--force"]);
     ok(&forced);
-    assert!(out.join("town01/roll05_clear/0000/left/rgb/000000.png").is_file());
+    assert!(out
+        .join("town01/roll05_clear/0000/left/rgb/000000.png")
+        .is_file());
 
     let foreign = dir.path().join("foreign");
     std::fs::create_dir_all(&foreign).unwrap();
     std::fs::write(foreign.join("notes.txt"), b"mine").unwrap();
     let refused = dataset(&a, &foreign, &[]);
     assert_eq!(refused.status.code(), Some(2));
-    assert!(text(&refused).contains("no dataset.json"), "{}", text(&refused));
+    assert!(
+        text(&refused).contains("no dataset.json"),
+        "{}",
+        text(&refused)
+    );
 }
 
 #[test]
@@ -115,9 +158,16 @@ fn config_errors_name_the_file_and_key() {
     let o = dataset(&cfg, &dir.path().join("out"), &[]);
     assert_eq!(o.status.code(), Some(2));
     let t = text(&o);
-    assert!(t.contains("bad.toml") && t.contains("weathers[1]") && t.contains("snow"), "{t}");
+    assert!(
+        t.contains("bad.toml") && t.contains("weathers[1]") && t.contains("snow"),
+        "{t}"
+    );
     assert!(!dir.path().join("out").exists());
-    let cfg = write_config(dir.path(), "typo.toml", &format!("{}sppp = 2\n", tiny_config(&["normal"], 1)));
+    let cfg = write_config(
+        dir.path(),
+        "typo.toml",
+        &format!("{}sppp = 2\n", tiny_config(&["normal"], 1)),
+    );
     let t = text(&dataset(&cfg, &dir.path().join("out"), &[]));
     assert!(t.contains("typo.toml") && t.contains("'sppp'"), "{t}");
     let t = text(&dataset(&cfg, &dir.path().join("out"), &["--shard", "0/3"]));

@@ -32,8 +32,14 @@ fn spawn(cfg: &Path, out: &Path) -> Child {
 fn wait_for_first_line(out: &Path, child: &mut Child) {
     let t0 = Instant::now();
     while manifest_lines(out) < 1 {
-        assert!(child.try_wait().unwrap().is_none(), "run ended before its first line");
-        assert!(t0.elapsed() < Duration::from_secs(60), "no manifest line after 60 s");
+        assert!(
+            child.try_wait().unwrap().is_none(),
+            "run ended before its first line"
+        );
+        assert!(
+            t0.elapsed() < Duration::from_secs(60),
+            "no manifest line after 60 s"
+        );
         std::thread::sleep(Duration::from_millis(5));
     }
 }
@@ -57,7 +63,11 @@ fn temp_files(root: &Path) -> Vec<String> {
 #[test]
 fn sigkill_then_resume_is_byte_identical_to_an_uninterrupted_run() {
     let dir = tempfile::tempdir().unwrap();
-    let cfg = write_config(dir.path(), "c.toml", &tiny_config(&["normal", "pitch00"], 3));
+    let cfg = write_config(
+        dir.path(),
+        "c.toml",
+        &tiny_config(&["normal", "pitch00"], 3),
+    );
     let reference = dir.path().join("ref");
     ok(&dataset(&cfg, &reference, &[]));
     let out = dir.path().join("out");
@@ -99,5 +109,11 @@ fn sigterm_stops_with_no_partial_frame() {
     let lines = manifest_lines(&out);
     assert!(lines >= 1 && lines < 6, "{t}");
     assert!(t.contains(&format!("{lines} frames ok")), "{t}");
-    assert!(t.contains(&format!("{} missing, 0 corrupted, 0 duplicate, 0 extra files", 6 - lines)), "{t}");
+    assert!(
+        t.contains(&format!(
+            "{} missing, 0 corrupted, 0 duplicate, 0 extra files",
+            6 - lines
+        )),
+        "{t}"
+    );
 }

@@ -268,7 +268,10 @@ impl DatasetConfig {
 
     /// The weathers, parsed (valid after `validate`).
     pub fn weather_list(&self) -> Vec<Weather> {
-        self.weathers.iter().filter_map(|w| w.parse().ok()).collect()
+        self.weathers
+            .iter()
+            .filter_map(|w| w.parse().ok())
+            .collect()
     }
 }
 
@@ -283,14 +286,20 @@ mod tests {
         let c = parse_config(MINIMAL, "c.toml").unwrap();
         assert_eq!(c.configs.len(), 6);
         assert_eq!(c.baselines_cm, vec![10.0, 54.0, 100.0, 200.0, 300.0]);
-        assert_eq!((c.width, c.height, c.sequences, c.stride), (1600, 900, 1, 1));
+        assert_eq!(
+            (c.width, c.height, c.sequences, c.stride),
+            (1600, 900, 1, 1)
+        );
         assert_eq!(c.layouts, vec!["native".to_string()]);
     }
 
     #[test]
     fn errors_name_file_and_key() {
-        let e = parse_config(&format!("{MINIMAL}weathers = [\"clear\", \"snow\"]\n"), "c.toml")
-            .unwrap_err();
+        let e = parse_config(
+            &format!("{MINIMAL}weathers = [\"clear\", \"snow\"]\n"),
+            "c.toml",
+        )
+        .unwrap_err();
         assert_eq!((e.file.as_str(), e.key.as_str()), ("c.toml", "weathers[1]"));
         let e = parse_config(&format!("{MINIMAL}sppp = 3\n"), "c.toml").unwrap_err();
         assert_eq!(e.key, "sppp");
@@ -304,7 +313,8 @@ mod tests {
 
     #[test]
     fn every_layout_name_is_accepted() {
-        let text = format!("{MINIMAL}layouts = [\"native\", \"stereocarla\", \"kitti\", \"sceneflow\"]\n");
+        let text =
+            format!("{MINIMAL}layouts = [\"native\", \"stereocarla\", \"kitti\", \"sceneflow\"]\n");
         assert_eq!(parse_config(&text, "c.toml").unwrap().layouts.len(), 4);
         let e = parse_config(&format!("{MINIMAL}layouts = [\"coco\"]\n"), "c.toml").unwrap_err();
         assert_eq!(e.key, "layouts[0]");

@@ -265,7 +265,10 @@ mod tests {
     #[test]
     fn disparity_stats_skip_sky() {
         let r = DisparityRecord::of(54.0, &[1.0, f32::INFINITY, 3.0, 8.0]);
-        assert_eq!((r.valid_px, r.min_px, r.max_px, r.mean_px), (3, 1.0, 8.0, 4.0));
+        assert_eq!(
+            (r.valid_px, r.min_px, r.max_px, r.mean_px),
+            (3, 1.0, 8.0, 4.0)
+        );
         let sky = DisparityRecord::of(54.0, &[f32::INFINITY]);
         assert_eq!((sky.valid_px, sky.min_px, sky.max_px), (0, 0.0, 0.0));
     }

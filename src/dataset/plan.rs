@@ -91,7 +91,10 @@ fn name_word(name: &str) -> u64 {
 }
 
 fn config_index(c: CameraConfig) -> u64 {
-    crate::town::CONFIGS.iter().position(|&x| x == c).unwrap_or(0) as u64
+    crate::town::CONFIGS
+        .iter()
+        .position(|&x| x == c)
+        .unwrap_or(0) as u64
 }
 
 /// Seed of a town's geometry and traffic: the same for every configuration,

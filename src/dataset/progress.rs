@@ -92,7 +92,10 @@ impl Progress {
         match &self.bar {
             Some(pb) => {
                 pb.set_position(k * self.views_per_frame);
-                pb.set_message(format!("frames {k}/{} {mrays:.1} Mrays/s", self.total_frames));
+                pb.set_message(format!(
+                    "frames {k}/{} {mrays:.1} Mrays/s",
+                    self.total_frames
+                ));
             }
             None => eprintln!(
                 "[{:>8.1} s] frame {k}/{} {} {what} ({mrays:.2} Mrays/s)",

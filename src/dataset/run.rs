@@ -185,7 +185,10 @@ fn sweep_temp_files(root: &Path, jobs: &BTreeSet<Job>, shard: Shard) -> io::Resu
 /// Errors after which further frames cannot succeed either.
 fn is_fatal(e: &io::Error) -> bool {
     use io::ErrorKind::*;
-    matches!(e.kind(), StorageFull | ReadOnlyFilesystem | PermissionDenied | QuotaExceeded)
+    matches!(
+        e.kind(),
+        StorageFull | ReadOnlyFilesystem | PermissionDenied | QuotaExceeded
+    )
 }
 
 /// Runs (or resumes) the configuration's jobs of `opts.shard` below `opts.root`.
@@ -214,7 +217,9 @@ pub fn run_dataset(
     let views = 1 + config.baselines_cm.len();
     let progress = Progress::new(jobs.len() as u64, views as u64);
     if swept > 0 {
-        progress.note(&format!("removed {swept} temporary files of an interrupted run"));
+        progress.note(&format!(
+            "removed {swept} temporary files of an interrupted run"
+        ));
     }
     let mut s = RunSummary::default();
     for (k, job) in jobs.iter().enumerate() {
@@ -246,11 +251,12 @@ pub fn run_dataset(
                 break;
             }
             let _held = stop.write_lock();
-            let written = write_job(root, config, job, &r, t0.elapsed().as_secs_f64())
-                .and_then(|mut line| {
+            let written = write_job(root, config, job, &r, t0.elapsed().as_secs_f64()).and_then(
+                |mut line| {
                     line.render.seconds = t0.elapsed().as_secs_f64();
                     append_line(&manifest, &line).map(|_| line)
-                });
+                },
+            );
             match written {
                 Ok(line) => {
                     s.done += 1;
@@ -320,7 +326,10 @@ mod tests {
 
     #[test]
     fn native_paths_map_back_to_their_job() {
-        let j = job_of_path(Path::new("town01/roll05_night/0002/left/rgb/000007.png.tmp-9-1")).unwrap();
+        let j = job_of_path(Path::new(
+            "town01/roll05_night/0002/left/rgb/000007.png.tmp-9-1",
+        ))
+        .unwrap();
         assert_eq!(j.id(), "town01/roll05_night/0002/000007");
         assert!(job_of_path(Path::new("dataset.json.tmp-1-2")).is_none());
         assert!(job_of_path(Path::new("town01/bogus/0002/left/rgb/000007.png")).is_none());

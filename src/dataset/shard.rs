@@ -87,7 +87,12 @@ mod tests {
     use super::*;
 
     fn env_of(pairs: &[(&str, &str)]) -> impl Fn(&str) -> Option<String> + '_ {
-        move |k| pairs.iter().find(|(n, _)| *n == k).map(|(_, v)| v.to_string())
+        move |k| {
+            pairs
+                .iter()
+                .find(|(n, _)| *n == k)
+                .map(|(_, v)| v.to_string())
+        }
     }
 
     #[test]
@@ -111,12 +116,28 @@ mod tests {
 
     #[test]
     fn slurm_and_kubernetes_indices_map_to_1_based_shards() {
-        let slurm = env_of(&[("SLURM_ARRAY_TASK_ID", "0"), ("SLURM_ARRAY_TASK_COUNT", "4"), ("SLURM_ARRAY_TASK_MIN", "0")]);
-        assert_eq!(Shard::from_env(&slurm), Ok(Some(Shard { index: 1, count: 4 })));
-        let slurm1 = env_of(&[("SLURM_ARRAY_TASK_ID", "4"), ("SLURM_ARRAY_TASK_COUNT", "4")]);
-        assert_eq!(Shard::from_env(&slurm1), Ok(Some(Shard { index: 4, count: 4 })));
+        let slurm = env_of(&[
+            ("SLURM_ARRAY_TASK_ID", "0"),
+            ("SLURM_ARRAY_TASK_COUNT", "4"),
+            ("SLURM_ARRAY_TASK_MIN", "0"),
+        ]);
+        assert_eq!(
+            Shard::from_env(&slurm),
+            Ok(Some(Shard { index: 1, count: 4 }))
+        );
+        let slurm1 = env_of(&[
+            ("SLURM_ARRAY_TASK_ID", "4"),
+            ("SLURM_ARRAY_TASK_COUNT", "4"),
+        ]);
+        assert_eq!(
+            Shard::from_env(&slurm1),
+            Ok(Some(Shard { index: 4, count: 4 }))
+        );
         let k8s = env_of(&[("JOB_COMPLETION_INDEX", "2"), ("PARALLAX_SHARD_COUNT", "3")]);
-        assert_eq!(Shard::from_env(&k8s), Ok(Some(Shard { index: 3, count: 3 })));
+        assert_eq!(
+            Shard::from_env(&k8s),
+            Ok(Some(Shard { index: 3, count: 3 }))
+        );
         assert!(Shard::from_env(&env_of(&[("JOB_COMPLETION_INDEX", "2")])).is_err());
         assert_eq!(Shard::from_env(&env_of(&[])), Ok(None));
     }

@@ -171,7 +171,10 @@ pub fn prepare_repair(root: &Path, report: &VerifyReport) -> Result<BTreeSet<Job
     let config = dataset_config(root)?;
     let redo_ids = report.frames_to_render();
     let planned: BTreeMap<String, Job> = plan(&config).into_iter().map(|j| (j.id(), j)).collect();
-    let redo: BTreeSet<Job> = redo_ids.iter().filter_map(|id| planned.get(id).cloned()).collect();
+    let redo: BTreeSet<Job> = redo_ids
+        .iter()
+        .filter_map(|id| planned.get(id).cloned())
+        .collect();
     for file in super::manifest::manifest_files(root)? {
         let text = String::from_utf8_lossy(&crate::output::read_file(&file)?).into_owned();
         let mut kept = String::new();
