@@ -107,7 +107,7 @@ fn sigterm_stops_with_no_partial_frame() {
     let v = verify(&out, &[]);
     let t = text(&v);
     let lines = manifest_lines(&out);
-    assert!(lines >= 1 && lines < 6, "{t}");
+    assert!((1..6).contains(&lines), "{t}");
     assert!(t.contains(&format!("{lines} frames ok")), "{t}");
     assert!(
         t.contains(&format!(

@@ -241,6 +241,9 @@ pub fn run_dataset(
             let r = match r {
                 Ok(r) => r,
                 Err(e) => {
+                    if attempt == 0 {
+                        progress.note(&format!("{}: {e}; retrying once", job.id()));
+                    }
                     last_err = Some((e, false));
                     continue;
                 }
