@@ -1,7 +1,9 @@
 //! `--dry-run`: the plan's size and an estimate of its cost. One small frame
-//! (64 px wide, at most 2 spp) is rendered for calibration; its ground-truth
-//! time is scaled by pixels and its path time by pixels × spp, the scene
-//! build is counted once per frame, and the total is expressed in core-hours.
+//! (64 px wide) is rendered twice for calibration, at 1 and 2 spp: the
+//! difference of the path times is the cost of one sample per pixel (the
+//! rest, light and surface tables, is fixed per frame). Ground-truth time is
+//! scaled by pixels, sample time by pixels × spp, the scene build counted once
+//! per frame, and the total expressed in core-hours.
 
 use std::time::Instant;
 
@@ -40,16 +42,22 @@ pub fn estimate(
     let cal = Quality {
         width: cal_w,
         height: ((config.height as f64 * cal_w as f64 / config.width as f64).round() as u32).max(1),
-        spp: config.spp.min(2),
+        spp: 1,
     };
+    let cal2 = Quality { spp: 2, ..cal };
+    let cal1 = Quality { spp: 1, ..cal };
     let t0 = Instant::now();
-    let r = render_job(config, towns, &first, cal, backend, &|_, _| {})?;
+    let r1 = render_job(config, towns, &first, cal1, backend, &|_, _| {})?;
     let wall = t0.elapsed().as_secs_f64();
-    let s = r.out.stats;
-    let build = (wall - s.gt_seconds - s.path_seconds).max(0.0);
+    let r2 = render_job(config, towns, &first, cal2, backend, &|_, _| {})?;
+    let (s1, s2) = (r1.out.stats, r2.out.stats);
+    let build = (wall - s1.gt_seconds - s1.path_seconds).max(0.0);
+    let per_spp = (s2.path_seconds - s1.path_seconds).max(0.0);
+    let path_fixed = (s1.path_seconds - per_spp).max(0.0);
     let px_ratio = (config.width as f64 * config.height as f64) / (cal.width * cal.height) as f64;
-    let spp_ratio = config.spp as f64 / cal.spp as f64;
-    let seconds_per_frame = build + s.gt_seconds * px_ratio + s.path_seconds * px_ratio * spp_ratio;
+    let gt = s1.gt_seconds.min(s2.gt_seconds);
+    let seconds_per_frame =
+        build + path_fixed + gt * px_ratio + per_spp * px_ratio * config.spp as f64;
     let cores = rayon::current_num_threads();
     let hdr = if config.hdr { 1 + b } else { 0 };
     Ok(Estimate {
