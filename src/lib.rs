@@ -7,6 +7,7 @@ pub mod accel;
 pub mod bench;
 pub mod camera;
 pub mod cli;
+pub mod dataset;
 pub mod eval;
 pub mod film;
 pub mod geometry;

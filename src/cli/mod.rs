@@ -1,12 +1,15 @@
-//! The command line (the only home of `clap`): `render`, `town`, `bench`, `eval` and `stats`.
+//! The command line (the only home of `clap`): `render`, `town`, `bench`,
+//! `dataset`, `verify`, `eval` and `stats`.
 //! Errors surface as one message naming the file, field or argument, and a
 //! non-zero exit code; nothing is written before the inputs are validated.
 
 mod bench;
+mod dataset;
 mod eval;
 mod render;
 mod stats;
 mod town;
+mod verify;
 
 use clap::{Parser, Subcommand};
 
@@ -64,6 +67,10 @@ enum Command {
     Eval(eval::EvalArgs),
     /// Disparity statistics and frame counts of a native dataset.
     Stats(stats::StatsArgs),
+    /// Generate (or resume) a dataset from a configuration or preset; --shard i/N is 1-based.
+    Dataset(dataset::DatasetArgs),
+    /// Check a dataset's manifests and checksums; --repair re-renders bad frames.
+    Verify(verify::VerifyArgs),
 }
 
 /// Runs the CLI on `args` (including the program name).
@@ -92,6 +99,8 @@ where
         Command::Town(a) => town::run(a),
         Command::Eval(a) => eval::run(a),
         Command::Stats(a) => stats::run(a),
+        Command::Dataset(a) => dataset::run(a),
+        Command::Verify(a) => verify::run(a),
     }
 }
 

@@ -1,0 +1,160 @@
+//! `parallax dataset [CONFIG.toml | --preset NAME] -o OUT [--shard i/N]
+//! [--dry-run] [--force]`: generate, resume or plan a dataset.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use clap::Args;
+
+use super::{show, thread_pool, CliError};
+use crate::accel::Backend;
+use crate::dataset::frame::Towns;
+use crate::dataset::{self as ds, DatasetConfig, RunOptions, Shard, StopGuard};
+
+/// Arguments of `parallax dataset`.
+#[derive(Args, Debug)]
+pub struct DatasetArgs {
+    /// Dataset configuration (TOML); omit with --preset.
+    #[arg(conflicts_with = "preset", required_unless_present = "preset")]
+    pub config: Option<PathBuf>,
+    /// Built-in configuration: demo (minutes on 2 cores) or stereocarla
+    /// (StereoCarla's full axes and counts, ~139k left frames; for clusters).
+    #[arg(long)]
+    pub preset: Option<String>,
+    /// Dataset root (created; an existing root of the same configuration is resumed).
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Render only shard i of N (1-based: 1/4 … 4/4). Without it, the shard is
+    /// read from SLURM_ARRAY_TASK_ID/SLURM_ARRAY_TASK_COUNT (and
+    /// SLURM_ARRAY_TASK_MIN) or from a Kubernetes Indexed Job's
+    /// JOB_COMPLETION_INDEX (0-based) with PARALLAX_SHARD_COUNT; else all jobs.
+    #[arg(long, value_parser = Shard::parse)]
+    pub shard: Option<Shard>,
+    /// Print the plan (frames, images, estimated core-hours from a short
+    /// calibration render) and exit without writing.
+    #[arg(long)]
+    pub dry_run: bool,
+    /// Start over in a non-empty directory holding another configuration.
+    #[arg(long)]
+    pub force: bool,
+    /// On resume, check the SHA-256 of complete frames (not only their sizes).
+    #[arg(long)]
+    pub check_hashes: bool,
+    /// Directory holding the town files.
+    #[arg(long, default_value = "scenes")]
+    pub scenes: PathBuf,
+    /// Worker threads (0 = all cores).
+    #[arg(long, default_value_t = 0)]
+    pub threads: usize,
+    /// Traversal backend: embree or bvh.
+    #[arg(long, default_value_t = Backend::default_backend())]
+    pub backend: Backend,
+}
+
+fn resolve_config(a: &DatasetArgs) -> Result<DatasetConfig, CliError> {
+    match (&a.config, &a.preset) {
+        (Some(path), _) => ds::load_config(path).map_err(|e| CliError::input(e.to_string())),
+        (None, Some(name)) => ds::presets::preset(name).map_err(CliError::input),
+        (None, None) => Err(CliError::input("give a CONFIG file or --preset NAME")),
+    }
+}
+
+fn resolve_shard(a: &DatasetArgs) -> Result<Shard, CliError> {
+    if let Some(s) = a.shard {
+        return Ok(s);
+    }
+    let env = |k: &str| std::env::var(k).ok();
+    Ok(Shard::from_env(&env)
+        .map_err(CliError::input)?
+        .unwrap_or(Shard::ALL))
+}
+
+fn to_cli(e: ds::DatasetError) -> CliError {
+    if e.input {
+        CliError::input(e.message)
+    } else {
+        CliError::failure(e.message)
+    }
+}
+
+/// Runs `parallax dataset`.
+pub fn run(a: DatasetArgs) -> Result<(), CliError> {
+    let config = resolve_config(&a)?;
+    let shard = resolve_shard(&a)?;
+    let pool = thread_pool(a.threads)?;
+    if a.dry_run {
+        return pool.install(|| dry_run(&config, &a, shard));
+    }
+    let opts = RunOptions {
+        root: a.output.clone(),
+        shard,
+        force: a.force,
+        check_hashes: a.check_hashes,
+        backend: a.backend,
+        scenes: a.scenes.clone(),
+        only: None,
+    };
+    let stop = StopGuard::new();
+    let root = show(&a.output);
+    stop.install(move || {
+        eprintln!("parallax: stopped; run the same command again to resume in {root}")
+    })
+    .map_err(CliError::failure)?;
+    let summary = pool
+        .install(|| ds::run_dataset(&config, &opts, &stop))
+        .map_err(to_cli)?;
+    println!(
+        "dataset {} shard {}: {} frames done, {} skipped, {} failed",
+        show(&a.output),
+        shard,
+        summary.done,
+        summary.skipped,
+        summary.failed.len()
+    );
+    if !summary.failed.is_empty() {
+        return Err(CliError::failure(format!(
+            "{} frames failed (listed in {}/failures/)",
+            summary.failed.len(),
+            show(&a.output)
+        )));
+    }
+    Ok(())
+}
+
+fn dry_run(config: &DatasetConfig, a: &DatasetArgs, shard: Shard) -> Result<(), CliError> {
+    let towns = Towns::load(config, &a.scenes).map_err(CliError::input)?;
+    let t0 = Instant::now();
+    let e = ds::estimate::estimate(config, &towns, a.backend).map_err(CliError::failure)?;
+    let in_shard = (0..e.frames as usize).filter(|&i| shard.owns(i)).count();
+    println!(
+        "plan: {} towns × {} configurations × {} weathers × {} sequences × {} frames = {} frames \
+         ({} in shard {shard})",
+        config.towns.len(),
+        config.configs.len(),
+        config.weathers.len(),
+        config.sequences,
+        config.frames_per_sequence,
+        e.frames,
+        in_shard
+    );
+    println!(
+        "      {} RGB images ({} views per frame), {} files per frame, {}×{} px, {} spp, baselines {:?} cm, layouts {}",
+        e.images,
+        1 + config.baselines_cm.len(),
+        e.files_per_frame,
+        config.width,
+        config.height,
+        config.spp,
+        config.baselines_cm,
+        config.layouts.join(", ")
+    );
+    println!(
+        "estimate: {:.2} s per frame on {} threads (calibrated in {:.1} s), {:.1} core-hours in all, {:.1} for this shard",
+        e.seconds_per_frame,
+        e.cores,
+        t0.elapsed().as_secs_f64(),
+        e.core_hours,
+        e.core_hours * in_shard as f64 / e.frames.max(1) as f64
+    );
+    Ok(())
+}

@@ -1,0 +1,84 @@
+//! `parallax verify ROOT [--repair]`: check every manifest line and checksum
+//! of a dataset; report missing, corrupted, duplicate and extra; repair by
+//! re-rendering exactly the bad frames.
+
+use std::path::PathBuf;
+
+use clap::Args;
+
+use super::{show, thread_pool, CliError};
+use crate::accel::Backend;
+use crate::dataset::{self as ds, RunOptions, Shard, StopGuard};
+
+/// Arguments of `parallax verify`.
+#[derive(Args, Debug)]
+pub struct VerifyArgs {
+    /// Dataset root (holding dataset.json and manifest/).
+    pub root: PathBuf,
+    /// Re-render missing, corrupted and duplicated frames, drop their old
+    /// manifest lines and delete extra files, then verify again.
+    #[arg(long)]
+    pub repair: bool,
+    /// Directory holding the town files (with --repair).
+    #[arg(long, default_value = "scenes")]
+    pub scenes: PathBuf,
+    /// Worker threads (0 = all cores).
+    #[arg(long, default_value_t = 0)]
+    pub threads: usize,
+    /// Traversal backend (with --repair).
+    #[arg(long, default_value_t = Backend::default_backend())]
+    pub backend: Backend,
+}
+
+fn to_cli(e: ds::DatasetError) -> CliError {
+    if e.input {
+        CliError::input(e.message)
+    } else {
+        CliError::failure(e.message)
+    }
+}
+
+/// Runs `parallax verify`.
+pub fn run(a: VerifyArgs) -> Result<(), CliError> {
+    let report = ds::verify_dataset(&a.root).map_err(to_cli)?;
+    print!("{}", report.text());
+    if report.is_whole() {
+        println!("{}: whole", show(&a.root));
+        return Ok(());
+    }
+    if !a.repair {
+        return Err(CliError::failure(format!(
+            "{}: not whole (run with --repair to fix)",
+            show(&a.root)
+        )));
+    }
+    let config = ds::verify::dataset_config(&a.root).map_err(to_cli)?;
+    let redo = ds::prepare_repair(&a.root, &report).map_err(to_cli)?;
+    println!("repair: re-rendering {} frames", redo.len());
+    let opts = RunOptions {
+        root: a.root.clone(),
+        shard: Shard::ALL,
+        force: false,
+        check_hashes: true,
+        backend: a.backend,
+        scenes: a.scenes.clone(),
+        only: Some(redo),
+    };
+    let stop = StopGuard::new();
+    stop.install(|| eprintln!("parallax: repair stopped; run verify --repair again"))
+        .map_err(CliError::failure)?;
+    let pool = thread_pool(a.threads)?;
+    pool.install(|| ds::run_dataset(&config, &opts, &stop))
+        .map_err(to_cli)?;
+    let after = ds::verify_dataset(&a.root).map_err(to_cli)?;
+    print!("after repair: {}", after.text());
+    if after.is_whole() {
+        println!("{}: whole", show(&a.root));
+        Ok(())
+    } else {
+        Err(CliError::failure(format!(
+            "{}: still not whole after repair",
+            show(&a.root)
+        )))
+    }
+}

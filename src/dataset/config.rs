@@ -1,0 +1,322 @@
+//! The dataset configuration (`parallax dataset CONFIG.toml`): which towns,
+//! camera configurations, weathers and baselines, how many sequences and
+//! frames, at what resolution and quality, in which layouts, from which seed.
+//!
+//! TOML with `deny_unknown_fields`; every error names the file and the key
+//! (`weathers[1]`, `spp`). The resolved configuration is stored whole in
+//! `dataset.json`, so a dataset's job list can always be recomputed from it.
+
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+
+use crate::town::CameraConfig;
+use crate::weather::Weather;
+
+/// Layout names a configuration may select (DATASET.md, layouts).
+pub const LAYOUTS: [&str; 4] = ["native", "stereocarla", "kitti", "sceneflow"];
+
+/// A dataset configuration. Field docs are the config-file manual.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DatasetConfig {
+    /// Master seed: every town, weather draw and sample stream derives from it.
+    pub seed: u64,
+    /// Town names (files `SCENES/<name>.toml`), e.g. `["town01", "town03"]`.
+    pub towns: Vec<String>,
+    /// Camera configurations: normal, roll05, roll15, roll30, pitch00, pitch30
+    /// (default: all six).
+    #[serde(default = "all_configs")]
+    pub configs: Vec<String>,
+    /// Weathers: clear, cloudy, foggy, humid, night, storm, sunset (default: clear).
+    #[serde(default = "default_weathers")]
+    pub weathers: Vec<String>,
+    /// Baselines in centimetres, each > 0 (default 10, 54, 100, 200, 300).
+    #[serde(default = "default_baselines")]
+    pub baselines_cm: Vec<f64>,
+    /// Sequences (drives) per (town, configuration, weather), ≥ 1 (default 1).
+    #[serde(default = "one")]
+    pub sequences: u32,
+    /// Frames per sequence, ≥ 1.
+    pub frames_per_sequence: u32,
+    /// Town frames (at the town's fps) between consecutive dataset frames, ≥ 1
+    /// (default 1).
+    #[serde(default = "one")]
+    pub stride: u32,
+    /// Image width in pixels (default 1600).
+    #[serde(default = "default_width")]
+    pub width: u32,
+    /// Image height in pixels (default 900).
+    #[serde(default = "default_height")]
+    pub height: u32,
+    /// Horizontal field of view, degrees, in (0, 180) (default 60).
+    #[serde(default = "default_hfov")]
+    pub hfov_deg: f64,
+    /// Samples per pixel per view, ≥ 1 (default 64).
+    #[serde(default = "default_spp")]
+    pub spp: u32,
+    /// Maximum path depth, ≥ 1 (default 5).
+    #[serde(default = "default_max_depth")]
+    pub max_depth: u32,
+    /// Layouts to write: native, stereocarla, kitti, sceneflow (default: native).
+    #[serde(default = "default_layouts")]
+    pub layouts: Vec<String>,
+    /// Also write linear HDR radiance EXRs in the native layout (default false).
+    #[serde(default)]
+    pub hdr: bool,
+}
+
+fn all_configs() -> Vec<String> {
+    crate::town::CONFIGS
+        .iter()
+        .map(|c| c.name().to_string())
+        .collect()
+}
+fn default_weathers() -> Vec<String> {
+    vec!["clear".into()]
+}
+fn default_baselines() -> Vec<f64> {
+    vec![10.0, 54.0, 100.0, 200.0, 300.0]
+}
+fn one() -> u32 {
+    1
+}
+fn default_width() -> u32 {
+    1600
+}
+fn default_height() -> u32 {
+    900
+}
+fn default_hfov() -> f64 {
+    60.0
+}
+fn default_spp() -> u32 {
+    64
+}
+fn default_max_depth() -> u32 {
+    5
+}
+fn default_layouts() -> Vec<String> {
+    vec!["native".into()]
+}
+
+/// A configuration error naming the file and the key.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ConfigError {
+    /// The configuration file (or `--preset NAME`).
+    pub file: String,
+    /// Key path such as `weathers[1]` (empty for syntax errors without one).
+    pub key: String,
+    /// What is wrong.
+    pub message: String,
+}
+
+impl std::fmt::Display for ConfigError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.key.is_empty() {
+            write!(f, "{}: {}", self.file, self.message)
+        } else {
+            write!(f, "{}: key '{}': {}", self.file, self.key, self.message)
+        }
+    }
+}
+
+impl std::error::Error for ConfigError {}
+
+/// Reads and validates a configuration file.
+pub fn load_config(path: &Path) -> Result<DatasetConfig, ConfigError> {
+    let file = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|e| ConfigError {
+        file: file.clone(),
+        key: String::new(),
+        message: format!("cannot read the configuration: {e}"),
+    })?;
+    parse_config(&text, &file)
+}
+
+/// Parses and validates configuration text; `file` names it in errors.
+pub fn parse_config(text: &str, file: &str) -> Result<DatasetConfig, ConfigError> {
+    let de = toml::Deserializer::new(text);
+    let config: DatasetConfig = serde_path_to_error::deserialize(de).map_err(|e| {
+        let mut key = e.path().to_string();
+        let inner = e.into_inner();
+        if key == "." {
+            key.clear();
+        }
+        let msg = inner.message().trim().replace('\n', "; ");
+        // Unknown keys and missing fields: name the key itself.
+        for prefix in ["unknown field `", "missing field `"] {
+            if let Some(field) = msg.strip_prefix(prefix).and_then(|r| r.split('`').next()) {
+                key = field.to_string();
+            }
+        }
+        ConfigError {
+            file: file.to_string(),
+            key,
+            message: msg,
+        }
+    })?;
+    config.validate(file)?;
+    Ok(config)
+}
+
+impl DatasetConfig {
+    /// Checks every value; the error names `file` and the key.
+    pub fn validate(&self, file: &str) -> Result<(), ConfigError> {
+        let err = |key: String, message: String| ConfigError {
+            file: file.to_string(),
+            key,
+            message,
+        };
+        let nonempty = |key: &str, n: usize| {
+            if n == 0 {
+                Err(err(key.into(), "must list at least one value".into()))
+            } else {
+                Ok(())
+            }
+        };
+        nonempty("towns", self.towns.len())?;
+        nonempty("configs", self.configs.len())?;
+        nonempty("weathers", self.weathers.len())?;
+        nonempty("baselines_cm", self.baselines_cm.len())?;
+        nonempty("layouts", self.layouts.len())?;
+        for (i, t) in self.towns.iter().enumerate() {
+            let ok = !t.is_empty()
+                && t.chars()
+                    .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
+            if !ok {
+                return Err(err(
+                    format!("towns[{i}]"),
+                    format!("'{t}' is not a town name (letters, digits, '_', '-')"),
+                ));
+            }
+        }
+        for (i, c) in self.configs.iter().enumerate() {
+            c.parse::<CameraConfig>()
+                .map_err(|m| err(format!("configs[{i}]"), m))?;
+        }
+        for (i, w) in self.weathers.iter().enumerate() {
+            w.parse::<Weather>()
+                .map_err(|m| err(format!("weathers[{i}]"), m))?;
+        }
+        for (i, b) in self.baselines_cm.iter().enumerate() {
+            if !(b.is_finite() && *b > 0.0) {
+                return Err(err(
+                    format!("baselines_cm[{i}]"),
+                    format!("{b} must be a positive number of centimetres"),
+                ));
+            }
+        }
+        for (i, l) in self.layouts.iter().enumerate() {
+            if !LAYOUTS.contains(&l.as_str()) {
+                return Err(err(
+                    format!("layouts[{i}]"),
+                    format!("unknown layout '{l}' (one of {})", LAYOUTS.join(", ")),
+                ));
+            }
+        }
+        for (key, v) in [
+            ("sequences", self.sequences),
+            ("frames_per_sequence", self.frames_per_sequence),
+            ("stride", self.stride),
+            ("width", self.width),
+            ("height", self.height),
+            ("spp", self.spp),
+            ("max_depth", self.max_depth),
+        ] {
+            if v == 0 {
+                return Err(err(key.into(), "must be at least 1".into()));
+            }
+        }
+        if self.spp > crate::sampler::MAX_SPP {
+            return Err(err(
+                "spp".into(),
+                format!("must be at most {}", crate::sampler::MAX_SPP),
+            ));
+        }
+        if self.frames_per_sequence > 999_999 {
+            return Err(err(
+                "frames_per_sequence".into(),
+                "must be at most 999999 (six-digit frame names)".into(),
+            ));
+        }
+        if !(self.hfov_deg > 0.0 && self.hfov_deg < 180.0) {
+            return Err(err(
+                "hfov_deg".into(),
+                format!("{} must lie in (0, 180)", self.hfov_deg),
+            ));
+        }
+        let dup = |key: &str, v: &[String]| {
+            for (i, a) in v.iter().enumerate() {
+                if v[..i].contains(a) {
+                    return Err(err(format!("{key}[{i}]"), format!("'{a}' is listed twice")));
+                }
+            }
+            Ok(())
+        };
+        dup("towns", &self.towns)?;
+        dup("configs", &self.configs)?;
+        dup("weathers", &self.weathers)?;
+        dup("layouts", &self.layouts)?;
+        Ok(())
+    }
+
+    /// The camera configurations, parsed (valid after `validate`).
+    pub fn camera_configs(&self) -> Vec<CameraConfig> {
+        self.configs.iter().filter_map(|c| c.parse().ok()).collect()
+    }
+
+    /// The weathers, parsed (valid after `validate`).
+    pub fn weather_list(&self) -> Vec<Weather> {
+        self.weathers
+            .iter()
+            .filter_map(|w| w.parse().ok())
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const MINIMAL: &str = "seed = 1\ntowns = [\"town01\"]\nframes_per_sequence = 2\n";
+
+    #[test]
+    fn defaults_fill_the_full_axes() {
+        let c = parse_config(MINIMAL, "c.toml").unwrap();
+        assert_eq!(c.configs.len(), 6);
+        assert_eq!(c.baselines_cm, vec![10.0, 54.0, 100.0, 200.0, 300.0]);
+        assert_eq!(
+            (c.width, c.height, c.sequences, c.stride),
+            (1600, 900, 1, 1)
+        );
+        assert_eq!(c.layouts, vec!["native".to_string()]);
+    }
+
+    #[test]
+    fn errors_name_file_and_key() {
+        let e = parse_config(
+            &format!("{MINIMAL}weathers = [\"clear\", \"snow\"]\n"),
+            "c.toml",
+        )
+        .unwrap_err();
+        assert_eq!((e.file.as_str(), e.key.as_str()), ("c.toml", "weathers[1]"));
+        let e = parse_config(&format!("{MINIMAL}sppp = 3\n"), "c.toml").unwrap_err();
+        assert_eq!(e.key, "sppp");
+        let e = parse_config(&format!("{MINIMAL}spp = \"many\"\n"), "c.toml").unwrap_err();
+        assert_eq!(e.key, "spp");
+        let e = parse_config("seed = 1\ntowns = [\"town01\"]\n", "c.toml").unwrap_err();
+        assert_eq!(e.key, "frames_per_sequence");
+        let e = parse_config(&format!("{MINIMAL}stride = 0\n"), "c.toml").unwrap_err();
+        assert_eq!(e.key, "stride");
+    }
+
+    #[test]
+    fn every_layout_name_is_accepted() {
+        let text =
+            format!("{MINIMAL}layouts = [\"native\", \"stereocarla\", \"kitti\", \"sceneflow\"]\n");
+        assert_eq!(parse_config(&text, "c.toml").unwrap().layouts.len(), 4);
+        let e = parse_config(&format!("{MINIMAL}layouts = [\"coco\"]\n"), "c.toml").unwrap_err();
+        assert_eq!(e.key, "layouts[0]");
+    }
+}

@@ -1,0 +1,286 @@
+//! Bookkeeping files of a dataset root (DATASET.md, bookkeeping):
+//! `dataset.json` (generator, full configuration, seed, intrinsics,
+//! baselines, layouts) and `manifest/shard-i-of-N.jsonl`, one JSON line per
+//! complete frame, appended and fsynced after every file of the frame has
+//! been renamed into place. A line torn by a kill is ignored on reading and
+//! cut off before the shard appends again.
+
+use std::collections::BTreeMap;
+use std::fs::{self, OpenOptions};
+use std::io::{self, Write};
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use super::config::DatasetConfig;
+use super::plan::Job;
+use crate::output::{Access, FileRecord, OutputError};
+
+/// Name of the dataset description at the root.
+pub const DATASET_JSON: &str = "dataset.json";
+/// Directory of the per-shard manifests.
+pub const MANIFEST_DIR: &str = "manifest";
+/// Directory of the per-shard failure lists.
+pub const FAILURES_DIR: &str = "failures";
+
+/// `dataset.json`: everything needed to recompute the job list.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DatasetMeta {
+    /// `parallax <version>`.
+    pub generator: String,
+    /// The full resolved configuration.
+    pub config: DatasetConfig,
+    /// The master seed (also in `config`).
+    pub seed: u64,
+    /// Intrinsic matrix K (row-major), pixels.
+    pub k: [[f64; 3]; 3],
+    /// Image width and height, pixels.
+    pub resolution: [u32; 2],
+    /// Baselines in centimetres, in rig order.
+    pub baselines_cm: Vec<f64>,
+    /// Layouts written.
+    pub layouts: Vec<String>,
+}
+
+impl DatasetMeta {
+    /// The description of a dataset rendered from `config`.
+    pub fn new(config: &DatasetConfig) -> DatasetMeta {
+        let intr = crate::camera::Intrinsics::from_hfov(
+            config.width,
+            config.height,
+            config.hfov_deg.to_radians(),
+        );
+        DatasetMeta {
+            generator: format!("parallax {}", env!("CARGO_PKG_VERSION")),
+            config: config.clone(),
+            seed: config.seed,
+            k: intr.k_matrix(),
+            resolution: [config.width, config.height],
+            baselines_cm: config.baselines_cm.clone(),
+            layouts: config.layouts.clone(),
+        }
+    }
+}
+
+/// Reads `dataset.json` below `root`; `Ok(None)` when absent.
+pub fn read_meta(root: &Path) -> io::Result<Option<DatasetMeta>> {
+    let path = root.join(DATASET_JSON);
+    if !path.exists() {
+        return Ok(None);
+    }
+    let bytes = crate::output::read_file(&path)?;
+    serde_json::from_slice(&bytes)
+        .map(Some)
+        .map_err(|e| OutputError::wrap(&path, Access::Read, io::Error::other(e)))
+}
+
+/// Render statistics of a frame.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RenderRecord {
+    /// Samples per pixel per view.
+    pub spp: u32,
+    /// Rays traced (ground truth + paths).
+    pub rays: u64,
+    /// Wall-clock seconds for the frame (build, render, write).
+    pub seconds: f64,
+}
+
+/// Left-view disparity statistics of one baseline over finite pixels.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DisparityRecord {
+    /// Baseline, centimetres.
+    pub baseline_cm: f64,
+    /// Pixels with finite disparity (not sky).
+    pub valid_px: u64,
+    /// Minimum disparity, px (0 when no pixel is valid).
+    pub min_px: f64,
+    /// Maximum disparity, px.
+    pub max_px: f64,
+    /// Mean disparity, px.
+    pub mean_px: f64,
+}
+
+impl DisparityRecord {
+    /// Statistics of `disparity` (non-finite values are skipped).
+    pub fn of(baseline_cm: f64, disparity: &[f32]) -> DisparityRecord {
+        let (mut n, mut lo, mut hi, mut sum) = (0u64, f64::INFINITY, f64::NEG_INFINITY, 0.0);
+        for &d in disparity.iter().filter(|d| d.is_finite()) {
+            let d = d as f64;
+            n += 1;
+            lo = lo.min(d);
+            hi = hi.max(d);
+            sum += d;
+        }
+        if n == 0 {
+            (lo, hi) = (0.0, 0.0);
+        }
+        DisparityRecord {
+            baseline_cm,
+            valid_px: n,
+            min_px: lo,
+            max_px: hi,
+            mean_px: if n > 0 { sum / n as f64 } else { 0.0 },
+        }
+    }
+}
+
+/// One manifest line: a complete frame.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ManifestLine {
+    /// Town name.
+    pub town: String,
+    /// Camera configuration name.
+    pub config: String,
+    /// Weather name.
+    pub weather: String,
+    /// Sequence index.
+    pub sequence: u32,
+    /// Frame index within the sequence.
+    pub frame: u32,
+    /// Town frame (time step) rendered.
+    pub town_frame: u64,
+    /// Seed of the frame's sample streams.
+    pub seed: u64,
+    /// Every file of the frame, paths relative to the dataset root.
+    pub files: Vec<FileRecord>,
+    /// Render statistics.
+    pub render: RenderRecord,
+    /// Left-view disparity statistics per baseline.
+    pub disparity: Vec<DisparityRecord>,
+}
+
+impl ManifestLine {
+    /// The job this line completes; `None` when a name does not parse.
+    pub fn job(&self) -> Option<Job> {
+        Some(Job {
+            town: self.town.clone(),
+            config: self.config.parse().ok()?,
+            weather: self.weather.parse().ok()?,
+            sequence: self.sequence,
+            frame: self.frame,
+        })
+    }
+}
+
+/// One line read back from a manifest file.
+#[derive(Clone, Debug)]
+pub struct ReadLine {
+    /// The manifest file.
+    pub file: PathBuf,
+    /// 1-based line number.
+    pub line_no: usize,
+    /// The parsed line, or why it does not parse (torn or edited).
+    pub parsed: Result<ManifestLine, String>,
+}
+
+/// The manifest files below `root`, sorted by name.
+pub fn manifest_files(root: &Path) -> io::Result<Vec<PathBuf>> {
+    let dir = root.join(MANIFEST_DIR);
+    if !dir.is_dir() {
+        return Ok(Vec::new());
+    }
+    let mut files: Vec<PathBuf> = fs::read_dir(&dir)
+        .map_err(|e| OutputError::wrap(&dir, Access::Read, e))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "jsonl"))
+        .collect();
+    files.sort();
+    Ok(files)
+}
+
+/// Every line of every manifest below `root`, in file and line order.
+pub fn read_manifests(root: &Path) -> io::Result<Vec<ReadLine>> {
+    let mut out = Vec::new();
+    for file in manifest_files(root)? {
+        let bytes = crate::output::read_file(&file)?;
+        let text = String::from_utf8_lossy(&bytes);
+        for (i, line) in text.lines().enumerate() {
+            if line.trim().is_empty() {
+                continue;
+            }
+            out.push(ReadLine {
+                file: file.clone(),
+                line_no: i + 1,
+                parsed: serde_json::from_str(line).map_err(|e| e.to_string()),
+            });
+        }
+    }
+    Ok(out)
+}
+
+/// The last parsed line of every job (later lines win).
+pub fn latest_lines(lines: &[ReadLine]) -> BTreeMap<Job, ManifestLine> {
+    let mut map = BTreeMap::new();
+    for l in lines {
+        if let Some((job, line)) = l.parsed.as_ref().ok().and_then(|p| Some((p.job()?, p))) {
+            map.insert(job, line.clone());
+        }
+    }
+    map
+}
+
+/// Cuts a torn last line (no trailing newline, left by a kill) off `path`.
+pub fn cut_torn_tail(path: &Path) -> io::Result<()> {
+    let Ok(bytes) = fs::read(path) else {
+        return Ok(());
+    };
+    if bytes.is_empty() || bytes.ends_with(b"\n") {
+        return Ok(());
+    }
+    let keep = bytes.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+    let f = OpenOptions::new()
+        .write(true)
+        .open(path)
+        .map_err(|e| OutputError::wrap(path, Access::Write, e))?;
+    f.set_len(keep as u64)
+        .and_then(|_| f.sync_all())
+        .map_err(|e| OutputError::wrap(path, Access::Write, e))
+}
+
+/// Appends `line` as one JSON line to `path` and fsyncs it.
+pub fn append_line(path: &Path, line: &ManifestLine) -> io::Result<()> {
+    let mut text = serde_json::to_string(line)
+        .map_err(|e| OutputError::wrap(path, Access::Write, io::Error::other(e)))?;
+    text.push('\n');
+    (|| {
+        if let Some(dir) = path.parent() {
+            fs::create_dir_all(dir)?;
+        }
+        let mut f = OpenOptions::new().create(true).append(true).open(path)?;
+        // One write call: a concurrent reader sees the line whole or not at all.
+        f.write_all(text.as_bytes())?;
+        f.sync_data()
+    })()
+    .map_err(|e| OutputError::wrap(path, Access::Write, e))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn disparity_stats_skip_sky() {
+        let r = DisparityRecord::of(54.0, &[1.0, f32::INFINITY, 3.0, 8.0]);
+        assert_eq!(
+            (r.valid_px, r.min_px, r.max_px, r.mean_px),
+            (3, 1.0, 8.0, 4.0)
+        );
+        let sky = DisparityRecord::of(54.0, &[f32::INFINITY]);
+        assert_eq!((sky.valid_px, sky.min_px, sky.max_px), (0, 0.0, 0.0));
+    }
+
+    #[test]
+    fn torn_tail_is_cut_and_whole_lines_kept() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("m.jsonl");
+        fs::write(&p, b"{\"a\":1}\n{\"a\":2}\n{\"a\"").unwrap();
+        cut_torn_tail(&p).unwrap();
+        assert_eq!(fs::read(&p).unwrap(), b"{\"a\":1}\n{\"a\":2}\n");
+        cut_torn_tail(&p).unwrap();
+        assert_eq!(fs::read(&p).unwrap().len(), 16);
+    }
+}

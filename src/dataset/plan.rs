@@ -1,0 +1,225 @@
+//! The job list: a pure function of the configuration. Jobs are ordered
+//! town → configuration → weather → sequence → frame (the configuration's
+//! list order), and every random choice derives from the master seed by
+//! named streams, so any shard can compute any frame on its own.
+//!
+//! A sequence is a stretch of one drive through its town: dataset frame `f`
+//! of sequence `s` is town frame `(s · frames_per_sequence + f) · stride`.
+
+use std::path::PathBuf;
+
+use super::config::DatasetConfig;
+use crate::sampler::hash_words;
+use crate::town::CameraConfig;
+use crate::weather::Weather;
+
+/// Stream tag of a town's seed (layout, buildings, traffic).
+const TAG_TOWN: u64 = 0x5041_5254_4f57_4e00;
+/// Stream tag of a sequence's weather draw.
+const TAG_SEQUENCE: u64 = 0x5041_5253_4551_0000;
+/// Stream tag of a frame's sample streams.
+const TAG_FRAME: u64 = 0x5041_5246_5241_4d45;
+
+/// One frame to render. Ordered by (town, configuration in DATASET.md order,
+/// weather, sequence, frame).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Job {
+    /// Town name.
+    pub town: String,
+    /// Camera configuration.
+    pub config: CameraConfig,
+    /// Weather preset.
+    pub weather: Weather,
+    /// Sequence index within (town, config, weather).
+    pub sequence: u32,
+    /// Frame index within the sequence (the file stem NNNNNN).
+    pub frame: u32,
+}
+
+impl Job {
+    fn key(&self) -> (&str, u64, Weather, u32, u32) {
+        (
+            &self.town,
+            config_index(self.config),
+            self.weather,
+            self.sequence,
+            self.frame,
+        )
+    }
+
+    /// The identifier used in logs and verify reports:
+    /// `town01/normal_clear/0000/000003`.
+    pub fn id(&self) -> String {
+        format!(
+            "{}/{:06}",
+            self.sequence_dir().to_string_lossy(),
+            self.frame
+        )
+    }
+
+    /// The sequence directory relative to the dataset root:
+    /// `<town>/<config>_<weather>/<sequence:04>`.
+    pub fn sequence_dir(&self) -> PathBuf {
+        PathBuf::from(&self.town)
+            .join(format!("{}_{}", self.config.name(), self.weather.name()))
+            .join(sequence_name(self.sequence))
+    }
+}
+
+impl Ord for Job {
+    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
+        self.key().cmp(&other.key())
+    }
+}
+
+impl PartialOrd for Job {
+    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+/// Directory name of a sequence: 4-digit zero-padded index.
+pub fn sequence_name(sequence: u32) -> String {
+    format!("{sequence:04}")
+}
+
+/// FNV-1a of a name: turns town names into stream words.
+fn name_word(name: &str) -> u64 {
+    name.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| {
+        (h ^ b as u64).wrapping_mul(0x100_0000_01b3)
+    })
+}
+
+fn config_index(c: CameraConfig) -> u64 {
+    crate::town::CONFIGS
+        .iter()
+        .position(|&x| x == c)
+        .unwrap_or(0) as u64
+}
+
+/// Seed of a town's geometry and traffic: the same for every configuration,
+/// weather and sequence of the dataset.
+pub fn town_seed(seed: u64, town: &str) -> u64 {
+    hash_words(&[seed, TAG_TOWN, name_word(town)])
+}
+
+/// Seed of a sequence's weather draw: one look per video, shared by every
+/// configuration of the same drive.
+pub fn sequence_seed(seed: u64, town: &str, weather: Weather, sequence: u32) -> u64 {
+    hash_words(&[
+        seed,
+        TAG_SEQUENCE,
+        name_word(town),
+        weather as u64,
+        sequence as u64,
+    ])
+}
+
+/// Seed of a frame's sample streams.
+pub fn frame_seed(seed: u64, job: &Job) -> u64 {
+    hash_words(&[
+        seed,
+        TAG_FRAME,
+        name_word(&job.town),
+        config_index(job.config),
+        job.weather as u64,
+        job.sequence as u64,
+        job.frame as u64,
+    ])
+}
+
+/// The town frame (time step at the town's fps) of a job.
+pub fn town_frame(config: &DatasetConfig, job: &Job) -> u64 {
+    (job.sequence as u64 * config.frames_per_sequence as u64 + job.frame as u64)
+        * config.stride as u64
+}
+
+/// Every job of the configuration in the stable order.
+pub fn plan(config: &DatasetConfig) -> Vec<Job> {
+    let configs = config.camera_configs();
+    let weathers = config.weather_list();
+    let mut jobs = Vec::with_capacity(frame_count(config) as usize);
+    for town in &config.towns {
+        for &c in &configs {
+            for &w in &weathers {
+                for sequence in 0..config.sequences {
+                    for frame in 0..config.frames_per_sequence {
+                        jobs.push(Job {
+                            town: town.clone(),
+                            config: c,
+                            weather: w,
+                            sequence,
+                            frame,
+                        });
+                    }
+                }
+            }
+        }
+    }
+    jobs
+}
+
+/// Number of jobs without listing them.
+pub fn frame_count(config: &DatasetConfig) -> u64 {
+    [
+        config.towns.len() as u64,
+        config.configs.len() as u64,
+        config.weathers.len() as u64,
+        config.sequences as u64,
+        config.frames_per_sequence as u64,
+    ]
+    .iter()
+    .product()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn plan_is_stable_ordered_and_counted() {
+        let c = super::super::presets::demo();
+        let a = plan(&c);
+        assert_eq!(a, plan(&c));
+        assert_eq!(a.len() as u64, frame_count(&c));
+        assert_eq!(a.len(), 6 * 2 * 2);
+        assert_eq!(a[0].id(), "town01/normal_clear/0000/000000");
+        assert_eq!(a[1].id(), "town01/normal_clear/0000/000001");
+        assert_eq!(a[2].id(), "town01/normal_sunset/0000/000000");
+        let mut sorted = a.clone();
+        sorted.dedup();
+        assert_eq!(sorted.len(), a.len());
+    }
+
+    #[test]
+    fn seeds_differ_per_axis_and_repeat_per_key() {
+        let c = super::super::presets::demo();
+        let jobs = plan(&c);
+        let seeds: std::collections::BTreeSet<u64> =
+            jobs.iter().map(|j| frame_seed(c.seed, j)).collect();
+        assert_eq!(seeds.len(), jobs.len());
+        assert_eq!(frame_seed(7, &jobs[3]), frame_seed(7, &jobs[3].clone()));
+        assert_ne!(frame_seed(7, &jobs[3]), frame_seed(8, &jobs[3]));
+        assert_ne!(town_seed(7, "town01"), town_seed(7, "town02"));
+        assert_ne!(
+            sequence_seed(7, "town01", Weather::Clear, 0),
+            sequence_seed(7, "town01", Weather::Clear, 1)
+        );
+    }
+
+    #[test]
+    fn sequences_are_consecutive_stretches_of_one_drive() {
+        let mut c = super::super::presets::demo();
+        c.sequences = 3;
+        c.frames_per_sequence = 4;
+        c.stride = 5;
+        let j = Job {
+            town: "town01".into(),
+            config: CameraConfig::Normal,
+            weather: Weather::Clear,
+            sequence: 2,
+            frame: 1,
+        };
+        assert_eq!(town_frame(&c, &j), (2 * 4 + 1) * 5);
+    }
+}

@@ -1,0 +1,342 @@
+//! The dataset loop: prepare the root (refuse a different configuration),
+//! sweep temporary files left by a killed run, skip complete frames, render
+//! the rest with one retry, write each frame whole and append its manifest
+//! line, and list failures. Resume is simply running the same command again.
+
+use std::collections::BTreeSet;
+use std::fs;
+use std::io;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use super::config::DatasetConfig;
+use super::frame::{frame_complete, render_job, write_job, Quality, Towns};
+use super::manifest::{
+    append_line, cut_torn_tail, latest_lines, read_manifests, DatasetMeta, DATASET_JSON,
+    FAILURES_DIR, MANIFEST_DIR,
+};
+use super::plan::{plan, Job};
+use super::progress::{Progress, RunSummary};
+use super::shard::Shard;
+use super::signals::StopGuard;
+use crate::accel::Backend;
+use crate::output::{write_atomic, write_json, Access, OutputError};
+
+/// A dataset error: bad input (exit 2) or a failure while running (exit 1).
+#[derive(Debug)]
+pub struct DatasetError {
+    /// Message naming the file, key or path.
+    pub message: String,
+    /// True for bad input (configuration, arguments, refused directory).
+    pub input: bool,
+}
+
+impl DatasetError {
+    /// A bad-input error.
+    pub fn input(message: impl Into<String>) -> Self {
+        DatasetError {
+            message: message.into(),
+            input: true,
+        }
+    }
+    /// A runtime failure.
+    pub fn failure(message: impl Into<String>) -> Self {
+        DatasetError {
+            message: message.into(),
+            input: false,
+        }
+    }
+}
+
+impl From<io::Error> for DatasetError {
+    fn from(e: io::Error) -> Self {
+        DatasetError::failure(e.to_string())
+    }
+}
+
+/// How to run.
+#[derive(Clone, Debug)]
+pub struct RunOptions {
+    /// Dataset root.
+    pub root: PathBuf,
+    /// Which part of the job list.
+    pub shard: Shard,
+    /// Replace a different configuration in a non-empty root.
+    pub force: bool,
+    /// Check SHA-256 of complete frames before skipping them (else sizes only).
+    pub check_hashes: bool,
+    /// Traversal backend.
+    pub backend: Backend,
+    /// Directory holding the town files.
+    pub scenes: PathBuf,
+    /// Render only these jobs (verify --repair); `None`: the whole shard.
+    pub only: Option<BTreeSet<Job>>,
+}
+
+/// True for names written by `write_atomic` before their rename.
+pub fn is_temp_name(name: &str) -> bool {
+    name.contains(".tmp-")
+}
+
+/// Creates the root, refuses a different configuration (or foreign files)
+/// in a non-empty root unless `force`, and writes `dataset.json`.
+pub fn prepare_root(root: &Path, config: &DatasetConfig, force: bool) -> Result<(), DatasetError> {
+    if root.is_file() {
+        return Err(DatasetError::input(format!(
+            "{}: is a file, expected a directory",
+            root.display()
+        )));
+    }
+    fs::create_dir_all(root).map_err(|e| OutputError::wrap(root, Access::Write, e))?;
+    let meta = DatasetMeta::new(config);
+    let existing = super::manifest::read_meta(root);
+    let nonempty = fs::read_dir(root)
+        .map_err(|e| OutputError::wrap(root, Access::Read, e))?
+        .filter_map(|e| e.ok())
+        .any(|e| !is_temp_name(&e.file_name().to_string_lossy()));
+    let same = matches!(&existing, Ok(Some(m)) if m.config == meta.config);
+    if nonempty && !same {
+        let why = match existing {
+            Ok(Some(_)) => "holds a dataset of a different configuration",
+            Ok(None) => "is not empty and holds no dataset.json",
+            Err(_) => "holds an unreadable dataset.json",
+        };
+        if !force {
+            return Err(DatasetError::input(format!(
+                "{}: {why}; choose another directory or pass --force to start over \
+                 (the old manifests are removed)",
+                root.display()
+            )));
+        }
+        for dir in [MANIFEST_DIR, FAILURES_DIR] {
+            let p = root.join(dir);
+            if p.exists() {
+                fs::remove_dir_all(&p).map_err(|e| OutputError::wrap(&p, Access::Write, e))?;
+            }
+        }
+    }
+    write_json(&root.join(DATASET_JSON), &meta)?;
+    Ok(())
+}
+
+/// The job a native-layout path below the root belongs to
+/// (`<town>/<config>_<weather>/<seq>/…/NNNNNN.ext…`).
+fn job_of_path(rel: &Path) -> Option<Job> {
+    let parts: Vec<String> = rel
+        .components()
+        .map(|c| c.as_os_str().to_string_lossy().into_owned())
+        .collect();
+    if parts.len() < 4 {
+        return None;
+    }
+    let (config, weather) = parts[1].split_once('_')?;
+    let stem = parts.last()?.split('.').next()?;
+    Some(Job {
+        town: parts[0].clone(),
+        config: config.parse().ok()?,
+        weather: weather.parse().ok()?,
+        sequence: parts[2].parse().ok()?,
+        frame: stem.parse().ok()?,
+    })
+}
+
+/// Every file below `root` (relative paths), depth first, sorted.
+pub fn walk_files(root: &Path) -> io::Result<Vec<PathBuf>> {
+    let mut out = Vec::new();
+    let mut stack = vec![PathBuf::new()];
+    while let Some(rel) = stack.pop() {
+        let dir = root.join(&rel);
+        for e in fs::read_dir(&dir).map_err(|e| OutputError::wrap(&dir, Access::Read, e))? {
+            let e = e.map_err(|e| OutputError::wrap(&dir, Access::Read, e))?;
+            let r = rel.join(e.file_name());
+            if e.file_type().is_ok_and(|t| t.is_dir()) {
+                stack.push(r);
+            } else {
+                out.push(r);
+            }
+        }
+    }
+    out.sort();
+    Ok(out)
+}
+
+/// Removes temporary files a killed run left behind: those of this shard's
+/// jobs, and (for a one-shard run) every other one. Returns how many.
+fn sweep_temp_files(root: &Path, jobs: &BTreeSet<Job>, shard: Shard) -> io::Result<usize> {
+    let mut n = 0;
+    for rel in walk_files(root)? {
+        let name = rel.file_name().map(|s| s.to_string_lossy().into_owned());
+        if !name.is_some_and(|n| is_temp_name(&n)) {
+            continue;
+        }
+        let ours = match job_of_path(&rel) {
+            Some(job) => jobs.contains(&job),
+            None => shard.count == 1,
+        };
+        if ours {
+            let p = root.join(&rel);
+            fs::remove_file(&p).map_err(|e| OutputError::wrap(&p, Access::Write, e))?;
+            n += 1;
+        }
+    }
+    Ok(n)
+}
+
+/// Errors after which further frames cannot succeed either.
+fn is_fatal(e: &io::Error) -> bool {
+    use io::ErrorKind::*;
+    matches!(
+        e.kind(),
+        StorageFull | ReadOnlyFilesystem | PermissionDenied | QuotaExceeded
+    )
+}
+
+/// Runs (or resumes) the configuration's jobs of `opts.shard` below `opts.root`.
+pub fn run_dataset(
+    config: &DatasetConfig,
+    opts: &RunOptions,
+    stop: &StopGuard,
+) -> Result<RunSummary, DatasetError> {
+    let started = Instant::now();
+    let towns = Towns::load(config, &opts.scenes).map_err(DatasetError::input)?;
+    prepare_root(&opts.root, config, opts.force)?;
+    let root = opts.root.as_path();
+    let jobs: Vec<Job> = plan(config)
+        .into_iter()
+        .enumerate()
+        .filter(|(i, _)| opts.shard.owns(*i))
+        .map(|(_, j)| j)
+        .filter(|j| opts.only.as_ref().is_none_or(|o| o.contains(j)))
+        .collect();
+    let job_set: BTreeSet<Job> = jobs.iter().cloned().collect();
+    let swept = sweep_temp_files(root, &job_set, opts.shard)?;
+    let manifest = root.join(MANIFEST_DIR).join(opts.shard.manifest_name());
+    cut_torn_tail(&manifest)?;
+    let existing = latest_lines(&read_manifests(root)?);
+    super::layouts::write_layout_indexes(root, config)
+        .map_err(|e| DatasetError::failure(e.to_string()))?;
+
+    let views = 1 + config.baselines_cm.len();
+    let progress = Progress::new(jobs.len() as u64, views as u64);
+    if swept > 0 {
+        progress.note(&format!(
+            "removed {swept} temporary files of an interrupted run"
+        ));
+    }
+    let mut s = RunSummary::default();
+    for (k, job) in jobs.iter().enumerate() {
+        if stop.stopped() {
+            break;
+        }
+        if let Some(line) = existing.get(job) {
+            if frame_complete(root, line, opts.check_hashes) {
+                s.skipped += 1;
+                progress.frame(k as u64 + 1, job, "complete, skipped", &s);
+                continue;
+            }
+        }
+        let mut last_err = None;
+        for attempt in 0..2 {
+            let t0 = Instant::now();
+            let cb = |done: usize, _: usize| progress.views(k as u64, done);
+            let r = render_job(config, &towns, job, Quality::of(config), opts.backend, &cb);
+            let r = match r {
+                Ok(r) => r,
+                Err(e) => {
+                    if attempt == 0 {
+                        progress.note(&format!("{}: {e}; retrying once", job.id()));
+                    }
+                    last_err = Some((e, false));
+                    continue;
+                }
+            };
+            if stop.stopped() {
+                // Abandon the frame: nothing of it has been written.
+                last_err = None;
+                break;
+            }
+            let _held = stop.write_lock();
+            let written = write_job(root, config, job, &r, t0.elapsed().as_secs_f64()).and_then(
+                |mut line| {
+                    line.render.seconds = t0.elapsed().as_secs_f64();
+                    append_line(&manifest, &line).map(|_| line)
+                },
+            );
+            match written {
+                Ok(line) => {
+                    s.done += 1;
+                    s.rays += line.render.rays;
+                    s.frame_seconds += line.render.seconds;
+                    s.trace_seconds += r.out.stats.gt_seconds + r.out.stats.path_seconds;
+                    progress.frame(k as u64 + 1, job, "written", &s);
+                    last_err = None;
+                    break;
+                }
+                Err(e) => {
+                    let fatal = is_fatal(&e);
+                    last_err = Some((e.to_string(), fatal));
+                    if attempt == 0 {
+                        progress.note(&format!("{}: {e}; retrying once", job.id()));
+                    }
+                }
+            }
+        }
+        if let Some((e, fatal)) = last_err {
+            progress.note(&format!("FAILED {}: {e}", job.id()));
+            s.failed.push((job.id(), e));
+            if fatal {
+                progress.note("stopping: the output cannot be written");
+                break;
+            }
+        }
+    }
+    progress.finish();
+    write_failures(root, opts.shard, &s)?;
+    eprintln!(
+        "shard {}: {}",
+        opts.shard,
+        s.line(started.elapsed().as_secs_f64())
+    );
+    Ok(s)
+}
+
+/// Writes `failures/shard-i-of-N.txt` (one `id<TAB>error` per line), or
+/// removes it when nothing failed.
+fn write_failures(root: &Path, shard: Shard, s: &RunSummary) -> Result<(), DatasetError> {
+    let path = root
+        .join(FAILURES_DIR)
+        .join(format!("shard-{}-of-{}.txt", shard.index, shard.count));
+    if s.failed.is_empty() {
+        if path.exists() {
+            fs::remove_file(&path).map_err(|e| OutputError::wrap(&path, Access::Write, e))?;
+        }
+        return Ok(());
+    }
+    let text: String = s
+        .failed
+        .iter()
+        .map(|(id, e)| format!("{id}\t{}\n", e.replace('\n', " ")))
+        .collect();
+    if let Err(e) = write_atomic(&path, text.as_bytes()) {
+        eprintln!("parallax: cannot write the failure list: {e}");
+    } else {
+        eprintln!("failures listed in {}", path.display());
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn native_paths_map_back_to_their_job() {
+        let j = job_of_path(Path::new(
+            "town01/roll05_night/0002/left/rgb/000007.png.tmp-9-1",
+        ))
+        .unwrap();
+        assert_eq!(j.id(), "town01/roll05_night/0002/000007");
+        assert!(job_of_path(Path::new("dataset.json.tmp-1-2")).is_none());
+        assert!(job_of_path(Path::new("town01/bogus/0002/left/rgb/000007.png")).is_none());
+    }
+}

@@ -1,0 +1,115 @@
+//! Shared set-up of the dataset tests: a tiny configuration (64×36 px, 1 spp,
+//! one town, two baselines), the real binary, and a hash map of a root's files.
+
+#![allow(dead_code)]
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// A tiny configuration: town01, `configs`, clear, `frames` frames, 64×36, 1 spp.
+pub fn tiny_config(configs: &[&str], frames: u32) -> String {
+    let list: Vec<String> = configs.iter().map(|c| format!("\"{c}\"")).collect();
+    format!(
+        "seed = 11\ntowns = [\"town01\"]\nconfigs = [{}]\nweathers = [\"clear\"]\n\
+         baselines_cm = [10.0, 54.0]\nframes_per_sequence = {frames}\nstride = 7\n\
+         width = 64\nheight = 36\nspp = 1\nmax_depth = 2\n",
+        list.join(", ")
+    )
+}
+
+/// Writes `text` as `name` in `dir` and returns its path.
+pub fn write_config(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+/// The parallax binary with `--scenes` pointing at the repository's towns.
+pub fn parallax(args: &[&str]) -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_parallax"));
+    c.args(args);
+    c.env_remove("SLURM_ARRAY_TASK_ID");
+    c.env_remove("JOB_COMPLETION_INDEX");
+    c
+}
+
+/// Scenes directory argument.
+pub fn scenes() -> String {
+    format!("{}/scenes", env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Runs `parallax dataset CONFIG -o OUT [extra…] --threads 2`.
+pub fn dataset(config: &Path, out: &Path, extra: &[&str]) -> Output {
+    let mut args = vec![
+        "dataset",
+        config.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    let s = scenes();
+    args.extend_from_slice(&["--scenes", &s, "--threads", "2"]);
+    parallax(&args).output().unwrap()
+}
+
+/// Runs `parallax verify OUT [extra…]`.
+pub fn verify(out: &Path, extra: &[&str]) -> Output {
+    let mut args = vec!["verify", out.to_str().unwrap()];
+    args.extend_from_slice(extra);
+    let s = scenes();
+    args.extend_from_slice(&["--scenes", &s, "--threads", "2"]);
+    parallax(&args).output().unwrap()
+}
+
+/// Panics with the output unless the command succeeded.
+pub fn ok(o: &Output) {
+    assert!(
+        o.status.success(),
+        "exit {:?}\nstdout:\n{}\nstderr:\n{}",
+        o.status.code(),
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
+/// stdout + stderr as text.
+pub fn text(o: &Output) -> String {
+    format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    )
+}
+
+/// SHA-256 of every data file below `root` (manifests and failure lists left out).
+pub fn data_files(root: &Path) -> BTreeMap<String, String> {
+    let mut out = BTreeMap::new();
+    let mut stack = vec![root.to_path_buf()];
+    while let Some(dir) = stack.pop() {
+        for e in std::fs::read_dir(&dir).unwrap() {
+            let p = e.unwrap().path();
+            let rel = p.strip_prefix(root).unwrap().to_string_lossy().into_owned();
+            if rel.starts_with("manifest") || rel.starts_with("failures") {
+                continue;
+            }
+            if p.is_dir() {
+                stack.push(p);
+            } else {
+                out.insert(rel, parallax::output::sha256_file(&p).unwrap());
+            }
+        }
+    }
+    out
+}
+
+/// Manifest lines of every shard below `root`.
+pub fn manifest_lines(root: &Path) -> usize {
+    let dir = root.join("manifest");
+    let Ok(rd) = std::fs::read_dir(dir) else {
+        return 0;
+    };
+    rd.map(|e| std::fs::read_to_string(e.unwrap().path()).unwrap())
+        .map(|t| t.lines().filter(|l| l.ends_with('}')).count())
+        .sum()
+}
