@@ -41,7 +41,7 @@ fn key(weather: &str) -> FrameKey {
 }
 
 fn write(r: &Rendered, kind: LayoutKind, root: &Path, k: &FrameKey) -> Vec<std::path::PathBuf> {
-    let meta = camera_file(&r.scene, &r.rig, &r.out, 3, k.frame, 1, 4);
+    let meta = camera_file(&r.scene, &r.rig, &r.out, &settings(k.frame), None);
     write_layout_frame(kind, root, k, &r.rig, &r.out, &meta).expect("layout written")
 }
 
@@ -211,7 +211,7 @@ fn sceneflow_pfms_hold_both_disparities_bit_exactly() {
 fn native_layout_and_frames_without_images_are_refused() {
     let mut r = tiny_frame();
     let dir = tempfile::tempdir().unwrap();
-    let meta = camera_file(&r.scene, &r.rig, &r.out, 3, 0, 1, 4);
+    let meta = camera_file(&r.scene, &r.rig, &r.out, &settings(0), None);
     let e = write_layout_frame(
         LayoutKind::Native,
         dir.path(),
@@ -231,4 +231,14 @@ fn native_layout_and_frames_without_images_are_refused() {
         &meta,
     );
     assert!(e.unwrap_err().to_string().contains("spp"));
+}
+
+/// The render settings recorded in a test frame's camera file.
+fn settings(frame: u32) -> parallax::render::RenderSettings {
+    parallax::render::RenderSettings {
+        spp: 1,
+        max_depth: 4,
+        seed: 3,
+        frame,
+    }
 }
