@@ -57,6 +57,9 @@ pub struct BenchSettings {
     pub max_depth: u32,
     /// Backend.
     pub backend: Backend,
+    /// Embree: build the non-robust shading twin for the path pass (off: the
+    /// path pass traces the watertight scene, as ground truth does).
+    pub shading_twin: bool,
 }
 
 /// Runs every measurement on `loaded` (must be called inside the thread pool to measure).
@@ -66,7 +69,7 @@ pub fn run_bench(loaded: &LoadedScene, s: &BenchSettings) -> Result<BenchReport,
     let scene = build_scene(loaded, rig.left.center_world)?;
     let scene_build_s = t.elapsed().as_secs_f64();
     let t = Instant::now();
-    let accel = build_accel(s.backend, &scene.accel_geometry())
+    let accel = build_bench_accel(s, &scene.accel_geometry())
         .map_err(|e| SceneError::at(&loaded.path, SceneErrorKind::Resource, "", e.to_string()))?;
     let accel_build_s = t.elapsed().as_secs_f64();
     #[cfg(feature = "embree")]
@@ -113,6 +116,19 @@ pub fn run_bench(loaded: &LoadedScene, s: &BenchSettings) -> Result<BenchReport,
         path: path_span,
         raw,
     })
+}
+
+/// The backend's accelerator, Embree without its twin if so asked.
+fn build_bench_accel(
+    s: &BenchSettings,
+    geo: &crate::accel::AccelGeometry,
+) -> Result<crate::accel::AnyAccel, crate::accel::AccelError> {
+    #[cfg(feature = "embree")]
+    if s.backend == Backend::Embree && !s.shading_twin {
+        return crate::accel::EmbreeAccel::build_with(geo, false)
+            .map(crate::accel::AnyAccel::Embree);
+    }
+    build_accel(s.backend, geo)
 }
 
 /// The span of a phase of `wall_s` seconds inside a call measured as `call`,
