@@ -311,6 +311,46 @@ fn embree_matches_bvh_on_random_soup() {
     );
 }
 
+/// The path pass's shading queries (Embree: the non-robust twin scene) find
+/// the same hits as the watertight queries ground truth uses.
+#[cfg(feature = "embree")]
+#[test]
+fn embree_shading_twin_matches_watertight_scene() {
+    let scene = TestScene::random(11, 3000, 60);
+    let geo = scene.geometry();
+    let embree = build(Backend::Embree, &geo);
+    // Rays starting on a surface are left out (t ≈ 0 hits are rounding-dependent).
+    let rays: Vec<Ray> = random_rays(&scene, 12, 8000)
+        .into_iter()
+        .enumerate()
+        .filter(|(i, _)| i % 4 != 3)
+        .map(|(_, r)| r)
+        .collect();
+    let mut batch = vec![None; rays.len()];
+    embree.intersect_batch_shading(&rays, &mut batch);
+    let (mut id_mismatches, mut hits) = (0, 0);
+    for (ray, &batched) in rays.iter().zip(&batch) {
+        let shading = embree.intersect_shading(ray);
+        assert_hits_agree(batched, shading, ray, 1e-6, "shading batch vs single");
+        assert_eq!(embree.occluded_shading(ray), shading.is_some());
+        hits += shading.is_some() as usize;
+        if !assert_hits_agree(
+            shading,
+            embree.intersect(ray),
+            ray,
+            1e-6,
+            "shading vs watertight",
+        ) {
+            id_mismatches += 1;
+        }
+    }
+    assert!(hits > rays.len() / 4, "only {hits} hits");
+    assert!(
+        id_mismatches < rays.len() / 100,
+        "{id_mismatches} coincident-hit id mismatches"
+    );
+}
+
 #[test]
 fn rays_through_shared_edges_and_vertices_never_leak() {
     let (positions, triangles) =

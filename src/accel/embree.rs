@@ -1,14 +1,19 @@
 //! Embree backend (Debian's Embree 3.13.5 through the `embree3` crate) — the
 //! only file that names the binding (STYLE.md rule 3).
 //!
-//! One device and one scene: triangle geometry `i` for mesh `i` and one
-//! `SPHERE_POINT` geometry (float4 centre + radius) with id `meshes.len()`,
-//! attached by id so Embree's ids are exactly the `mod.rs` conventions. Data is
-//! copied into Embree-owned buffers, so the accelerator borrows nothing. The
-//! scene is built with `RTC_SCENE_FLAG_ROBUST` (watertight on shared edges).
+//! One device and up to two scenes over the same geometries: triangle geometry
+//! `i` for mesh `i` and one `SPHERE_POINT` geometry (float4 centre + radius)
+//! with id `meshes.len()`, attached by id so Embree's ids are exactly the
+//! `mod.rs` conventions. Data is copied once into Embree-owned buffers, so the
+//! accelerator borrows nothing. The main scene is built with
+//! `RTC_SCENE_FLAG_ROBUST` (watertight on shared edges) and answers every
+//! ground-truth query; the optional shading twin is built without it (about a
+//! third faster to traverse) and answers the `*_shading` queries of the path
+//! pass, where a ray slipping through an edge costs one sample, not a GT pixel.
 //! Single rays use `rtcIntersect1`/`rtcOccluded1` with an incoherent context;
-//! batches go through 8-wide packets (`rtcIntersect8`/`rtcOccluded8`) with a
-//! coherent context and a valid mask for the tail.
+//! batches (rows of camera rays, occlusion segments from one camera centre) go
+//! through 8-wide packets (`rtcIntersect8`/`rtcOccluded8`) with a coherent
+//! context and a valid mask for the tail.
 
 use embree3::{
     BufferUsage, BuildQuality, Device, Format, Geometry, GeometryKind, Hit8, IntersectContext,
@@ -28,6 +33,8 @@ const LANES: usize = 8;
 /// `&self`.
 pub struct EmbreeAccel {
     scene: Scene<'static>,
+    shading: Option<Scene<'static>>,
+    build_seconds: [f64; 2],
 }
 
 impl std::fmt::Debug for EmbreeAccel {
@@ -41,98 +48,109 @@ fn embree_error(what: &str, e: embree3::Error) -> AccelError {
 }
 
 impl EmbreeAccel {
-    /// Validates and builds the committed scene (high build quality, spatial
-    /// splits for triangles). Empty meshes are skipped (their id stays unused).
+    /// Validates and builds the watertight scene and its shading twin (see
+    /// [`EmbreeAccel::build_with`]).
     pub fn build(geo: &AccelGeometry) -> Result<EmbreeAccel, AccelError> {
+        Self::build_with(geo, true)
+    }
+
+    /// Validates and builds the committed watertight scene (high build
+    /// quality, spatial splits for triangles) and, when `shading_twin` is set,
+    /// a non-robust scene over the same geometry buffers for the `*_shading`
+    /// queries (without it they use the watertight scene). Empty meshes are
+    /// skipped (their id stays unused).
+    pub fn build_with(geo: &AccelGeometry, shading_twin: bool) -> Result<EmbreeAccel, AccelError> {
         // Embree does not bounds-check indices: validation is a safety matter here.
         validate_geometry(geo)?;
         let device = Device::new().map_err(|e| embree_error("device", e))?;
-        let mut scene = device
-            .create_scene()
-            .map_err(|e| embree_error("scene", e))?;
+        let geometries = geometries(&device, geo)?;
+        let t = std::time::Instant::now();
         // Robust mode is needed: without it Embree 3 lets rays aimed exactly at
         // shared vertices/edges of a closed mesh slip through
         // (`rays_through_shared_edges_and_vertices_never_leak`), which would
         // punch holes into ground-truth depth.
-        scene.set_flags(SceneFlags::ROBUST);
-        scene.set_build_quality(BuildQuality::HIGH);
-        for (geom_id, mesh) in geo.meshes.iter().enumerate() {
-            if mesh.triangles.is_empty() || mesh.positions.is_empty() {
-                continue;
-            }
-            let geometry = triangle_geometry(&device, mesh.positions, mesh.triangles)?;
-            scene.attach_geometry_by_id(&geometry, geom_id as u32);
-        }
-        if !geo.spheres.is_empty() {
-            let mut builder = device
-                .create_geometry(GeometryKind::SPHERE_POINT)
-                .map_err(|e| embree_error("sphere geometry", e))?;
-            let mut view = builder
-                .set_new_buffer::<[f32; 4]>(
-                    BufferUsage::VERTEX,
-                    0,
-                    Format::FLOAT4,
-                    16,
-                    geo.spheres.len(),
-                )
-                .map_err(|e| embree_error("sphere buffer", e))?;
-            for (dst, s) in view.iter_mut().zip(geo.spheres) {
-                *dst = s.to_array();
-            }
-            scene.attach_geometry_by_id(&builder.commit(), geo.sphere_geom_id());
-        }
-        scene.commit();
-        Ok(EmbreeAccel { scene })
+        let scene = commit_scene(&device, &geometries, SceneFlags::ROBUST)?;
+        let robust_s = t.elapsed().as_secs_f64();
+        let t = std::time::Instant::now();
+        let shading = shading_twin
+            .then(|| commit_scene(&device, &geometries, SceneFlags::NONE))
+            .transpose()?;
+        Ok(EmbreeAccel {
+            scene,
+            shading,
+            build_seconds: [robust_s, t.elapsed().as_secs_f64()],
+        })
+    }
+
+    /// Seconds spent committing (building the BVH of) the watertight scene
+    /// and the shading twin (0 without one).
+    pub fn build_seconds(&self) -> [f64; 2] {
+        self.build_seconds
+    }
+
+    /// The scene shading queries go to.
+    fn shading_scene(&self) -> &Scene<'static> {
+        self.shading.as_ref().unwrap_or(&self.scene)
     }
 
     /// Closest hits through 8-wide packets with an explicit coherence hint
     /// (`true` for primary rays of a tile, `false` for scattered rays).
     pub fn intersect_batch_with(&self, rays: &[Ray], hits: &mut [Option<Hit>], coherent: bool) {
-        assert_eq!(
-            rays.len(),
-            hits.len(),
-            "intersect_batch: rays and hits differ in length"
-        );
-        let mut ctx = context(coherent);
-        for (ray_chunk, hit_chunk) in rays.chunks(LANES).zip(hits.chunks_mut(LANES)) {
-            let (ray, valid) = ray_packet(ray_chunk);
-            let mut rayhit = RayHit8 {
-                ray,
-                hit: Hit8::default(),
-            };
-            self.scene.intersect8(&mut ctx, &mut rayhit, &valid);
-            for (lane, out) in hit_chunk.iter_mut().enumerate() {
-                *out = (rayhit.hit.geomID[lane] != INVALID_ID).then(|| Hit {
-                    t: rayhit.ray.tfar[lane],
-                    geom_id: rayhit.hit.geomID[lane],
-                    prim_id: rayhit.hit.primID[lane],
-                    u: rayhit.hit.u[lane],
-                    v: rayhit.hit.v[lane],
-                    n_geo: Vec3::new(
-                        rayhit.hit.Ng_x[lane],
-                        rayhit.hit.Ng_y[lane],
-                        rayhit.hit.Ng_z[lane],
-                    ),
-                });
-            }
-        }
+        intersect_packets(&self.scene, rays, hits, coherent);
     }
 
     /// Any-hit through 8-wide packets with an explicit coherence hint.
     pub fn occluded_batch_with(&self, rays: &[Ray], out: &mut [bool], coherent: bool) {
-        assert_eq!(
-            rays.len(),
-            out.len(),
-            "occluded_batch: rays and out differ in length"
-        );
-        let mut ctx = context(coherent);
-        for (ray_chunk, out_chunk) in rays.chunks(LANES).zip(out.chunks_mut(LANES)) {
-            let (mut packet, valid) = ray_packet(ray_chunk);
-            self.scene.occluded8(&mut ctx, &mut packet, &valid);
-            for (lane, o) in out_chunk.iter_mut().enumerate() {
-                // Embree marks an occluded ray by setting tfar to −∞.
-                *o = packet.tfar[lane] == f32::NEG_INFINITY;
-            }
+        occluded_packets(&self.scene, rays, out, coherent);
+    }
+}
+
+/// Closest hits of `rays` on `scene` through 8-wide packets.
+fn intersect_packets(scene: &Scene, rays: &[Ray], hits: &mut [Option<Hit>], coherent: bool) {
+    assert_eq!(
+        rays.len(),
+        hits.len(),
+        "intersect_batch: rays and hits differ in length"
+    );
+    let mut ctx = context(coherent);
+    for (ray_chunk, hit_chunk) in rays.chunks(LANES).zip(hits.chunks_mut(LANES)) {
+        let (ray, valid) = ray_packet(ray_chunk);
+        let mut rayhit = RayHit8 {
+            ray,
+            hit: Hit8::default(),
+        };
+        scene.intersect8(&mut ctx, &mut rayhit, &valid);
+        for (lane, out) in hit_chunk.iter_mut().enumerate() {
+            *out = (rayhit.hit.geomID[lane] != INVALID_ID).then(|| Hit {
+                t: rayhit.ray.tfar[lane],
+                geom_id: rayhit.hit.geomID[lane],
+                prim_id: rayhit.hit.primID[lane],
+                u: rayhit.hit.u[lane],
+                v: rayhit.hit.v[lane],
+                n_geo: Vec3::new(
+                    rayhit.hit.Ng_x[lane],
+                    rayhit.hit.Ng_y[lane],
+                    rayhit.hit.Ng_z[lane],
+                ),
+            });
+        }
+    }
+}
+
+/// Any-hit of `rays` on `scene` through 8-wide packets.
+fn occluded_packets(scene: &Scene, rays: &[Ray], out: &mut [bool], coherent: bool) {
+    assert_eq!(
+        rays.len(),
+        out.len(),
+        "occluded_batch: rays and out differ in length"
+    );
+    let mut ctx = context(coherent);
+    for (ray_chunk, out_chunk) in rays.chunks(LANES).zip(out.chunks_mut(LANES)) {
+        let (mut packet, valid) = ray_packet(ray_chunk);
+        scene.occluded8(&mut ctx, &mut packet, &valid);
+        for (lane, o) in out_chunk.iter_mut().enumerate() {
+            // Embree marks an occluded ray by setting tfar to −∞.
+            *o = packet.tfar[lane] == f32::NEG_INFINITY;
         }
     }
 }
@@ -164,6 +182,58 @@ fn ray_packet(rays: &[Ray]) -> (Ray8, ValidMaskN<LANES>) {
     (packet, ValidMaskN::new(lanes))
 }
 
+/// Embree geometries (with their ids) for every non-empty mesh and the sphere set.
+fn geometries(
+    device: &Device,
+    geo: &AccelGeometry,
+) -> Result<Vec<(Geometry<'static>, u32)>, AccelError> {
+    let mut out = Vec::with_capacity(geo.meshes.len() + 1);
+    for (geom_id, mesh) in geo.meshes.iter().enumerate() {
+        if mesh.triangles.is_empty() || mesh.positions.is_empty() {
+            continue;
+        }
+        let geometry = triangle_geometry(device, mesh.positions, mesh.triangles)?;
+        out.push((geometry, geom_id as u32));
+    }
+    if !geo.spheres.is_empty() {
+        let mut builder = device
+            .create_geometry(GeometryKind::SPHERE_POINT)
+            .map_err(|e| embree_error("sphere geometry", e))?;
+        let mut view = builder
+            .set_new_buffer::<[f32; 4]>(
+                BufferUsage::VERTEX,
+                0,
+                Format::FLOAT4,
+                16,
+                geo.spheres.len(),
+            )
+            .map_err(|e| embree_error("sphere buffer", e))?;
+        for (dst, s) in view.iter_mut().zip(geo.spheres) {
+            *dst = s.to_array();
+        }
+        out.push((builder.commit(), geo.sphere_geom_id()));
+    }
+    Ok(out)
+}
+
+/// Commits a scene (high build quality) over `geometries` with `flags`.
+fn commit_scene(
+    device: &Device,
+    geometries: &[(Geometry<'static>, u32)],
+    flags: SceneFlags,
+) -> Result<Scene<'static>, AccelError> {
+    let mut scene = device
+        .create_scene()
+        .map_err(|e| embree_error("scene", e))?;
+    scene.set_flags(flags);
+    scene.set_build_quality(BuildQuality::HIGH);
+    for (geometry, geom_id) in geometries {
+        scene.attach_geometry_by_id(geometry, *geom_id);
+    }
+    scene.commit();
+    Ok(scene)
+}
+
 fn triangle_geometry(
     device: &Device,
     positions: &[Vec3],
@@ -190,24 +260,36 @@ fn single_ray(r: &Ray) -> RtcRay {
     RtcRay::segment(r.o.to_array(), r.d.to_array(), r.tmin, r.tmax)
 }
 
+/// Closest hit of one ray on `scene` (incoherent context).
+#[inline]
+fn intersect_one(scene: &Scene, ray: &Ray) -> Option<Hit> {
+    let mut ctx = IntersectContext::incoherent();
+    let mut rayhit = RayHit::from_ray(single_ray(ray));
+    scene.intersect(&mut ctx, &mut rayhit);
+    rayhit.hit.is_valid().then(|| Hit {
+        t: rayhit.ray.tfar,
+        geom_id: rayhit.hit.geomID,
+        prim_id: rayhit.hit.primID,
+        u: rayhit.hit.u,
+        v: rayhit.hit.v,
+        n_geo: Vec3::new(rayhit.hit.Ng_x, rayhit.hit.Ng_y, rayhit.hit.Ng_z),
+    })
+}
+
+/// Any-hit of one ray on `scene` (incoherent context).
+#[inline]
+fn occluded_one(scene: &Scene, ray: &Ray) -> bool {
+    let mut ctx = IntersectContext::incoherent();
+    scene.occluded(&mut ctx, &mut single_ray(ray))
+}
+
 impl Accel for EmbreeAccel {
     fn intersect(&self, ray: &Ray) -> Option<Hit> {
-        let mut ctx = IntersectContext::incoherent();
-        let mut rayhit = RayHit::from_ray(single_ray(ray));
-        self.scene.intersect(&mut ctx, &mut rayhit);
-        rayhit.hit.is_valid().then(|| Hit {
-            t: rayhit.ray.tfar,
-            geom_id: rayhit.hit.geomID,
-            prim_id: rayhit.hit.primID,
-            u: rayhit.hit.u,
-            v: rayhit.hit.v,
-            n_geo: Vec3::new(rayhit.hit.Ng_x, rayhit.hit.Ng_y, rayhit.hit.Ng_z),
-        })
+        intersect_one(&self.scene, ray)
     }
 
     fn occluded(&self, ray: &Ray) -> bool {
-        let mut ctx = IntersectContext::incoherent();
-        self.scene.occluded(&mut ctx, &mut single_ray(ray))
+        occluded_one(&self.scene, ray)
     }
 
     fn intersect_batch(&self, rays: &[Ray], hits: &mut [Option<Hit>]) {
@@ -215,10 +297,24 @@ impl Accel for EmbreeAccel {
     }
 
     fn occluded_batch(&self, rays: &[Ray], out: &mut [bool]) {
-        self.occluded_batch_with(rays, out, false);
+        // Ground truth's occlusion segments share the right camera's centre
+        // and run along a row: coherent.
+        self.occluded_batch_with(rays, out, true);
     }
 
     fn backend_name(&self) -> &'static str {
         "embree"
+    }
+
+    fn intersect_shading(&self, ray: &Ray) -> Option<Hit> {
+        intersect_one(self.shading_scene(), ray)
+    }
+
+    fn occluded_shading(&self, ray: &Ray) -> bool {
+        occluded_one(self.shading_scene(), ray)
+    }
+
+    fn intersect_batch_shading(&self, rays: &[Ray], hits: &mut [Option<Hit>]) {
+        intersect_packets(self.shading_scene(), rays, hits, true);
     }
 }

@@ -98,6 +98,47 @@ pub trait Accel: Send + Sync {
     }
     /// Short backend name for logs and bench output ("embree", "bvh", "brute").
     fn backend_name(&self) -> &'static str;
+    /// [`Accel::intersect`] for shading rays: a backend may answer from a faster
+    /// structure that is not watertight (a ray aimed exactly at a shared edge
+    /// may slip through), which only costs a path a rare, unbiased-looking
+    /// miss. Ground truth never calls it.
+    fn intersect_shading(&self, ray: &Ray) -> Option<Hit> {
+        self.intersect(ray)
+    }
+    /// [`Accel::occluded`] for shading rays (see [`Accel::intersect_shading`]).
+    fn occluded_shading(&self, ray: &Ray) -> bool {
+        self.occluded(ray)
+    }
+    /// [`Accel::intersect_batch`] for shading rays (see [`Accel::intersect_shading`]).
+    fn intersect_batch_shading(&self, rays: &[Ray], hits: &mut [Option<Hit>]) {
+        self.intersect_batch(rays, hits)
+    }
+}
+
+/// The view of an accelerator the path pass traces with: every query goes to
+/// the backend's shading variant ([`Accel::intersect_shading`] and friends),
+/// so a watertight accelerator and its faster twin are one object.
+#[derive(Clone, Copy, Debug)]
+pub struct ShadingAccel<'a, A>(pub &'a A);
+
+impl<A: Accel> Accel for ShadingAccel<'_, A> {
+    #[inline]
+    fn intersect(&self, ray: &Ray) -> Option<Hit> {
+        self.0.intersect_shading(ray)
+    }
+
+    #[inline]
+    fn occluded(&self, ray: &Ray) -> bool {
+        self.0.occluded_shading(ray)
+    }
+
+    fn intersect_batch(&self, rays: &[Ray], hits: &mut [Option<Hit>]) {
+        self.0.intersect_batch_shading(rays, hits)
+    }
+
+    fn backend_name(&self) -> &'static str {
+        self.0.backend_name()
+    }
 }
 
 /// Which traversal backend to build.
@@ -284,6 +325,20 @@ impl Accel for AnyAccel {
 
     fn backend_name(&self) -> &'static str {
         dispatch!(self, a => a.backend_name())
+    }
+
+    #[inline]
+    fn intersect_shading(&self, ray: &Ray) -> Option<Hit> {
+        dispatch!(self, a => a.intersect_shading(ray))
+    }
+
+    #[inline]
+    fn occluded_shading(&self, ray: &Ray) -> bool {
+        dispatch!(self, a => a.occluded_shading(ray))
+    }
+
+    fn intersect_batch_shading(&self, rays: &[Ray], hits: &mut [Option<Hit>]) {
+        dispatch!(self, a => a.intersect_batch_shading(rays, hits))
     }
 }
 

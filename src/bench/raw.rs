@@ -2,35 +2,62 @@
 //! ceiling the renderer is measured against. Incoherent rays start at the
 //! primary hit points and head in uniformly distributed directions.
 
-use std::time::Instant;
-
 use glam::Vec3;
 use rayon::prelude::*;
 
-use crate::accel::{Accel, Hit, Ray};
+use super::clock::{Span, Stopwatch};
+use crate::accel::{Accel, Hit, Ray, ShadingAccel};
 use crate::camera::StereoRig;
 use crate::geometry::surface_interaction;
 use crate::integrator::RenderCamera;
 use crate::sampler::mix64;
 use crate::scene::Scene;
 
-/// Raw traversal rates, Mrays/s.
+/// Raw traversal rates, Mrays/s: the watertight queries ground truth uses,
+/// and the shading queries the path pass uses (the same numbers unless the
+/// backend keeps a faster twin, see [`crate::accel::Accel::intersect_shading`]).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct RawThroughput {
     /// Primary rays one at a time.
-    pub primary_single_mrays: f64,
+    pub primary_single_mrays: Rate,
     /// Primary rays in 8-wide packets along rows.
-    pub primary_packet_mrays: f64,
+    pub primary_packet_mrays: Rate,
     /// Incoherent closest-hit rays.
-    pub incoherent_closest_mrays: f64,
+    pub incoherent_closest_mrays: Rate,
     /// Incoherent any-hit rays.
-    pub incoherent_any_mrays: f64,
+    pub incoherent_any_mrays: Rate,
+    /// Shading queries: primary rays in 8-wide packets.
+    pub shading_packet_mrays: Rate,
+    /// Shading queries: incoherent closest-hit rays.
+    pub shading_closest_mrays: Rate,
+    /// Shading queries: incoherent any-hit rays.
+    pub shading_any_mrays: Rate,
 }
 
-fn rate(rays: usize, f: impl FnOnce()) -> f64 {
-    let t = Instant::now();
+/// One throughput figure, Mrays/s: per wall second, and per CPU second spread
+/// over the pool's threads (see [`super::clock`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Rate {
+    /// Per wall-clock second.
+    pub wall: f64,
+    /// As if the pool's threads had the machine to themselves.
+    pub cpu: f64,
+}
+
+impl Rate {
+    /// The rate of `n` rays over `span` on the current pool.
+    pub fn of(n: u64, span: Span) -> Rate {
+        Rate {
+            wall: span.wall_rate(n),
+            cpu: span.cpu_rate(n, rayon::current_num_threads()),
+        }
+    }
+}
+
+fn rate(rays: usize, f: impl FnOnce()) -> Rate {
+    let t = Stopwatch::start();
     f();
-    rays as f64 / t.elapsed().as_secs_f64().max(1e-9) / 1e6
+    Rate::of(rays as u64, t.stop())
 }
 
 /// A uniform direction from the bits of a hash.
@@ -87,20 +114,36 @@ pub fn raw_throughput(accel: &impl Accel, scene: &Scene, rig: &StereoRig) -> Raw
     if secondary.is_empty() {
         return out;
     }
-    let m = secondary.len();
-    out.incoherent_closest_mrays = rate(m, || {
-        secondary.par_chunks(1024).for_each(|c| {
+    out.shading_packet_mrays = rate(n, || {
+        rows.par_iter()
+            .zip(hits.par_iter_mut())
+            .for_each(|(row, hit)| accel.intersect_batch_shading(row, hit))
+    });
+    // Alternate watertight and shading runs so load changes hit both alike.
+    let shading = ShadingAccel(accel);
+    out.incoherent_closest_mrays = incoherent_closest(accel, &secondary);
+    out.shading_closest_mrays = incoherent_closest(&shading, &secondary);
+    out.incoherent_any_mrays = incoherent_any(accel, &secondary);
+    out.shading_any_mrays = incoherent_any(&shading, &secondary);
+    out
+}
+
+fn incoherent_closest(accel: &impl Accel, rays: &[Ray]) -> Rate {
+    rate(rays.len(), || {
+        rays.par_chunks(1024).for_each(|c| {
             for r in c {
                 std::hint::black_box(accel.intersect(r));
             }
         })
-    });
-    out.incoherent_any_mrays = rate(m, || {
-        secondary.par_chunks(1024).for_each(|c| {
+    })
+}
+
+fn incoherent_any(accel: &impl Accel, rays: &[Ray]) -> Rate {
+    rate(rays.len(), || {
+        rays.par_chunks(1024).for_each(|c| {
             for r in c {
                 std::hint::black_box(accel.occluded(r));
             }
         })
-    });
-    out
+    })
 }

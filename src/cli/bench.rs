@@ -35,6 +35,9 @@ pub struct BenchArgs {
     /// Traversal backend: embree or bvh.
     #[arg(long, default_value_t = Backend::default_backend())]
     pub backend: Backend,
+    /// Embree: trace the path pass on the watertight scene too (no non-robust twin).
+    #[arg(long)]
+    pub no_shading_twin: bool,
 }
 
 /// Runs `parallax bench`.
@@ -74,6 +77,7 @@ pub fn run(a: BenchArgs) -> Result<(), CliError> {
         spp: a.spp,
         max_depth: a.max_depth,
         backend: a.backend,
+        shading_twin: !a.no_shading_twin,
     };
     let pool = thread_pool(a.threads)?;
     let report = pool

@@ -11,7 +11,7 @@ use std::time::Instant;
 use glam::Vec3;
 use rayon::prelude::*;
 
-use crate::accel::Accel;
+use crate::accel::{Accel, ShadingAccel};
 use crate::camera::StereoRig;
 use crate::film::Film;
 use crate::geometry::SurfaceTable;
@@ -121,9 +121,12 @@ pub fn render_frame(
     if settings.spp > 0 {
         let lights = LightSet::build(scene);
         let surfaces = SurfaceTable::build(scene);
+        // Paths trace on the backend's fast, not necessarily watertight
+        // variant; ground truth above stayed on the watertight one.
+        let shading = ShadingAccel(accel);
         let ctx = PathContext {
             scene,
-            accel,
+            accel: &shading,
             lights: &lights,
             surfaces: &surfaces,
             max_depth: settings.max_depth,
