@@ -50,6 +50,31 @@ pub enum Sky {
     Overcast(Box<(OvercastSky, SkyDistribution)>),
 }
 
+/// Skies are equal when built from equal parameters (tables are functions
+/// of them).
+impl PartialEq for Sky {
+    fn eq(&self, other: &Sky) -> bool {
+        match (self, other) {
+            (Sky::Constant { le: a }, Sky::Constant { le: b }) => a == b,
+            (
+                Sky::Gradient {
+                    zenith: z0,
+                    horizon: h0,
+                    ground: g0,
+                },
+                Sky::Gradient {
+                    zenith: z1,
+                    horizon: h1,
+                    ground: g1,
+                },
+            ) => z0 == z1 && h0 == h1 && g0 == g1,
+            (Sky::Physical(a), Sky::Physical(b)) => a.params() == b.params(),
+            (Sky::Overcast(a), Sky::Overcast(b)) => a.0 == b.0,
+            _ => false,
+        }
+    }
+}
+
 impl Sky {
     /// An overcast sky with its sampling distribution.
     pub fn overcast(sky: OvercastSky) -> Sky {
