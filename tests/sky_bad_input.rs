@@ -66,7 +66,7 @@ fn overcast_and_night_skies_reject_out_of_range_parameters() {
 }
 
 #[test]
-fn physical_sky_defaults_validate_and_a_set_sun_leaves_no_light_error() {
+fn physical_sky_defaults_validate_and_a_sky_past_twilight_is_no_light() {
     let ok = "[sky]\nkind = \"physical\"\nsun_elevation_deg = 30.0\nsun_azimuth_deg = 0.0\n";
     parse_scene_str(&format!("{BODY}{ok}"), Path::new(FILE)).expect("defaults validate");
     // Past astronomical twilight the physical sky is black: no light at all.
