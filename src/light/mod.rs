@@ -43,8 +43,10 @@ pub enum Light {
 }
 
 mod set;
+mod sky;
 
 pub use set::{LightSample, LightSet, MAX_DISTANT};
+pub use sky::{build_sky, moon_phase_factor, MOON_TO_SUN};
 
 use shaders_cpu::sampling::{sample_uniform_cone, uniform_cone_pdf, Frame};
 

@@ -207,8 +207,34 @@ impl LightSet {
 
     /// Radiance of the sky and sun disks for a ray escaping along `dir` that
     /// was sampled with solid-angle pdf `prev_pdf` (or by a delta lobe / the
-    /// camera), MIS-weighted against next-event estimation.
+    /// camera), MIS-weighted against next-event estimation. Sun disks are not
+    /// dimmed by the sky's cloud deck here; see [`LightSet::escaped_at`].
     pub fn escaped(&self, scene: &Scene, dir: Vec3, prev_pdf: f32, prev_delta: bool) -> Vec3 {
+        self.escaped_from(scene, None, dir, prev_pdf, prev_delta)
+    }
+
+    /// [`LightSet::escaped`] for a ray leaving render-space point `p`: sun
+    /// disks are dimmed by the cloud deck's transmittance at `p`, exactly as
+    /// next-event estimation dims them, so MIS stays unbiased under clouds.
+    pub fn escaped_at(
+        &self,
+        scene: &Scene,
+        p: Vec3,
+        dir: Vec3,
+        prev_pdf: f32,
+        prev_delta: bool,
+    ) -> Vec3 {
+        self.escaped_from(scene, Some(p), dir, prev_pdf, prev_delta)
+    }
+
+    fn escaped_from(
+        &self,
+        scene: &Scene,
+        p: Option<Vec3>,
+        dir: Vec3,
+        prev_pdf: f32,
+        prev_delta: bool,
+    ) -> Vec3 {
         let weight = |pdf_light: f32| {
             if prev_delta {
                 1.0
@@ -222,7 +248,8 @@ impl LightSet {
         }
         for sun in &self.suns {
             if dir.dot(sun.axis) >= sun.cos_max {
-                l += sun.le * weight(sun.pmf * uniform_cone_pdf(sun.cos_max));
+                let clouds = p.map_or(1.0, |p| cloud_transmittance(scene, p, dir));
+                l += sun.le * clouds * weight(sun.pmf * uniform_cone_pdf(sun.cos_max));
             }
         }
         l
@@ -264,7 +291,10 @@ impl LightSet {
 fn sample_entry(scene: &Scene, entry: &Entry, pmf: f32, p: Vec3, u: Vec2) -> Option<LightSample> {
     match *entry {
         Entry::Explicit(light) => {
-            let (wi, li, pdf, dist, delta) = sample_explicit(&light, p, u)?;
+            let (wi, mut li, pdf, dist, delta) = sample_explicit(&light, p, u)?;
+            if matches!(light, Light::Sun { .. }) {
+                li *= cloud_transmittance(scene, p, wi);
+            }
             Some(LightSample {
                 wi,
                 li,
@@ -312,6 +342,14 @@ fn sample_entry(scene: &Scene, entry: &Entry, pmf: f32, p: Vec3, u: Vec2) -> Opt
             })
         }
     }
+}
+
+/// Sun transmittance through the sky's cloud deck from render-space `p`
+/// (a function of the world position only, so every view agrees).
+fn cloud_transmittance(scene: &Scene, p: Vec3, wi: Vec3) -> f32 {
+    scene
+        .sky
+        .cloud_transmittance(scene.origin_world + p.as_dvec3(), wi)
 }
 
 /// Selection probabilities: half by power, half uniform. Power alone starves

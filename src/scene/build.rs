@@ -7,9 +7,8 @@ use std::collections::HashMap;
 
 use glam::{DAffine3, DVec3, Vec3, Vec4};
 use shaders_cpu::bsdf::Bsdf;
-use shaders_cpu::sky::Sky;
 
-use super::desc::{LightDesc, MaskFlag, MaterialDesc, MaterialKindDesc, ShapeDesc, SkyDesc};
+use super::desc::{LightDesc, MaskFlag, MaterialDesc, MaterialKindDesc, ShapeDesc};
 use super::load::{LoadedScene, SceneError, SceneErrorKind};
 use super::mesh::{self, LocalMesh};
 use super::validate::material_table;
@@ -117,6 +116,7 @@ pub fn build_scene(scene: &LoadedScene, origin_world: DVec3) -> Result<Scene, Sc
         .iter()
         .map(|s| s.center.as_vec3().extend(s.radius as f32))
         .collect::<Vec<Vec4>>();
+    let (sky, sky_light) = crate::light::build_sky(desc.sky.as_ref());
     Ok(Scene {
         origin_world,
         meshes,
@@ -127,8 +127,9 @@ pub fn build_scene(scene: &LoadedScene, origin_world: DVec3) -> Result<Scene, Sc
             .lights
             .iter()
             .map(|l| build_light(l, origin_world))
+            .chain(sky_light)
             .collect(),
-        sky: build_sky(desc.sky.as_ref()),
+        sky,
     })
 }
 
@@ -281,22 +282,6 @@ fn build_light(l: &LightDesc, origin_world: DVec3) -> Light {
             intensity: v3(*intensity),
             cos_inner: inner_deg.to_radians().cos() as f32,
             cos_outer: outer_deg.to_radians().cos() as f32,
-        },
-    }
-}
-
-fn build_sky(sky: Option<&SkyDesc>) -> Sky {
-    match sky {
-        None => Sky::Constant { le: Vec3::ZERO },
-        Some(SkyDesc::Constant { le }) => Sky::Constant { le: v3(*le) },
-        Some(SkyDesc::Gradient {
-            zenith,
-            horizon,
-            ground,
-        }) => Sky::Gradient {
-            zenith: v3(*zenith),
-            horizon: v3(*horizon),
-            ground: v3(*ground),
         },
     }
 }

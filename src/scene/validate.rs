@@ -133,6 +133,46 @@ impl V<'_> {
                 self.range("sky.horizon", horizon, 0.0, f64::MAX)?;
                 self.range("sky.ground", ground, 0.0, f64::MAX)
             }
+            SkyDesc::Physical {
+                sun_elevation_deg,
+                sun_azimuth_deg,
+                turbidity,
+                ground_albedo,
+                cloud_cover,
+                cloud_seed: _,
+            } => {
+                self.range("sky.sun_elevation_deg", &[*sun_elevation_deg], -90.0, 90.0)?;
+                self.finite("sky.sun_azimuth_deg", &[*sun_azimuth_deg])?;
+                self.range("sky.turbidity", &[*turbidity], 0.0, 20.0)?;
+                self.range("sky.ground_albedo", &[*ground_albedo], 0.0, 1.0)?;
+                self.range("sky.cloud_cover", &[*cloud_cover], 0.0, 1.0)
+            }
+            SkyDesc::Overcast {
+                irradiance,
+                ground_albedo,
+            } => {
+                self.range("sky.irradiance", irradiance, 0.0, f64::MAX)?;
+                self.range("sky.ground_albedo", &[*ground_albedo], 0.0, 1.0)
+            }
+            SkyDesc::Night {
+                moon_elevation_deg,
+                moon_azimuth_deg,
+                moon_phase_deg,
+                sky_glow,
+                turbidity,
+                ..
+            } => {
+                self.range(
+                    "sky.moon_elevation_deg",
+                    &[*moon_elevation_deg],
+                    -90.0,
+                    90.0,
+                )?;
+                self.finite("sky.moon_azimuth_deg", &[*moon_azimuth_deg])?;
+                self.range("sky.moon_phase_deg", &[*moon_phase_deg], 0.0, 180.0)?;
+                self.range("sky.sky_glow", &[*sky_glow], 0.0, 1.0)?;
+                self.range("sky.turbidity", &[*turbidity], 0.0, 20.0)
+            }
         }
     }
 
@@ -386,6 +426,17 @@ pub fn validate(
     }
     if let Some(sky) = &desc.sky {
         v.sky(sky)?;
+        let own_sun = matches!(sky, SkyDesc::Physical { .. });
+        if let Some(i) = desc
+            .lights
+            .iter()
+            .position(|l| own_sun && matches!(l, LightDesc::Sun { .. }))
+        {
+            return Err(v.err(
+                format!("light[{i}]"),
+                "a physical sky brings its own sun: remove the sun light and set sky.sun_elevation_deg / sky.sun_azimuth_deg",
+            ));
+        }
     }
     for (i, l) in desc.lights.iter().enumerate() {
         v.light(i, l)?;
@@ -473,6 +524,13 @@ pub fn validate(
             horizon,
             ground,
         }) => zenith.iter().chain(horizon).chain(ground).any(|&x| x > 0.0),
+        // Airglow keeps the night sky above zero; the physical sky is dark
+        // once the sun is past astronomical twilight.
+        Some(SkyDesc::Physical {
+            sun_elevation_deg, ..
+        }) => *sun_elevation_deg > -20.0,
+        Some(SkyDesc::Night { .. }) => true,
+        Some(SkyDesc::Overcast { irradiance, .. }) => irradiance.iter().any(|&x| x > 0.0),
         None => false,
     };
     let emitting = table.iter().zip(&used).any(|(m, &u)| u && matches!(&m.kind, MaterialKindDesc::Emissive { radiance, .. } if radiance.iter().any(|&x| x > 0.0)));

@@ -19,7 +19,7 @@ use crate::town::rng::Rng;
 /// Stream tag of the weather draws (apart from the town generator's tags).
 const WEATHER_TAG: u64 = 0x5745_4154_4845_5200;
 
-pub use sun::{sun_irradiance, twilight_sky};
+pub use sun::{overcast_irradiance, sun_irradiance};
 
 /// One of the seven weathers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
@@ -151,37 +151,57 @@ pub fn draw_params(weather: Weather, seed: u64) -> WeatherParams {
     }
 }
 
-/// Replaces the sun(s) and sky of `desc` with the weather's. Point, spot and
-/// emissive lights of the scene stay (street lights, vehicle lights).
+/// Replaces the sun(s) and sky of `desc` with the weather's: the physical
+/// sky (which brings the sun, red and dim at sunset, none once set, and a
+/// world-fixed cloud deck of the drawn cover) for clear, sunset, humid and
+/// foggy; the CIE overcast sky, sun diffused, for cloudy and storm; the night
+/// sky with a full moon opposite the sun for night. Point, spot and emissive
+/// lights of the scene stay (street lights, vehicle lights).
 pub fn apply(desc: &mut SceneDesc, p: &WeatherParams) {
     desc.lights.retain(|l| !matches!(l, LightDesc::Sun { .. }));
-    let clear_fraction = 1.0 - 0.8 * p.cloud_cover;
-    let direct = sun_irradiance(p.sun_elevation_deg).map(|e| e * clear_fraction);
-    if direct.iter().any(|&e| e > 0.0) {
-        desc.lights.push(LightDesc::Sun {
-            elevation_deg: p.sun_elevation_deg,
-            azimuth_deg: p.sun_azimuth_deg,
-            irradiance: direct,
-            angular_diameter_deg: 0.533,
-        });
-    }
-    desc.sky = Some(twilight_sky(p.sun_elevation_deg, p.cloud_cover));
-    if p.preset == Weather::Night {
-        // A full moon opposite the sun: about 2.5e-6 of the sun's irradiance.
-        desc.lights.push(LightDesc::Sun {
-            elevation_deg: -p.sun_elevation_deg,
-            azimuth_deg: (p.sun_azimuth_deg + 180.0) % 360.0,
-            irradiance: [2.4e-3, 2.3e-3, 2.1e-3],
-            angular_diameter_deg: 0.52,
-        });
+    let seed = pattern_seed(p);
+    desc.sky = Some(match p.preset {
+        Weather::Clear | Weather::Sunset | Weather::Humid | Weather::Foggy => SkyDesc::Physical {
+            sun_elevation_deg: p.sun_elevation_deg,
+            sun_azimuth_deg: p.sun_azimuth_deg,
+            turbidity: turbidity(p.preset),
+            ground_albedo: 0.1,
+            cloud_cover: p.cloud_cover,
+            cloud_seed: seed,
+        },
+        Weather::Cloudy | Weather::Storm => SkyDesc::Overcast {
+            irradiance: overcast_irradiance(
+                p.sun_elevation_deg,
+                p.cloud_cover,
+                p.preset == Weather::Storm,
+            ),
+            ground_albedo: 0.1,
+        },
+        Weather::Night => SkyDesc::Night {
+            moon_elevation_deg: -p.sun_elevation_deg,
+            moon_azimuth_deg: (p.sun_azimuth_deg + 180.0) % 360.0,
+            moon_phase_deg: 0.0,
+            sky_glow: 2e-5,
+            stars: true,
+            star_seed: seed,
+            turbidity: 1.0,
+        },
+    });
+}
+
+/// Aerosol density multiplier of the physical sky per preset.
+fn turbidity(w: Weather) -> f64 {
+    match w {
+        Weather::Sunset => 1.5,
+        Weather::Humid => 3.0,
+        Weather::Foggy => 4.0,
+        _ => 1.0,
     }
 }
 
-/// A gradient sky description from three RGB radiances.
-pub(crate) fn gradient(zenith: [f64; 3], horizon: [f64; 3], ground: [f64; 3]) -> SkyDesc {
-    SkyDesc::Gradient {
-        zenith,
-        horizon,
-        ground,
-    }
+/// A seed for cloud and star patterns, fixed by the drawn parameters (so by
+/// the sequence's seed).
+fn pattern_seed(p: &WeatherParams) -> u32 {
+    let h = p.sun_azimuth_deg.to_bits() ^ p.sun_elevation_deg.to_bits().rotate_left(17);
+    (h ^ (h >> 32)) as u32
 }

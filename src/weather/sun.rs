@@ -1,14 +1,11 @@
-//! Sun irradiance and a gradient sky as functions of the sun's elevation: the
-//! simple model the presets use until the physical atmosphere drives them.
+//! Closed-form sun and overcast levels as functions of the sun's elevation,
+//! for the overcast presets (the clear presets use the physical atmosphere).
 //!
 //! Direct sun: Beer–Lambert through the Kasten–Young (1989) relative air mass
 //! with per-channel optical depths (Rayleigh-dominated blue, aerosol-dominated
 //! red), normalised so the zenith sun gives the towns' clear irradiance.
-//! Sky: the towns' clear gradient scaled by a log-linear twilight curve (about
-//! two decades per 6° below the horizon) and warmed near the horizon at low sun.
-
-use super::gradient;
-use crate::scene::desc::SkyDesc;
+//! Overcast: the clear global horizontal irradiance reduced by Kasten &
+//! Czeplak's (1980) cloud factor 1 − 0.75·N^3.4, rendered neutral grey.
 
 /// Irradiance of the zenith sun on a surface facing it, W·m⁻² per channel.
 const ZENITH_IRRADIANCE: [f64; 3] = [980.0, 930.0, 850.0];
@@ -30,32 +27,16 @@ pub fn sun_irradiance(elevation_deg: f64) -> [f64; 3] {
     std::array::from_fn(|c| ZENITH_IRRADIANCE[c] * (-OPTICAL_DEPTH[c] * (m - 1.0)).exp())
 }
 
-/// Brightness of the clear sky relative to a high sun, continuous in elevation.
-fn sky_scale(elevation_deg: f64) -> f64 {
-    if elevation_deg >= 0.0 {
-        // Rises from 0.15 at the horizon to 1 at 40° and above.
-        0.15 + 0.85 * (elevation_deg / 40.0).min(1.0).powf(0.7)
-    } else {
-        // Two decades per 6° of depression, floored by night sky glow.
-        (0.15 * 10f64.powf(elevation_deg / 3.0)).max(2e-6)
-    }
-}
-
-/// A gradient sky for the sun at `elevation_deg` under `cloud_cover` (0–1):
-/// deep blue at high sun, warm horizon at low sun, grey and flatter under cloud.
-pub fn twilight_sky(elevation_deg: f64, cloud_cover: f64) -> SkyDesc {
-    let s = sky_scale(elevation_deg);
-    // Warmth of the horizon: 1 at the horizon, 0 above 15°.
-    let warm = (1.0 - (elevation_deg.abs() / 15.0)).clamp(0.0, 1.0);
-    let clear_zenith = [9.0, 16.0, 38.0];
-    let clear_horizon = [30.0 + 25.0 * warm, 33.0 - 5.0 * warm, 37.0 - 20.0 * warm];
-    let grey = 34.0;
-    let c = cloud_cover.clamp(0.0, 1.0);
-    let mix = |a: f64| (a * (1.0 - c) + grey * c) * s;
-    let zenith = clear_zenith.map(mix);
-    let horizon = clear_horizon.map(mix);
-    let ground = [6.0, 5.6, 5.2].map(|g| g * s);
-    gradient(zenith, horizon, ground)
+/// Diffuse horizontal irradiance under a deck of `cloud_cover` (0–1) for the
+/// sun at `elevation_deg`, W·m⁻² per channel; a storm deck passes a third.
+pub fn overcast_irradiance(elevation_deg: f64, cloud_cover: f64, storm: bool) -> [f64; 3] {
+    let sin_e = elevation_deg.to_radians().sin().max(0.0);
+    let direct = sun_irradiance(elevation_deg);
+    // Clear-sky diffuse ≈ 120 W·m⁻² at high sun, falling with the sun.
+    let clear_y = (direct[1] * sin_e + 120.0 * sin_e.powf(0.6)).max(0.0);
+    let cloud = 1.0 - 0.75 * cloud_cover.clamp(0.0, 1.0).powf(3.4);
+    let y = clear_y * cloud * if storm { 0.33 } else { 1.0 };
+    [0.98 * y, y, 1.04 * y]
 }
 
 #[cfg(test)]
@@ -87,19 +68,14 @@ mod tests {
     }
 
     #[test]
-    fn twilight_sky_falls_monotonically_and_continuously() {
-        let zenith = |h: f64| match twilight_sky(h, 0.0) {
-            SkyDesc::Gradient { zenith, .. } => zenith[1],
-            _ => unreachable!(),
-        };
-        let mut prev = zenith(60.0);
-        let mut h = 60.0;
-        while h > -18.0 {
-            h -= 0.25;
-            let z = zenith(h);
-            assert!(z <= prev, "sky brighter at {h}°");
-            assert!(z > 0.45 * prev, "jump at {h}°: {prev} → {z}");
-            prev = z;
-        }
+    fn overcast_darkens_with_cover_and_storm() {
+        let thin = overcast_irradiance(45.0, 0.6, false);
+        let full = overcast_irradiance(45.0, 1.0, false);
+        let storm = overcast_irradiance(45.0, 1.0, true);
+        assert!(thin[1] > full[1] && full[1] > storm[1] && storm[1] > 0.0);
+        // Kasten–Czeplak: full cover passes a quarter of the clear global.
+        let clear = overcast_irradiance(45.0, 0.0, false);
+        assert!((full[1] / clear[1] - 0.25).abs() < 1e-9);
+        assert_eq!(overcast_irradiance(-5.0, 1.0, false), [0.0; 3]);
     }
 }

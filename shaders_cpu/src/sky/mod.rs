@@ -1,18 +1,34 @@
-//! Environment radiance for rays leaving the scene (world directions, z up).
+//! Environment radiance for rays leaving the scene (world directions, z up,
+//! W·m⁻²·sr⁻¹ per RGB channel).
 //!
 //! `Gradient` interpolates linearly in elevation: t = elevation / (π/2) =
 //! asin(z)·2/π, L = lerp(horizon, zenith, t) for z ≥ 0 and `ground` below.
-//! Sampling (see `sampling.rs`) mixes a cosine lobe about +z with the uniform
-//! sphere, so the pdf is positive wherever `le` can be.
+//! Its sampling (`sampling.rs`) mixes a cosine lobe about +z with the uniform
+//! sphere. `Physical` (atmosphere tables, `physical.rs`) and `Overcast` (CIE)
+//! are sampled from a piecewise-constant table (`distribution.rs`); every
+//! pdf is positive wherever `le` can be.
 
+pub mod atmosphere;
+pub mod clouds;
+pub mod distribution;
+pub mod night;
+pub mod overcast;
+pub mod physical;
 mod sampling;
+pub mod tables;
+
+pub use clouds::CloudLayer;
+pub use distribution::SkyDistribution;
+pub use night::NightGlow;
+pub use overcast::OvercastSky;
+pub use physical::{PhysicalSky, PhysicalSkyParams};
 
 use crate::sampling::luminance;
-use glam::{Vec2, Vec3};
+use glam::{DVec3, Vec2, Vec3};
 use std::f32::consts::FRAC_2_PI;
 
-/// A simple analytic sky (the physical atmosphere is a later addition).
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// The environment: analytic skies and the tabulated physical ones.
+#[derive(Clone, Debug)]
 pub enum Sky {
     /// Constant radiance in every direction.
     Constant {
@@ -28,12 +44,67 @@ pub enum Sky {
         /// Radiance of every downward direction.
         ground: Vec3,
     },
+    /// The physical clear (or moonlit night) sky; see [`PhysicalSky`].
+    Physical(Box<PhysicalSky>),
+    /// CIE overcast sky with its sampling table; build with [`Sky::overcast`].
+    Overcast(Box<(OvercastSky, SkyDistribution)>),
+}
+
+/// Skies are equal when built from equal parameters (tables are functions
+/// of them).
+impl PartialEq for Sky {
+    fn eq(&self, other: &Sky) -> bool {
+        match (self, other) {
+            (Sky::Constant { le: a }, Sky::Constant { le: b }) => a == b,
+            (
+                Sky::Gradient {
+                    zenith: z0,
+                    horizon: h0,
+                    ground: g0,
+                },
+                Sky::Gradient {
+                    zenith: z1,
+                    horizon: h1,
+                    ground: g1,
+                },
+            ) => z0 == z1 && h0 == h1 && g0 == g1,
+            (Sky::Physical(a), Sky::Physical(b)) => a.params() == b.params(),
+            (Sky::Overcast(a), Sky::Overcast(b)) => a.0 == b.0,
+            _ => false,
+        }
+    }
 }
 
 impl Sky {
+    /// An overcast sky with its sampling distribution.
+    pub fn overcast(sky: OvercastSky) -> Sky {
+        let dist = SkyDistribution::new(|d| sky.le(d));
+        Sky::Overcast(Box::new((sky, dist)))
+    }
+
+    /// Sun transmittance through the sky's cloud deck at world point
+    /// `p_world` towards `dir_to_sun` (1 for skies without clouds).
+    pub fn cloud_transmittance(&self, p_world: DVec3, dir_to_sun: Vec3) -> f32 {
+        match self {
+            Sky::Physical(p) => p.cloud_transmittance(p_world, dir_to_sun),
+            _ => 1.0,
+        }
+    }
+
+    /// The tabulated sampling distribution, for the tabulated skies.
+    fn table(&self) -> Option<&SkyDistribution> {
+        match self {
+            Sky::Physical(p) => Some(p.distribution()),
+            Sky::Overcast(o) => Some(&o.1),
+            _ => None,
+        }
+    }
+
     /// Radiance arriving from world direction `dir` (unit, z up).
     pub fn le(&self, dir: Vec3) -> Vec3 {
         match *self {
+            Sky::Physical(ref p) => p.le(dir),
+            Sky::Overcast(ref o) => o.0.le(dir),
             Sky::Constant { le } => le,
             Sky::Gradient {
                 zenith,
@@ -51,15 +122,26 @@ impl Sky {
     }
     /// Samples a world direction; returns (dir, radiance, pdf per solid angle).
     pub fn sample(&self, u: Vec2) -> (Vec3, Vec3, f32) {
+        if let Some(t) = self.table() {
+            let (dir, pdf) = t.sample(u);
+            return (dir, self.le(dir), pdf);
+        }
         let dir = sampling::sample_dir(self.cosine_lobe_prob(), u);
         (dir, self.le(dir), self.pdf(dir))
     }
     /// Pdf per solid angle of `sample` producing `dir`.
     pub fn pdf(&self, dir: Vec3) -> f32 {
+        if let Some(t) = self.table() {
+            return t.pdf(dir);
+        }
         sampling::dir_pdf(self.cosine_lobe_prob(), dir)
     }
-    /// Mean radiance over the sphere, (1/4π)∫ le dω, per channel (closed form).
+    /// Mean radiance over the sphere, (1/4π)∫ le dω, per channel (closed
+    /// form for the analytic skies, the sampling table's quadrature else).
     pub fn mean_le(&self) -> Vec3 {
+        if let Some(t) = self.table() {
+            return t.mean_le();
+        }
         match *self {
             Sky::Constant { le } => le,
             Sky::Gradient {
@@ -73,6 +155,7 @@ impl Sky {
                 let upper = horizon * (1.0 - wz) + zenith * wz;
                 (upper + ground) * 0.5
             }
+            Sky::Physical(_) | Sky::Overcast(_) => unreachable!("tabulated"),
         }
     }
     /// Luminance of [`Sky::mean_le`] (Rec.709 Y), e.g. for exposure hints.
@@ -84,7 +167,7 @@ impl Sky {
     /// of the power, so the uniform-sphere part always keeps pdf > 0.
     fn cosine_lobe_prob(&self) -> f32 {
         match *self {
-            Sky::Constant { .. } => 0.0,
+            Sky::Constant { .. } | Sky::Physical(_) | Sky::Overcast(_) => 0.0,
             Sky::Gradient {
                 zenith,
                 horizon,

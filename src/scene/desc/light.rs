@@ -62,6 +62,77 @@ pub enum SkyDesc {
         /// Radiance of every downward direction.
         ground: [f64; 3],
     },
+    /// Physically based clear sky (Rayleigh, Mie, ozone atmosphere), valid
+    /// from noon to astronomical twilight. Brings its own sun: a disk of the
+    /// true size whose irradiance is the atmosphere's (red at sunset, none once
+    /// set), so the scene must not also have a `[[light]]` sun.
+    Physical {
+        /// Sun height above the horizon in degrees, in [−90, 90].
+        sun_elevation_deg: f64,
+        /// Direction towards the sun in degrees, counter-clockwise from +x.
+        sun_azimuth_deg: f64,
+        /// Aerosol (Mie) density multiplier, in [0, 20]: 1 clear, 3–5 hazy.
+        #[serde(default = "one")]
+        turbidity: f64,
+        /// Albedo of the ground seen below the horizon, in [0, 1].
+        #[serde(default = "default_ground_albedo")]
+        ground_albedo: f64,
+        /// Fraction of the sky under a world-fixed cloud deck at 1.5 km, in
+        /// [0, 1]: its shadows dim the sun, the same in every view.
+        #[serde(default)]
+        cloud_cover: f64,
+        /// Seed of the cloud pattern.
+        #[serde(default)]
+        cloud_seed: u32,
+    },
+    /// CIE standard overcast sky, L(θ) ∝ (1 + 2 cos θ)/3; no sun disk.
+    Overcast {
+        /// Diffuse horizontal irradiance under the deck, W·m⁻² per channel, ≥ 0.
+        irradiance: [f64; 3],
+        /// Albedo of the ground seen below the horizon, in [0, 1].
+        #[serde(default = "default_ground_albedo")]
+        ground_albedo: f64,
+    },
+    /// Night: the moonlit atmosphere, airglow, artificial sky glow and stars,
+    /// with the moon as a disk light (about 2.5e-6 of the sun at full moon).
+    Night {
+        /// Moon height above the horizon in degrees, in [−90, 90].
+        moon_elevation_deg: f64,
+        /// Direction towards the moon in degrees, counter-clockwise from +x.
+        moon_azimuth_deg: f64,
+        /// Phase angle in degrees, in [0, 180]: 0 full, 90 half, 180 new.
+        #[serde(default)]
+        moon_phase_deg: f64,
+        /// Artificial sky glow at the horizon, W·m⁻²·sr⁻¹, ≥ 0 (0 wilderness,
+        /// 1e-4 suburban; 1 W·m⁻²·sr⁻¹ ≈ 100 cd·m⁻²).
+        #[serde(default = "default_sky_glow")]
+        sky_glow: f64,
+        /// Whether stars are drawn.
+        #[serde(default = "yes")]
+        stars: bool,
+        /// Seed of the star field.
+        #[serde(default)]
+        star_seed: u32,
+        /// Aerosol (Mie) density multiplier, in [0, 20].
+        #[serde(default = "one")]
+        turbidity: f64,
+    },
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+fn yes() -> bool {
+    true
+}
+
+fn default_ground_albedo() -> f64 {
+    0.1
+}
+
+fn default_sky_glow() -> f64 {
+    2e-5
 }
 
 fn default_sun_diameter() -> f64 {

@@ -1,0 +1,120 @@
+//! Importance sampling of a tabulated sky: a piecewise-constant 2D
+//! distribution over an equal-area grid of the sphere (pbrt-v4 §A.5.2's
+//! marginal/conditional construction on cells uniform in (z, φ)).
+//!
+//! Cells are uniform in z = cos θ and φ, so each spans the same solid angle
+//! 4π/(n_z·n_φ) and the pdf per solid angle is exactly pmf(cell)·n_z·n_φ/(4π).
+//! Weights are the cell's mean luminance (2 × 2 points) plus a floor of 1% of
+//! the sphere mean, so the pdf is positive wherever the sky can emit.
+
+use crate::sampling::luminance;
+use glam::{Vec2, Vec3};
+use std::f32::consts::PI;
+
+/// Rows along z ∈ [−1, 1] and columns along φ ∈ [−π, π].
+pub const GRID: (usize, usize) = (64, 128);
+
+/// A sampling distribution over directions built from a radiance function.
+#[derive(Clone, Debug)]
+pub struct SkyDistribution {
+    /// Per-row marginal cdf (n_z entries, last = 1).
+    marginal: Vec<f32>,
+    /// Per-cell conditional cdf within each row.
+    conditional: Vec<f32>,
+    /// Per-cell probability.
+    pmf: Vec<f32>,
+    /// (1/4π)∫ le dω estimated on the grid (exact for piecewise-constant le).
+    mean_le: Vec3,
+}
+
+impl SkyDistribution {
+    /// Tabulates `le` (world direction → radiance) on the grid.
+    pub fn new(le: impl Fn(Vec3) -> Vec3) -> Self {
+        let (nz, nphi) = GRID;
+        let mut w = vec![0.0f64; nz * nphi];
+        let mut sum_le = glam::DVec3::ZERO;
+        for j in 0..nz {
+            for i in 0..nphi {
+                let mut acc = 0.0;
+                for s in 0..4 {
+                    let u = Vec2::new(
+                        (i as f32 + 0.25 + 0.5 * (s % 2) as f32) / nphi as f32,
+                        (j as f32 + 0.25 + 0.5 * (s / 2) as f32) / nz as f32,
+                    );
+                    let l = le(dir_of(u));
+                    sum_le += l.as_dvec3();
+                    acc += luminance(l).max(0.0) as f64;
+                }
+                w[j * nphi + i] = acc / 4.0;
+            }
+        }
+        let mean = w.iter().sum::<f64>() / w.len() as f64;
+        let floor = if mean > 0.0 { 0.01 * mean } else { 1.0 };
+        w.iter_mut().for_each(|x| *x += floor);
+        let total: f64 = w.iter().sum();
+        let pmf: Vec<f32> = w.iter().map(|x| (x / total) as f32).collect();
+        let mut marginal = Vec::with_capacity(nz);
+        let mut conditional = Vec::with_capacity(nz * nphi);
+        let mut acc_rows = 0.0f64;
+        for j in 0..nz {
+            let row = &w[j * nphi..(j + 1) * nphi];
+            let row_sum: f64 = row.iter().sum();
+            let mut acc = 0.0f64;
+            for x in row {
+                acc += x;
+                conditional.push((acc / row_sum) as f32);
+            }
+            acc_rows += row_sum;
+            marginal.push((acc_rows / total) as f32);
+        }
+        SkyDistribution {
+            marginal,
+            conditional,
+            pmf,
+            mean_le: (sum_le / (4 * nz * nphi) as f64).as_vec3(),
+        }
+    }
+
+    /// Draws a direction; returns (dir, pdf per solid angle).
+    pub fn sample(&self, u: Vec2) -> (Vec3, f32) {
+        let (nz, nphi) = GRID;
+        let (j, vy) = invert(&self.marginal, u.y);
+        let row = &self.conditional[j * nphi..(j + 1) * nphi];
+        let (i, vx) = invert(row, u.x);
+        let cell_u = Vec2::new((i as f32 + vx) / nphi as f32, (j as f32 + vy) / nz as f32);
+        let dir = dir_of(cell_u);
+        (dir, self.pdf(dir))
+    }
+
+    /// Pdf per solid angle of [`SkyDistribution::sample`] producing `dir`.
+    pub fn pdf(&self, dir: Vec3) -> f32 {
+        let (nz, nphi) = GRID;
+        let z = dir.z.clamp(-1.0, 1.0);
+        let j = (((z + 1.0) * 0.5 * nz as f32) as usize).min(nz - 1);
+        let phi = dir.y.atan2(dir.x);
+        let i = (((phi + PI) / (2.0 * PI) * nphi as f32) as usize).min(nphi - 1);
+        self.pmf[j * nphi + i] * (nz * nphi) as f32 / (4.0 * PI)
+    }
+
+    /// Mean radiance over the sphere, (1/4π)∫ le dω, from the tabulation points.
+    pub fn mean_le(&self) -> Vec3 {
+        self.mean_le
+    }
+}
+
+/// Direction of unit grid coordinates (u.x along φ, u.y along z).
+fn dir_of(u: Vec2) -> Vec3 {
+    let z = (2.0 * u.y - 1.0).clamp(-1.0, 1.0);
+    let phi = -PI + 2.0 * PI * u.x;
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+}
+
+/// Index of the cdf interval containing `u` and the position within it.
+fn invert(cdf: &[f32], u: f32) -> (usize, f32) {
+    let k = cdf.partition_point(|&c| c <= u).min(cdf.len() - 1);
+    let lo = if k == 0 { 0.0 } else { cdf[k - 1] };
+    let width = cdf[k] - lo;
+    let t = if width > 0.0 { (u - lo) / width } else { 0.5 };
+    (k, t.clamp(0.0, 1.0 - f32::EPSILON))
+}

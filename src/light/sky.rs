@@ -1,0 +1,124 @@
+//! Builds the frame's sky from its description, with the light its source
+//! brings: the physical sky's sun, or the night sky's moon, as a distant disk
+//! whose irradiance is the atmosphere's (top-of-atmosphere × transmittance).
+//!
+//! World directions, z up; degrees from the description, radians inside.
+
+use glam::{DVec3, Vec3};
+use shaders_cpu::sky::atmosphere::{Atmosphere, SOLAR_IRRADIANCE, SUN_ANGULAR_RADIUS_RAD};
+use shaders_cpu::sky::{CloudLayer, NightGlow, OvercastSky, PhysicalSky, PhysicalSkyParams, Sky};
+
+use super::Light;
+use crate::scene::build::dir_from_elevation_azimuth;
+use crate::scene::desc::SkyDesc;
+
+/// Full-moon irradiance relative to the sun's (both outside the atmosphere).
+pub const MOON_TO_SUN: f64 = 2.5e-6;
+/// Angular radius of the moon, rad (0.259°).
+const MOON_ANGULAR_RADIUS_RAD: f32 = 0.004_52;
+
+/// Brightness of the moon at phase angle `phase_deg` relative to full: the
+/// Lambert-sphere law ((π − α) cos α + sin α)/π.
+pub fn moon_phase_factor(phase_deg: f64) -> f64 {
+    let a = phase_deg.clamp(0.0, 180.0).to_radians();
+    (((std::f64::consts::PI - a) * a.cos() + a.sin()) / std::f64::consts::PI).max(0.0)
+}
+
+fn v3(c: [f64; 3]) -> Vec3 {
+    DVec3::from(c).as_vec3()
+}
+
+/// The sky of `desc` (black without one) and the disk light it brings, if its
+/// source is above the horizon.
+pub fn build_sky(desc: Option<&SkyDesc>) -> (Sky, Option<Light>) {
+    let Some(desc) = desc else {
+        return (Sky::Constant { le: Vec3::ZERO }, None);
+    };
+    match desc {
+        SkyDesc::Constant { le } => (Sky::Constant { le: v3(*le) }, None),
+        SkyDesc::Gradient {
+            zenith,
+            horizon,
+            ground,
+        } => (
+            Sky::Gradient {
+                zenith: v3(*zenith),
+                horizon: v3(*horizon),
+                ground: v3(*ground),
+            },
+            None,
+        ),
+        SkyDesc::Overcast {
+            irradiance,
+            ground_albedo,
+        } => (
+            Sky::overcast(OvercastSky::from_irradiance(
+                v3(*irradiance),
+                *ground_albedo as f32,
+            )),
+            None,
+        ),
+        SkyDesc::Physical {
+            sun_elevation_deg,
+            sun_azimuth_deg,
+            turbidity,
+            ground_albedo,
+            cloud_cover,
+            cloud_seed,
+        } => {
+            let clouds =
+                (*cloud_cover > 0.0).then(|| CloudLayer::new(*cloud_cover as f32, *cloud_seed));
+            source_sky(
+                PhysicalSkyParams {
+                    source_dir: dir_from_elevation_azimuth(*sun_elevation_deg, *sun_azimuth_deg)
+                        .as_vec3(),
+                    source_irradiance: v3(SOLAR_IRRADIANCE),
+                    atmosphere: Atmosphere {
+                        turbidity: *turbidity,
+                        ground_albedo: *ground_albedo,
+                    },
+                    clouds,
+                    glow: None,
+                },
+                SUN_ANGULAR_RADIUS_RAD as f32,
+            )
+        }
+        SkyDesc::Night {
+            moon_elevation_deg,
+            moon_azimuth_deg,
+            moon_phase_deg,
+            sky_glow,
+            stars,
+            star_seed,
+            turbidity,
+        } => {
+            let moon = MOON_TO_SUN * moon_phase_factor(*moon_phase_deg);
+            source_sky(
+                PhysicalSkyParams {
+                    source_dir: dir_from_elevation_azimuth(*moon_elevation_deg, *moon_azimuth_deg)
+                        .as_vec3(),
+                    source_irradiance: v3(SOLAR_IRRADIANCE.map(|e| e * moon)),
+                    atmosphere: Atmosphere {
+                        turbidity: *turbidity,
+                        ground_albedo: 0.1,
+                    },
+                    clouds: None,
+                    glow: Some(NightGlow::new(*sky_glow as f32, *stars, *star_seed)),
+                },
+                MOON_ANGULAR_RADIUS_RAD,
+            )
+        }
+    }
+}
+
+/// A physical sky and its source's disk light (none once the disk has set).
+fn source_sky(params: PhysicalSkyParams, angular_radius_rad: f32) -> (Sky, Option<Light>) {
+    let sky = PhysicalSky::new(params);
+    let irradiance = sky.source_irradiance_ground();
+    let light = (irradiance.max_element() > 0.0).then_some(Light::Sun {
+        dir_to_sun: params.source_dir,
+        angular_radius_rad,
+        irradiance,
+    });
+    (Sky::Physical(Box::new(sky)), light)
+}
