@@ -127,6 +127,7 @@ pub fn render_frame(
             lights: &lights,
             surfaces: &surfaces,
             max_depth: settings.max_depth,
+            rain: crate::integrator::frame_rain(scene, settings.seed, settings.frame),
         };
         for (view, cam) in cams.iter().enumerate() {
             progress(view, n_views);

@@ -129,6 +129,14 @@ pub fn build_scene(scene: &LoadedScene, origin_world: DVec3) -> Result<Scene, Sc
             .map(|l| build_light(l, origin_world))
             .collect(),
         sky: build_sky(desc.sky.as_ref()),
+        medium: desc
+            .medium
+            .as_ref()
+            .map(|m| super::desc::build_medium(m, origin_world)),
+        rain: desc
+            .rain
+            .as_ref()
+            .map(|r| super::desc::build_rain(r, origin_world)),
     })
 }
 

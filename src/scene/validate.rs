@@ -387,6 +387,7 @@ pub fn validate(
     if let Some(sky) = &desc.sky {
         v.sky(sky)?;
     }
+    weather(&v, desc)?;
     for (i, l) in desc.lights.iter().enumerate() {
         v.light(i, l)?;
     }
@@ -486,6 +487,18 @@ pub fn validate(
         return Err(SceneError::at(file, K::NoLight, "", msg));
     }
     Ok((objs, exact))
+}
+
+/// The `[medium]` and `[rain]` sections (their checks live beside the descriptions).
+fn weather(v: &V, desc: &SceneDesc) -> Result<(), SceneError> {
+    let checks = [
+        desc.medium.as_ref().map(|m| m.check()),
+        desc.rain.as_ref().map(|r| r.check()),
+    ];
+    for (key, msg) in checks.into_iter().flatten().filter_map(Result::err) {
+        return Err(v.err(key, msg));
+    }
+    Ok(())
 }
 
 /// An OBJ path from the scene file's directory.

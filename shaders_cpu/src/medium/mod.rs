@@ -12,9 +12,11 @@
 
 mod equiangular;
 mod phase;
+mod rain;
 
 pub use equiangular::Equiangular;
 pub use phase::{hg, HenyeyGreenstein, PhaseSample};
+pub use rain::{fresnel_dielectric, marshall_palmer_count, DropEvent, Rain, StreakHit, WATER_ETA};
 
 use glam::{DVec3, Vec3};
 
