@@ -254,7 +254,7 @@ impl<A: Accel> PathContext<'_, A> {
             return Vec3::ZERO;
         };
         let (t, pdf_eq) = e.sample(u_t);
-        if !(pdf_eq > 0.0) || !t.is_finite() {
+        if pdf_eq.is_nan() || pdf_eq <= 0.0 || !t.is_finite() {
             return Vec3::ZERO;
         }
         let x = ray.at(t);

@@ -495,10 +495,10 @@ fn weather(v: &V, desc: &SceneDesc) -> Result<(), SceneError> {
         desc.medium.as_ref().map(|m| m.check()),
         desc.rain.as_ref().map(|r| r.check()),
     ];
-    for (key, msg) in checks.into_iter().flatten().filter_map(Result::err) {
-        return Err(v.err(key, msg));
+    match checks.into_iter().flatten().find_map(Result::err) {
+        Some((key, msg)) => Err(v.err(key, msg)),
+        None => Ok(()),
     }
-    Ok(())
 }
 
 /// An OBJ path from the scene file's directory.
