@@ -109,7 +109,7 @@ fn point_light_in_fog_matches_single_scatter_quadrature() {
     // Equiangular and free-flight collisions combined by MIS, one event.
     let (sigma, albedo, g, intensity) = (0.08, 0.9, 0.3, 50.0);
     let q = DVec3::new(6.0, 1.0, 0.5);
-    let body = "[[light]]\nkind = \"point\"\nposition = [6.0, 1.0, 0.5]\nintensity = [50.0, 50.0, 50.0]\n[medium]\nkind = \"homogeneous\"\nsigma_t = 0.08\nalbedo = [0.9, 0.9, 0.9]\ng = 0.3\n";
+    let body = "[[light]]\nkind = \"point\"\nposition = [6.0, 1.0, 0.5]\nintensity = [50.0, 50.0, 50.0]\n[medium]\nkind = \"homogeneous\"\nsigma_t = 0.08\nalbedo = [0.9, 0.9, 0.9]\ng = 0.3\nz_max_m = 1000.0\n";
     let r = render_text(body, 64, 1, 0.0);
     let expected = |d: DVec3| {
         // Simpson on t ∈ [0, 300] in the variable t = x³ (dense near the camera).

@@ -105,7 +105,7 @@ fn bad_medium_and_rain_values_name_their_keys() {
     let path = std::path::Path::new("bad.toml");
     for (extra, key) in [
         (
-            "\n[medium]\nkind = \"homogeneous\"\nvisibility_m = -5.0\n",
+            "\n[medium]\nkind = \"homogeneous\"\nvisibility_m = -5.0\nz_max_m = 100.0\n",
             "medium.visibility_m",
         ),
         (
@@ -126,6 +126,10 @@ fn bad_medium_and_rain_values_name_their_keys() {
         ),
         (
             "\n[medium]\nkind = \"homogeneous\"\nsigma_t = 0.1\nz_min_m = 5.0\nz_max_m = 1.0\n",
+            "medium.z_max_m",
+        ),
+        (
+            "\n[medium]\nkind = \"homogeneous\"\nsigma_t = 0.1\n",
             "medium.z_max_m",
         ),
         ("\n[rain]\nrate_mm_per_h = 0.0\n", "rain.rate_mm_per_h"),

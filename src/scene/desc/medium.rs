@@ -41,7 +41,8 @@ pub struct MediumDesc {
     /// Lower bound of the medium, world z metres (absent: unbounded).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub z_min_m: Option<f64>,
-    /// Upper bound of the medium, world z metres (absent: unbounded).
+    /// Upper bound of the medium, world z metres (absent: unbounded; required
+    /// for `homogeneous`, whose unbounded column would block sun and sky).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub z_max_m: Option<f64>,
 }
@@ -142,6 +143,13 @@ impl MediumDesc {
                 in_range("medium.height_scale_m", h, 0.0, 1e5, true)?
             }
             _ => {}
+        }
+        if self.kind == MediumKindDesc::Homogeneous && self.z_max_m.is_none() {
+            // Unbounded haze has infinite optical depth toward the sun and sky.
+            return Err((
+                "medium.z_max_m".into(),
+                "a homogeneous medium needs a top (e.g. 1000): without one no sun or sky light gets in".into(),
+            ));
         }
         for (key, z) in [
             ("medium.z_min_m", self.z_min_m),
