@@ -11,6 +11,7 @@
 #![warn(missing_docs)]
 
 pub mod bsdf;
+pub mod medium;
 pub mod sampling;
 pub mod sky;
 pub mod stats;

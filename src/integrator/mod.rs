@@ -5,6 +5,7 @@
 
 pub mod gt;
 pub mod path;
+pub mod volpath;
 
 use glam::{DMat3, DVec3, Vec3};
 
@@ -40,4 +41,15 @@ impl RenderCamera {
     pub fn center_f32(&self) -> Vec3 {
         self.center.as_vec3()
     }
+}
+
+/// The scene's rain field seeded for one frame: streak positions are a pure
+/// function of (seed, frame, world cell), the same in every view.
+pub fn frame_rain(
+    scene: &crate::scene::Scene,
+    seed: u64,
+    frame: u32,
+) -> Option<shaders_cpu::medium::Rain> {
+    let seed = crate::sampler::hash_words(&[seed, frame as u64, 0x7261_696e]);
+    scene.rain.map(|r| shaders_cpu::medium::Rain { seed, ..r })
 }

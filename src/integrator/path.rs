@@ -5,9 +5,12 @@
 //! Every random number comes from the pixel's `SampleStream`; each bounce
 //! starts at a fixed dimension so the streams of different bounces never shift.
 //! `max_depth` counts scattering events: 1 is direct lighting only.
+//! Scenes with a medium or rain take the volumetric loop of `volpath.rs`;
+//! without them this loop runs unchanged (same bytes).
 
 use glam::Vec3;
 use shaders_cpu::bsdf::Bsdf;
+use shaders_cpu::medium::Rain;
 use shaders_cpu::sampling::{power_heuristic, Frame};
 
 use crate::accel::{Accel, Hit, Ray};
@@ -37,11 +40,55 @@ pub struct PathContext<'a, A: Accel> {
     pub surfaces: &'a SurfaceTable,
     /// Maximum number of scattering events.
     pub max_depth: u32,
+    /// This frame's rain field (seeded), if it rains.
+    pub rain: Option<Rain>,
 }
 
 /// Reflection-only BSDFs see both faces of a surface the same way.
 fn is_two_sided(bsdf: &Bsdf) -> bool {
     !matches!(bsdf, Bsdf::Dielectric { .. })
+}
+
+/// The running state of one path.
+pub(super) struct PathState {
+    /// Radiance gathered so far.
+    pub l: Vec3,
+    /// Throughput.
+    pub beta: Vec3,
+    /// Solid-angle pdf of the last sampled direction.
+    pub prev_pdf: f32,
+    /// Whether the last direction came from the camera or a delta lobe.
+    pub prev_delta: bool,
+    /// The last scattering point.
+    pub prev_p: Vec3,
+    /// Scattering events so far.
+    pub bounces: u32,
+}
+
+impl PathState {
+    /// A camera path starting at `o`.
+    pub fn new(o: Vec3) -> Self {
+        PathState {
+            l: Vec3::ZERO,
+            beta: Vec3::ONE,
+            prev_pdf: 0.0,
+            prev_delta: true,
+            prev_p: o,
+            bounces: 0,
+        }
+    }
+
+    /// Russian roulette after `RR_START` bounces; false ends the path.
+    pub fn survives_roulette(&mut self, u_rr: f32) -> bool {
+        if self.bounces >= RR_START {
+            let q = (1.0 - self.beta.max_element()).clamp(0.0, 0.95);
+            if u_rr < q {
+                return false;
+            }
+            self.beta /= 1.0 - q;
+        }
+        true
+    }
 }
 
 impl<A: Accel> PathContext<'_, A> {
@@ -60,14 +107,11 @@ impl<A: Accel> PathContext<'_, A> {
         stream: &mut SampleStream,
         rays: &mut u64,
     ) -> Vec3 {
-        let scene = self.scene;
+        if self.scene.medium.is_some() || self.rain.is_some() {
+            return self.li_volume(ray, first_hit, stream, rays);
+        }
         let mut known_hit = Some(first_hit);
-        let mut l = Vec3::ZERO;
-        let mut beta = Vec3::ONE;
-        let mut prev_pdf = 0.0f32;
-        let mut prev_delta = true;
-        let mut prev_p = ray.o;
-        let mut bounces = 0u32;
+        let mut st = PathState::new(ray.o);
         loop {
             *rays += 1;
             let hit = match known_hit.take() {
@@ -75,94 +119,108 @@ impl<A: Accel> PathContext<'_, A> {
                 None => self.accel.intersect(&ray),
             };
             let Some(hit) = hit else {
-                l += beta * self.lights.escaped(scene, ray.d, prev_pdf, prev_delta);
+                st.l += st.beta
+                    * self
+                        .lights
+                        .escaped_at(self.scene, ray.o, ray.d, st.prev_pdf, st.prev_delta);
                 break;
             };
-            let mut si = self.surfaces.interaction(scene, &ray, &hit);
-            let wo = -ray.d;
-            let mat = &scene.materials[si.material as usize];
-            let front = wo.dot(si.n_geo) > 0.0;
-            if mat.le != Vec3::ZERO && (front || mat.two_sided_emission) {
-                let w = if prev_delta {
-                    1.0
-                } else {
-                    let pdf_l = self.lights.pdf_triangle(
-                        scene,
-                        hit.geom_id,
-                        hit.prim_id,
-                        prev_p,
-                        si.p,
-                        si.n_geo,
-                    );
-                    power_heuristic(1.0, prev_pdf, 1.0, pdf_l)
-                };
-                l += beta * mat.le * w;
+            match self.surface_vertex(&ray, &hit, &mut st, stream, rays) {
+                Some(next) => ray = next,
+                None => break,
             }
-            if bounces == self.max_depth {
-                break;
-            }
-            let bsdf = mat.bsdf;
-            if is_two_sided(&bsdf) && !front {
-                si.n_geo = -si.n_geo;
-                si.n_shading = -si.n_shading;
-            }
-            let frame = Frame::from_z(si.n_shading);
-            let wo_local = frame.to_local(wo);
-            stream.set_dimension(CAMERA_DIMS + bounces * DIMS_PER_BOUNCE);
-            let [u_select, u_lx, u_ly, u_lobe] = stream.next_4d();
-            let [u_bx, u_by, u_rr, _] = stream.next_4d();
-            if !bsdf.is_delta() {
-                let lights = self.lights;
-                let [a0, a1, a2, a3] = stream.next_4d();
-                // The last set of the bounce: skipping it shifts nothing.
-                let [b0, b1, b2, b3] = if lights.distant_count() > 2 {
-                    stream.next_4d()
-                } else {
-                    [0.0; 4]
-                };
-                let u_distant = [
-                    glam::Vec2::new(a0, a1),
-                    glam::Vec2::new(a2, a3),
-                    glam::Vec2::new(b0, b1),
-                    glam::Vec2::new(b2, b3),
-                ];
-                for (k, &u) in u_distant.iter().enumerate().take(lights.distant_count()) {
-                    let ls = lights.sample_distant(scene, k, si.p, u);
-                    l += beta * self.direct(&si, &bsdf, &frame, wo_local, ls, rays);
-                }
-                let ls = lights.sample(scene, si.p, u_select, glam::Vec2::new(u_lx, u_ly));
-                l += beta * self.direct(&si, &bsdf, &frame, wo_local, ls, rays);
-            }
-            let u_bsdf = glam::Vec2::new(u_bx, u_by);
-            let Some(bs) = bsdf.sample(wo_local, u_lobe, u_bsdf) else {
-                break;
-            };
-            if bs.pdf <= 0.0 {
-                break;
-            }
-            let wi = frame.from_local(bs.wi);
-            // Reflection-only surfaces must not send light through the geometry.
-            if is_two_sided(&bsdf) && wi.dot(si.n_geo) <= 0.0 {
-                break;
-            }
-            beta *= bs.f * bs.wi.z.abs() / bs.pdf;
-            if !beta.is_finite() || beta == Vec3::ZERO {
-                break;
-            }
-            prev_pdf = bs.pdf;
-            prev_delta = bs.delta;
-            prev_p = si.p;
-            bounces += 1;
-            if bounces >= RR_START {
-                let q = (1.0 - beta.max_element()).clamp(0.0, 0.95);
-                if u_rr < q {
-                    break;
-                }
-                beta /= 1.0 - q;
-            }
-            ray = si.spawn_ray(wi);
         }
-        l
+        st.l
+    }
+
+    /// One surface vertex: emission (MIS-weighted), NEE, BSDF sampling and
+    /// roulette. Returns the continuation ray, or None when the path ends.
+    pub(super) fn surface_vertex(
+        &self,
+        ray: &Ray,
+        hit: &Hit,
+        st: &mut PathState,
+        stream: &mut SampleStream,
+        rays: &mut u64,
+    ) -> Option<Ray> {
+        let scene = self.scene;
+        let mut si = self.surfaces.interaction(scene, ray, hit);
+        let wo = -ray.d;
+        let mat = &scene.materials[si.material as usize];
+        let front = wo.dot(si.n_geo) > 0.0;
+        if mat.le != Vec3::ZERO && (front || mat.two_sided_emission) {
+            let w = if st.prev_delta {
+                1.0
+            } else {
+                let pdf_l = self.lights.pdf_triangle(
+                    scene,
+                    hit.geom_id,
+                    hit.prim_id,
+                    st.prev_p,
+                    si.p,
+                    si.n_geo,
+                );
+                power_heuristic(1.0, st.prev_pdf, 1.0, pdf_l)
+            };
+            st.l += st.beta * mat.le * w;
+        }
+        if st.bounces == self.max_depth {
+            return None;
+        }
+        let bsdf = mat.bsdf;
+        if is_two_sided(&bsdf) && !front {
+            si.n_geo = -si.n_geo;
+            si.n_shading = -si.n_shading;
+        }
+        let frame = Frame::from_z(si.n_shading);
+        let wo_local = frame.to_local(wo);
+        stream.set_dimension(CAMERA_DIMS + st.bounces * DIMS_PER_BOUNCE);
+        let [u_select, u_lx, u_ly, u_lobe] = stream.next_4d();
+        let [u_bx, u_by, u_rr, _] = stream.next_4d();
+        if !bsdf.is_delta() {
+            let lights = self.lights;
+            let [a0, a1, a2, a3] = stream.next_4d();
+            // The last set of the bounce: skipping it shifts nothing.
+            let [b0, b1, b2, b3] = if lights.distant_count() > 2 {
+                stream.next_4d()
+            } else {
+                [0.0; 4]
+            };
+            let u_distant = [
+                glam::Vec2::new(a0, a1),
+                glam::Vec2::new(a2, a3),
+                glam::Vec2::new(b0, b1),
+                glam::Vec2::new(b2, b3),
+            ];
+            for (k, &u) in u_distant.iter().enumerate().take(lights.distant_count()) {
+                let ls = lights.sample_distant(scene, k, si.p, u);
+                st.l += st.beta * self.direct(&si, &bsdf, &frame, wo_local, ls, rays);
+            }
+            let ls = lights.sample(scene, si.p, u_select, glam::Vec2::new(u_lx, u_ly));
+            st.l += st.beta * self.direct(&si, &bsdf, &frame, wo_local, ls, rays);
+        }
+        let u_bsdf = glam::Vec2::new(u_bx, u_by);
+        let bs = bsdf.sample(wo_local, u_lobe, u_bsdf)?;
+        if bs.pdf <= 0.0 {
+            return None;
+        }
+        let wi = frame.from_local(bs.wi);
+        // Reflection-only surfaces must not send light through the geometry.
+        if is_two_sided(&bsdf) && wi.dot(si.n_geo) <= 0.0 {
+            return None;
+        }
+        st.beta *= bs.f * bs.wi.z.abs() / bs.pdf;
+        if !st.beta.is_finite() || st.beta == Vec3::ZERO {
+            return None;
+        }
+        st.prev_pdf = bs.pdf;
+        st.prev_delta = bs.delta;
+        st.prev_p = si.p;
+        st.bounces += 1;
+        if !st.survives_roulette(u_rr) {
+            return None;
+        }
+        Some(si.spawn_ray(wi))
     }
 
     /// Next-event estimation for one light sample: shadow-tested, MIS-weighted.
@@ -203,6 +261,13 @@ impl<A: Accel> PathContext<'_, A> {
         } else {
             power_heuristic(1.0, ls.pdf, 1.0, bsdf.pdf(wo_local, wi_local))
         };
-        f * ls.li * (w / ls.pdf)
+        let li = match &self.scene.medium {
+            // Shadow rays through a medium carry its transmittance.
+            Some(m) => ls.li * m.tr(si.p, ls.wi, ls.dist),
+            None => ls.li,
+        };
+        // Delta local lights seen from a medium-free surface need no MIS with
+        // equiangular sampling (that only covers medium vertices).
+        f * li * (w / ls.pdf)
     }
 }

@@ -98,7 +98,10 @@ pub fn render_frame(
     let mut stats = RenderStats::default();
 
     let t0 = Instant::now();
-    let left = view_gt(scene, accel, &cams[0], true);
+    let mut left = view_gt(scene, accel, &cams[0], true);
+    if let Some(rain) = crate::integrator::frame_rain(scene, settings.seed, settings.frame) {
+        crate::integrator::gt::add_rain_mask(scene, &rain, &cams[0], &mut left);
+    }
     stats.gt_rays += left.depth_z.len() as u64;
     let mut baselines = Vec::with_capacity(rig.baselines_m.len());
     for (b, &baseline_m) in rig.baselines_m.iter().enumerate() {
@@ -130,6 +133,7 @@ pub fn render_frame(
             lights: &lights,
             surfaces: &surfaces,
             max_depth: settings.max_depth,
+            rain: crate::integrator::frame_rain(scene, settings.seed, settings.frame),
         };
         for (view, cam) in cams.iter().enumerate() {
             progress(view, n_views);

@@ -130,6 +130,14 @@ pub fn build_scene(scene: &LoadedScene, origin_world: DVec3) -> Result<Scene, Sc
             .chain(sky_light)
             .collect(),
         sky,
+        medium: desc
+            .medium
+            .as_ref()
+            .map(|m| super::desc::build_medium(m, origin_world)),
+        rain: desc
+            .rain
+            .as_ref()
+            .map(|r| super::desc::build_rain(r, origin_world)),
     })
 }
 

@@ -111,6 +111,11 @@ pub struct Scene {
     pub lights: Vec<Light>,
     /// Environment radiance for rays that leave the scene.
     pub sky: Sky,
+    /// Participating medium in render space (None: clear air).
+    pub medium: Option<shaders_cpu::medium::Medium>,
+    /// Rain field centred on the rig; its `seed` is set per frame by the
+    /// renderer (`Rain { seed, ..rain }`). None: no rain.
+    pub rain: Option<shaders_cpu::medium::Rain>,
 }
 
 impl Scene {

@@ -438,6 +438,7 @@ pub fn validate(
             ));
         }
     }
+    weather(&v, desc)?;
     for (i, l) in desc.lights.iter().enumerate() {
         v.light(i, l)?;
     }
@@ -544,6 +545,18 @@ pub fn validate(
         return Err(SceneError::at(file, K::NoLight, "", msg));
     }
     Ok((objs, exact))
+}
+
+/// The `[medium]` and `[rain]` sections (their checks live beside the descriptions).
+fn weather(v: &V, desc: &SceneDesc) -> Result<(), SceneError> {
+    let checks = [
+        desc.medium.as_ref().map(|m| m.check()),
+        desc.rain.as_ref().map(|r| r.check()),
+    ];
+    match checks.into_iter().flatten().find_map(Result::err) {
+        Some((key, msg)) => Err(v.err(key, msg)),
+        None => Ok(()),
+    }
 }
 
 /// An OBJ path from the scene file's directory.

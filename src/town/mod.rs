@@ -97,6 +97,8 @@ pub fn town_scene(desc: &TownDesc, seed: u64, frame: u64, config: CameraConfig) 
             seed: Some(seed),
         },
         sky: Some(materials::town_sky(desc)),
+        medium: None,
+        rain: None,
         lights: vec![materials::town_sun(desc)],
         materials: materials::town_materials(desc),
         objects,

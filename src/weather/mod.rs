@@ -13,7 +13,7 @@ use std::str::FromStr;
 
 use serde::{Deserialize, Serialize};
 
-use crate::scene::desc::{LightDesc, SceneDesc, SkyDesc};
+use crate::scene::desc::{LightDesc, MediumDesc, MediumKindDesc, RainDesc, SceneDesc, SkyDesc};
 use crate::town::rng::Rng;
 
 /// Stream tag of the weather draws (apart from the town generator's tags).
@@ -187,6 +187,32 @@ pub fn apply(desc: &mut SceneDesc, p: &WeatherParams) {
             turbidity: 1.0,
         },
     });
+    desc.medium = p.visibility_m.map(|v| haze(p.preset, v));
+    desc.rain = (p.rain_mm_per_h > 0.0).then(|| RainDesc {
+        rate_mm_per_h: p.rain_mm_per_h,
+        shutter_s: 0.01,
+        fall_speed_m_per_s: 9.0,
+        drop_diameter_mm: 2.5,
+        density_scale: 1.0,
+        extent_m: 30.0,
+    });
+}
+
+/// Height fog of ground visibility `visibility_m`: shallow and dense for
+/// fog (scale height 30 m), deep and thin for haze (200 m), both above the
+/// ground plane z = 0 where towns and scenes put their roads.
+fn haze(w: Weather, visibility_m: f64) -> MediumDesc {
+    MediumDesc {
+        kind: MediumKindDesc::HeightFog,
+        visibility_m: Some(visibility_m),
+        sigma_t: None,
+        albedo: [0.99; 3],
+        g: if w == Weather::Foggy { 0.85 } else { 0.7 },
+        base_height_m: 0.0,
+        height_scale_m: Some(if w == Weather::Foggy { 30.0 } else { 200.0 }),
+        z_min_m: None,
+        z_max_m: None,
+    }
 }
 
 /// Aerosol density multiplier of the physical sky per preset.

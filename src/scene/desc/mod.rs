@@ -7,10 +7,12 @@
 
 mod light;
 mod material;
+mod medium;
 mod object;
 
 pub use light::{LightDesc, SkyDesc};
 pub use material::{conductor_eta_k, ConductorPreset, MaskFlag, MaterialDesc, MaterialKindDesc};
+pub use medium::{build_medium, build_rain, MediumDesc, MediumKindDesc, RainDesc};
 pub use object::{ObjectDesc, PrefabDesc, RepeatDesc, ScaleDesc, ShapeDesc, TransformDesc};
 
 use serde::{Deserialize, Serialize};
@@ -28,6 +30,12 @@ pub struct SceneDesc {
     /// Environment radiance for rays leaving the scene (absent: black).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sky: Option<SkyDesc>,
+    /// Participating medium (fog, haze) filling the world (absent: clear air).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub medium: Option<MediumDesc>,
+    /// Falling rain drawn as streaks (absent: no rain).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rain: Option<RainDesc>,
     /// Explicit lights: sun, point, spot.
     #[serde(default, rename = "light", skip_serializing_if = "Vec::is_empty")]
     pub lights: Vec<LightDesc>,

@@ -1,0 +1,284 @@
+//! Volumetric path tracing (pbrt-v4 `VolPathIntegrator`, §14.2, without null
+//! collisions: our media have closed-form transmittance). Per segment:
+//! rain drops first (a drop that redirects the ray ends the segment), then
+//! free-flight sampling of the medium up to the segment end; a collision
+//! weights the path by the albedo (σ_s·Tr / (σ_t·Tr)) and becomes a phase
+//! vertex with NEE (shadow rays carry transmittance) and MIS against phase
+//! sampling. Point and spot lights are also reached by equiangular sampling
+//! along each segment (Kulla & Fajardo 2012), combined with the free-flight
+//! vertices by the power heuristic over the distance densities. A purely
+//! absorbing medium multiplies by Tr instead of sampling (its expected value).
+//!
+//! Sample dimensions of a segment start at `VOL_DIMS` + 16·bounce, apart
+//! from the surface dimensions, so surface vertices see the streams they see
+//! without a medium. Rain is tested on camera and specular-chain segments
+//! only (drops are sub-pixel; seen diffusely they average out to nothing).
+
+use glam::{Vec2, Vec3};
+use shaders_cpu::medium::{DropEvent, Equiangular, Medium};
+use shaders_cpu::sampling::power_heuristic;
+
+use super::path::{PathContext, PathState};
+use crate::accel::{Accel, Hit, Ray};
+use crate::light::LightSample;
+use crate::sampler::SampleStream;
+
+/// First 4D set of the volume dimensions (far above every surface dimension).
+const VOL_DIMS: u32 = 1 << 20;
+/// 4D sets per segment: five for the medium, the rest for rain drops.
+const VOL_DIMS_PER_BOUNCE: u32 = 16;
+/// Drops a segment may pass before rain is ignored on it.
+const MAX_DROP_PASSES: u32 = 9;
+/// Redirections by drops per path.
+const MAX_DROP_REDIRECTS: u32 = 4;
+
+/// Shadow ray from a medium point `p` along a light sample.
+fn shadow_ray(p: Vec3, ls: &LightSample) -> Ray {
+    if ls.dist.is_finite() {
+        Ray::segment(p, ls.wi * ls.dist, 1.0 - 1e-4)
+    } else {
+        Ray::new(p, ls.wi)
+    }
+}
+
+impl<A: Accel> PathContext<'_, A> {
+    /// Radiance along `ray` in a scene with a medium and/or rain.
+    pub(super) fn li_volume(
+        &self,
+        mut ray: Ray,
+        first_hit: Option<Hit>,
+        stream: &mut SampleStream,
+        rays: &mut u64,
+    ) -> Vec3 {
+        let scene = self.scene;
+        let medium = scene.medium.as_ref();
+        let mut known_hit = Some(first_hit);
+        let mut st = PathState::new(ray.o);
+        let mut redirects = 0u32;
+        loop {
+            *rays += 1;
+            let hit = match known_hit.take() {
+                Some(hit) => hit,
+                None => self.accel.intersect(&ray),
+            };
+            let t_surf = hit.map_or(f32::INFINITY, |h| h.t);
+            stream.set_dimension(VOL_DIMS + st.bounces * VOL_DIMS_PER_BOUNCE);
+            let [u_ff, u_eq, u_eq_sel, u_rr] = stream.next_4d();
+            let [u_ph0, u_ph1, u_lx, u_ly] = stream.next_4d();
+            let [u_sel, u_ex, u_ey, _] = stream.next_4d();
+            let [a0, a1, a2, a3] = stream.next_4d();
+            let [b0, b1, b2, b3] = stream.next_4d();
+            let u_distant = [
+                Vec2::new(a0, a1),
+                Vec2::new(a2, a3),
+                Vec2::new(b0, b1),
+                Vec2::new(b2, b3),
+            ];
+
+            // Rain: the first drop that redirects the ray ends the segment.
+            let mut t_end = t_surf;
+            let mut drop_exit = None;
+            if let Some(rain) = self.rain.as_ref().filter(|_| st.prev_delta) {
+                if redirects < MAX_DROP_REDIRECTS {
+                    let o_world = scene.origin_world + ray.o.as_dvec3();
+                    let d = ray.d.as_dvec3();
+                    let mut t0 = 0.0f64;
+                    for _ in 0..MAX_DROP_PASSES {
+                        let Some(h) = rain.intersect(o_world, d, t0, t_surf as f64) else {
+                            break;
+                        };
+                        let u = stream.next_4d();
+                        match rain.drop_event(o_world, d, &h, u) {
+                            DropEvent::Pass => t0 = h.t_far,
+                            DropEvent::Redirect { p_world, dir } => {
+                                t_end = h.t as f32;
+                                drop_exit = Some(((p_world - scene.origin_world).as_vec3(), dir));
+                                break;
+                            }
+                        }
+                    }
+                }
+            }
+
+            if let Some(m) = medium {
+                if !m.scatters() {
+                    st.beta *= m.tr(ray.o, ray.d, t_end);
+                } else {
+                    if st.bounces < self.max_depth {
+                        let c = self.equiangular(
+                            m,
+                            &ray,
+                            t_end,
+                            u_eq_sel,
+                            u_eq,
+                            Vec2::new(u_ex, u_ey),
+                            rays,
+                        );
+                        st.l += st.beta * c;
+                    }
+                    let ds = m.sample_distance(ray.o, ray.d, t_end, u_ff);
+                    if ds.scattered {
+                        if st.bounces == self.max_depth {
+                            break;
+                        }
+                        // σ_s·Tr / (σ_t·Tr): the collision keeps the albedo.
+                        st.beta *= m.albedo;
+                        let p = ray.at(ds.t);
+                        let wo = -ray.d;
+                        let u_l = Vec2::new(u_lx, u_ly);
+                        st.l += st.beta
+                            * self.medium_nee(
+                                m, &ray, t_end, ds.t, ds.pdf, p, wo, u_sel, u_l, &u_distant, rays,
+                            );
+                        let ph = m.phase.sample(wo, Vec2::new(u_ph0, u_ph1));
+                        if ph.pdf <= 0.0 {
+                            break;
+                        }
+                        st.prev_pdf = ph.pdf;
+                        st.prev_delta = false;
+                        st.prev_p = p;
+                        st.bounces += 1;
+                        if !st.beta.is_finite()
+                            || st.beta == Vec3::ZERO
+                            || !st.survives_roulette(u_rr)
+                        {
+                            break;
+                        }
+                        ray = Ray::new(p, ph.wi);
+                        continue;
+                    }
+                }
+            }
+            if let Some((p, dir)) = drop_exit {
+                // A drop is a smooth dielectric: delta scattering, weight 1.
+                redirects += 1;
+                st.prev_p = p;
+                ray = Ray::new(p, dir);
+                continue;
+            }
+            let Some(hit) = hit else {
+                st.l += st.beta
+                    * self
+                        .lights
+                        .escaped_at(scene, ray.o, ray.d, st.prev_pdf, st.prev_delta);
+                break;
+            };
+            match self.surface_vertex(&ray, &hit, &mut st, stream, rays) {
+                Some(next) => ray = next,
+                None => break,
+            }
+        }
+        st.l
+    }
+
+    /// NEE from a medium collision at `p` (ray parameter `t`, free-flight
+    /// density `pdf_ff`): every distant light plus one selected local light,
+    /// MIS against phase sampling, or against equiangular sampling for delta
+    /// local lights.
+    #[allow(clippy::too_many_arguments)]
+    fn medium_nee(
+        &self,
+        m: &Medium,
+        ray: &Ray,
+        t_end: f32,
+        t: f32,
+        pdf_ff: f32,
+        p: Vec3,
+        wo: Vec3,
+        u_sel: f32,
+        u_l: Vec2,
+        u_distant: &[Vec2; 4],
+        rays: &mut u64,
+    ) -> Vec3 {
+        let scene = self.scene;
+        let mut l = Vec3::ZERO;
+        let mut one = |ls: Option<LightSample>, equi: bool| {
+            let Some(ls) = ls else { return Vec3::ZERO };
+            if ls.pdf <= 0.0 || ls.li == Vec3::ZERO {
+                return Vec3::ZERO;
+            }
+            let f = m.phase.eval(wo, ls.wi);
+            *rays += 1;
+            if f == 0.0 || self.accel.occluded(&shadow_ray(p, &ls)) {
+                return Vec3::ZERO;
+            }
+            let w = if ls.delta {
+                if equi {
+                    let q = p + ls.wi * ls.dist;
+                    let pdf_eq = equiangular_on(m, ray, t_end, q).map_or(0.0, |e| e.pdf(t));
+                    power_heuristic(1.0, pdf_ff, 1.0, pdf_eq)
+                } else {
+                    1.0
+                }
+            } else {
+                power_heuristic(1.0, ls.pdf, 1.0, m.phase.pdf(wo, ls.wi))
+            };
+            ls.li * m.tr(p, ls.wi, ls.dist) * (f * w / ls.pdf)
+        };
+        for (k, &u) in u_distant
+            .iter()
+            .enumerate()
+            .take(self.lights.distant_count())
+        {
+            l += one(self.lights.sample_distant(scene, k, p, u), false);
+        }
+        let ls = self.lights.sample(scene, p, u_sel, u_l);
+        l += one(ls, ls.is_some_and(|s| s.delta && s.dist.is_finite()));
+        l
+    }
+
+    /// Equiangular sampling of a collision on [0, t_end] toward one selected
+    /// point or spot light, MIS-weighted against free-flight collisions.
+    #[allow(clippy::too_many_arguments)]
+    fn equiangular(
+        &self,
+        m: &Medium,
+        ray: &Ray,
+        t_end: f32,
+        u_sel: f32,
+        u_t: f32,
+        u_l: Vec2,
+        rays: &mut u64,
+    ) -> Vec3 {
+        let scene = self.scene;
+        // Selection does not depend on the point: the light chosen from the
+        // ray origin is the light lit from the sampled point.
+        let Some(ls0) = self.lights.sample(scene, ray.o, u_sel, u_l) else {
+            return Vec3::ZERO;
+        };
+        if !ls0.delta || !ls0.dist.is_finite() {
+            return Vec3::ZERO;
+        }
+        let q = ray.o + ls0.wi * ls0.dist;
+        let Some(e) = equiangular_on(m, ray, t_end, q) else {
+            return Vec3::ZERO;
+        };
+        let (t, pdf_eq) = e.sample(u_t);
+        if pdf_eq.is_nan() || pdf_eq <= 0.0 || !t.is_finite() {
+            return Vec3::ZERO;
+        }
+        let x = ray.at(t);
+        let Some(ls) = self.lights.sample(scene, x, u_sel, u_l) else {
+            return Vec3::ZERO;
+        };
+        let sigma_t = m.sigma_t(x) as f32;
+        let f = m.phase.eval(-ray.d, ls.wi);
+        if sigma_t == 0.0 || f == 0.0 || ls.li == Vec3::ZERO {
+            return Vec3::ZERO;
+        }
+        *rays += 1;
+        if self.accel.occluded(&shadow_ray(x, &ls)) {
+            return Vec3::ZERO;
+        }
+        let pdf_ff = m.distance_pdf(ray.o, ray.d, t);
+        let w = power_heuristic(1.0, pdf_eq, 1.0, pdf_ff);
+        let tr = m.tr(ray.o, ray.d, t) * m.tr(x, ls.wi, ls.dist);
+        m.albedo * ls.li * (sigma_t * tr * f * w / (pdf_eq * ls.pdf))
+    }
+}
+
+/// The equiangular set-up on the part of [0, t_end] inside the medium.
+fn equiangular_on(m: &Medium, ray: &Ray, t_end: f32, q: Vec3) -> Option<Equiangular> {
+    let (a, b) = m.clip(ray.o, ray.d, t_end)?;
+    Some(Equiangular::new(ray.o, ray.d, a as f32, b as f32, q))
+}
