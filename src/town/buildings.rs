@@ -1,7 +1,8 @@
 //! Buildings and parks on the blocks: rows of lots along the two streets of
 //! each block, each lot holding a building (body, roof, floor ledges, windows
 //! on every facade, a door and shop windows on the street side) or planting;
-//! towers get a glass curtain wall with mullions. Some blocks are parks.
+//! towers get a glass curtain wall with mullions. Some window runs show a
+//! lit room (an always-on warm emitter). Some blocks are parks.
 //!
 //! A building's front faces the street its row lines (−y for the south row,
 //! +y for the north row). Floor height 3.2 m; windows come from the "window"
@@ -171,6 +172,9 @@ fn building(
         ([cx, plot.max[1]], 180.0, w, !south),
         ([plot.min[0], cy], 270.0, d, false),
     ];
+    // Lit rooms: a per-building fraction of window rows shows a lit run.
+    let mut lit = Rng::new(&[r.next_u64(), tag::LIT_WINDOWS]);
+    let lit_fraction = lit.range(0.0, 0.35);
     for (c, heading, len, front) in facades {
         let along = heading_dir(heading);
         if tower {
@@ -192,6 +196,21 @@ fn building(
                 win,
                 &[(cols, step), (floors - first_row, [0.0, 0.0, FLOOR_M])],
             ));
+            for row in first_row..floors {
+                if !lit.chance(lit_fraction) {
+                    continue;
+                }
+                let c0 = lit.int(0, cols - 1);
+                let run = lit.int(1, (cols - c0).min(4));
+                let a = start + c0 as f64 * 3.0;
+                let at = [
+                    c[0] + along[0] * a,
+                    c[1] + along[1] * a,
+                    row as f64 * FLOOR_M + 1.7,
+                ];
+                let light = instance("window_light", at, heading, &[], id);
+                out.push(repeated(light, &[(run, step)]));
+            }
         }
         if front {
             // Door in the middle, shop windows either side, and a canopy.
