@@ -10,7 +10,7 @@
 
 use crate::scene::desc::ObjectDesc;
 
-use super::desc::TownDesc;
+use super::desc::{TerrainKind, TownDesc};
 use super::layout::{Layout, Rect};
 use super::materials::{TOWER_FRAMES, WALLS};
 use super::parts::{class, cuboid, ground_quad, instance, repeated, slab, Label};
@@ -35,6 +35,10 @@ pub fn block_objects(desc: &TownDesc, l: &Layout, seed: u64) -> Vec<ObjectDesc> 
                 min: [a.min[0] + SETBACK_M, a.min[1] + SETBACK_M],
                 max: [a.max[0] - SETBACK_M, a.max[1] - SETBACK_M],
             };
+            if desc.terrain == TerrainKind::Field && !r.chance(desc.building_density) {
+                super::farms::field_block(&lot, &mut r, &mut next_id, &mut out);
+                continue;
+            }
             if r.chance(desc.vegetation_density * 0.25) || desc.building_density == 0.0 {
                 park(desc, &lot, &mut r, &mut out);
                 continue;
@@ -243,10 +247,10 @@ fn building(
     }
 }
 
-/// A 45° gable roof with its ridge along x: a square prism turned 45° about
-/// x whose upper half (a triangle of half-width d/2) stands on the walls; the
+/// A 45° gable roof with its ridge along x (houses and barns): a square
+/// prism turned 45° about x whose upper half (a triangle of half-width d/2) stands on the walls; the
 /// lower half lies inside the body (or below the ground).
-fn gable_roof(plot: &Rect, h: f64, id: Label) -> ObjectDesc {
+pub fn gable_roof(plot: &Rect, h: f64, id: Label) -> ObjectDesc {
     let [w, d] = plot.size();
     let c = plot.center();
     let side = d / std::f64::consts::SQRT_2;

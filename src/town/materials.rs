@@ -99,6 +99,8 @@ pub fn town_materials(desc: &TownDesc) -> Vec<MaterialDesc> {
         glass("water", [0.55, 0.7, 0.62]),
         diffuse("ground", ground),
         diffuse("lawn", [0.1, 0.22, 0.06]),
+        diffuse("crop", [0.14, 0.24, 0.06]),
+        diffuse("barn_red", [0.38, 0.08, 0.05]),
         diffuse("brick_red", [0.42, 0.17, 0.11]),
         diffuse("brick_brown", [0.3, 0.18, 0.12]),
         diffuse("plaster_cream", [0.72, 0.66, 0.52]),

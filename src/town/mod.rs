@@ -16,6 +16,7 @@
 pub mod buildings;
 pub mod desc;
 pub mod export;
+pub mod farms;
 pub mod furniture;
 pub mod layout;
 pub mod materials;
