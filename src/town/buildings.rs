@@ -1,7 +1,8 @@
 //! Buildings and parks on the blocks: rows of lots along the two streets of
 //! each block, each lot holding a building (body, roof, floor ledges, windows
 //! on every facade, a door and shop windows on the street side) or planting;
-//! towers get a glass curtain wall with mullions. Some blocks are parks.
+//! towers get a glass curtain wall with mullions. Some window runs show a
+//! lit room (an always-on warm emitter). Some blocks are parks.
 //!
 //! A building's front faces the street its row lines (−y for the south row,
 //! +y for the north row). Floor height 3.2 m; windows come from the "window"
@@ -9,7 +10,7 @@
 
 use crate::scene::desc::ObjectDesc;
 
-use super::desc::TownDesc;
+use super::desc::{TerrainKind, TownDesc};
 use super::layout::{Layout, Rect};
 use super::materials::{TOWER_FRAMES, WALLS};
 use super::parts::{class, cuboid, ground_quad, instance, repeated, slab, Label};
@@ -34,6 +35,10 @@ pub fn block_objects(desc: &TownDesc, l: &Layout, seed: u64) -> Vec<ObjectDesc> 
                 min: [a.min[0] + SETBACK_M, a.min[1] + SETBACK_M],
                 max: [a.max[0] - SETBACK_M, a.max[1] - SETBACK_M],
             };
+            if desc.terrain == TerrainKind::Field && !r.chance(desc.building_density) {
+                super::farms::field_block(&lot, &mut r, &mut next_id, &mut out);
+                continue;
+            }
             if r.chance(desc.vegetation_density * 0.25) || desc.building_density == 0.0 {
                 park(desc, &lot, &mut r, &mut out);
                 continue;
@@ -171,6 +176,9 @@ fn building(
         ([cx, plot.max[1]], 180.0, w, !south),
         ([plot.min[0], cy], 270.0, d, false),
     ];
+    // Lit rooms: a per-building fraction of window rows shows a lit run.
+    let mut lit = Rng::new(&[r.next_u64(), tag::LIT_WINDOWS]);
+    let lit_fraction = lit.range(0.0, 0.35);
     for (c, heading, len, front) in facades {
         let along = heading_dir(heading);
         if tower {
@@ -192,6 +200,21 @@ fn building(
                 win,
                 &[(cols, step), (floors - first_row, [0.0, 0.0, FLOOR_M])],
             ));
+            for row in first_row..floors {
+                if !lit.chance(lit_fraction) {
+                    continue;
+                }
+                let c0 = lit.int(0, cols - 1);
+                let run = lit.int(1, (cols - c0).min(4));
+                let a = start + c0 as f64 * 3.0;
+                let at = [
+                    c[0] + along[0] * a,
+                    c[1] + along[1] * a,
+                    row as f64 * FLOOR_M + 1.7,
+                ];
+                let light = instance("window_light", at, heading, &[], id);
+                out.push(repeated(light, &[(run, step)]));
+            }
         }
         if front {
             // Door in the middle, shop windows either side, and a canopy.
@@ -224,10 +247,10 @@ fn building(
     }
 }
 
-/// A 45° gable roof with its ridge along x: a square prism turned 45° about
-/// x whose upper half (a triangle of half-width d/2) stands on the walls; the
+/// A 45° gable roof with its ridge along x (houses and barns): a square
+/// prism turned 45° about x whose upper half (a triangle of half-width d/2) stands on the walls; the
 /// lower half lies inside the body (or below the ground).
-fn gable_roof(plot: &Rect, h: f64, id: Label) -> ObjectDesc {
+pub fn gable_roof(plot: &Rect, h: f64, id: Label) -> ObjectDesc {
     let [w, d] = plot.size();
     let c = plot.center();
     let side = d / std::f64::consts::SQRT_2;

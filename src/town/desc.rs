@@ -25,7 +25,8 @@ pub struct TownDesc {
     /// Lanes per travel direction, 1–3.
     #[serde(default = "one")]
     pub lanes_per_direction: u32,
-    /// Lane width, metres, in [2.8, 4.5] (default 3.5).
+    /// Lane width, metres, in [3.2, 4.5] (default 3.5); cars must fit the
+    /// turns inside their own lane (see `routes`).
     #[serde(default = "default_lane_width")]
     pub lane_width_m: f64,
     /// Sidewalk width (curb included), metres, in [1.5, 8] (default 3); the
@@ -127,7 +128,7 @@ fn default_fps() -> f64 {
     10.0
 }
 
-/// Longest vehicle body, metres (the bus); sets the junction time windows.
+/// Longest vehicle body, metres (the bus); sets the smallest block.
 pub const MAX_VEHICLE_LENGTH_M: f64 = 12.0;
 /// Clearance added on each side of the junction window, metres.
 pub const JUNCTION_MARGIN_M: f64 = 1.5;
@@ -138,8 +139,8 @@ impl TownDesc {
         2.0 * self.lanes_per_direction as f64 * self.lane_width_m
     }
 
-    /// Smallest block size for which crossing traffic can share junctions
-    /// in alternating time windows (see `traffic`).
+    /// Smallest block size: room on every side for a queue at the stop
+    /// line behind the departing crosswalk (see `traffic`).
     pub fn min_block_size_m(&self) -> f64 {
         2.0 * (self.road_width_m() + MAX_VEHICLE_LENGTH_M + 2.0 * JUNCTION_MARGIN_M)
     }
@@ -159,7 +160,7 @@ impl TownDesc {
             1.0,
             3.0,
         )?;
-        range("lane_width_m", self.lane_width_m, 2.8, 4.5)?;
+        range("lane_width_m", self.lane_width_m, 3.2, 4.5)?;
         range("sidewalk_width_m", self.sidewalk_width_m, 1.5, 8.0)?;
         let min_block = self.min_block_size_m();
         range("block_size_m", self.block_size_m, min_block, 1000.0)?;

@@ -19,6 +19,8 @@ pub const WALLS: &[&str] = &[
 ];
 /// Curtain-wall frame materials of towers.
 pub const TOWER_FRAMES: &[&str] = &["concrete", "steel_dark", "plaster_white", "stone"];
+/// Radiance of a street-lamp panel, W·m⁻²·sr⁻¹ (warm white, ~5000 cd/m²).
+pub const LAMP_RADIANCE: [f64; 3] = [55.0, 50.0, 40.0];
 /// Car paints vehicles choose from.
 pub const PAINTS: &[&str] = &[
     "paint_red",
@@ -54,6 +56,18 @@ fn metal(name: &str, preset: ConductorPreset, roughness: f64) -> MaterialDesc {
     }
 }
 
+/// An always-on emitter radiating from every front face (W·m⁻²·sr⁻¹).
+fn emitter(name: &str, radiance: [f64; 3]) -> MaterialDesc {
+    MaterialDesc {
+        name: name.to_string(),
+        mask: None,
+        kind: MaterialKindDesc::Emissive {
+            radiance,
+            two_sided: false,
+        },
+    }
+}
+
 fn glass(name: &str, tint: [f64; 3]) -> MaterialDesc {
     MaterialDesc {
         name: name.to_string(),
@@ -85,6 +99,8 @@ pub fn town_materials(desc: &TownDesc) -> Vec<MaterialDesc> {
         glass("water", [0.55, 0.7, 0.62]),
         diffuse("ground", ground),
         diffuse("lawn", [0.1, 0.22, 0.06]),
+        diffuse("crop", [0.14, 0.24, 0.06]),
+        diffuse("barn_red", [0.38, 0.08, 0.05]),
         diffuse("brick_red", [0.42, 0.17, 0.11]),
         diffuse("brick_brown", [0.3, 0.18, 0.12]),
         diffuse("plaster_cream", [0.72, 0.66, 0.52]),
@@ -108,6 +124,14 @@ pub fn town_materials(desc: &TownDesc) -> Vec<MaterialDesc> {
         metal("pole_metal", ConductorPreset::Aluminium, 0.45),
         diffuse("pole_paint", [0.12, 0.13, 0.12]),
         diffuse("lamp_glass", [0.9, 0.9, 0.85]),
+        // Scene units: the sun's 980 W·m⁻² stands for ~100 klx, so one unit
+        // of radiance is ~100 cd/m². Street lamps ~5000 cd/m² (0.15 m² of
+        // panel gives ~15 lx on the road 8 m below), head-lights ~3·10⁴
+        // cd/m², tail-lights ~10³ cd/m², lit rooms ~200 cd/m².
+        emitter("lamp_emit", LAMP_RADIANCE),
+        emitter("headlight_emit", [300.0, 300.0, 290.0]),
+        emitter("taillight_emit", [12.0, 0.5, 0.3]),
+        emitter("window_lit", [2.5, 1.9, 1.1]),
         diffuse("signal_housing", [0.06, 0.06, 0.05]),
         diffuse("signal_red", [0.6, 0.04, 0.03]),
         diffuse("signal_amber", [0.6, 0.4, 0.03]),
@@ -129,8 +153,6 @@ pub fn town_materials(desc: &TownDesc) -> Vec<MaterialDesc> {
         diffuse("rubber", [0.03, 0.03, 0.03]),
         metal("chrome", ConductorPreset::Chrome, 0.05),
         diffuse("plastic_black", [0.05, 0.05, 0.05]),
-        diffuse("headlight", [0.9, 0.9, 0.88]),
-        diffuse("taillight", [0.6, 0.02, 0.02]),
         diffuse("skin", [0.55, 0.38, 0.28]),
         diffuse("cloth_dark", [0.08, 0.08, 0.1]),
         diffuse("cloth_blue", [0.1, 0.15, 0.35]),

@@ -5,12 +5,18 @@
 //! Static geometry (roads, blocks, furniture) depends on (desc, seed) only;
 //! moving objects come from `traffic::frame_at(desc, seed, frame)` in closed
 //! form. World frame: z up, metres, the road grid starts at the origin. The
-//! ego vehicle carries the cameras and is not part of the scene (its roof
-//! would fill the bottom rows of the `normal` view).
+//! ego vehicle is part of the scene below its cameras (they sit above the
+//! front edge of its roof, so the `normal` view does not see it).
+//!
+//! Instance ids: buildings from 1000, every pole, tree, bush, sign and
+//! traffic light from `FURNITURE_ID_BASE`, vehicles (ego included) from
+//! `VEHICLE_ID_BASE`, pedestrians from `PEDESTRIAN_ID_BASE`; roads,
+//! markings, sidewalks and terrain carry 0.
 
 pub mod buildings;
 pub mod desc;
 pub mod export;
+pub mod farms;
 pub mod furniture;
 pub mod layout;
 pub mod materials;
@@ -19,8 +25,10 @@ pub mod props;
 pub mod rig;
 pub mod rng;
 pub mod roads;
+pub mod routes;
 pub mod traffic;
 pub mod vehicles;
+pub mod walkers;
 
 use std::path::{Path, PathBuf};
 
@@ -34,6 +42,8 @@ use crate::scene::{LoadedScene, Scene, SceneError};
 use layout::Layout;
 use parts::{instance, Label};
 
+/// First instance id of street furniture and vegetation objects.
+pub const FURNITURE_ID_BASE: u32 = 10_000;
 /// First instance id of vehicles (id = base + stable vehicle id).
 pub const VEHICLE_ID_BASE: u32 = 30_000;
 /// First instance id of pedestrians.
@@ -46,13 +56,30 @@ pub fn static_objects(desc: &TownDesc, seed: u64) -> Vec<ObjectDesc> {
     let mut out = roads::road_objects(&l);
     out.extend(buildings::block_objects(desc, &l, seed));
     out.extend(furniture::furniture_objects(desc, &l, seed));
+    number_objects(&mut out);
     out
 }
 
-/// The vehicles (ego excluded) and pedestrians of one frame as instances.
+/// Gives every pole, tree, bush, sign and traffic light its own instance
+/// id, in generation order (deterministic), from `FURNITURE_ID_BASE`.
+fn number_objects(objects: &mut [ObjectDesc]) {
+    let mut next = FURNITURE_ID_BASE;
+    for o in objects.iter_mut() {
+        let numbered = matches!(
+            o.semantic.as_deref(),
+            Some("pole" | "vegetation" | "traffic_sign" | "traffic_light")
+        );
+        if numbered && o.instance.is_none() && next < VEHICLE_ID_BASE {
+            o.instance = Some(next as u16);
+            next += 1;
+        }
+    }
+}
+
+/// The vehicles (ego included) and pedestrians of one frame as instances.
 pub fn dynamic_objects(frame: &TownFrame) -> Vec<ObjectDesc> {
-    let mut out = Vec::with_capacity(frame.vehicles.len() + frame.pedestrians.len());
-    for v in &frame.vehicles {
+    let mut out = Vec::with_capacity(frame.vehicles.len() + frame.pedestrians.len() + 1);
+    for v in std::iter::once(&frame.ego).chain(&frame.vehicles) {
         let l = Label {
             class: "vehicle",
             instance: (VEHICLE_ID_BASE + v.id).min(PEDESTRIAN_ID_BASE - 1) as u16,

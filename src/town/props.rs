@@ -1,5 +1,6 @@
-//! Prefabs of the street scene: a facade window, trees of two shapes, a
-//! bush, a street light, a traffic light, a stop sign, a pedestrian.
+//! Prefabs of the street scene: a facade window (and the lit room that
+//! some windows show), trees of two shapes, a
+//! bush, a street light with an emissive lamp panel, a traffic light, a stop sign, a pedestrian.
 //!
 //! Local frames: z up, origin on the ground; a window's facade is the local
 //! x–z plane with the window standing out towards −y; a street light's arm
@@ -72,8 +73,19 @@ pub fn street_prefabs() -> Vec<PrefabDesc> {
     let street_light = vec![
         cylinder(0.09, 8.0, 12, [0.0, 0.0, 0.0], "pole_metal", p),
         cuboid([0.1, 2.2, 0.1], [0.0, -1.1, 7.9], 0.0, "pole_metal", p),
-        cuboid([0.35, 0.6, 0.14], [0.0, -2.1, 7.8], 0.0, "lamp_glass", p),
+        cuboid([0.35, 0.6, 0.14], [0.0, -2.1, 7.8], 0.0, "pole_metal", p),
+        // The emitting panel under the housing (1 mm gap, no shared faces).
+        cuboid([0.3, 0.5, 0.02], [0.0, -2.1, 7.719], 0.0, "lamp_emit", p),
     ];
+    // A warm lit room behind a window pane: between the interior panel
+    // (front at y = −0.03) and the glass (back at y = −0.04).
+    let window_light = vec![cuboid(
+        [1.16, 0.004, 1.56],
+        [0.0, -0.035, 0.0],
+        0.0,
+        "window_lit",
+        b,
+    )];
     // Pole on the corner, mast arm over the approach lanes (local +y), heads
     // facing −x (towards the traffic that approaches along +x).
     let mut traffic_light = vec![
@@ -109,6 +121,7 @@ pub fn street_prefabs() -> Vec<PrefabDesc> {
     let pedestrian = pedestrian(ped);
     vec![
         prefab("window", window),
+        prefab("window_light", window_light),
         prefab("tree_round", tree_round),
         prefab("tree_cone", tree_cone),
         prefab("bush", bush),

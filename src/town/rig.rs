@@ -1,8 +1,11 @@
 //! Camera configurations on the ego vehicle (DATASET.md): `normal` (left
 //! camera 1.65 m above the road, level), `roll05`/`roll15`/`roll30` (normal,
 //! rolled 5/15/30°), `pitch00` (10 m above the road at the ego, level),
-//! `pitch30` (10 m up, pitched 30° down). The left camera sits above the
-//! centre of the ego's footprint and looks along its heading.
+//! `pitch30` (10 m up, pitched 30° down). The left camera sits
+//! `CAMERA_FORWARD_M` ahead of the centre of the ego's footprint, just in
+//! front of the sedan's windscreen and 0.2 m above its roof height, and looks
+//! along its heading: the bottom row (18° down) clears the bonnet, and the
+//! right cameras of rolled rigs (up to 1.5 m lower) stay outside the cabin.
 
 use std::fmt;
 use std::str::FromStr;
@@ -10,6 +13,9 @@ use std::str::FromStr;
 use crate::scene::desc::RigDesc;
 
 use super::traffic::VehiclePose;
+
+/// How far ahead of the ego footprint's centre the cameras sit, metres.
+pub const CAMERA_FORWARD_M: f64 = 1.1;
 
 /// A camera configuration of the dataset.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -91,12 +97,17 @@ impl FromStr for CameraConfig {
 /// the default baselines (the scene's `[camera]` defaults).
 pub fn rig_desc(config: CameraConfig, ego: &VehiclePose) -> RigDesc {
     let (height_m, pitch_deg, roll_deg) = config.pose();
+    let yaw = ego.heading_deg.to_radians();
+    let (x, y) = (
+        ego.position[0] + CAMERA_FORWARD_M * yaw.cos(),
+        ego.position[1] + CAMERA_FORWARD_M * yaw.sin(),
+    );
     RigDesc {
         width: 1600,
         height: 900,
         hfov_deg: 60.0,
         baselines_cm: vec![10.0, 54.0, 100.0, 200.0, 300.0],
-        position: [ego.position[0], ego.position[1], ego.position[2] + height_m],
+        position: [x, y, ego.position[2] + height_m],
         yaw_deg: ego.heading_deg,
         pitch_deg,
         roll_deg,
@@ -116,13 +127,16 @@ mod tests {
             paint: "paint_red",
             position: [10.0, -1.75, 0.0],
             heading_deg: 90.0,
-            lane: 0,
+            route: 0,
         };
         for c in CONFIGS {
             assert_eq!(c.name().parse::<CameraConfig>(), Ok(c));
             let r = rig_desc(c, &ego);
             let (h, pitch, roll) = c.pose();
-            assert_eq!(r.position, [10.0, -1.75, h]);
+            // Heading 90°: the cameras sit 1.1 m further along +y.
+            let p = r.position;
+            assert!((p[0] - 10.0).abs() < 1e-12 && (p[1] + 0.65).abs() < 1e-12);
+            assert_eq!(p[2], h);
             assert_eq!((r.yaw_deg, r.pitch_deg, r.roll_deg), (90.0, pitch, roll));
         }
         assert_eq!(CameraConfig::Roll30.pose(), (1.65, 0.0, 30.0));

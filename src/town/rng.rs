@@ -66,6 +66,10 @@ pub mod tag {
     pub const FURNITURE: u64 = 5;
     /// Pedestrians.
     pub const PEDESTRIAN: u64 = 6;
+    /// Lit windows of a building.
+    pub const LIT_WINDOWS: u64 = 7;
+    /// Pedestrians crossing at a junction.
+    pub const CROSSER: u64 = 8;
 }
 
 #[cfg(test)]

@@ -1,47 +1,37 @@
-//! Traffic over time in closed form: every lane is a periodic track (its
-//! road's length L, a whole number of slot spacings d) carrying vehicles at
-//! fixed arc-length spacing d, all moving at one speed v, so the pose of every
-//! vehicle at frame K is a pure function of (desc, seed, K).
+//! Traffic over time in closed form. Vehicles ride the closed routes of
+//! `routes` (block loops turning right at every corner, the ring turning
+//! left around the town and going straight through its T junctions) as
+//! rigid trains: slot n of route r sits at arc length o_n + v_r·G(t), where
+//! G is one town-wide stop-and-go clock (drive T_go, stand T_stop). The pose
+//! of every object at frame K is a pure function of (desc, seed, K).
 //!
-//! Junctions are shared in alternating time windows: with junctions at
-//! multiples of the block pitch P = m·d, a vehicle on an x-lane is near a
-//! junction centre when (φ_x + v·t) mod d is within h of 0, a vehicle on a
-//! y-lane when (φ_x + d/2 + v·t) mod d is; the two distances to the nearest
-//! multiple of d sum to d/2, so with h = W/2 + L_max/2 + margin ≤ d/4 they are
-//! never both near one (`TownDesc::min_block_size_m` guarantees it). Lanes do
-//! not overlap side by side (a lane is wider than any body), so no two
-//! vehicles ever overlap. Vehicles leave at one town edge and re-enter at the
-//! other (y-lane vehicles are hidden while their body is past the outer road).
-//! Pedestrians walk loops around blocks on the sidewalks, also in closed form.
+//! No overlap, by construction: routes share no road surface (each lane
+//! belongs to one route and corners stay in their own corridor), and slots
+//! of one route keep a fixed arc spacing ≥ the longest allowed body plus a
+//! gap. Stops: a block loop is square, so with v_r·T_go = a quarter of its
+//! perimeter every slot stands at the same side position at every stop;
+//! slots are placed so one per side stands at the stop line, the others
+//! queue behind it, and slots whose stop position would lie in the
+//! departing junction or crosswalk stay empty. Crosswalks on interior roads
+//! are therefore clear while everything stands (pedestrians cross then).
 
-use super::desc::{TownDesc, JUNCTION_MARGIN_M, MAX_VEHICLE_LENGTH_M};
+use super::desc::TownDesc;
 use super::layout::{Layout, Rect};
 use super::materials::PAINTS;
 use super::rng::{tag, Rng};
-use super::roads::Axis;
+use super::routes::{routes, Route, RouteKind, Turns};
 use super::vehicles::{BodyKind, BODIES, BODY_WEIGHTS};
+use super::walkers;
 
-/// One lane: a periodic track along a road.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Lane {
-    /// Road axis.
-    pub axis: Axis,
-    /// Road index (j for x-roads, i for y-roads).
-    pub road: usize,
-    /// Travel direction along the axis, ±1.
-    pub dir: f64,
-    /// Lane number counted from the centreline, 0-based.
-    pub k: u32,
-    /// Lane centre in world coordinates across the road (y for x-lanes, x for y-lanes).
-    pub center: f64,
-    /// Period of the track (the road's grid length), metres.
-    pub length_m: f64,
-}
+/// Stop line distance before the junction edge (as painted), metres.
+const STOP_LINE_AT_M: f64 = 4.2;
+/// Gap between consecutive bodies on a route, metres.
+const GAP_M: f64 = 6.0;
 
 /// Pose of one vehicle in one frame.
 #[derive(Clone, Debug, PartialEq)]
 pub struct VehiclePose {
-    /// Stable id across frames (lane and slot), < 30 000.
+    /// Stable id across frames (route and slot), < 25 000.
     pub id: u32,
     /// Body type.
     pub body: BodyKind,
@@ -49,19 +39,36 @@ pub struct VehiclePose {
     pub paint: &'static str,
     /// Centre of the footprint on the ground, world metres.
     pub position: [f64; 3],
-    /// Heading, degrees counter-clockwise from +x (0, 90, 180 or 270).
+    /// Heading, degrees counter-clockwise from +x, in [0, 360).
     pub heading_deg: f64,
-    /// Index into `lanes()`.
-    pub lane: usize,
+    /// Index into `routes()`.
+    pub route: usize,
 }
 
 impl VehiclePose {
-    /// The footprint rectangle on the ground (bodies are axis-aligned).
-    pub fn footprint(&self) -> Rect {
+    /// The four corners of the footprint rectangle (x, y), counter-clockwise.
+    pub fn corners(&self) -> [[f64; 2]; 4] {
         let [len, w] = self.body.footprint_m();
-        let along_x = (self.heading_deg / 90.0).round() as i64 % 2 == 0;
-        let size = if along_x { [len, w] } else { [w, len] };
-        Rect::centered([self.position[0], self.position[1]], size)
+        let h = self.heading_deg.to_radians();
+        let (f, s) = ([h.cos(), h.sin()], [-h.sin(), h.cos()]);
+        let [x, y] = [self.position[0], self.position[1]];
+        [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(a, b)| {
+            let (a, b) = (a * len / 2.0, b * w / 2.0);
+            [x + a * f[0] + b * s[0], y + a * f[1] + b * s[1]]
+        })
+    }
+
+    /// The axis-aligned bounds of the footprint.
+    pub fn footprint(&self) -> Rect {
+        let c = self.corners();
+        let xs = c.map(|p| p[0]);
+        let ys = c.map(|p| p[1]);
+        let min = |v: [f64; 4]| v.iter().copied().fold(f64::INFINITY, f64::min);
+        let max = |v: [f64; 4]| v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        Rect {
+            min: [min(xs), min(ys)],
+            max: [max(xs), max(ys)],
+        }
     }
 }
 
@@ -87,101 +94,161 @@ pub struct TownFrame {
     pub time_s: f64,
     /// The ego vehicle (carrying the cameras).
     pub ego: VehiclePose,
-    /// Every other visible vehicle.
+    /// Every other vehicle.
     pub vehicles: Vec<VehiclePose>,
     /// Every pedestrian.
     pub pedestrians: Vec<PedestrianPose>,
 }
 
-/// Timing constants shared by every lane of a town.
+/// The town-wide stop-and-go clock and the slot layout it implies.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Schedule {
-    /// Slot spacing d, metres (P / d is a whole number).
-    pub spacing_m: f64,
-    /// Speed v, m/s.
+    /// Driving time per cycle, seconds.
+    pub go_s: f64,
+    /// Standing time per cycle, seconds (long enough to cross a road).
+    pub stop_s: f64,
+    /// Cruising speed of the ring and the innermost block lanes, m/s.
     pub speed_mps: f64,
-    /// Phase of x-lanes φ_x, metres; y-lanes use φ_x + d/2.
-    pub phase_x_m: f64,
+    /// Corner geometry and the bodies that fit it.
+    pub turns: Turns,
+    /// Longest allowed body, metres.
+    pub max_len_m: f64,
 }
 
 impl Schedule {
     /// The schedule of a validated town.
     pub fn new(desc: &TownDesc) -> Self {
-        let p = desc.block_size_m;
-        let per_block = (p / desc.min_block_size_m()).floor().max(1.0);
-        let spacing_m = p / per_block;
+        let l = Layout::new(desc);
+        let turns = Turns::new(l.lane_w_m);
+        let max_len_m = turns
+            .bodies
+            .iter()
+            .map(|b| b.footprint_m()[0])
+            .fold(0.0, f64::max);
+        let speed_mps = desc.speed_kmh / 3.6;
+        let quarter = block_quarter_m(&l, &turns, 0);
+        let crossing = (l.road_w_m + 1.6) / walkers::WALK_MPS;
         Schedule {
-            spacing_m,
-            speed_mps: desc.speed_kmh / 3.6,
-            phase_x_m: spacing_m / 4.0,
+            go_s: quarter / speed_mps,
+            stop_s: if l.sidewalks { crossing + 2.0 } else { 4.0 },
+            speed_mps,
+            turns,
+            max_len_m,
         }
     }
-    /// Half-width of the junction window h, metres.
-    pub fn window_m(desc: &TownDesc) -> f64 {
-        desc.road_width_m() / 2.0 + MAX_VEHICLE_LENGTH_M / 2.0 + JUNCTION_MARGIN_M
+
+    /// Cycle length T_go + T_stop, seconds.
+    pub fn cycle_s(&self) -> f64 {
+        self.go_s + self.stop_s
+    }
+
+    /// Driving time G(t) elapsed by time `t`, seconds (stands still during
+    /// the last `stop_s` of every cycle).
+    pub fn driven_s(&self, t: f64) -> f64 {
+        let n = (t / self.cycle_s()).floor();
+        let tau = t - n * self.cycle_s();
+        n * self.go_s + tau.min(self.go_s)
+    }
+
+    /// Whether everything stands still at time `t`.
+    pub fn standing(&self, t: f64) -> bool {
+        t.rem_euclid(self.cycle_s()) >= self.go_s
+    }
+
+    /// Speed of `route`, m/s: block loops drive a quarter loop per cycle.
+    pub fn route_speed_mps(&self, route: &Route) -> f64 {
+        match route.kind {
+            RouteKind::Block { .. } => route.length_m() / 4.0 / self.go_s,
+            RouteKind::Ring => self.speed_mps,
+        }
     }
 }
 
-/// Every lane of the town: x-roads first (by road, direction, lane), then y-roads.
-pub fn lanes(l: &Layout) -> Vec<Lane> {
-    let mut out = Vec::new();
-    for (axis, roads, length_m) in [(Axis::X, l.ny, l.len_x()), (Axis::Y, l.nx, l.len_y())] {
-        for road in 0..=roads {
-            let c = road as f64 * l.pitch_m;
-            for dir in [1.0, -1.0] {
-                for k in 0..l.lanes {
-                    // Right-hand traffic: the lane lies right of its direction.
-                    let right = match axis {
-                        Axis::X => -dir,
-                        Axis::Y => dir,
-                    };
-                    let center = c + right * (k as f64 + 0.5) * l.lane_w_m;
-                    out.push(Lane {
-                        axis,
-                        road,
-                        dir,
-                        k,
-                        center,
-                        length_m,
-                    });
-                }
-            }
-        }
-    }
-    out
+/// A quarter of the perimeter of a block loop on lane `k`, metres.
+fn block_quarter_m(l: &Layout, turns: &Turns, k: u32) -> f64 {
+    let e = (k as f64 + 0.5) * l.lane_w_m;
+    let side = l.pitch_m - 2.0 * e - 2.0 * turns.radius_m;
+    side + std::f64::consts::FRAC_PI_2 * turns.radius_m
 }
 
-/// Where the ego drives: (lane index, slot).
-pub fn ego_slot(desc: &TownDesc, seed: u64) -> (usize, u64) {
+/// Slot arc offsets of `route` with, for block loops, whether each slot may
+/// hold a vehicle (its stop position lies on the straight between the
+/// departing crosswalk and the stop line).
+pub fn slots(l: &Layout, s: &Schedule, route: &Route) -> Vec<(f64, bool)> {
+    let len = route.length_m();
+    let min_spacing = s.max_len_m + GAP_M;
+    match route.kind {
+        RouteKind::Ring => {
+            let n = (len / min_spacing).floor().max(1.0) as usize;
+            (0..n).map(|k| (k as f64 * len / n as f64, true)).collect()
+        }
+        RouteKind::Block { .. } => {
+            let quarter = len / 4.0;
+            let per_side = (quarter / min_spacing).floor().max(1.0) as usize;
+            let spacing = quarter / per_side as f64;
+            let r = route.radius_m;
+            let e = (route.lane as f64 + 0.5) * l.lane_w_m;
+            let hw = l.road_w_m / 2.0;
+            let side = route.side_m()[0];
+            // Side coordinates: 0 at the end of the previous corner arc.
+            let stop = side + r - (hw - e) - STOP_LINE_AT_M - s.max_len_m / 2.0;
+            let clear = (hw - e) - r + 3.5 + 0.5 + s.max_len_m / 2.0;
+            (0..4 * per_side)
+                .map(|k| {
+                    let back = (k % per_side) as f64 * spacing;
+                    let offset = stop - back + (k / per_side) as f64 * quarter;
+                    (offset.rem_euclid(len), stop - back >= clear)
+                })
+                .collect()
+        }
+    }
+}
+
+/// Where the ego drives: (route index, slot index).
+pub fn ego_slot(desc: &TownDesc, seed: u64) -> (usize, usize) {
     let l = Layout::new(desc);
-    let lanes = lanes(&l);
+    let s = Schedule::new(desc);
+    let all = routes(&l, &s.turns);
     let mut r = Rng::new(&[seed, tag::EGO]);
-    // An x-road away from the town edge when there is one.
-    let road = if l.ny >= 2 {
-        r.int(1, l.ny as u32 - 1) as usize
-    } else {
-        0
+    // A block away from the town edge when there is one.
+    let pick = |n: usize, r: &mut Rng| {
+        if n >= 3 {
+            r.int(1, n as u32 - 2) as usize
+        } else {
+            0
+        }
     };
-    let dir = if r.chance(0.5) { 1.0 } else { -1.0 };
+    let (i, j) = (pick(l.nx, &mut r), pick(l.ny, &mut r));
     let k = r.int(0, l.lanes - 1);
-    let lane = lanes
+    let route = all
         .iter()
-        .position(|ln| ln.axis == Axis::X && ln.road == road && ln.dir == dir && ln.k == k)
-        .expect("the ego lane exists");
-    let slots = (l.len_x() / Schedule::new(desc).spacing_m).round() as u64;
-    (lane, r.next_u64() % slots)
+        .position(|ro| ro.kind == RouteKind::Block { i, j } && ro.lane == k)
+        .expect("the ego route exists");
+    let open: Vec<usize> = slots(&l, &s, &all[route])
+        .iter()
+        .enumerate()
+        .filter(|(_, (_, ok))| *ok)
+        .map(|(n, _)| n)
+        .collect();
+    (route, open[r.index(open.len())])
 }
 
-fn weighted_body(r: &mut Rng) -> BodyKind {
-    let total: f64 = BODY_WEIGHTS.iter().sum();
+fn weighted_body(r: &mut Rng, allowed: &[BodyKind]) -> BodyKind {
+    let weight = |b: &BodyKind| {
+        BODIES
+            .iter()
+            .position(|x| x == b)
+            .map_or(0.0, |n| BODY_WEIGHTS[n])
+    };
+    let total: f64 = allowed.iter().map(weight).sum();
     let mut u = r.f64() * total;
-    for (b, w) in BODIES.iter().zip(BODY_WEIGHTS) {
-        if u < w {
+    for b in allowed {
+        if u < weight(b) {
             return *b;
         }
-        u -= w;
+        u -= weight(b);
     }
-    BODIES[0]
+    allowed[0]
 }
 
 /// Every object's pose at `frame` (time frame / fps), in closed form.
@@ -189,58 +256,44 @@ pub fn frame_at(desc: &TownDesc, seed: u64, frame: u64) -> TownFrame {
     let l = Layout::new(desc);
     let sched = Schedule::new(desc);
     let t = frame as f64 / desc.fps;
-    let (ego_lane, ego_slot_k) = ego_slot(desc, seed);
-    let hw = l.road_w_m / 2.0;
+    let driven = sched.driven_s(t);
+    let (ego_route, ego_slot_n) = ego_slot(desc, seed);
+    let ego_body = if sched.turns.bodies.contains(&BodyKind::Sedan) {
+        BodyKind::Sedan
+    } else {
+        sched.turns.bodies[0]
+    };
     let mut ego = None;
     let mut vehicles = Vec::new();
     let mut next_id = 1u32;
-    for (li, lane) in lanes(&l).iter().enumerate() {
-        let slots = (lane.length_m / sched.spacing_m).round() as u64;
-        let phase = match lane.axis {
-            Axis::X => sched.phase_x_m,
-            Axis::Y => sched.phase_x_m + sched.spacing_m / 2.0,
-        };
-        for slot in 0..slots {
+    for (ri, route) in routes(&l, &sched.turns).iter().enumerate() {
+        let travelled = sched.route_speed_mps(route) * driven;
+        for (n, (offset, open)) in slots(&l, &sched, route).into_iter().enumerate() {
             let id = next_id;
             next_id += 1;
-            let is_ego = li == ego_lane && slot == ego_slot_k;
-            let mut r = Rng::new(&[seed, tag::SLOT, li as u64, slot]);
-            let occupied = r.chance(desc.traffic_density);
+            let is_ego = ri == ego_route && n == ego_slot_n;
+            let mut r = Rng::new(&[seed, tag::SLOT, ri as u64, n as u64]);
+            let occupied = open && r.chance(desc.traffic_density);
             if !(occupied || is_ego) {
                 continue;
             }
             let body = if is_ego {
-                BodyKind::Sedan
+                ego_body
             } else {
-                weighted_body(&mut r)
+                weighted_body(&mut r, &sched.turns.bodies)
             };
             let paint = PAINTS[r.index(PAINTS.len())];
-            // Arc position: slot offset plus distance travelled, wrapped.
-            let s = phase + sched.speed_mps * t + slot as f64 * sched.spacing_m;
-            let along = (lane.dir * s).rem_euclid(lane.length_m);
-            let len = body.footprint_m()[0];
-            if lane.axis == Axis::Y
-                && (along - len / 2.0 < -hw || along + len / 2.0 > lane.length_m + hw)
-            {
-                continue; // past the outer x-road: off the map until it wraps
-            }
-            let (position, heading_deg) = match lane.axis {
-                Axis::X => (
-                    [along, lane.center, 0.0],
-                    if lane.dir > 0.0 { 0.0 } else { 180.0 },
-                ),
-                Axis::Y => (
-                    [lane.center, along, 0.0],
-                    if lane.dir > 0.0 { 90.0 } else { 270.0 },
-                ),
-            };
+            // Shorter bodies ride forward in their slot, so every front
+            // stands at the stop line (gaps stay ≥ GAP_M: see `slots`).
+            let shift = (sched.max_len_m - body.footprint_m()[0]) / 2.0;
+            let (p, heading) = route.pose(offset + shift + travelled);
             let pose = VehiclePose {
                 id,
                 body,
                 paint,
-                position,
-                heading_deg,
-                lane: li,
+                position: [p[0], p[1], 0.0],
+                heading_deg: heading.to_degrees(),
+                route: ri,
             };
             if is_ego {
                 ego = Some(pose);
@@ -254,62 +307,6 @@ pub fn frame_at(desc: &TownDesc, seed: u64, frame: u64) -> TownFrame {
         time_s: t,
         ego: ego.expect("the ego slot is always occupied"),
         vehicles,
-        pedestrians: pedestrians(desc, &l, seed, t),
+        pedestrians: walkers::pedestrians(desc, &l, &sched, seed, t),
     }
-}
-
-/// Walking speed, m/s.
-const WALK_MPS: f64 = 1.3;
-/// Pedestrian slots per block loop.
-const WALK_SLOTS: u64 = 24;
-const SHIRTS: &[&str] = &[
-    "cloth_blue",
-    "cloth_red",
-    "cloth_dark",
-    "paint_white",
-    "paint_yellow",
-];
-
-fn pedestrians(desc: &TownDesc, l: &Layout, seed: u64, t: f64) -> Vec<PedestrianPose> {
-    let mut out = Vec::new();
-    if !l.sidewalks {
-        return out;
-    }
-    let inset = l.road_w_m / 2.0 + l.sidewalk_m / 2.0 + 0.1;
-    let side = l.pitch_m - 2.0 * inset;
-    let perimeter = 4.0 * side;
-    let share = (desc.traffic_density * 0.35).min(1.0);
-    for j in 0..l.ny {
-        for i in 0..l.nx {
-            let (x0, y0) = (i as f64 * l.pitch_m + inset, j as f64 * l.pitch_m + inset);
-            for slot in 0..WALK_SLOTS {
-                let mut r = Rng::new(&[seed, tag::PEDESTRIAN, i as u64, j as u64, slot]);
-                if !r.chance(share) {
-                    continue;
-                }
-                let dir = if r.chance(0.5) { 1.0 } else { -1.0 };
-                let shirt = SHIRTS[r.index(SHIRTS.len())];
-                let s0 = slot as f64 * perimeter / WALK_SLOTS as f64;
-                // Opposite walkers use the two halves of the sidewalk.
-                let lane = dir * 0.45;
-                let s = (s0 + dir * WALK_MPS * t).rem_euclid(perimeter);
-                let (side_k, u) = ((s / side).floor() as u32 % 4, s % side);
-                let (x, y, h) = match side_k {
-                    0 => (x0 + u, y0 - lane, 0.0),
-                    1 => (x0 + side + lane, y0 + u, 90.0),
-                    2 => (x0 + side - u, y0 + side + lane, 180.0),
-                    _ => (x0 - lane, y0 + side - u, 270.0),
-                };
-                let heading_deg = if dir > 0.0 { h } else { (h + 180.0) % 360.0 };
-                let id = ((j * l.nx + i) as u64 * WALK_SLOTS + slot) as u32;
-                out.push(PedestrianPose {
-                    id,
-                    shirt,
-                    position: [x, y, 0.14],
-                    heading_deg,
-                });
-            }
-        }
-    }
-    out
 }

@@ -1,6 +1,7 @@
 //! Vehicle prefabs of six body types built from boxes and cylinders: body in
 //! paint (material "car_paint", remapped per vehicle), glass cabin, dark
-//! interior, wheels with chrome hubs, head- and tail-lights, bumpers.
+//! interior, wheels with chrome hubs, emissive head-lights (white) and
+//! tail-lights (red), bumpers.
 //!
 //! Local frame: x forward, y left, z up, origin on the ground at the centre
 //! of the footprint, so a vehicle's footprint is `length × width` about it.
@@ -184,14 +185,14 @@ fn body(kind: BodyKind, l: Label) -> Vec<ObjectDesc> {
             [0.06, 0.36, 0.14],
             [hl + 0.01, y, lz],
             0.0,
-            "headlight",
+            "headlight_emit",
             l,
         ));
         o.push(cuboid(
             [0.06, 0.36, 0.14],
             [-hl - 0.01, y, lz],
             0.0,
-            "taillight",
+            "taillight_emit",
             l,
         ));
     }

@@ -1,0 +1,157 @@
+//! Pedestrians in closed form: walkers circle blocks on the sidewalks, and
+//! crossers circle an interior junction, crossing one of its four
+//! crosswalks in every standing phase of the traffic clock (when every
+//! crosswalk on an interior road is clear, see `traffic`) and walking round
+//! the sidewalk corner to the next crosswalk while traffic drives.
+//!
+//! A crosswalk lies 0.5–3.5 m from the junction edge; crossers walk its
+//! middle line, 2 m out, from 0.8 m onto one sidewalk to 0.8 m onto the other.
+
+use super::desc::TownDesc;
+use super::layout::Layout;
+use super::rng::{tag, Rng};
+use super::traffic::{PedestrianPose, Schedule};
+
+/// Walking speed, m/s.
+pub const WALK_MPS: f64 = 1.3;
+/// Pedestrian slots per block loop.
+const WALK_SLOTS: u64 = 24;
+/// First id of crossers (walkers count up from 0).
+const CROSSER_ID_BASE: u32 = 5000;
+/// Crosswalk centre line, metres from the junction edge.
+const CROSS_AT_M: f64 = 2.0;
+/// How far onto the sidewalk a crossing starts and ends, metres.
+const ONTO_WALK_M: f64 = 0.8;
+const SHIRTS: &[&str] = &[
+    "cloth_blue",
+    "cloth_red",
+    "cloth_dark",
+    "paint_white",
+    "paint_yellow",
+];
+
+/// Every pedestrian at time `t` (none on country roads without sidewalks).
+pub fn pedestrians(
+    desc: &TownDesc,
+    l: &Layout,
+    sched: &Schedule,
+    seed: u64,
+    t: f64,
+) -> Vec<PedestrianPose> {
+    let mut out = Vec::new();
+    if !l.sidewalks {
+        return out;
+    }
+    walkers(desc, l, seed, t, &mut out);
+    crossers(desc, l, sched, seed, t, &mut out);
+    out
+}
+
+fn walkers(desc: &TownDesc, l: &Layout, seed: u64, t: f64, out: &mut Vec<PedestrianPose>) {
+    let inset = l.road_w_m / 2.0 + l.sidewalk_m / 2.0 + 0.1;
+    let side = l.pitch_m - 2.0 * inset;
+    let perimeter = 4.0 * side;
+    let share = (desc.traffic_density * 0.35).min(1.0);
+    for j in 0..l.ny {
+        for i in 0..l.nx {
+            let (x0, y0) = (i as f64 * l.pitch_m + inset, j as f64 * l.pitch_m + inset);
+            for slot in 0..WALK_SLOTS {
+                let mut r = Rng::new(&[seed, tag::PEDESTRIAN, i as u64, j as u64, slot]);
+                if !r.chance(share) {
+                    continue;
+                }
+                let dir = if r.chance(0.5) { 1.0 } else { -1.0 };
+                let shirt = SHIRTS[r.index(SHIRTS.len())];
+                let s0 = slot as f64 * perimeter / WALK_SLOTS as f64;
+                // Opposite walkers use the two halves of the sidewalk.
+                let lane = dir * 0.45;
+                let s = (s0 + dir * WALK_MPS * t).rem_euclid(perimeter);
+                let (side_k, u) = ((s / side).floor() as u32 % 4, s % side);
+                let (x, y, h) = match side_k {
+                    0 => (x0 + u, y0 - lane, 0.0),
+                    1 => (x0 + side + lane, y0 + u, 90.0),
+                    2 => (x0 + side - u, y0 + side + lane, 180.0),
+                    _ => (x0 - lane, y0 + side - u, 270.0),
+                };
+                let heading_deg = if dir > 0.0 { h } else { (h + 180.0) % 360.0 };
+                let id = ((j * l.nx + i) as u64 * WALK_SLOTS + slot) as u32;
+                out.push(PedestrianPose {
+                    id: id.min(CROSSER_ID_BASE - 1),
+                    shirt,
+                    position: [x, y, l.walk_z()],
+                    heading_deg,
+                });
+            }
+        }
+    }
+}
+
+/// The four crossings of junction (x, y), counter-clockwise from the east
+/// arm: (start, end) on the sidewalks.
+fn crossings(l: &Layout, x: f64, y: f64) -> [([f64; 2], [f64; 2]); 4] {
+    let hw = l.road_w_m / 2.0;
+    let (a, b) = (hw + CROSS_AT_M, hw + ONTO_WALK_M);
+    [
+        ([x + a, y - b], [x + a, y + b]),
+        ([x + b, y + a], [x - b, y + a]),
+        ([x - a, y + b], [x - a, y - b]),
+        ([x - b, y - a], [x + b, y - a]),
+    ]
+}
+
+fn lerp(p: [f64; 2], q: [f64; 2], u: f64) -> [f64; 2] {
+    [p[0] + (q[0] - p[0]) * u, p[1] + (q[1] - p[1]) * u]
+}
+
+fn crossers(
+    desc: &TownDesc,
+    l: &Layout,
+    sched: &Schedule,
+    seed: u64,
+    t: f64,
+    out: &mut Vec<PedestrianPose>,
+) {
+    let hw = l.road_w_m / 2.0;
+    let cycle = sched.cycle_s();
+    let n = (t / cycle).floor();
+    let tau = t - n * cycle;
+    let mut id = CROSSER_ID_BASE;
+    for j in 1..l.ny {
+        for i in 1..l.nx {
+            let (x, y) = (i as f64 * l.pitch_m, j as f64 * l.pitch_m);
+            let walks = crossings(l, x, y);
+            for slot in 0..2u64 {
+                id += 1;
+                let mut r = Rng::new(&[seed, tag::CROSSER, i as u64, j as u64, slot]);
+                if !r.chance((desc.traffic_density * 1.5).min(1.0)) {
+                    continue;
+                }
+                let shirt = SHIRTS[r.index(SHIRTS.len())];
+                let first = r.int(0, 3) as i64 + 2 * slot as i64;
+                // Crossing c happens in the standing phase of cycle n.
+                let c = (n as i64 + first).rem_euclid(4) as usize;
+                let (p, heading) = if tau >= sched.go_s {
+                    let (a, b) = walks[c];
+                    let len = ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt();
+                    let u = (WALK_MPS * (tau - sched.go_s) / len).min(1.0);
+                    (lerp(a, b, u), (b[1] - a[1]).atan2(b[0] - a[0]))
+                } else {
+                    // Round the corner from the previous crossing's end.
+                    let prev = (c + 3) % 4;
+                    let (from, to) = (walks[prev].1, walks[c].0);
+                    let len = ((to[0] - from[0]).powi(2) + (to[1] - from[1]).powi(2)).sqrt();
+                    let u = (WALK_MPS * tau / len).min(1.0);
+                    (lerp(from, to, u), (to[1] - from[1]).atan2(to[0] - from[0]))
+                };
+                let on_road = (p[0] - x).abs() < hw || (p[1] - y).abs() < hw;
+                let z = if on_road { 0.008 } else { l.walk_z() };
+                out.push(PedestrianPose {
+                    id,
+                    shirt,
+                    position: [p[0], p[1], z],
+                    heading_deg: heading.to_degrees().rem_euclid(360.0),
+                });
+            }
+        }
+    }
+}
