@@ -188,7 +188,7 @@ pub fn apply(desc: &mut SceneDesc, p: &WeatherParams) {
         },
     });
     desc.medium = p.visibility_m.map(|v| haze(p.preset, v));
-    desc.rain = (p.rain_mm_per_h > 0.0).then(|| RainDesc {
+    desc.rain = (p.rain_mm_per_h > 0.0).then_some(RainDesc {
         rate_mm_per_h: p.rain_mm_per_h,
         shutter_s: 0.01,
         fall_speed_m_per_s: 9.0,
