@@ -10,7 +10,7 @@
 use std::io;
 use std::path::{Path, PathBuf};
 
-use super::{flat_stem, rel_str, srgb_views, write_split, FrameKey};
+use super::{flat_stem, rel_str, srgb_views, write_baseline_splits, FrameKey};
 use crate::camera::StereoRig;
 use crate::output::{baseline_dir_name, write_png_gray16, write_png_rgb8};
 use crate::render::FrameOutput;
@@ -93,20 +93,8 @@ pub(super) fn write_index(
     keys: &[FrameKey],
     baselines_cm: &[f64],
 ) -> io::Result<Vec<PathBuf>> {
-    baselines_cm
-        .iter()
-        .map(|&cm| {
-            let lines: Vec<String> = keys
-                .iter()
-                .map(|k| sample_paths(k, cm)[..3].join(" "))
-                .collect();
-            write_split(
-                root,
-                &format!("kitti_{}.txt", baseline_dir_name(cm)),
-                &lines,
-            )
-        })
-        .collect()
+    let line = |k: &FrameKey, cm: f64| sample_paths(k, cm)[..3].join(" ");
+    Ok(write_baseline_splits(root, "kitti", keys, baselines_cm, line)?.0)
 }
 
 #[cfg(test)]

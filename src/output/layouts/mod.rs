@@ -20,6 +20,7 @@ use std::str::FromStr;
 use serde::{Deserialize, Serialize};
 
 use super::atomic::invalid_input;
+use super::baseline_dir_name;
 use super::frame::CameraFile;
 use crate::camera::StereoRig;
 use crate::render::FrameOutput;
@@ -152,6 +153,26 @@ pub fn write_layout_index(
 /// A root-relative path as a split-list entry (always `/`-separated).
 fn rel_str(parts: &[&str]) -> String {
     parts.join("/")
+}
+
+/// Writes `splits/<prefix>_baseline_XXX.txt` per baseline, one line per key
+/// from `line(key, baseline_cm)`; returns the lists and all their lines.
+fn write_baseline_splits(
+    root: &Path,
+    prefix: &str,
+    keys: &[FrameKey],
+    baselines_cm: &[f64],
+    line: impl Fn(&FrameKey, f64) -> String,
+) -> io::Result<(Vec<PathBuf>, Vec<String>)> {
+    let mut written = Vec::new();
+    let mut all = Vec::new();
+    for &cm in baselines_cm {
+        let lines: Vec<String> = keys.iter().map(|k| line(k, cm)).collect();
+        let name = format!("{prefix}_{}.txt", baseline_dir_name(cm));
+        written.push(write_split(root, &name, &lines)?);
+        all.extend(lines);
+    }
+    Ok((written, all))
 }
 
 /// Writes a split list: one line per sample, entries separated by one space.

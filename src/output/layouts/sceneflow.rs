@@ -9,7 +9,7 @@
 use std::io;
 use std::path::{Path, PathBuf};
 
-use super::{rel_str, srgb_views, write_split, FrameKey};
+use super::{rel_str, srgb_views, write_baseline_splits, FrameKey};
 use crate::camera::StereoRig;
 use crate::output::{baseline_dir_name, frame_stem, write_pfm_gray, write_png_rgb8};
 use crate::render::FrameOutput;
@@ -59,18 +59,6 @@ pub(super) fn write_index(
     keys: &[FrameKey],
     baselines_cm: &[f64],
 ) -> io::Result<Vec<PathBuf>> {
-    baselines_cm
-        .iter()
-        .map(|&cm| {
-            let lines: Vec<String> = keys
-                .iter()
-                .map(|k| sample_paths(k, cm)[..3].join(" "))
-                .collect();
-            write_split(
-                root,
-                &format!("sceneflow_{}.txt", baseline_dir_name(cm)),
-                &lines,
-            )
-        })
-        .collect()
+    let line = |k: &FrameKey, cm: f64| sample_paths(k, cm)[..3].join(" ");
+    Ok(write_baseline_splits(root, "sceneflow", keys, baselines_cm, line)?.0)
 }

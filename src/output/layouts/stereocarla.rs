@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
-use super::{flat_stem, rel_str, srgb_views, write_split, FrameKey};
+use super::{flat_stem, rel_str, srgb_views, write_baseline_splits, write_split, FrameKey};
 use crate::camera::StereoRig;
 use crate::output::frame::CameraFile;
 use crate::output::{
@@ -185,14 +185,8 @@ pub(super) fn write_index(
     keys: &[FrameKey],
     baselines_cm: &[f64],
 ) -> io::Result<Vec<PathBuf>> {
-    let mut all = Vec::new();
-    let mut written = Vec::new();
-    for &cm in baselines_cm {
-        let lines: Vec<String> = keys.iter().map(|k| sample_paths(k, cm).join(" ")).collect();
-        let name = format!("stereocarla_{}.txt", baseline_dir_name(cm));
-        written.push(write_split(root, &name, &lines)?);
-        all.extend(lines);
-    }
+    let line = |k: &FrameKey, cm: f64| sample_paths(k, cm).join(" ");
+    let (mut written, all) = write_baseline_splits(root, "stereocarla", keys, baselines_cm, line)?;
     written.push(write_split(root, "stereocarla_all.txt", &all)?);
     Ok(written)
 }
