@@ -69,11 +69,13 @@ fn resolve_shard(a: &DatasetArgs) -> Result<Shard, CliError> {
         .unwrap_or(Shard::ALL))
 }
 
-fn to_cli(e: ds::DatasetError) -> CliError {
-    if e.input {
-        CliError::input(e.message)
-    } else {
-        CliError::failure(e.message)
+impl From<ds::DatasetError> for CliError {
+    fn from(e: ds::DatasetError) -> Self {
+        if e.input {
+            CliError::input(e.message)
+        } else {
+            CliError::failure(e.message)
+        }
     }
 }
 
@@ -102,7 +104,7 @@ pub fn run(a: DatasetArgs) -> Result<(), CliError> {
     .map_err(CliError::failure)?;
     let summary = pool
         .install(|| ds::run_dataset(&config, &opts, &stop))
-        .map_err(to_cli)?;
+        .map_err(CliError::from)?;
     println!(
         "dataset {} shard {}: {} frames done, {} skipped, {} failed",
         show(&a.output),

@@ -30,17 +30,9 @@ pub struct VerifyArgs {
     pub backend: Backend,
 }
 
-fn to_cli(e: ds::DatasetError) -> CliError {
-    if e.input {
-        CliError::input(e.message)
-    } else {
-        CliError::failure(e.message)
-    }
-}
-
 /// Runs `parallax verify`.
 pub fn run(a: VerifyArgs) -> Result<(), CliError> {
-    let report = ds::verify_dataset(&a.root).map_err(to_cli)?;
+    let report = ds::verify_dataset(&a.root).map_err(CliError::from)?;
     print!("{}", report.text());
     if report.is_whole() {
         println!("{}: whole", show(&a.root));
@@ -52,8 +44,8 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
             show(&a.root)
         )));
     }
-    let config = ds::verify::dataset_config(&a.root).map_err(to_cli)?;
-    let redo = ds::prepare_repair(&a.root, &report).map_err(to_cli)?;
+    let config = ds::verify::dataset_config(&a.root).map_err(CliError::from)?;
+    let redo = ds::prepare_repair(&a.root, &report).map_err(CliError::from)?;
     println!("repair: re-rendering {} frames", redo.len());
     let opts = RunOptions {
         root: a.root.clone(),
@@ -69,8 +61,8 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
         .map_err(CliError::failure)?;
     let pool = thread_pool(a.threads)?;
     pool.install(|| ds::run_dataset(&config, &opts, &stop))
-        .map_err(to_cli)?;
-    let after = ds::verify_dataset(&a.root).map_err(to_cli)?;
+        .map_err(CliError::from)?;
+    let after = ds::verify_dataset(&a.root).map_err(CliError::from)?;
     print!("after repair: {}", after.text());
     if after.is_whole() {
         println!("{}: whole", show(&a.root));
