@@ -184,3 +184,84 @@ fn town01_river_lies_under_a_bridge_on_every_street() {
         }
     }
 }
+
+#[test]
+fn town03_roundabout_has_ring_road_island_and_sidewalk_and_nothing_drives_or_stands_on_it() {
+    use parallax::accel::{build_accel, Accel, Backend, Ray};
+    use parallax::town::layout::{Layout, Rect};
+    let desc = town("town03");
+    let layout = Layout::new(&desc);
+    let c = layout.roundabout_center().expect("town03 has a roundabout");
+    assert_eq!(c, [270.0, 180.0]);
+    let (r_in, r_out) = layout.roundabout_radii();
+    let loaded = load_town_frame(&desc, 0, 0, CameraConfig::Normal, Path::new("t.toml")).unwrap();
+    let scene = build_scene(&loaded, DVec3::ZERO).unwrap();
+    let accel = build_accel(Backend::default_backend(), &scene.accel_geometry()).unwrap();
+    // Straight down from 10 m at (radius, angle) about the centre.
+    let down = |r: f64, deg: f64| {
+        let (x, y) = (
+            c[0] + r * deg.to_radians().cos(),
+            c[1] + r * deg.to_radians().sin(),
+        );
+        let o = glam::Vec3::new(x as f32, y as f32, 10.0);
+        let hit = accel
+            .intersect(&Ray::new(o, glam::Vec3::NEG_Z))
+            .expect("ground");
+        (
+            10.0 - hit.t as f64,
+            scene.meshes[hit.geom_id as usize].semantic,
+        )
+    };
+    let id = |n: &str| class_id(n).unwrap();
+    for deg in [0.0, 37.0, 90.0, 150.0, 222.0, 300.0] {
+        // Both ring lanes are road exactly at z = 0, beside the markings.
+        for r in [r_in + 1.5, r_out - 1.5] {
+            let (z, k) = down(r, deg);
+            assert_eq!(k, id("road"), "ring at r {r}, {deg}°");
+            assert!(z.abs() < 1e-5, "ring at z = {z}");
+        }
+        // The island is raised (curb, lawn, mound or trees).
+        let (z, k) = down(r_in - 0.15, deg);
+        assert!(
+            z > 0.14 && [id("sidewalk"), id("terrain")].contains(&k),
+            "{z} {k}"
+        );
+    }
+    // The sidewalk ring between the arms, 0.14 m up.
+    for deg in [45.0, 135.0, 225.0, 315.0] {
+        let (z, k) = down(r_out + 2.0, deg);
+        assert_eq!(k, id("sidewalk"));
+        assert!((z - 0.14).abs() < 1e-4, "sidewalk at z = {z}");
+    }
+    // No building within the ring, its sidewalk and a metre more.
+    let clear = layout.roundabout_clear_m();
+    for m in scene.meshes.iter().filter(|m| m.semantic == id("building")) {
+        for p in &m.p_render {
+            let w = *p + scene.origin_world;
+            let d = (w.x - c[0]).hypot(w.y - c[1]);
+            assert!(d >= clear - 1e-6, "building vertex {d} m from the centre");
+        }
+    }
+    // Nothing drives or walks on the ring for 300 frames.
+    for k in (0..300).step_by(3) {
+        let f = frame_at(&desc, 11, k);
+        for v in std::iter::once(&f.ego).chain(&f.vehicles) {
+            let reach = Rect::centered([v.position[0], v.position[1]], [12.0, 12.0]);
+            assert!(
+                !layout.near_roundabout(&reach),
+                "vehicle {} at {:?}",
+                v.id,
+                v.position
+            );
+        }
+        for p in &f.pedestrians {
+            let d = (p.position[0] - c[0]).hypot(p.position[1] - c[1]);
+            assert!(d > r_out + 0.5, "pedestrian {} {d} m from the centre", p.id);
+        }
+    }
+    // Too small a town for a roundabout is rejected naming the field.
+    let base = std::fs::read_to_string(town_file("town03")).unwrap();
+    let small = base.replace("extent_m = [540.0, 450.0]", "extent_m = [180.0, 180.0]");
+    let e = parse_town_str(&small, Path::new("bad.toml")).unwrap_err();
+    assert!(e.contains("roundabout"), "{e}");
+}

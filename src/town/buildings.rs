@@ -40,7 +40,7 @@ pub fn block_objects(desc: &TownDesc, l: &Layout, seed: u64) -> Vec<ObjectDesc> 
                 continue;
             }
             if r.chance(desc.vegetation_density * 0.25) || desc.building_density == 0.0 {
-                park(desc, &lot, &mut r, &mut out);
+                park(desc, l, &lot, &mut r, &mut out);
                 continue;
             }
             let depth_total = lot.size()[1];
@@ -65,7 +65,9 @@ pub fn block_objects(desc: &TownDesc, l: &Layout, seed: u64) -> Vec<ObjectDesc> 
                         min: [x, y0],
                         max: [x + w, y1],
                     };
-                    if r.chance(desc.building_density) {
+                    if l.near_roundabout(&plot) {
+                        // The roundabout's ring and sidewalk reach here.
+                    } else if r.chance(desc.building_density) {
                         let id = Label {
                             class: "building",
                             instance: next_id,
@@ -94,7 +96,7 @@ pub fn block_objects(desc: &TownDesc, l: &Layout, seed: u64) -> Vec<ObjectDesc> 
     out
 }
 
-fn park(desc: &TownDesc, lot: &Rect, r: &mut Rng, out: &mut Vec<ObjectDesc>) {
+fn park(desc: &TownDesc, l: &Layout, lot: &Rect, r: &mut Rng, out: &mut Vec<ObjectDesc>) {
     out.push(ground_quad(
         lot.min,
         lot.max,
@@ -111,6 +113,9 @@ fn park(desc: &TownDesc, lot: &Rect, r: &mut Rng, out: &mut Vec<ObjectDesc>) {
             0.0,
         ];
         let name = ["tree_round", "tree_cone", "bush"][r.index(3)];
+        if l.near_roundabout(&Rect::centered([at[0], at[1]], [3.0, 3.0])) {
+            continue;
+        }
         out.push(instance(
             name,
             at,

@@ -53,6 +53,11 @@ pub struct TownDesc {
     /// y-road on a bridge (default false; needs at least 3 block rows).
     #[serde(default)]
     pub river: bool,
+    /// A roundabout in place of the most central cross junction (default
+    /// false; needs 2 × 3 blocks or more and blocks ≥ 80 m). It is
+    /// static: traffic routes and pedestrians keep away from it.
+    #[serde(default)]
+    pub roundabout: bool,
     /// Ground cover between and around the blocks.
     #[serde(default)]
     pub terrain: TerrainKind,
@@ -177,6 +182,13 @@ impl TownDesc {
         range("sun_azimuth_deg", self.sun_azimuth_deg, -360.0, 360.0)?;
         if self.river && (self.extent_m[1] / self.block_size_m).round() < 3.0 {
             return Err("river: needs at least 3 block rows (extent_m[1] / block_size_m)".into());
+        }
+        if self.roundabout {
+            let blocks = self.extent_m.map(|e| (e / self.block_size_m).round());
+            let few = blocks[0] < 2.0 || blocks[1] < 2.0 || blocks[0] * blocks[1] < 6.0;
+            if few || self.block_size_m < 80.0 {
+                return Err("roundabout: needs 2 × 3 blocks or more and block_size_m ≥ 80".into());
+            }
         }
         let [lo, hi] = self.floors;
         if !(1 <= lo && lo <= hi && hi <= 12) {

@@ -77,6 +77,8 @@ pub struct Layout {
     pub sidewalks: bool,
     /// The block row replaced by a river, if any.
     pub river_row: Option<usize>,
+    /// The cross junction (i, j) replaced by a roundabout, if any.
+    pub roundabout: Option<(usize, usize)>,
 }
 
 impl Layout {
@@ -93,12 +95,47 @@ impl Layout {
             sidewalk_m: desc.sidewalk_width_m,
             sidewalks: desc.sidewalks,
             river_row: None,
+            roundabout: None,
         }
         .with_river(desc.river)
+        .with_roundabout(desc.roundabout)
     }
     fn with_river(mut self, river: bool) -> Self {
         self.river_row = river.then_some(self.ny / 2);
         self
+    }
+    fn with_roundabout(mut self, on: bool) -> Self {
+        self.roundabout = on.then_some((self.nx / 2, self.ny / 2));
+        self
+    }
+    /// Centre of the roundabout, world (x, y), if the town has one.
+    pub fn roundabout_center(&self) -> Option<[f64; 2]> {
+        let (i, j) = self.roundabout?;
+        Some([i as f64 * self.pitch_m, j as f64 * self.pitch_m])
+    }
+    /// Radii of the roundabout: (central island, ring road's outer kerb),
+    /// metres. The ring has one lane per approach lane, 1 m wider each.
+    pub fn roundabout_radii(&self) -> (f64, f64) {
+        let r_in = 10.0;
+        (r_in, r_in + self.lanes as f64 * (self.lane_w_m + 1.0))
+    }
+    /// Radius around the roundabout centre kept free of buildings, lots,
+    /// furniture, pedestrians and routes: ring, sidewalk and 1 m, metres.
+    pub fn roundabout_clear_m(&self) -> f64 {
+        self.roundabout_radii().1 + self.sidewalk_m + 1.0
+    }
+    /// Whether block (i, j) has a corner at the roundabout.
+    pub fn block_touches_roundabout(&self, i: usize, j: usize) -> bool {
+        self.roundabout
+            .is_some_and(|(ri, rj)| (i == ri || i + 1 == ri) && (j == rj || j + 1 == rj))
+    }
+    /// Whether a rectangle reaches into the roundabout's clear disc.
+    pub fn near_roundabout(&self, r: &Rect) -> bool {
+        self.roundabout_center().is_some_and(|c| {
+            let dx = (r.min[0] - c[0]).max(c[0] - r.max[0]).max(0.0);
+            let dy = (r.min[1] - c[1]).max(c[1] - r.max[1]).max(0.0);
+            dx.hypot(dy) < self.roundabout_clear_m()
+        })
     }
     /// The river's water surface in plan (between the sidewalks of its two
     /// x-roads, past the town on both sides), if the town has one.

@@ -25,6 +25,7 @@ pub mod props;
 pub mod rig;
 pub mod rng;
 pub mod roads;
+pub mod roundabout;
 pub mod routes;
 pub mod traffic;
 pub mod vehicles;
@@ -55,7 +56,13 @@ pub fn static_objects(desc: &TownDesc, seed: u64) -> Vec<ObjectDesc> {
     let l = Layout::new(desc);
     let mut out = roads::road_objects(&l);
     out.extend(buildings::block_objects(desc, &l, seed));
-    out.extend(furniture::furniture_objects(desc, &l, seed));
+    let mut furniture = furniture::furniture_objects(desc, &l, seed);
+    // Nothing stands on the roundabout's ring or sidewalk.
+    furniture.retain(|o| {
+        let t = o.transform.translate.unwrap_or_default();
+        !l.near_roundabout(&layout::Rect::centered([t[0], t[1]], [0.0, 0.0]))
+    });
+    out.extend(furniture);
     number_objects(&mut out);
     out
 }

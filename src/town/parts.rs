@@ -174,3 +174,20 @@ pub fn scaled(mut o: ObjectDesc, s: [f64; 3]) -> ObjectDesc {
     o.transform.scale = Some(ScaleDesc::Axes(s));
     o
 }
+
+/// A horizontal rectangle facing up, centred at `at`, turned by
+/// `heading_deg` about z (a turn about z keeps its height exact).
+pub fn turned_quad(
+    size: [f64; 2],
+    at: [f64; 3],
+    heading_deg: f64,
+    mat: &str,
+    l: Label,
+) -> ObjectDesc {
+    object(
+        ShapeDesc::Quad { size },
+        Some(mat),
+        l,
+        transform(at, heading_deg),
+    )
+}

@@ -14,6 +14,7 @@ use crate::scene::desc::ObjectDesc;
 
 use super::layout::{Layout, Rect, GROUND_MARGIN_M, STUB_M};
 use super::parts::{class, ground_quad, repeated, slab, Label};
+use super::roundabout::{arm_start_m, roundabout_objects};
 
 /// Along which world axis a road runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -34,6 +35,9 @@ struct Segment {
     a1: f64,
     /// Whether each end meets a junction (crosswalk and stop line there).
     junction: [bool; 2],
+    /// Whether each end meets the roundabout ring (a dashed yield line at
+    /// the ring, the crosswalk a car length back).
+    yield_end: [bool; 2],
 }
 
 impl Segment {
@@ -70,6 +74,8 @@ impl Segment {
 const PAINT_Z: (f64, f64) = (0.0, 0.008);
 const CROSSWALK_M: (f64, f64) = (0.5, 3.5);
 const STOP_LINE_AT_M: f64 = 4.0;
+/// How far back from the ring a roundabout arm's crosswalk starts, metres.
+const YIELD_CROSSWALK_M: f64 = 6.0;
 
 /// Every road, marking, curb, sidewalk and terrain object of the town.
 pub fn road_objects(l: &Layout) -> Vec<ObjectDesc> {
@@ -97,17 +103,22 @@ pub fn road_objects(l: &Layout) -> Vec<ObjectDesc> {
                 a0: -STUB_M,
                 a1: -hw,
                 junction: [false, true],
+                yield_end: [false; 2],
             },
         ));
         for i in 0..l.nx {
             let x = i as f64 * p;
-            let s = Segment {
-                axis: Axis::X,
-                c: y,
-                a0: x + hw,
-                a1: x + p - hw,
-                junction: [true, true],
-            };
+            let s = roundabout_arm(
+                l,
+                Segment {
+                    axis: Axis::X,
+                    c: y,
+                    a0: x + hw,
+                    a1: x + p - hw,
+                    junction: [true, true],
+                    yield_end: [false; 2],
+                },
+            );
             out.extend(segment_objects(l, &s));
         }
         let e = l.len_x();
@@ -119,6 +130,7 @@ pub fn road_objects(l: &Layout) -> Vec<ObjectDesc> {
                 a0: e + hw,
                 a1: e + STUB_M,
                 junction: [true, false],
+                yield_end: [false; 2],
             },
         ));
     }
@@ -126,22 +138,51 @@ pub fn road_objects(l: &Layout) -> Vec<ObjectDesc> {
         let x = i as f64 * p;
         for j in 0..l.ny {
             let y = j as f64 * p;
-            let s = Segment {
-                axis: Axis::Y,
-                c: x,
-                a0: y + hw,
-                a1: y + p - hw,
-                junction: [true, true],
-            };
+            let s = roundabout_arm(
+                l,
+                Segment {
+                    axis: Axis::Y,
+                    c: x,
+                    a0: y + hw,
+                    a1: y + p - hw,
+                    junction: [true, true],
+                    yield_end: [false; 2],
+                },
+            );
             out.extend(segment_objects(l, &s));
         }
     }
     for j in 0..=l.ny {
         for i in 0..=l.nx {
-            junction_objects(l, i, j, &mut out);
+            if l.roundabout != Some((i, j)) {
+                junction_objects(l, i, j, &mut out);
+            }
         }
     }
+    out.extend(roundabout_objects(l));
     out
+}
+
+/// The segment shortened to the ring where it is an arm of the roundabout.
+fn roundabout_arm(l: &Layout, mut s: Segment) -> Segment {
+    let Some(ctr) = l.roundabout_center() else {
+        return s;
+    };
+    let (cc, ca) = match s.axis {
+        Axis::X => (ctr[1], ctr[0]),
+        Axis::Y => (ctr[0], ctr[1]),
+    };
+    if s.c != cc {
+        return s;
+    }
+    let (hw, arm) = (l.road_w_m / 2.0, arm_start_m(l));
+    if (s.a0 - (ca + hw)).abs() < 1e-9 {
+        (s.a0, s.yield_end[0]) = (ca + arm, true);
+    }
+    if (s.a1 - (ca - hw)).abs() < 1e-9 {
+        (s.a1, s.yield_end[1]) = (ca - arm, true);
+    }
+    s
 }
 
 fn segment_objects(l: &Layout, s: &Segment) -> Vec<ObjectDesc> {
@@ -159,9 +200,13 @@ fn segment_objects(l: &Layout, s: &Segment) -> Vec<ObjectDesc> {
         road,
     ));
     // Lines stop short of crosswalks and stop lines at junction ends.
-    let clear = STOP_LINE_AT_M + 0.6;
-    let s0 = s.a0 + if s.junction[0] { clear } else { 0.0 };
-    let s1 = s.a1 - if s.junction[1] { clear } else { 0.0 };
+    let clear = |end: usize| match (s.junction[end], s.yield_end[end]) {
+        (_, true) => YIELD_CROSSWALK_M + CROSSWALK_M.1 + 0.6,
+        (true, false) => STOP_LINE_AT_M + 0.6,
+        _ => 0.0,
+    };
+    let s0 = s.a0 + clear(0);
+    let s1 = s.a1 - clear(1);
     if s1 - s0 > 1.0 {
         if l.lanes == 1 {
             o.extend(dashed(s, s0, s1, 0.0, 0.12, "paint_white_road", mark));
@@ -195,18 +240,36 @@ fn segment_objects(l: &Layout, s: &Segment) -> Vec<ObjectDesc> {
             continue;
         }
         let (dir, edge) = if end == 0 { (1.0, s.a0) } else { (-1.0, s.a1) };
-        let a = edge + dir * STOP_LINE_AT_M;
         // Traffic entering at a0 drives in −along, on the left (across > 0).
         let lanes = if end == 0 {
             (0.2, hw - 0.2)
         } else {
             (-hw + 0.2, -0.2)
         };
-        o.push(s.slab((a - 0.2, a + 0.2), lanes, PAINT_Z, "paint_white_road", mark));
+        let across = match s.axis {
+            Axis::X => [0.0, 1.0, 0.0],
+            Axis::Y => [-1.0, 0.0, 0.0],
+        };
+        let back = if s.yield_end[end] {
+            // Yield line: 0.6 m dashes every 1.2 m along the ring's edge.
+            let a = edge + dir * 0.5;
+            let n = ((lanes.1 - lanes.0 + 0.6) / 1.2).floor() as u32;
+            let u = (lanes.0, lanes.0 + 0.6);
+            let dash = s.slab((a - 0.2, a + 0.2), u, PAINT_Z, "paint_white_road", mark);
+            o.push(repeated(dash, &[(n, across.map(|v| v * 1.2))]));
+            YIELD_CROSSWALK_M
+        } else {
+            let a = edge + dir * STOP_LINE_AT_M;
+            o.push(s.slab((a - 0.2, a + 0.2), lanes, PAINT_Z, "paint_white_road", mark));
+            0.0
+        };
         if !l.sidewalks {
             continue; // no crosswalks on country roads
         }
-        let (c0, c1) = (edge + dir * CROSSWALK_M.0, edge + dir * CROSSWALK_M.1);
+        let (c0, c1) = (
+            edge + dir * (back + CROSSWALK_M.0),
+            edge + dir * (back + CROSSWALK_M.1),
+        );
         let n = ((2.0 * hw - 0.5) / 1.0).floor() as u32;
         let first = -hw + 0.5;
         let stripe = s.slab(
@@ -216,10 +279,6 @@ fn segment_objects(l: &Layout, s: &Segment) -> Vec<ObjectDesc> {
             "paint_white_road",
             mark,
         );
-        let across = match s.axis {
-            Axis::X => [0.0, 1.0, 0.0],
-            Axis::Y => [-1.0, 0.0, 0.0],
-        };
         o.push(repeated(stripe, &[(n, across)]));
     }
     // Curbs and sidewalks (or flat shoulders) on both sides.

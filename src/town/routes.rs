@@ -214,13 +214,17 @@ impl Turns {
     }
 }
 
-/// Every route of the town: block loops (by row, column, lane), then the
-/// ring lanes from the centreline out.
+/// Every route of the town: block loops (by row, column, lane; none
+/// around the four blocks with a corner at a roundabout), then the ring
+/// lanes from the centreline out.
 pub fn routes(l: &Layout, turns: &Turns) -> Vec<Route> {
     let mut out = Vec::new();
     let r = turns.radius_m;
     for j in 0..l.ny {
         for i in 0..l.nx {
+            if l.block_touches_roundabout(i, j) {
+                continue; // static roundabout: no route enters it
+            }
             for k in 0..l.lanes {
                 let e = (k as f64 + 0.5) * l.lane_w_m;
                 let (x0, y0) = (i as f64 * l.pitch_m, j as f64 * l.pitch_m);

@@ -218,7 +218,16 @@ pub fn ego_slot(desc: &TownDesc, seed: u64) -> (usize, usize) {
             0
         }
     };
-    let (i, j) = (pick(l.nx, &mut r), pick(l.ny, &mut r));
+    let mut ij = (pick(l.nx, &mut r), pick(l.ny, &mut r));
+    if l.block_touches_roundabout(ij.0, ij.1) {
+        // Blocks at the roundabout have no loops: any other block.
+        let free: Vec<(usize, usize)> = (0..l.ny)
+            .flat_map(|j| (0..l.nx).map(move |i| (i, j)))
+            .filter(|&(i, j)| !l.block_touches_roundabout(i, j))
+            .collect();
+        ij = free[r.index(free.len())];
+    }
+    let (i, j) = ij;
     let k = r.int(0, l.lanes - 1);
     let route = all
         .iter()

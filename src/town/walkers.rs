@@ -54,6 +54,9 @@ fn walkers(desc: &TownDesc, l: &Layout, seed: u64, t: f64, out: &mut Vec<Pedestr
     let share = (desc.traffic_density * 0.35).min(1.0);
     for j in 0..l.ny {
         for i in 0..l.nx {
+            if l.block_touches_roundabout(i, j) {
+                continue; // their loop would cut across the ring
+            }
             let (x0, y0) = (i as f64 * l.pitch_m + inset, j as f64 * l.pitch_m + inset);
             for slot in 0..WALK_SLOTS {
                 let mut r = Rng::new(&[seed, tag::PEDESTRIAN, i as u64, j as u64, slot]);
@@ -118,6 +121,10 @@ fn crossers(
     let mut id = CROSSER_ID_BASE;
     for j in 1..l.ny {
         for i in 1..l.nx {
+            if l.roundabout == Some((i, j)) {
+                id += 2;
+                continue;
+            }
             let (x, y) = (i as f64 * l.pitch_m, j as f64 * l.pitch_m);
             let walks = crossings(l, x, y);
             for slot in 0..2u64 {

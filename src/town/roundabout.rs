@@ -1,0 +1,198 @@
+//! The roundabout of a town (town03): a ring road around a raised central
+//! island with grass, a mound and trees, lane markings on the ring (edge
+//! lines, a dashed divider), curbs and a sidewalk ring between the four
+//! approach arms. The arms end where their kerbs meet the ring and carry a
+//! dashed yield line there (see `roads`).
+//!
+//! Static geometry: no route enters the ring (the four block loops with a
+//! corner here are not driven, see `routes`), so the no-overlap proof of
+//! `traffic` is untouched. Ring pieces are boxes or quads turned about z,
+//! so road surfaces stay exactly at z = 0 (the GT tests rely on it).
+
+use std::f64::consts::{FRAC_PI_2, PI};
+
+use crate::scene::desc::ObjectDesc;
+
+use super::layout::Layout;
+use super::parts::{class, cuboid, cylinder, instance, turned_quad, Label};
+
+/// Distance from the roundabout centre at which each approach arm's
+/// straight road ends (its kerbs meet the ring's outer kerb), metres.
+pub fn arm_start_m(l: &Layout) -> f64 {
+    let (_, r_out) = l.roundabout_radii();
+    let hw = l.road_w_m / 2.0;
+    (r_out * r_out - hw * hw).sqrt()
+}
+
+/// Angular intervals [θ0, θ1] (radians) of a circle: the whole circle, or
+/// the four arcs between the arm openings of half-angle `open`.
+fn arcs(open: Option<f64>) -> Vec<(f64, f64)> {
+    match open {
+        None => vec![(0.0, 2.0 * PI)],
+        Some(a) => (0..4)
+            .map(|q| {
+                let t = q as f64 * FRAC_PI_2;
+                (t + a, t + FRAC_PI_2 - a)
+            })
+            .collect(),
+    }
+}
+
+/// Boxes covering the annulus r0..r1 between heights z over the given
+/// arcs, in pieces of about `piece_m` at r1; with `dash`, every other piece
+/// at half length (a dashed line).
+#[allow(clippy::too_many_arguments)]
+fn ring(
+    c: [f64; 2],
+    (r0, r1): (f64, f64),
+    z: (f64, f64),
+    open: Option<f64>,
+    piece_m: f64,
+    dash: bool,
+    mat: &str,
+    l: Label,
+    out: &mut Vec<ObjectDesc>,
+) {
+    for (t0, t1) in arcs(open) {
+        let n = ((t1 - t0) * r1 / piece_m).ceil().max(1.0) as usize;
+        let dt = (t1 - t0) / n as f64;
+        // The chord at r1 covers the outer arc; neighbours overlap inside.
+        let mut len = 2.0 * r1 * (dt / 2.0).tan();
+        if dash {
+            len /= 2.0;
+        }
+        for k in (0..n).filter(|k| !dash || k % 2 == 0) {
+            let t = t0 + (k as f64 + 0.5) * dt;
+            let rc = (r0 + r1) / 2.0;
+            let at = [c[0] + rc * t.cos(), c[1] + rc * t.sin(), (z.0 + z.1) / 2.0];
+            let size = [r1 - r0, len, z.1 - z.0];
+            out.push(cuboid(size, at, t.to_degrees(), mat, l));
+        }
+    }
+}
+
+/// Every object of the roundabout (none if the town has none).
+pub fn roundabout_objects(l: &Layout) -> Vec<ObjectDesc> {
+    let mut out = Vec::new();
+    let Some(c) = l.roundabout_center() else {
+        return out;
+    };
+    let (r_in, r_out) = l.roundabout_radii();
+    let hw = l.road_w_m / 2.0;
+    let open = Some((hw / r_out).asin());
+    // Ring asphalt: radial quads at z = 0 from under the island to under
+    // the outer curb.
+    let n = 96;
+    let (q0, q1) = (r_in - 0.5, r_out + 0.2);
+    let width = 2.0 * q1 * (PI / n as f64).tan();
+    for k in 0..n {
+        let t = (k as f64 + 0.5) * 2.0 * PI / n as f64;
+        let rc = (q0 + q1) / 2.0;
+        let at = [c[0] + rc * t.cos(), c[1] + rc * t.sin(), 0.0];
+        out.push(turned_quad(
+            [q1 - q0, width],
+            at,
+            t.to_degrees(),
+            "asphalt",
+            class("road"),
+        ));
+    }
+    // Markings: solid edge lines (the outer one open at the arms) and a
+    // dashed divider between the ring lanes.
+    let (mark, paint, pz) = (class("lane_marking"), "paint_white_road", (0.0, 0.008));
+    let edge_in = (r_in + 0.25, r_in + 0.4);
+    ring(c, edge_in, pz, None, 2.0, false, paint, mark, &mut out);
+    let edge_out = (r_out - 0.4, r_out - 0.25);
+    ring(c, edge_out, pz, open, 2.0, false, paint, mark, &mut out);
+    let lane_w = (r_out - r_in) / l.lanes as f64;
+    for k in 1..l.lanes {
+        let r = r_in + k as f64 * lane_w;
+        ring(
+            c,
+            (r - 0.06, r + 0.06),
+            pz,
+            None,
+            3.0,
+            true,
+            paint,
+            mark,
+            &mut out,
+        );
+    }
+    // Outer curb and sidewalk ring between the arms.
+    if l.sidewalks {
+        let side = class("sidewalk");
+        let (curb, walk) = ((r_out, r_out + 0.25), (r_out + 0.25, r_out + l.sidewalk_m));
+        ring(
+            c,
+            curb,
+            (0.0, 0.15),
+            open,
+            2.0,
+            false,
+            "curb",
+            side,
+            &mut out,
+        );
+        ring(
+            c,
+            walk,
+            (0.0, 0.14),
+            open,
+            2.0,
+            false,
+            "sidewalk",
+            side,
+            &mut out,
+        );
+    } else {
+        let t = class("terrain");
+        let shoulder = (r_out, r_out + l.sidewalk_m);
+        ring(
+            c,
+            shoulder,
+            (-0.01, 0.0),
+            open,
+            2.0,
+            false,
+            "gravel",
+            t,
+            &mut out,
+        );
+    }
+    // Central island: a curb drum, a lawn top, a low grass mound, trees.
+    let at = [c[0], c[1], 0.0];
+    out.push(cylinder(r_in, 0.15, 64, at, "curb", class("sidewalk")));
+    let top = [c[0], c[1], 0.15];
+    out.push(cylinder(r_in - 0.3, 0.1, 64, top, "lawn", class("terrain")));
+    let mound = super::parts::blob(
+        [r_in - 2.5, r_in - 2.5, 0.9],
+        [c[0], c[1], 0.25],
+        "lawn",
+        class("terrain"),
+    );
+    out.push(mound);
+    let veg = class("vegetation");
+    out.push(instance("tree_round", [c[0], c[1], 1.1], 0.0, &[], veg));
+    for q in 0..4 {
+        let t = (q as f64 + 0.5) * FRAC_PI_2;
+        let r = 0.6 * r_in;
+        let p = [c[0] + r * t.cos(), c[1] + r * t.sin(), 0.5];
+        let name = if q % 2 == 0 { "tree_cone" } else { "bush" };
+        out.push(instance(name, p, 45.0 * q as f64, &[], veg));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn arcs_leave_four_equal_openings() {
+        let a = 0.3;
+        let total: f64 = arcs(Some(a)).iter().map(|(t0, t1)| t1 - t0).sum();
+        assert!((total - (2.0 * PI - 8.0 * a)).abs() < 1e-12);
+        assert_eq!(arcs(None), vec![(0.0, 2.0 * PI)]);
+    }
+}
