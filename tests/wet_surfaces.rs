@@ -7,7 +7,6 @@
 mod common;
 
 use common::{camera_block, render, scene_from_toml, Rendered};
-use glam::Vec3;
 use parallax::accel::Backend;
 use parallax::integrator::gt::view_gt;
 use parallax::integrator::wet::{internal_reflectance, WATER_IOR};
@@ -39,14 +38,19 @@ fn sky_integral(g: impl Fn(f64) -> f64) -> f64 {
         .sum()
 }
 
-/// A road plane (plus a building box) under the gradient sky.
+/// A road plane (plus a building box) under the gradient sky, level rig.
 fn road_scene(wetness: Option<(f64, f64)>, spp: u32) -> Rendered {
+    road_scene_pitched(wetness, spp, 0.0)
+}
+
+/// [`road_scene`] with the rig pitched down by `pitch_deg`.
+fn road_scene_pitched(wetness: Option<(f64, f64)>, spp: u32, pitch_deg: f64) -> Rendered {
     let wet = wetness.map_or(String::new(), |(w, cover)| {
         format!("[wetness]\nwetness = {w}\npuddle_cover = {cover}\nseed = 9\n")
     });
     let text = format!(
         r#"{}[render]
-spp = {spp}
+spp = {}
 max_depth = 1
 seed = 5
 [sky]
@@ -67,16 +71,18 @@ semantic = "road"
 instance = 1
 [[object]]
 kind = "box"
-size = [2.0, 3.0, 4.0]
+size = [2.0, 2.0, 2.0]
 material = "asphalt"
 semantic = "building"
 instance = 2
-transform = {{ translate = [9.0, 2.0, 2.0] }}
+transform = {{ translate = [30.0, 14.0, 1.0] }}
 "#,
-        camera_block(W, H, [0.0, 0.0, 1.65])
+        camera_block(W, H, [0.0, 0.0, 1.65]),
+        spp.max(1)
     );
     let mut loaded = scene_from_toml(&text);
     loaded.desc.camera.baselines_cm = vec![54.0];
+    loaded.desc.camera.pitch_deg = pitch_deg;
     render(&loaded, Backend::default_backend(), spp)
 }
 
@@ -120,31 +126,48 @@ fn wet_road_is_darker_and_reflects_the_sky_with_water_fresnel() {
     for (&(cos_o, l_dry), &(_, l_wet)) in dry.iter().zip(&wet) {
         // Dry: albedo · ∫L cos/π.
         let e_dry = ALBEDO * lambert;
-        assert!((l_dry - e_dry).abs() < 0.02 * e_dry, "dry {l_dry} vs {e_dry}");
+        assert!(
+            (l_dry - e_dry).abs() < 0.02 * e_dry,
+            "dry {l_dry} vs {e_dry}"
+        );
         // Wet: the film's Fresnel reflection of the sky in the mirror
         // direction, plus the soaked base seen through the film twice.
         let spec = f_water(cos_o) * sky(cos_o);
         let rest = (1.0 - f_water(cos_o)) * soaked(ALBEDO) * rest_integral;
         let e_wet = spec + rest;
         eprintln!("cosθo {cos_o:.3}: dry {l_dry:.4} wet {l_wet:.4} = {spec:.4} + {rest:.4}");
-        assert!((l_wet - e_wet).abs() < 0.04 * e_wet, "wet {l_wet} vs {e_wet}");
+        // Within a few %; the first row, 3.6° from grazing, loses a little
+        // more to the film's residual roughness (Smith masking).
+        let tol = if cos_o >= 0.07 { 0.04 } else { 0.08 };
+        assert!(
+            (l_wet - e_wet).abs() < tol * e_wet,
+            "wet {l_wet} vs {e_wet}"
+        );
         // The diffuse part alone is much darker than the dry road.
         assert!(rest < 0.6 * l_dry);
     }
-    // Looking down steeply the wet road is darker overall; near grazing the
-    // reflected horizon makes it brighter.
-    let (steep, grazing) = (wet.last().unwrap(), wet.first().unwrap());
-    assert!(steep.1 < dry.last().unwrap().1, "{steep:?}");
-    assert!(grazing.1 > dry.first().unwrap().1, "{grazing:?}");
+    // Near grazing the reflected horizon makes the wet road brighter.
+    assert!(wet[0].1 > 2.0 * dry[0].1, "{:?} vs {:?}", wet[0], dry[0]);
+    // Looking down at 60° it is much darker: soaked albedo, little Fresnel.
+    let mean = |r: &Rendered| {
+        let img = &r.out.images[0].rgb;
+        img.iter().map(|c| c.y as f64).sum::<f64>() / img.len() as f64
+    };
+    let (dry, wet) = (
+        mean(&road_scene_pitched(None, 16, 60.0)),
+        mean(&road_scene_pitched(Some((1.0, 0.0)), 16, 60.0)),
+    );
+    assert!(wet < 0.7 * dry && wet > 0.4 * dry, "wet {wet} dry {dry}");
 }
 
 #[test]
 fn puddle_is_a_smooth_water_mirror_over_the_soaked_base() {
-    let r = road_scene(Some((0.6, 1.0)), 64);
+    let r = road_scene(Some((0.6, 1.0)), 256);
     let rest_integral = sky_integral(|mu| 1.0 - f_water(mu));
     for (cos_o, l) in road_rows(&r) {
-        let e = f_water(cos_o) * sky(cos_o) + (1.0 - f_water(cos_o)) * soaked(ALBEDO) * rest_integral;
-        assert!((l - e).abs() < 0.02 * e, "cosθo {cos_o}: {l} vs {e}");
+        let e =
+            f_water(cos_o) * sky(cos_o) + (1.0 - f_water(cos_o)) * soaked(ALBEDO) * rest_integral;
+        assert!((l - e).abs() < 0.03 * e, "cosθo {cos_o}: {l} vs {e}");
     }
 }
 
@@ -166,7 +189,13 @@ fn ground_truth_geometry_is_bit_identical_with_and_without_wetness() {
 /// Whether the GT pixel (i, j) of `cam` lies on a puddle by the world-space
 /// mask (None when within 1e-3 of the threshold, where f32 rounding of the
 /// hit point may decide either way).
-fn puddle_by_world_mask(r: &Rendered, cam: &RenderCamera, depth: f64, i: u32, j: u32) -> Option<bool> {
+fn puddle_by_world_mask(
+    r: &Rendered,
+    cam: &RenderCamera,
+    depth: f64,
+    i: u32,
+    j: u32,
+) -> Option<bool> {
     let w = r.scene.wetness.as_ref().unwrap();
     let p = r.scene.origin_world + cam.center + cam.dir(i as f64 + 0.5, j as f64 + 0.5) * depth;
     let n = w.puddle_noise(p.x, p.y);
@@ -205,8 +234,13 @@ fn mirror_bit_marks_puddles_only_and_agrees_between_views() {
             if x_r < 0.5 || r.out.baselines[0].occlusion[k] != 0 {
                 continue;
             }
-            let ir = x_r.round() as u32 - 1 + u32::from(x_r.fract() >= 0.5);
-            let kr = (j * W + ir.min(W - 1)) as usize;
+            // The right pixel containing the point (its own centre sees a
+            // point within a pixel's footprint of it).
+            let ir = (x_r.floor() as u32).min(W - 1);
+            let kr = (j * W + ir) as usize;
+            if gt_r.semantic[kr] != 1 {
+                continue;
+            }
             let Some(expect_r) = puddle_by_world_mask(&r, &right, gt_r.depth_z[kr], ir, j) else {
                 continue;
             };
@@ -214,7 +248,10 @@ fn mirror_bit_marks_puddles_only_and_agrees_between_views() {
             agree += usize::from(expect_r == expect);
         }
     }
-    assert!(puddles > 20 && dry_road > 20, "{puddles} puddle, {dry_road} dry");
+    assert!(
+        puddles > 20 && dry_road > 20,
+        "{puddles} puddle, {dry_road} dry"
+    );
     assert!(agree > 20, "{agree}");
 }
 
@@ -243,5 +280,4 @@ fn weather_presets_wet_only_humid_and_storm() {
             (_, wet) => assert!(wet.is_none(), "{w}: {wet:?}"),
         }
     }
-    let _ = Vec3::ZERO;
 }

@@ -109,9 +109,9 @@ impl Wetness {
     }
 
     /// GGX alpha of the water film: rough when damp, near-smooth when soaked
-    /// (perceptual roughness 0.6 → 0.15).
+    /// (perceptual roughness 0.6 → 0.1).
     pub fn film_alpha(&self) -> f32 {
-        let r = 0.6 - 0.45 * self.wetness;
+        let r = 0.6 - 0.5 * self.wetness;
         r * r
     }
 }

@@ -14,8 +14,8 @@ mod wetness;
 pub use light::{LightDesc, SkyDesc};
 pub use material::{conductor_eta_k, ConductorPreset, MaskFlag, MaterialDesc, MaterialKindDesc};
 pub use medium::{build_medium, build_rain, MediumDesc, MediumKindDesc, RainDesc};
-pub use wetness::WetnessDesc;
 pub use object::{ObjectDesc, PrefabDesc, RepeatDesc, ScaleDesc, ShapeDesc, TransformDesc};
+pub use wetness::WetnessDesc;
 
 use serde::{Deserialize, Serialize};
 
