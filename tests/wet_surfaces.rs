@@ -281,3 +281,45 @@ fn weather_presets_wet_only_humid_and_storm() {
         }
     }
 }
+
+#[test]
+fn coated_material_builds_a_coat_and_rejects_two_bases() {
+    let scene = |body: &str| {
+        let text = format!(
+            "{}[sky]\nkind = \"constant\"\nle = [1.0, 1.0, 1.0]\n[[material]]\nname = \"paint\"\nkind = \"coated\"\n{body}\n[[object]]\nkind = \"quad\"\nsize = [2.0, 2.0]\nmaterial = \"paint\"\n",
+            camera_block(8, 8, [-3.0, 0.0, 1.0])
+        );
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/inline.toml");
+        parallax::scene::parse_scene_str(&text, &path)
+    };
+    let loaded = scene("albedo = [0.5, 0.02, 0.02]\ncoat_roughness = 0.1").expect("diffuse base");
+    let built = parallax::scene::build_scene(&loaded, glam::DVec3::ZERO).unwrap();
+    let m = &built.materials[0];
+    assert_eq!(m.mask, 0, "clear coat is not a mirror in the mask");
+    match m.bsdf {
+        shaders_cpu::bsdf::Bsdf::Coated { base, eta, alpha } => {
+            assert_eq!(eta, 1.5);
+            assert!((alpha - 0.01).abs() < 1e-7);
+            assert!(matches!(base, shaders_cpu::bsdf::CoatBase::Lambert { .. }));
+        }
+        other => panic!("{other:?}"),
+    }
+    let metal = scene("preset = \"aluminium\"\nbase_roughness = 0.4").expect("metal base");
+    let built = parallax::scene::build_scene(&metal, glam::DVec3::ZERO).unwrap();
+    assert!(matches!(
+        built.materials[0].bsdf,
+        shaders_cpu::bsdf::Bsdf::Coated {
+            base: shaders_cpu::bsdf::CoatBase::Conductor { .. },
+            ..
+        }
+    ));
+    for bad in [
+        "albedo = [0.5, 0.5, 0.5]\npreset = \"gold\"",
+        "",
+        "albedo = [0.5, 0.5, 0.5]\ncoat_ior = 1.0",
+        "albedo = [1.5, 0.5, 0.5]",
+    ] {
+        let err = scene(bad).expect_err(bad).to_string();
+        assert!(err.contains("material[0]"), "{bad}: {err}");
+    }
+}
