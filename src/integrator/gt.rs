@@ -136,7 +136,7 @@ pub fn view_gt(scene: &Scene, accel: &impl Accel, cam: &RenderCamera, labels: bo
                     normal[i] = si.n_shading * facing;
                     sem[i] = si.semantic;
                     inst[i] = si.instance;
-                    mask[i] = scene.materials[si.material as usize].mask;
+                    mask[i] = super::wet::mask_at(scene, &si, rays[i].d);
                 }
             }
             (depth, normal, sem, inst, mask)

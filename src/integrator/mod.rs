@@ -6,6 +6,7 @@
 pub mod gt;
 pub mod path;
 pub mod volpath;
+pub mod wet;
 
 use glam::{DMat3, DVec3, Vec3};
 

@@ -138,6 +138,10 @@ pub fn build_scene(scene: &LoadedScene, origin_world: DVec3) -> Result<Scene, Sc
             .rain
             .as_ref()
             .map(|r| super::desc::build_rain(r, origin_world)),
+        wetness: desc
+            .wetness
+            .as_ref()
+            .map(|w| crate::integrator::wet::Wetness::new(w, origin_world)),
     })
 }
 
@@ -222,6 +226,33 @@ pub fn build_material(m: &MaterialDesc) -> Material {
                 tint: v3(*tint),
             };
             (bsdf, Vec3::ZERO, false, mask_bits::TRANSPARENT)
+        }
+        MaterialKindDesc::Coated {
+            albedo,
+            preset,
+            eta,
+            k,
+            base_roughness,
+            coat_ior,
+            coat_roughness,
+        } => {
+            let base = match albedo {
+                Some(a) => shaders_cpu::bsdf::CoatBase::Lambert { albedo: v3(*a) },
+                None => {
+                    let (eta, k) = crate::scene::desc::conductor_eta_k(preset, eta, k);
+                    shaders_cpu::bsdf::CoatBase::Conductor {
+                        eta: v3(eta),
+                        k: v3(k),
+                        alpha: (base_roughness * base_roughness) as f32,
+                    }
+                }
+            };
+            let bsdf = Bsdf::Coated {
+                base,
+                eta: *coat_ior as f32,
+                alpha: (coat_roughness * coat_roughness) as f32,
+            };
+            (bsdf, Vec3::ZERO, false, 0)
         }
         MaterialKindDesc::Emissive {
             radiance,

@@ -116,6 +116,8 @@ pub struct Scene {
     /// Rain field centred on the rig; its `seed` is set per frame by the
     /// renderer (`Rain { seed, ..rain }`). None: no rain.
     pub rain: Option<shaders_cpu::medium::Rain>,
+    /// Wet surfaces and puddles (None: dry).
+    pub wetness: Option<crate::integrator::wet::Wetness>,
 }
 
 impl Scene {

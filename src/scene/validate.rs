@@ -264,6 +264,31 @@ impl V<'_> {
             MaterialKindDesc::Emissive { radiance, .. } => {
                 self.range(&k("radiance"), radiance, 0.0, f64::MAX)
             }
+            MaterialKindDesc::Coated {
+                albedo,
+                preset,
+                eta,
+                k: kk,
+                base_roughness,
+                coat_ior,
+                coat_roughness,
+            } => {
+                self.range(&k("coat_ior"), &[*coat_ior], 1.0 + 1e-6, 3.0)?;
+                self.range(&k("coat_roughness"), &[*coat_roughness], 0.0, 1.0)?;
+                self.range(&k("base_roughness"), &[*base_roughness], 0.0, 1.0)?;
+                match (albedo, preset, eta, kk) {
+                    (Some(a), None, None, None) => self.range(&k("albedo"), a, 0.0, 1.0),
+                    (None, Some(_), None, None) => Ok(()),
+                    (None, None, Some(eta), Some(kk)) => {
+                        self.positive(&k("eta"), eta)?;
+                        self.range(&k("k"), kk, 0.0, f64::MAX)
+                    }
+                    _ => Err(self.err(
+                        k("albedo"),
+                        "give exactly one base: `albedo`, `preset`, or both `eta` and `k`",
+                    )),
+                }
+            }
         }
     }
 
@@ -547,11 +572,12 @@ pub fn validate(
     Ok((objs, exact))
 }
 
-/// The `[medium]` and `[rain]` sections (their checks live beside the descriptions).
+/// The `[medium]`, `[rain]` and `[wetness]` sections (their checks live beside the descriptions).
 fn weather(v: &V, desc: &SceneDesc) -> Result<(), SceneError> {
     let checks = [
         desc.medium.as_ref().map(|m| m.check()),
         desc.rain.as_ref().map(|r| r.check()),
+        desc.wetness.as_ref().map(|w| w.check()),
     ];
     match checks.into_iter().flatten().find_map(Result::err) {
         Some((key, msg)) => Err(v.err(key, msg)),

@@ -115,6 +115,15 @@ fn mtl_entry(out: &mut String, m: &MaterialDesc) {
         MaterialKindDesc::Emissive { radiance, .. } => {
             let _ = writeln!(out, "Kd 0 0 0\nKe {}\nillum 1", rgb(*radiance));
         }
+        MaterialKindDesc::Coated {
+            albedo,
+            coat_roughness,
+            ..
+        } => {
+            // MTL's PBR extension: clear coat thickness and roughness.
+            let kd = rgb(albedo.unwrap_or([0.5; 3]));
+            let _ = writeln!(out, "Kd {kd}\nPc 1\nPcr {coat_roughness}\nillum 2");
+        }
     }
     out.push('\n');
 }

@@ -133,6 +133,7 @@ pub fn town_scene(desc: &TownDesc, seed: u64, frame: u64, config: CameraConfig) 
         sky: Some(materials::town_sky(desc)),
         medium: None,
         rain: None,
+        wetness: None,
         lights: vec![materials::town_sun(desc)],
         materials: materials::town_materials(desc),
         objects,

@@ -4,7 +4,8 @@
 //! A preset draws its parameters once per (seed) — a dataset passes one seed
 //! per sequence, so a video does not change weather between frames — and
 //! records them in the frame's camera file. The ground truth never depends on
-//! the weather: only lights, sky and media change, never surfaces.
+//! the weather: only lights, sky, media and surface wetness (shading) change,
+//! never geometry; puddles only add the mask's mirror bit.
 
 mod sun;
 
@@ -13,7 +14,9 @@ use std::str::FromStr;
 
 use serde::{Deserialize, Serialize};
 
-use crate::scene::desc::{LightDesc, MediumDesc, MediumKindDesc, RainDesc, SceneDesc, SkyDesc};
+use crate::scene::desc::{
+    LightDesc, MediumDesc, MediumKindDesc, RainDesc, SceneDesc, SkyDesc, WetnessDesc,
+};
 use crate::town::rng::Rng;
 
 /// Stream tag of the weather draws (apart from the town generator's tags).
@@ -156,7 +159,9 @@ pub fn draw_params(weather: Weather, seed: u64) -> WeatherParams {
 /// world-fixed cloud deck of the drawn cover) for clear, sunset, humid and
 /// foggy; the CIE overcast sky, sun diffused, for cloudy and storm; the night
 /// sky with a full moon opposite the sun for night. Point, spot and emissive
-/// lights of the scene stay (street lights, vehicle lights).
+/// lights of the scene stay (street lights, vehicle lights). Humid and storm
+/// also set `[wetness]` (wet roads, puddles); every other preset leaves the
+/// scene dry.
 pub fn apply(desc: &mut SceneDesc, p: &WeatherParams) {
     desc.lights.retain(|l| !matches!(l, LightDesc::Sun { .. }));
     let seed = pattern_seed(p);
@@ -196,6 +201,18 @@ pub fn apply(desc: &mut SceneDesc, p: &WeatherParams) {
         density_scale: 1.0,
         extent_m: 30.0,
     });
+    desc.wetness = wetness(p);
+}
+
+/// Wet roads for humid and storm, none otherwise: puddle cover grows from 0
+/// at wetness 0.5 to 25% when soaked (storm ≈ 15–25%, humid ≤ 20%).
+fn wetness(p: &WeatherParams) -> Option<WetnessDesc> {
+    matches!(p.preset, Weather::Humid | Weather::Storm).then(|| WetnessDesc {
+        wetness: p.wetness,
+        puddle_cover: (0.5 * (p.wetness - 0.5)).clamp(0.0, 0.25),
+        puddle_scale_m: 4.0,
+        seed: pattern_seed(p) as u64,
+    })
 }
 
 /// Height fog of ground visibility `visibility_m`: shallow and dense for

@@ -2,18 +2,21 @@
 //!
 //! This file is the contract (pbrt-v4 `base/bxdf.h` style); each family lives in
 //! its own file: `lambert` (pbrt-v4 §9.2), `conductor` (§9.4, §9.6),
-//! `dielectric` (§9.5, §9.7), with `microfacet` (GGX, §9.6) and `fresnel`
+//! `dielectric` (§9.5, §9.7), `coat` (a dielectric coat over a base, after
+//! Weidlich & Wilkie 2007), with `microfacet` (GGX, §9.6) and `fresnel`
 //! (§9.3). `eval` is f without the cosine; `pdf` is per solid angle; a delta
 //! sample carries f = (specular weight)/|cosθi| so f·|cosθi|/pdf is the weight.
 
 pub mod fresnel;
 pub mod microfacet;
 
+mod coat;
 mod conductor;
 mod dielectric;
 mod lambert;
 mod presets;
 
+pub use coat::CoatBase;
 pub use presets::roughness_to_alpha;
 
 use glam::{Vec2, Vec3};
@@ -69,6 +72,16 @@ pub enum Bsdf {
         /// Transmission tint per channel in [0, 1].
         tint: Vec3,
     },
+    /// A dielectric coat (clear coat η ≈ 1.5, water film η ≈ 1.33) over a
+    /// Lambert or conductor base; reflection only, two-sided.
+    Coated {
+        /// The layer under the coat.
+        base: CoatBase,
+        /// Relative IOR of the coat over air, > 1.
+        eta: f32,
+        /// GGX roughness alpha of the coat (< 1e-3: smooth, a delta lobe).
+        alpha: f32,
+    },
 }
 
 impl Bsdf {
@@ -78,6 +91,7 @@ impl Bsdf {
             Bsdf::Lambert { albedo } => lambert::eval(albedo, wo, wi),
             Bsdf::Conductor { eta, k, alpha } => conductor::eval(eta, k, alpha, wo, wi),
             Bsdf::Dielectric { eta, alpha, tint } => dielectric::eval(eta, alpha, tint, wo, wi),
+            Bsdf::Coated { base, eta, alpha } => coat::eval(&base, eta, alpha, wo, wi),
         }
     }
     /// Pdf per solid angle of sampling `wi` given `wo` (zero for delta lobes).
@@ -86,6 +100,7 @@ impl Bsdf {
             Bsdf::Lambert { .. } => lambert::pdf(wo, wi),
             Bsdf::Conductor { alpha, .. } => conductor::pdf(alpha, wo, wi),
             Bsdf::Dielectric { eta, alpha, .. } => dielectric::pdf(eta, alpha, wo, wi),
+            Bsdf::Coated { base, eta, alpha } => coat::pdf(&base, eta, alpha, wo, wi),
         }
     }
     /// Samples `wi` given `wo`, a lobe-selection number and a 2D sample.
@@ -96,6 +111,7 @@ impl Bsdf {
             Bsdf::Dielectric { eta, alpha, tint } => {
                 dielectric::sample(eta, alpha, tint, wo, u_lobe, u)
             }
+            Bsdf::Coated { base, eta, alpha } => coat::sample(&base, eta, alpha, wo, u_lobe, u),
         }
     }
     /// Whether every lobe is a delta (eval and pdf are then always zero).
@@ -106,6 +122,7 @@ impl Bsdf {
                 microfacet::TrowbridgeReitz::new(alpha).effectively_smooth()
             }
             Bsdf::Dielectric { eta, alpha, .. } => dielectric::is_delta(eta, alpha),
+            Bsdf::Coated { base, alpha, .. } => coat::is_delta(&base, alpha),
         }
     }
     /// A rough colour for debug views: Lambert albedo, a conductor's normal-
@@ -115,6 +132,7 @@ impl Bsdf {
             Bsdf::Lambert { albedo } => albedo,
             Bsdf::Conductor { eta, k, .. } => fresnel::fr_complex_rgb(1.0, eta, k),
             Bsdf::Dielectric { tint, .. } => tint,
+            Bsdf::Coated { base, .. } => base.albedo_hint(),
         }
     }
 }

@@ -3,7 +3,7 @@
 //! Colours are linear RGB. Roughness is perceptual, in [0, 1]; the GGX alpha
 //! is roughness². Mask bits follow GROUND_TRUTH.md: dielectrics are
 //! transparent, conductors with roughness < 0.1 are mirrors, unless `mask`
-//! says otherwise.
+//! says otherwise. `coated` (car paint) sets no mask bit by default.
 
 use serde::{Deserialize, Serialize};
 
@@ -65,6 +65,32 @@ pub enum MaterialKindDesc {
         /// Transmission tint per channel in [0, 1] (default white).
         #[serde(default = "default_tint")]
         tint: [f64; 3],
+    },
+    /// A dielectric clear coat over a diffuse or metallic base (car paint):
+    /// give `albedo` for a diffuse base, or `preset` / `eta` + `k` for a
+    /// conductor base.
+    Coated {
+        /// Diffuse base reflectance per channel, in [0, 1].
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        albedo: Option<[f64; 3]>,
+        /// Conductor base: a named metal.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        preset: Option<ConductorPreset>,
+        /// Conductor base: real part of the IOR per channel, > 0.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        eta: Option<[f64; 3]>,
+        /// Conductor base: absorption per channel, ≥ 0.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        k: Option<[f64; 3]>,
+        /// Conductor base perceptual roughness in [0, 1] (default 0.3).
+        #[serde(default = "default_base_roughness")]
+        base_roughness: f64,
+        /// Index of refraction of the coat, in (1, 3] (default 1.5).
+        #[serde(default = "default_ior")]
+        coat_ior: f64,
+        /// Perceptual roughness of the coat in [0, 1] (default 0: smooth).
+        #[serde(default)]
+        coat_roughness: f64,
     },
     /// An emitter (its surface scatters nothing: black Lambert).
     Emissive {
@@ -133,6 +159,9 @@ pub fn conductor_eta_k(
 
 fn default_ior() -> f64 {
     1.5
+}
+fn default_base_roughness() -> f64 {
+    0.3
 }
 fn default_tint() -> [f64; 3] {
     [1.0; 3]

@@ -9,11 +9,13 @@ mod light;
 mod material;
 mod medium;
 mod object;
+mod wetness;
 
 pub use light::{LightDesc, SkyDesc};
 pub use material::{conductor_eta_k, ConductorPreset, MaskFlag, MaterialDesc, MaterialKindDesc};
 pub use medium::{build_medium, build_rain, MediumDesc, MediumKindDesc, RainDesc};
 pub use object::{ObjectDesc, PrefabDesc, RepeatDesc, ScaleDesc, ShapeDesc, TransformDesc};
+pub use wetness::WetnessDesc;
 
 use serde::{Deserialize, Serialize};
 
@@ -36,6 +38,9 @@ pub struct SceneDesc {
     /// Falling rain drawn as streaks (absent: no rain).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rain: Option<RainDesc>,
+    /// Wet surfaces and puddles (absent: dry).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub wetness: Option<WetnessDesc>,
     /// Explicit lights: sun, point, spot.
     #[serde(default, rename = "light", skip_serializing_if = "Vec::is_empty")]
     pub lights: Vec<LightDesc>,
