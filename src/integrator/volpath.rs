@@ -45,15 +45,31 @@ impl<A: Accel> PathContext<'_, A> {
     /// Radiance along `ray` in a scene with a medium and/or rain.
     pub(super) fn li_volume(
         &self,
-        mut ray: Ray,
+        ray: Ray,
         first_hit: Option<Hit>,
+        stream: &mut SampleStream,
+        rays: &mut u64,
+    ) -> Vec3 {
+        let split = split_camera_segments();
+        self.trace_volume(ray, Some(first_hit), PathState::new(ray.o), split, stream, rays)
+    }
+
+    /// The volumetric path loop from state `st` (`known_hit`: the closest hit
+    /// of `ray` when already traced). With `split`, the first segment that
+    /// crosses a scattering medium continues both ways: to its surface
+    /// weighted by Tr, and from its in-scattering point by a phase sample
+    /// weighted by 1 − Tr (a branch traced without further splitting).
+    fn trace_volume(
+        &self,
+        mut ray: Ray,
+        mut known_hit: Option<Option<Hit>>,
+        mut st: PathState,
+        mut split: bool,
         stream: &mut SampleStream,
         rays: &mut u64,
     ) -> Vec3 {
         let scene = self.scene;
         let medium = scene.medium.as_ref();
-        let mut known_hit = Some(first_hit);
-        let mut st = PathState::new(ray.o);
         let mut redirects = 0u32;
         loop {
             *rays += 1;
@@ -103,45 +119,53 @@ impl<A: Accel> PathContext<'_, A> {
             if let Some(m) = medium {
                 if !m.scatters() {
                     st.beta *= m.tr(ray.o, ray.d, t_end);
-                } else {
+                } else if let Some(seg) = InScatter::sample(m, &ray, t_end, u_ff) {
+                    // In-scattering along the whole segment, estimated at every
+                    // segment (not only at collisions): NEE at one point drawn
+                    // ∝ σ_t·Tr on the segment, weighted by (1 − Tr)·albedo.
+                    let p = ray.at(seg.t);
+                    let wo = -ray.d;
                     if st.bounces < self.max_depth {
                         let c = self.equiangular(
                             m,
                             &ray,
                             t_end,
+                            seg.tr_seg,
                             u_eq_sel,
                             u_eq,
                             Vec2::new(u_ex, u_ey),
                             rays,
                         );
                         st.l += st.beta * c;
+                        let u_l = Vec2::new(u_lx, u_ly);
+                        let nee = self.medium_nee(
+                            m, &ray, t_end, seg.t, seg.pdf, p, wo, u_sel, u_l, &u_distant, rays,
+                        );
+                        st.l += st.beta * m.albedo * (nee * (1.0 - seg.tr_seg));
                     }
-                    let ds = m.sample_distance(ray.o, ray.d, t_end, u_ff);
-                    if ds.scattered {
+                    if split {
+                        // Both continuations: the branch carries 1 − Tr, the
+                        // surface Tr (expected value of the free-flight choice).
+                        split = false;
+                        if st.bounces < self.max_depth {
+                            let ph = m.phase.sample(wo, Vec2::new(u_ph0, u_ph1));
+                            let w = 1.0 - seg.tr_seg;
+                            let mut next = st.scattered(m, p, ph.pdf, w);
+                            if ph.pdf > 0.0 && next.alive() && next.survives_roulette(u_rr) {
+                                let branch = Ray::new(p, ph.wi);
+                                st.l += self.trace_volume(branch, None, next, false, stream, rays);
+                            }
+                        }
+                        st.beta *= seg.tr_seg;
+                    } else if seg.collided {
                         if st.bounces == self.max_depth {
                             break;
                         }
-                        // σ_s·Tr / (σ_t·Tr): the collision keeps the albedo.
-                        st.beta *= m.albedo;
-                        let p = ray.at(ds.t);
-                        let wo = -ray.d;
-                        let u_l = Vec2::new(u_lx, u_ly);
-                        st.l += st.beta
-                            * self.medium_nee(
-                                m, &ray, t_end, ds.t, ds.pdf, p, wo, u_sel, u_l, &u_distant, rays,
-                            );
                         let ph = m.phase.sample(wo, Vec2::new(u_ph0, u_ph1));
-                        if ph.pdf <= 0.0 {
-                            break;
-                        }
-                        st.prev_pdf = ph.pdf;
-                        st.prev_delta = false;
-                        st.prev_p = p;
-                        st.bounces += 1;
-                        if !st.beta.is_finite()
-                            || st.beta == Vec3::ZERO
-                            || !st.survives_roulette(u_rr)
-                        {
+                        let l = st.l;
+                        st = st.scattered(m, p, ph.pdf, 1.0);
+                        st.l = l;
+                        if ph.pdf <= 0.0 || !st.alive() || !st.survives_roulette(u_rr) {
                             break;
                         }
                         ray = Ray::new(p, ph.wi);
@@ -171,8 +195,8 @@ impl<A: Accel> PathContext<'_, A> {
         st.l
     }
 
-    /// NEE from a medium collision at `p` (ray parameter `t`, free-flight
-    /// density `pdf_ff`): every distant light plus one selected local light,
+    /// NEE from an in-scattering point `p` (ray parameter `t`, drawn with
+    /// density `pdf_in` per metre): every distant light plus one selected local light,
     /// MIS against phase sampling, or against equiangular sampling for delta
     /// local lights.
     #[allow(clippy::too_many_arguments)]
@@ -182,7 +206,7 @@ impl<A: Accel> PathContext<'_, A> {
         ray: &Ray,
         t_end: f32,
         t: f32,
-        pdf_ff: f32,
+        pdf_in: f32,
         p: Vec3,
         wo: Vec3,
         u_sel: f32,
@@ -206,7 +230,7 @@ impl<A: Accel> PathContext<'_, A> {
                 if equi {
                     let q = p + ls.wi * ls.dist;
                     let pdf_eq = equiangular_on(m, ray, t_end, q).map_or(0.0, |e| e.pdf(t));
-                    power_heuristic(1.0, pdf_ff, 1.0, pdf_eq)
+                    power_heuristic(1.0, pdf_in, 1.0, pdf_eq)
                 } else {
                     1.0
                 }
@@ -227,14 +251,16 @@ impl<A: Accel> PathContext<'_, A> {
         l
     }
 
-    /// Equiangular sampling of a collision on [0, t_end] toward one selected
-    /// point or spot light, MIS-weighted against free-flight collisions.
+    /// Equiangular sampling of a point on [0, t_end] toward one selected
+    /// point or spot light, MIS-weighted against the in-scattering points
+    /// (density σ_t·Tr / (1 − `tr_seg`), `tr_seg` the segment's Tr).
     #[allow(clippy::too_many_arguments)]
     fn equiangular(
         &self,
         m: &Medium,
         ray: &Ray,
         t_end: f32,
+        tr_seg: f32,
         u_sel: f32,
         u_t: f32,
         u_l: Vec2,
@@ -270,8 +296,8 @@ impl<A: Accel> PathContext<'_, A> {
         if self.accel.occluded(&shadow_ray(x, &ls)) {
             return Vec3::ZERO;
         }
-        let pdf_ff = m.distance_pdf(ray.o, ray.d, t);
-        let w = power_heuristic(1.0, pdf_eq, 1.0, pdf_ff);
+        let pdf_in = m.distance_pdf(ray.o, ray.d, t) / (1.0 - tr_seg);
+        let w = power_heuristic(1.0, pdf_eq, 1.0, pdf_in);
         let tr = m.tr(ray.o, ray.d, t) * m.tr(x, ls.wi, ls.dist);
         m.albedo * ls.li * (sigma_t * tr * f * w / (pdf_eq * ls.pdf))
     }
@@ -281,4 +307,74 @@ impl<A: Accel> PathContext<'_, A> {
 fn equiangular_on(m: &Medium, ray: &Ray, t_end: f32, q: Vec3) -> Option<Equiangular> {
     let (a, b) = m.clip(ray.o, ray.d, t_end)?;
     Some(Equiangular::new(ray.o, ray.d, a as f32, b as f32, q))
+}
+
+/// One in-scattering point of a segment.
+#[derive(Clone, Copy, Debug)]
+struct InScatter {
+    /// Ray parameter of the point.
+    t: f32,
+    /// Its density per metre on the segment, σ_t·Tr(t) / (1 − `tr_seg`).
+    pdf: f32,
+    /// Transmittance of the whole segment.
+    tr_seg: f32,
+    /// Whether free flight with the same number collides (at `t`).
+    collided: bool,
+}
+
+impl InScatter {
+    /// Free flight with `u` either collides at t, which is then ∝ σ_t·Tr on
+    /// the segment, or passes (u ≥ 1 − Tr); a passing u is rescaled onto the
+    /// colliding range, so `t` is always ∝ σ_t·Tr and collides exactly when
+    /// free flight does. None when the segment has no extinction.
+    fn sample(m: &Medium, ray: &Ray, t_end: f32, u: f32) -> Option<InScatter> {
+        let tr_seg = m.tr(ray.o, ray.d, t_end);
+        let p_collide = 1.0 - tr_seg;
+        if !(p_collide > 0.0) {
+            return None;
+        }
+        let collided = u < p_collide;
+        let u_in = if collided {
+            u
+        } else {
+            ((u - p_collide) / tr_seg) * p_collide
+        };
+        let ds = m.sample_distance(ray.o, ray.d, t_end, u_in.min(p_collide * (1.0 - 1e-7)));
+        if !ds.scattered || !(ds.pdf > 0.0) {
+            return None;
+        }
+        Some(InScatter {
+            t: ds.t,
+            pdf: ds.pdf / p_collide,
+            tr_seg,
+            collided,
+        })
+    }
+}
+
+impl PathState {
+    /// The state after scattering at medium point `p` into a direction of
+    /// phase pdf `pdf`, throughput scaled by the albedo (σ_s·Tr / (σ_t·Tr))
+    /// and `w`; radiance starts at zero.
+    fn scattered(&self, m: &Medium, p: Vec3, pdf: f32, w: f32) -> PathState {
+        PathState {
+            l: Vec3::ZERO,
+            beta: self.beta * m.albedo * w,
+            prev_pdf: pdf,
+            prev_delta: false,
+            prev_p: p,
+            bounces: self.bounces + 1,
+        }
+    }
+
+    /// Whether the throughput can still carry radiance.
+    fn alive(&self) -> bool {
+        self.beta.is_finite() && self.beta != Vec3::ZERO
+    }
+}
+
+/// Whether camera segments split (PARALLAX_FOG_SPLIT=1; measurement switch).
+fn split_camera_segments() -> bool {
+    static SPLIT: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    *SPLIT.get_or_init(|| std::env::var("PARALLAX_FOG_SPLIT").is_ok_and(|v| v == "1"))
 }
