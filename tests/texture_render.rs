@@ -111,7 +111,7 @@ fn ground_truth_is_bitwise_identical_with_and_without_textures() {
 /// Horizontal luminance gradients of the left image over the road (rows
 /// below the horizon), as (mean |g|, mean luminance).
 fn road_gradients(text: &str) -> (Vec<f64>, f64) {
-    let r = render(&scene_from_toml(text), Backend::default_backend(), 16);
+    let r = render(&scene_from_toml(text), Backend::default_backend(), 8);
     let film = &r.out.images[0];
     let lum = |k: usize| film.rgb[k].dot(Vec3::new(0.2126, 0.7152, 0.0722)) as f64;
     let (mut g, mut level, mut n) = (Vec::new(), 0.0, 0.0);
@@ -132,8 +132,8 @@ fn textured_road_has_consistent_high_frequency_energy() {
     // independent between them, texture is shared, so the mean product of
     // their gradients measures texture alone; mean |g| is what a matcher sees.
     let stats = |texture: bool| {
-        let (g1, level) = road_gradients(&road_scene(160, 90, 16, 1, texture));
-        let (g2, _) = road_gradients(&road_scene(160, 90, 16, 2, texture));
+        let (g1, level) = road_gradients(&road_scene(160, 90, 8, 1, texture));
+        let (g2, _) = road_gradients(&road_scene(160, 90, 8, 2, texture));
         let n = g1.len() as f64;
         let abs = g1.iter().map(|g| g.abs()).sum::<f64>() / n / level;
         let shared = g1.iter().zip(&g2).map(|(a, b)| a * b).sum::<f64>() / n / (level * level);
