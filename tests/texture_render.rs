@@ -60,6 +60,7 @@ fn texture_depends_on_world_position_not_render_origin() {
                     m,
                     (p_world - s.origin_world).as_vec3(),
                     n,
+                    true,
                 ) {
                     Bsdf::Lambert { albedo } => albedo,
                     other => panic!("textured diffuse became {other:?}"),

@@ -167,7 +167,7 @@ impl<A: Accel> PathContext<'_, A> {
         if st.bounces == self.max_depth {
             return None;
         }
-        let bsdf = super::texture::textured_bsdf(scene, mat, si.p, si.n_geo);
+        let bsdf = super::texture::textured_bsdf(scene, mat, si.p, si.n_geo, st.prev_delta);
         if is_two_sided(&bsdf) && !front {
             si.n_geo = -si.n_geo;
             si.n_shading = -si.n_shading;

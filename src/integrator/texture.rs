@@ -23,11 +23,21 @@ pub fn textured_albedo(material: &Material, p_world: DVec3, n_geo: Vec3) -> Vec3
 }
 
 /// The BSDF of `material` at a hit at render-space `p_render` of `scene`:
-/// its own, with the textured albedo when it has a texture.
+/// its own, with the textured albedo when it has a texture and `seen` (the
+/// hit is seen by the camera directly or through specular bounces only).
+/// After a diffuse bounce the nominal albedo — the texture's area mean —
+/// stands in: diffuse transport blurs millimetre detail away, and this keeps
+/// the texture's cost to the vertices whose detail reaches the image.
 #[inline]
-pub fn textured_bsdf(scene: &Scene, material: &Material, p_render: Vec3, n_geo: Vec3) -> Bsdf {
+pub fn textured_bsdf(
+    scene: &Scene,
+    material: &Material,
+    p_render: Vec3,
+    n_geo: Vec3,
+    seen: bool,
+) -> Bsdf {
     match (material.bsdf, material.texture) {
-        (Bsdf::Lambert { albedo }, Some(t)) => Bsdf::Lambert {
+        (Bsdf::Lambert { albedo }, Some(t)) if seen => Bsdf::Lambert {
             albedo: t.albedo(albedo, scene.origin_world + p_render.as_dvec3(), n_geo),
         },
         (bsdf, _) => bsdf,

@@ -22,23 +22,23 @@ pub fn asphalt(p: DVec3, seed: u32) -> Vec3 {
         DARK
     };
     let grit = 1.0 + 0.15 * value_noise(p, 0.0025, seed ^ 0x11);
-    let surface = 1.0 + 0.12 * fbm(p, 0.08, 4, 0.6, seed ^ 0x22);
-    // Wear and patching: 1.6 m down to 20 cm.
-    let wear = 1.0 + 0.22 * fbm(p, 1.6, 4, 0.55, seed ^ 0x33);
+    let surface = 1.0 + 0.12 * fbm(p, 0.06, 3, 0.6, seed ^ 0x22);
+    // Wear and patching: 1.6 m down to 40 cm.
+    let wear = 1.0 + 0.22 * fbm(p, 1.6, 3, 0.55, seed ^ 0x33);
     Vec3::splat(stone * grit * surface * wear)
 }
 
-/// Concrete: mottling (60 cm … 4 cm), aggregate texture (2 cm … 5 mm), sand.
+/// Concrete: mottling (60 cm … 8 cm), aggregate texture (2 cm … 5 mm), sand.
 pub fn concrete(p: DVec3, seed: u32) -> Vec3 {
-    let mottle = 1.0 + 0.14 * fbm(p, 0.6, 5, 0.55, seed ^ 0x44);
+    let mottle = 1.0 + 0.14 * fbm(p, 0.6, 4, 0.55, seed ^ 0x44);
     let aggregate = 1.0 + 0.1 * fbm(p, 0.02, 3, 0.7, seed ^ 0x55);
     let sand = 1.0 + 0.1 * cell_noise(p, 0.003, seed ^ 0x66);
     Vec3::splat(mottle * aggregate * sand)
 }
 
-/// Plaster: low-amplitude trowel mottling (40 cm … 5 cm) and grain (1 cm … 2 mm).
+/// Plaster: low-amplitude trowel mottling (40 cm … 10 cm) and grain (1 cm … 2 mm).
 pub fn plaster(p: DVec3, seed: u32) -> Vec3 {
-    let trowel = 1.0 + 0.07 * fbm(p, 0.4, 4, 0.5, seed ^ 0x77);
+    let trowel = 1.0 + 0.07 * fbm(p, 0.4, 3, 0.5, seed ^ 0x77);
     let grain = 1.0 + 0.06 * fbm(p, 0.01, 3, 0.7, seed ^ 0x88);
     let sand = 1.0 + 0.04 * cell_noise(p, 0.002, seed ^ 0x99);
     Vec3::splat(trowel * grain * sand)
