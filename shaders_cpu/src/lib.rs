@@ -1,4 +1,5 @@
 //! Everything evaluated at a shading point: BSDFs, the sky, sampling warps,
+//! procedural albedo textures,
 //! plus `stats`, the chi-square harness their tests (and the renderer's) use.
 //!
 //! Pure functions of (inputs, sample) → value/pdf: no scene, no I/O, no threads.
@@ -15,3 +16,4 @@ pub mod medium;
 pub mod sampling;
 pub mod sky;
 pub mod stats;
+pub mod texture;

@@ -279,6 +279,7 @@ pub fn build_material(m: &MaterialDesc) -> Material {
         le,
         two_sided_emission,
         mask,
+        texture: m.texture.map(|t| t.build()),
     }
 }
 

@@ -56,6 +56,8 @@ pub struct Material {
     pub two_sided_emission: bool,
     /// GT mask bits this surface sets (`mask_bits::TRANSPARENT`, `MIRROR`).
     pub mask: u8,
+    /// Procedural albedo variation of a Lambertian `bsdf` (world position).
+    pub texture: Option<shaders_cpu::texture::Texture>,
 }
 
 /// A triangle mesh in render space.

@@ -237,6 +237,7 @@ pub fn material_from_mtl(file: &str, m: &tobj::Material) -> MaterialDesc {
     MaterialDesc {
         name: format!("{file}/{}", m.name),
         mask: None,
+        texture: None,
         kind,
     }
 }

@@ -234,6 +234,12 @@ impl V<'_> {
                 ),
             ));
         }
+        if let Some(t) = &m.texture {
+            if !matches!(m.kind, MaterialKindDesc::Diffuse { .. }) {
+                return Err(self.err(k("texture"), "textures apply to diffuse materials only"));
+            }
+            self.range(&k("texture.scale"), &[t.scale], 1e-3, 1e3)?;
+        }
         match &m.kind {
             MaterialKindDesc::Diffuse { albedo } => self.range(&k("albedo"), albedo, 0.0, 1.0),
             MaterialKindDesc::Conductor {

@@ -2,7 +2,10 @@
 //! and the sky and sun of a town. Palettes name the materials buildings and
 //! vehicles draw from per instance.
 
-use crate::scene::desc::{ConductorPreset, LightDesc, MaterialDesc, MaterialKindDesc, SkyDesc};
+use crate::scene::desc::{
+    ConductorPreset, LightDesc, MaterialDesc, MaterialKindDesc, SkyDesc, TextureDesc,
+    TextureKindDesc,
+};
 
 use super::desc::{SkyKind, TerrainKind, TownDesc};
 
@@ -39,7 +42,20 @@ fn diffuse(name: &str, albedo: [f64; 3]) -> MaterialDesc {
     MaterialDesc {
         name: name.to_string(),
         mask: None,
+        texture: None,
         kind: MaterialKindDesc::Diffuse { albedo },
+    }
+}
+
+/// A diffuse material with a procedural texture of real-world feature size.
+fn textured(name: &str, albedo: [f64; 3], kind: TextureKindDesc, seed: u32) -> MaterialDesc {
+    MaterialDesc {
+        texture: Some(TextureDesc {
+            kind,
+            scale: 1.0,
+            seed,
+        }),
+        ..diffuse(name, albedo)
     }
 }
 
@@ -47,6 +63,7 @@ fn metal(name: &str, preset: ConductorPreset, roughness: f64) -> MaterialDesc {
     MaterialDesc {
         name: name.to_string(),
         mask: None,
+        texture: None,
         kind: MaterialKindDesc::Conductor {
             preset: Some(preset),
             eta: None,
@@ -61,6 +78,7 @@ fn emitter(name: &str, radiance: [f64; 3]) -> MaterialDesc {
     MaterialDesc {
         name: name.to_string(),
         mask: None,
+        texture: None,
         kind: MaterialKindDesc::Emissive {
             radiance,
             two_sided: false,
@@ -72,6 +90,7 @@ fn glass(name: &str, tint: [f64; 3]) -> MaterialDesc {
     MaterialDesc {
         name: name.to_string(),
         mask: None,
+        texture: None,
         kind: MaterialKindDesc::Dielectric {
             ior: 1.5,
             roughness: 0.0,
@@ -88,27 +107,52 @@ pub fn town_materials(desc: &TownDesc) -> Vec<MaterialDesc> {
         TerrainKind::Field => [0.22, 0.15, 0.09],
     };
     vec![
-        diffuse("asphalt", [0.08, 0.08, 0.085]),
-        diffuse("asphalt_patch", [0.11, 0.11, 0.11]),
+        textured("asphalt", [0.08, 0.08, 0.085], TextureKindDesc::Asphalt, 1),
+        textured(
+            "asphalt_patch",
+            [0.11, 0.11, 0.11],
+            TextureKindDesc::Asphalt,
+            2,
+        ),
         diffuse("paint_white_road", [0.78, 0.78, 0.74]),
         diffuse("paint_yellow_road", [0.75, 0.55, 0.1]),
-        diffuse("curb", [0.55, 0.54, 0.52]),
-        diffuse("sidewalk", [0.42, 0.41, 0.39]),
-        diffuse("gravel", [0.3, 0.28, 0.25]),
-        diffuse("mud", [0.1, 0.085, 0.06]),
+        textured("curb", [0.55, 0.54, 0.52], TextureKindDesc::Concrete, 3),
+        textured("sidewalk", [0.42, 0.41, 0.39], TextureKindDesc::Concrete, 4),
+        textured("gravel", [0.3, 0.28, 0.25], TextureKindDesc::Asphalt, 5),
+        textured("mud", [0.1, 0.085, 0.06], TextureKindDesc::Concrete, 6),
         glass("water", [0.55, 0.7, 0.62]),
-        diffuse("ground", ground),
-        diffuse("lawn", [0.1, 0.22, 0.06]),
-        diffuse("crop", [0.14, 0.24, 0.06]),
+        textured("ground", ground, TextureKindDesc::Foliage, 7),
+        textured("lawn", [0.1, 0.22, 0.06], TextureKindDesc::Foliage, 8),
+        textured("crop", [0.14, 0.24, 0.06], TextureKindDesc::Foliage, 9),
         diffuse("barn_red", [0.38, 0.08, 0.05]),
-        diffuse("brick_red", [0.42, 0.17, 0.11]),
-        diffuse("brick_brown", [0.3, 0.18, 0.12]),
-        diffuse("plaster_cream", [0.72, 0.66, 0.52]),
-        diffuse("plaster_white", [0.78, 0.77, 0.74]),
-        diffuse("plaster_blue", [0.42, 0.52, 0.62]),
-        diffuse("plaster_ochre", [0.62, 0.45, 0.22]),
-        diffuse("concrete", [0.5, 0.5, 0.48]),
-        diffuse("stone", [0.56, 0.52, 0.45]),
+        textured("brick_red", [0.42, 0.17, 0.11], TextureKindDesc::Brick, 10),
+        textured("brick_brown", [0.3, 0.18, 0.12], TextureKindDesc::Brick, 11),
+        textured(
+            "plaster_cream",
+            [0.72, 0.66, 0.52],
+            TextureKindDesc::Plaster,
+            12,
+        ),
+        textured(
+            "plaster_white",
+            [0.78, 0.77, 0.74],
+            TextureKindDesc::Plaster,
+            13,
+        ),
+        textured(
+            "plaster_blue",
+            [0.42, 0.52, 0.62],
+            TextureKindDesc::Plaster,
+            14,
+        ),
+        textured(
+            "plaster_ochre",
+            [0.62, 0.45, 0.22],
+            TextureKindDesc::Plaster,
+            15,
+        ),
+        textured("concrete", [0.5, 0.5, 0.48], TextureKindDesc::Concrete, 16),
+        textured("stone", [0.56, 0.52, 0.45], TextureKindDesc::Concrete, 17),
         metal("steel_dark", ConductorPreset::Iron, 0.5),
         diffuse("roof", [0.2, 0.19, 0.19]),
         diffuse("roof_tile", [0.38, 0.14, 0.08]),
@@ -117,10 +161,20 @@ pub fn town_materials(desc: &TownDesc) -> Vec<MaterialDesc> {
         diffuse("door", [0.25, 0.14, 0.07]),
         glass("glass", [0.9, 0.95, 0.95]),
         glass("glass_tower", [0.55, 0.7, 0.75]),
-        diffuse("bark", [0.22, 0.15, 0.09]),
-        diffuse("foliage", [0.09, 0.22, 0.05]),
-        diffuse("foliage_light", [0.16, 0.3, 0.07]),
-        diffuse("foliage_dark", [0.05, 0.14, 0.04]),
+        textured("bark", [0.22, 0.15, 0.09], TextureKindDesc::Concrete, 18),
+        textured("foliage", [0.09, 0.22, 0.05], TextureKindDesc::Foliage, 19),
+        textured(
+            "foliage_light",
+            [0.16, 0.3, 0.07],
+            TextureKindDesc::Foliage,
+            20,
+        ),
+        textured(
+            "foliage_dark",
+            [0.05, 0.14, 0.04],
+            TextureKindDesc::Foliage,
+            21,
+        ),
         metal("pole_metal", ConductorPreset::Aluminium, 0.45),
         diffuse("pole_paint", [0.12, 0.13, 0.12]),
         diffuse("lamp_glass", [0.9, 0.9, 0.85]),

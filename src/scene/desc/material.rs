@@ -15,9 +15,65 @@ pub struct MaterialDesc {
     /// Explicit GT mask flags, replacing the ones derived from the kind.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mask: Option<Vec<MaskFlag>>,
+    /// Procedural albedo variation (diffuse materials only), e.g.
+    /// `texture = { kind = "asphalt", scale = 1.0, seed = 3 }`. A function of
+    /// world position, with mean over a large area equal to `albedo`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub texture: Option<TextureDesc>,
     /// The scattering model and its parameters.
     #[serde(flatten)]
     pub kind: MaterialKindDesc,
+}
+
+/// A procedural texture on a diffuse material's albedo.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TextureDesc {
+    /// The pattern.
+    pub kind: TextureKindDesc,
+    /// Feature-size multiplier in [0.001, 1000] (default 1: real-world sizes, e.g.
+    /// 4 mm asphalt aggregate, 215 × 65 mm bricks; 2 doubles every feature).
+    #[serde(default = "default_scale")]
+    pub scale: f64,
+    /// Decorrelates materials sharing a kind (default 0).
+    #[serde(default)]
+    pub seed: u32,
+}
+
+/// The texture patterns (`shaders_cpu::texture::TextureKind`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TextureKindDesc {
+    /// Road asphalt: 4 mm aggregate speckle, grit, wear patches up to 1.6 m.
+    Asphalt,
+    /// Concrete: mottling (60 cm … 4 cm), aggregate texture, sand grain.
+    Concrete,
+    /// Running-bond brick, 215 × 65 mm with 10 mm mortar, in the wall plane
+    /// (paving on surfaces facing up or down).
+    Brick,
+    /// Plaster: low-amplitude trowel mottling and grain.
+    Plaster,
+    /// Foliage: per-leaf (5 cm) brightness and hue, clumps, veins.
+    Foliage,
+}
+
+impl TextureDesc {
+    /// The shading-side texture.
+    pub fn build(&self) -> shaders_cpu::texture::Texture {
+        use shaders_cpu::texture::TextureKind as K;
+        let kind = match self.kind {
+            TextureKindDesc::Asphalt => K::Asphalt,
+            TextureKindDesc::Concrete => K::Concrete,
+            TextureKindDesc::Brick => K::Brick,
+            TextureKindDesc::Plaster => K::Plaster,
+            TextureKindDesc::Foliage => K::Foliage,
+        };
+        shaders_cpu::texture::Texture {
+            kind,
+            scale: self.scale,
+            seed: self.seed,
+        }
+    }
 }
 
 /// A GT mask flag a material may set.
@@ -157,6 +213,9 @@ pub fn conductor_eta_k(
     }
 }
 
+fn default_scale() -> f64 {
+    1.0
+}
 fn default_ior() -> f64 {
     1.5
 }

@@ -12,7 +12,10 @@ mod object;
 mod wetness;
 
 pub use light::{LightDesc, SkyDesc};
-pub use material::{conductor_eta_k, ConductorPreset, MaskFlag, MaterialDesc, MaterialKindDesc};
+pub use material::{
+    conductor_eta_k, ConductorPreset, MaskFlag, MaterialDesc, MaterialKindDesc, TextureDesc,
+    TextureKindDesc,
+};
 pub use medium::{build_medium, build_rain, MediumDesc, MediumKindDesc, RainDesc};
 pub use object::{ObjectDesc, PrefabDesc, RepeatDesc, ScaleDesc, ShapeDesc, TransformDesc};
 pub use wetness::WetnessDesc;
