@@ -81,19 +81,46 @@ fn sampled_pmf_equals_recomputed_pmf_bitwise() {
             checked += 1;
         }
     }
-    assert!(checked > 1900, "only {checked} samples");
+    // Some points lie where only part of the lights reach: None is allowed there.
+    assert!(checked > 1500, "only {checked} samples");
 }
 
 #[test]
 fn pmf_sums_to_one_over_all_lights() {
+    // Point lights only: every light reaches every point.
     let mut rng = Rng(11);
-    let lights = random_lights(1500, &mut rng);
+    let lights: Vec<LightBounds> = random_lights(6000, &mut rng)
+        .into_iter()
+        .step_by(4)
+        .collect();
     let bvh = LightBvh::build(&lights);
     for _ in 0..50 {
         let p = rng.v(60.0);
         let sum: f64 = (0..lights.len() as u32).map(|i| bvh.pmf(p, i) as f64).sum();
-        // Point lights are in every tree, so some light always reaches p.
         assert!((sum - 1.0).abs() < 1e-5, "sum {sum} at {p}");
+    }
+}
+
+#[test]
+fn pmf_sum_plus_no_light_probability_is_one_for_mixed_lights() {
+    // Points, spots and one- and two-sided emitters: where a whole subtree
+    // cannot reach p, sampling returns None with exactly the missing mass.
+    let mut rng = Rng(13);
+    let lights = random_lights(1500, &mut rng);
+    let bvh = LightBvh::build(&lights);
+    let n = 100_000;
+    for _ in 0..8 {
+        let p = rng.v(60.0);
+        let sum: f64 = (0..lights.len() as u32).map(|i| bvh.pmf(p, i) as f64).sum();
+        assert!(sum <= 1.0 + 1e-5 && sum > 0.5, "sum {sum} at {p}");
+        let none = (0..n)
+            .filter(|&k| bvh.sample(p, (k as f32 + 0.5) / n as f32).is_none())
+            .count();
+        let missing = 1.0 - sum;
+        assert!(
+            (none as f64 / n as f64 - missing).abs() < 2e-3,
+            "{none} vs {missing}"
+        );
     }
 }
 
@@ -106,9 +133,11 @@ fn sampling_frequencies_match_pmf() {
     let n = 200_000;
     let mut counts = [0u32; 12];
     for k in 0..n {
-        let (i, _) = bvh.sample(p, (k as f32 + 0.5) / n as f32).unwrap();
-        counts[i as usize] += 1;
+        if let Some((i, _)) = bvh.sample(p, (k as f32 + 0.5) / n as f32) {
+            counts[i as usize] += 1;
+        }
     }
+    assert!(counts.iter().sum::<u32>() > n / 2);
     for (i, &c) in counts.iter().enumerate() {
         let expected = bvh.pmf(p, i as u32) as f64;
         let got = c as f64 / n as f64;
@@ -201,8 +230,10 @@ fn light_set_pmf_is_consistent_on_many_emitters() {
     let set = LightSet::build(&b.scene);
     assert_eq!(set.len(), 2 * 32 * 32 + 1);
     let mut rng = Rng(23);
+    // Floor points in render space (centred on the camera, 6 m up).
+    let z_floor = -b.scene.origin_world.z as f32;
     for _ in 0..20 {
-        let p = Vec3::new(0.0, 0.0, 0.0) + rng.v(18.0) * Vec3::new(1.0, 1.0, 0.0);
+        let p = Vec3::new(0.0, 0.0, z_floor + 1e-3) + rng.v(18.0) * Vec3::new(1.0, 1.0, 0.0);
         let sum: f64 = (0..set.len()).map(|i| set.pmf_at(p, i) as f64).sum();
         assert!((sum - 1.0).abs() < 1e-5, "sum {sum}");
         for _ in 0..50 {

@@ -16,7 +16,7 @@ use parallax::weather::{apply, draw_params, Weather};
 #[test]
 #[ignore = "slow measurement (minutes)"]
 fn bvh_selection_lowers_noise_on_night_town() {
-    let (w, h, spp, spp_ref, seed) = (128, 72, 16, 256, 7u64);
+    let (w, h, spp, spp_ref, seed) = (96, 54, 16, 256, 7u64);
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let path = town_path("town03", &root.join("scenes"));
     let desc = load_town(&path).expect("town03 loads");

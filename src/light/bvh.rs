@@ -133,7 +133,9 @@ fn cone_union(wa: Vec3, cos_a: f32, wb: Vec3, cos_b: f32) -> (Vec3, f32) {
     let theta_r = theta_o - theta_a;
     let axis = wa.cross(wb);
     if axis.length_squared() < 1e-12 {
-        return (wa, -1.0);
+        // (Nearly) parallel axes: keep wa and widen it to cover cone b.
+        let theta = (theta_d + theta_b).max(theta_a).min(std::f32::consts::PI);
+        return (wa, theta.cos());
     }
     let w = glam::Quat::from_axis_angle(axis.normalize(), theta_r) * wa;
     (w.normalize(), theta_o.cos())
@@ -193,7 +195,7 @@ impl LightBvh {
             self.trails[ids[0] as usize] = trail;
             return;
         }
-        let total = ids
+        let total = ids[1..]
             .iter()
             .fold(all[ids[0] as usize], |b, &i| b.union(&all[i as usize]));
         self.nodes.push(Node {
@@ -365,16 +367,21 @@ fn sah_split(all: &[LightBounds], ids: &mut [u32], parent: &LightBounds) -> Opti
             let l = &all[i as usize];
             *b = Some(b.map_or(*l, |x| x.union(l)));
         }
+        // Unions of buckets below and above each split, swept once per side.
+        let mut below = [None::<LightBounds>; BUCKETS];
+        let mut above = [None::<LightBounds>; BUCKETS];
+        let join = |a: Option<LightBounds>, b: &Option<LightBounds>| match (a, b) {
+            (Some(a), Some(b)) => Some(a.union(b)),
+            (a, b) => a.or(*b),
+        };
+        for k in 1..BUCKETS {
+            below[k] = join(below[k - 1], &bins[k - 1]);
+            let j = BUCKETS - 1 - k;
+            above[j] = join(above[j + 1], &bins[j + 1]);
+        }
         for split in 1..BUCKETS {
-            let side = |r: std::ops::Range<usize>| {
-                bins[r]
-                    .iter()
-                    .flatten()
-                    .fold(None::<LightBounds>, |acc, b| {
-                        Some(acc.map_or(*b, |a| a.union(b)))
-                    })
-            };
-            let (Some(l), Some(r)) = (side(0..split), side(split..BUCKETS)) else {
+            // below[split] holds buckets 0..split; above[split − 1] holds split..
+            let (Some(l), Some(r)) = (below[split], above[split - 1]) else {
                 continue;
             };
             let c = cost(&l, parent, axis) + cost(&r, parent, axis);
