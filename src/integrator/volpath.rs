@@ -243,7 +243,7 @@ impl<A: Accel> PathContext<'_, A> {
         let scene = self.scene;
         // Selection does not depend on the point: the light chosen from the
         // ray origin is the light lit from the sampled point.
-        let Some(ls0) = self.lights.sample(scene, ray.o, u_sel, u_l) else {
+        let Some(ls0) = self.lights.sample_global(scene, ray.o, u_sel, u_l) else {
             return Vec3::ZERO;
         };
         if !ls0.delta || !ls0.dist.is_finite() {
@@ -258,7 +258,7 @@ impl<A: Accel> PathContext<'_, A> {
             return Vec3::ZERO;
         }
         let x = ray.at(t);
-        let Some(ls) = self.lights.sample(scene, x, u_sel, u_l) else {
+        let Some(ls) = self.lights.sample_global(scene, x, u_sel, u_l) else {
             return Vec3::ZERO;
         };
         let sigma_t = m.sigma_t(x) as f32;

@@ -42,10 +42,11 @@ pub enum Light {
     },
 }
 
+pub mod bvh;
 mod set;
 mod sky;
 
-pub use set::{LightSample, LightSet, MAX_DISTANT};
+pub use set::{LightSample, LightSelection, LightSet, MAX_DISTANT};
 pub use sky::{build_sky, moon_phase_factor, MOON_TO_SUN};
 
 use shaders_cpu::sampling::{sample_uniform_cone, uniform_cone_pdf, Frame};

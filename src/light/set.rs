@@ -2,8 +2,11 @@
 //! `MAX_DISTANT − 1` suns) are sampled at every vertex: outdoors they are the
 //! only light in every shadow, and one-sample selection would give the sky a
 //! small share next to the sun. Local lights (point, spot, emissive triangles)
-//! are selected one per vertex, half in proportion to emitted power
-//! (pbrt-v4's `PowerLightSampler`), half uniformly. Probabilities returned
+//! are selected one per vertex by a light BVH (`bvh.rs`, Conty Estevez &
+//! Kulla 2018) from the shading point; suns beyond `MAX_DISTANT` take a
+//! uniform share beside the tree (pbrt-v4's `BVHLightSampler`). The older
+//! point-independent selection (half by power, half uniform) and uniform
+//! selection stay available as [`LightSelection`] kinds. Probabilities returned
 //! include the selection pmf (1 for distant lights), so callers combine them
 //! directly in MIS weights.
 
@@ -12,6 +15,7 @@ use shaders_cpu::sampling::{
     luminance, power_heuristic, sample_uniform_triangle, uniform_cone_pdf,
 };
 
+use super::bvh::{LightBounds, LightBvh};
 use super::{power, sample_explicit, sun_radiance, Light};
 use crate::scene::Scene;
 
@@ -20,7 +24,19 @@ use crate::scene::Scene;
 enum Entry {
     Explicit(Light),
     Sky,
-    Triangle { geom: u32, prim: u32 },
+    Triangle { geom: u32, prim: u32, area: f32 },
+}
+
+/// How one local light is chosen per vertex.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum LightSelection {
+    /// Light BVH, by a bound of each light's contribution at the point.
+    #[default]
+    Bvh,
+    /// Independent of the point: half by emitted power, half uniform.
+    Power,
+    /// Independent of the point: uniform over local lights.
+    Uniform,
 }
 
 /// A light sample as seen from a shading point.
@@ -49,8 +65,17 @@ pub struct LightSet {
     distant: Vec<Entry>,
     /// One of these is selected per vertex.
     entries: Vec<Entry>,
+    selection: LightSelection,
+    /// Point-independent selection (half power, half uniform; uniform for
+    /// `LightSelection::Uniform`).
     cdf: Vec<f32>,
     pmf: Vec<f32>,
+    /// The tree over local lights other than suns (index = entry index).
+    bvh: LightBvh,
+    /// Entry indices of the suns among the local lights (BVH selection).
+    local_suns: Vec<u32>,
+    /// Probability of picking one of `local_suns` rather than the tree.
+    p_suns: f32,
     /// pmf of the sky (1 when it emits, else 0).
     sky_pmf: f32,
     /// Every sun, for rays that escape into one.
@@ -59,10 +84,13 @@ pub struct LightSet {
     tri_entry: Vec<Vec<u32>>,
 }
 
-fn triangle_area(scene: &Scene, geom: u32, prim: u32) -> f32 {
+/// Area and unit normal of a triangle.
+fn triangle_geometry(scene: &Scene, geom: u32, prim: u32) -> (f32, Vec3, [Vec3; 3]) {
     let m = &scene.meshes[geom as usize];
-    let [a, b, c] = m.triangles[prim as usize].map(|i| m.p_f32[i as usize]);
-    0.5 * (b - a).cross(c - a).length()
+    let v = m.triangles[prim as usize].map(|i| m.p_f32[i as usize]);
+    let cross = (v[1] - v[0]).cross(v[2] - v[0]);
+    let len = cross.length();
+    (0.5 * len, cross / len, v)
 }
 
 /// A sun as escaping rays see it.
@@ -76,12 +104,18 @@ struct SunDisk {
 }
 
 impl LightSet {
-    /// Collects every light of `scene`.
+    /// Collects every light of `scene`, local lights chosen by a light BVH.
     pub fn build(scene: &Scene) -> Self {
+        Self::build_with(scene, LightSelection::Bvh)
+    }
+
+    /// Collects every light of `scene` with local lights chosen by `selection`.
+    pub fn build_with(scene: &Scene, selection: LightSelection) -> Self {
         let radius = scene_radius(scene);
         let mut distant = Vec::new();
         let mut entries = Vec::new();
         let mut weights = Vec::new();
+        let mut bounds = Vec::new();
         let mut suns = Vec::new();
         let sky_emits = scene.sky.luminance_avg() > 0.0;
         let room_for_suns = MAX_DISTANT - sky_emits as usize;
@@ -108,6 +142,7 @@ impl LightSet {
                 }
             }
             weights.push(power(light, radius));
+            bounds.push(explicit_bounds(light));
             entries.push(Entry::Explicit(*light));
         }
         if sky_emits {
@@ -127,20 +162,40 @@ impl LightSet {
                 }
                 let mat = &scene.materials[mesh.tri_material[t] as usize];
                 let sides = if mat.two_sided_emission { 2.0 } else { 1.0 };
-                let area = triangle_area(scene, g as u32, t as u32);
-                if area <= 0.0 {
+                let (area, n, v) = triangle_geometry(scene, g as u32, t as u32);
+                if area <= 0.0 || !n.is_finite() {
                     continue;
                 }
                 *slot = entries.len() as u32;
                 weights.push(std::f32::consts::PI * sides * area * luminance(mat.le));
+                bounds.push(LightBounds {
+                    p_min: v[0].min(v[1]).min(v[2]),
+                    p_max: v[0].max(v[1]).max(v[2]),
+                    w: n,
+                    phi: area * luminance(mat.le),
+                    cos_theta_o: 1.0,
+                    cos_theta_e: 0.0,
+                    two_sided: mat.two_sided_emission,
+                });
                 entries.push(Entry::Triangle {
                     geom: g as u32,
                     prim: t as u32,
+                    area,
                 });
             }
             tri_entry[g] = slots;
         }
-        let pmf = selection_pmf(&weights);
+        let pmf = if selection == LightSelection::Uniform {
+            vec![1.0 / weights.len().max(1) as f32; weights.len()]
+        } else {
+            selection_pmf(&weights)
+        };
+        let bvh = LightBvh::build(&bounds);
+        let local_suns: Vec<u32> = (0..entries.len() as u32)
+            .filter(|&i| matches!(entries[i as usize], Entry::Explicit(Light::Sun { .. })))
+            .collect();
+        let n_suns = local_suns.len() as f32;
+        let p_suns = n_suns / (n_suns + if bvh.is_empty() { 0.0 } else { 1.0 }).max(1.0);
         let mut acc = 0.0f64;
         let cdf = pmf
             .iter()
@@ -152,15 +207,23 @@ impl LightSet {
         let suns = suns
             .into_iter()
             .map(|(disk, local)| SunDisk {
-                pmf: local.map_or(1.0, |i| pmf[i]),
+                pmf: match (local, selection) {
+                    (None, _) => 1.0,
+                    (Some(_), LightSelection::Bvh) => p_suns / n_suns,
+                    (Some(i), _) => pmf[i],
+                },
                 ..disk
             })
             .collect();
         LightSet {
             distant,
             entries,
+            selection,
             cdf,
             pmf,
+            bvh,
+            local_suns,
+            p_suns,
             sky_pmf: if sky_emits { 1.0 } else { 0.0 },
             suns,
             tri_entry,
@@ -192,8 +255,61 @@ impl LightSet {
         sample_entry(scene, &self.distant[k], 1.0, p, u)
     }
 
-    /// Selects one local light and samples it as seen from `p`.
+    /// Which selection the set uses for [`LightSet::sample`].
+    pub fn selection(&self) -> LightSelection {
+        self.selection
+    }
+
+    /// Chooses a local light for point `p` with `u_select` ∈ [0, 1):
+    /// (entry index, selection pmf), or None when no light can reach `p`.
+    pub fn select_at(&self, p: Vec3, u_select: f32) -> Option<(usize, f32)> {
+        if self.entries.is_empty() {
+            return None;
+        }
+        if self.selection != LightSelection::Bvh {
+            let idx = self.select(u_select);
+            return (self.pmf[idx] > 0.0).then_some((idx, self.pmf[idx]));
+        }
+        if u_select < self.p_suns {
+            let n = self.local_suns.len();
+            let k = ((u_select / self.p_suns * n as f32) as usize).min(n - 1);
+            return Some((self.local_suns[k] as usize, self.p_suns / n as f32));
+        }
+        let u = ((u_select - self.p_suns) / (1.0 - self.p_suns)).clamp(0.0, 1.0 - f32::EPSILON);
+        let (idx, pmf) = self.bvh.sample(p, u)?;
+        Some((idx as usize, pmf * (1.0 - self.p_suns)))
+    }
+
+    /// Probability that [`LightSet::select_at`] at `p` returns local light
+    /// `idx` (the same value it returns with that light).
+    pub fn pmf_at(&self, p: Vec3, idx: usize) -> f32 {
+        match self.selection {
+            _ if idx >= self.entries.len() => 0.0,
+            LightSelection::Bvh => match self.entries[idx] {
+                Entry::Explicit(Light::Sun { .. }) => self.p_suns / self.local_suns.len() as f32,
+                _ => self.bvh.pmf(p, idx as u32) * (1.0 - self.p_suns),
+            },
+            _ => self.pmf[idx],
+        }
+    }
+
+    /// Selects one local light for `p` (by the set's [`LightSelection`]) and
+    /// samples it as seen from `p`.
     pub fn sample(&self, scene: &Scene, p: Vec3, u_select: f32, u: Vec2) -> Option<LightSample> {
+        let (idx, pmf) = self.select_at(p, u_select)?;
+        sample_entry(scene, &self.entries[idx], pmf, p, u)
+    }
+
+    /// Selects one local light independently of the point (half by power,
+    /// half uniform) and samples it from `p`: the same `u_select` gives the
+    /// same light at every point, as equiangular sampling needs.
+    pub fn sample_global(
+        &self,
+        scene: &Scene,
+        p: Vec3,
+        u_select: f32,
+        u: Vec2,
+    ) -> Option<LightSample> {
         if self.entries.is_empty() {
             return None;
         }
@@ -259,7 +375,7 @@ impl LightSet {
     /// emissive triangle (geom, prim), seen from `p` with light normal `n_light`.
     pub fn pdf_triangle(
         &self,
-        scene: &Scene,
+        _scene: &Scene,
         geom: u32,
         prim: u32,
         p: Vec3,
@@ -276,14 +392,16 @@ impl LightSet {
         if idx == u32::MAX {
             return 0.0;
         }
+        let Entry::Triangle { area, .. } = self.entries[idx as usize] else {
+            return 0.0;
+        };
         let d = q - p;
         let dist2 = d.length_squared();
         let cos_l = n_light.dot(d).abs() / dist2.sqrt();
-        let area = triangle_area(scene, geom, prim);
         if cos_l == 0.0 || area == 0.0 {
             return 0.0;
         }
-        self.pmf[idx as usize] * dist2 / (cos_l * area)
+        self.pmf_at(p, idx as usize) * dist2 / (cos_l * area)
     }
 }
 
@@ -313,19 +431,17 @@ fn sample_entry(scene: &Scene, entry: &Entry, pmf: f32, p: Vec3, u: Vec2) -> Opt
                 delta: false,
             })
         }
-        Entry::Triangle { geom, prim } => {
+        Entry::Triangle { geom, prim, area } => {
             let m = &scene.meshes[geom as usize];
             let [a, b, c] = m.triangles[prim as usize].map(|i| m.p_f32[i as usize]);
             let bary = sample_uniform_triangle(u);
             let q = a * bary[0] + b * bary[1] + c * bary[2];
-            let cross = (b - a).cross(c - a);
-            let area = 0.5 * cross.length();
             let d = q - p;
             let dist2 = d.length_squared();
             if dist2 == 0.0 || area == 0.0 {
                 return None;
             }
-            let n = cross / (2.0 * area);
+            let n = (b - a).cross(c - a).normalize();
             let dist = dist2.sqrt();
             let wi = d / dist;
             let cos_l = -n.dot(wi);
@@ -340,6 +456,41 @@ fn sample_entry(scene: &Scene, entry: &Entry, pmf: f32, p: Vec3, u: Vec2) -> Opt
                 dist,
                 delta: false,
             })
+        }
+    }
+}
+
+/// BVH bounds of an explicit local light; suns get none (phi 0: not in the tree).
+fn explicit_bounds(light: &Light) -> LightBounds {
+    let point =
+        |p: Vec3, w: Vec3, intensity: Vec3, cos_theta_o: f32, cos_theta_e: f32| LightBounds {
+            p_min: p,
+            p_max: p,
+            w,
+            phi: luminance(intensity),
+            cos_theta_o,
+            cos_theta_e,
+            two_sided: false,
+        };
+    match *light {
+        Light::Sun { dir_to_sun, .. } => LightBounds {
+            phi: 0.0,
+            ..point(Vec3::ZERO, dir_to_sun, Vec3::ZERO, -1.0, 0.0)
+        },
+        Light::Point { p, intensity } => point(p, Vec3::Z, intensity, -1.0, 0.0),
+        Light::Spot {
+            p,
+            dir,
+            intensity,
+            cos_inner,
+            cos_outer,
+        } => {
+            // Full intensity inside θ_o, falloff out to θ_outer = θ_o + θ_e
+            // (a small θ_e keeps hard-edged spots inside their own bound).
+            let theta_outer = cos_outer.clamp(-1.0, 1.0).acos();
+            let theta_o = cos_inner.clamp(-1.0, 1.0).acos().min(theta_outer);
+            let theta_e = (theta_outer - theta_o).max(1e-3);
+            point(p, dir, intensity, theta_o.cos(), theta_e.cos())
         }
     }
 }

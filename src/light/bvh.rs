@@ -1,0 +1,402 @@
+//! A light BVH for choosing one of many local lights from a shading point
+//! (Conty Estevez & Kulla 2018, "Importance Sampling of Many Lights with
+//! Adaptive Tree Splitting"; the layout and importance of pbrt-v4's
+//! `BVHLightSampler`, §12.6.3). Each node bounds its lights' positions (box),
+//! emission directions (a cone of half-angle θ_o around `w`, plus the spread
+//! θ_e of emission about any of those normals) and intensity `phi`. Traversal
+//! picks a child in proportion to an importance that bounds phi·cosθ'/d², so
+//! the selection pmf of any light is recomputable exactly by replaying the
+//! same arithmetic down its bit trail ([`LightBvh::pmf`]).
+//!
+//! Render space; `p` is the receiving point. The build is serial and uses
+//! only deterministic selects, so the same lights give the same tree.
+
+use glam::Vec3;
+
+/// Bounds of one light or of a cluster of lights.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightBounds {
+    /// Minimum corner of the positions' box (render space, m).
+    pub p_min: Vec3,
+    /// Maximum corner of the positions' box.
+    pub p_max: Vec3,
+    /// Unit axis of the cone of emission normals.
+    pub w: Vec3,
+    /// Intensity bound (luminance, W·sr⁻¹): phi·cosθ/d² bounds the irradiance.
+    pub phi: f32,
+    /// Cosine of the normal cone's half-angle θ_o (−1: every direction).
+    pub cos_theta_o: f32,
+    /// Cosine of the emission spread θ_e about a normal (0 for a Lambert emitter).
+    pub cos_theta_e: f32,
+    /// Emission on both sides of each normal.
+    pub two_sided: bool,
+}
+
+impl LightBounds {
+    fn centroid(&self) -> Vec3 {
+        0.5 * (self.p_min + self.p_max)
+    }
+
+    /// Bound of the light's contribution at `p` (0: it cannot light `p`).
+    pub fn importance(&self, p: Vec3) -> f32 {
+        let pc = self.centroid();
+        // Clamp the distance so points inside a large cluster do not blow up.
+        let d2 = p
+            .distance_squared(pc)
+            .max(0.5 * (self.p_max - self.p_min).length());
+        let wi = (p - pc).normalize_or_zero();
+        let mut cos_w = self.w.dot(wi);
+        if self.two_sided {
+            cos_w = cos_w.abs();
+        }
+        let sin_w = safe_sqrt(1.0 - cos_w * cos_w);
+        // Half-angle θ_b of the cone from pc that holds the whole box as seen from p.
+        let cos_b = bound_subtended_cos(self.p_min, self.p_max, p);
+        let sin_b = safe_sqrt(1.0 - cos_b * cos_b);
+        // θ' = max(0, θ_w − θ_o − θ_b): the smallest angle between a normal
+        // of the cone and a direction from the box towards p.
+        let sin_o = safe_sqrt(1.0 - self.cos_theta_o * self.cos_theta_o);
+        let (cos_x, sin_x) = angle_sub_clamped(sin_w, cos_w, sin_o, self.cos_theta_o);
+        let (cos_p, _) = angle_sub_clamped(sin_x, cos_x, sin_b, cos_b);
+        if cos_p <= self.cos_theta_e {
+            return 0.0;
+        }
+        (self.phi * cos_p / d2).max(0.0)
+    }
+
+    /// The bounds of both `self` and `o`.
+    pub fn union(&self, o: &LightBounds) -> LightBounds {
+        if self.phi == 0.0 {
+            return *o;
+        }
+        if o.phi == 0.0 {
+            return *self;
+        }
+        let (w, cos_theta_o) = cone_union(self.w, self.cos_theta_o, o.w, o.cos_theta_o);
+        LightBounds {
+            p_min: self.p_min.min(o.p_min),
+            p_max: self.p_max.max(o.p_max),
+            w,
+            phi: self.phi + o.phi,
+            cos_theta_o,
+            cos_theta_e: self.cos_theta_e.min(o.cos_theta_e),
+            two_sided: self.two_sided || o.two_sided,
+        }
+    }
+}
+
+fn safe_sqrt(x: f32) -> f32 {
+    x.max(0.0).sqrt()
+}
+
+/// cos and sin of max(0, a − b) for angles given by their sines and cosines.
+fn angle_sub_clamped(sin_a: f32, cos_a: f32, sin_b: f32, cos_b: f32) -> (f32, f32) {
+    if cos_a > cos_b {
+        (1.0, 0.0)
+    } else {
+        (cos_a * cos_b + sin_a * sin_b, sin_a * cos_b - cos_a * sin_b)
+    }
+}
+
+/// Cosine of the half-angle of a cone from `p` around the box centre's
+/// bounding sphere (−1 when `p` is inside it).
+fn bound_subtended_cos(p_min: Vec3, p_max: Vec3, p: Vec3) -> f32 {
+    let c = 0.5 * (p_min + p_max);
+    let r2 = (0.25 * (p_max - p_min).length_squared()).max(0.0);
+    let d2 = p.distance_squared(c);
+    if d2 < r2 || d2 == 0.0 {
+        return -1.0;
+    }
+    safe_sqrt(1.0 - r2 / d2)
+}
+
+/// The smallest cone holding two cones (axis, cosine of half-angle).
+fn cone_union(wa: Vec3, cos_a: f32, wb: Vec3, cos_b: f32) -> (Vec3, f32) {
+    if cos_a == -1.0 || cos_b == -1.0 {
+        return (wa, -1.0);
+    }
+    let theta_a = cos_a.clamp(-1.0, 1.0).acos();
+    let theta_b = cos_b.clamp(-1.0, 1.0).acos();
+    let theta_d = wa.dot(wb).clamp(-1.0, 1.0).acos();
+    // One cone inside the other.
+    if (theta_d + theta_b).min(std::f32::consts::PI) <= theta_a {
+        return (wa, cos_a);
+    }
+    if (theta_d + theta_a).min(std::f32::consts::PI) <= theta_b {
+        return (wb, cos_b);
+    }
+    let theta_o = 0.5 * (theta_a + theta_d + theta_b);
+    if theta_o >= std::f32::consts::PI {
+        return (wa, -1.0);
+    }
+    // Rotate wa towards wb by θ_o − θ_a about their common normal.
+    let theta_r = theta_o - theta_a;
+    let axis = wa.cross(wb);
+    if axis.length_squared() < 1e-12 {
+        // (Nearly) parallel axes: keep wa and widen it to cover cone b.
+        let theta = (theta_d + theta_b).max(theta_a).min(std::f32::consts::PI);
+        return (wa, theta.cos());
+    }
+    let w = glam::Quat::from_axis_angle(axis.normalize(), theta_r) * wa;
+    (w.normalize(), theta_o.cos())
+}
+
+/// One node: a leaf holds one light; an inner node's first child follows it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Node {
+    bounds: LightBounds,
+    /// Leaf: the light's index; inner: the second child's node index.
+    child_or_light: u32,
+    leaf: bool,
+}
+
+/// Depth past which splits are by count, keeping every trail within 128 bits.
+const MAX_SAH_DEPTH: u32 = 64;
+/// Buckets per axis in the split search.
+const BUCKETS: usize = 12;
+
+/// A light BVH over lights `0..n` given by their bounds.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LightBvh {
+    nodes: Vec<Node>,
+    /// Per light: the branch taken at each depth (bit d = 1: second child).
+    trails: Vec<u128>,
+}
+
+impl LightBvh {
+    /// Builds the tree; lights with zero `phi` are left out (pmf 0).
+    pub fn build(bounds: &[LightBounds]) -> LightBvh {
+        let mut ids: Vec<u32> = (0..bounds.len() as u32)
+            .filter(|&i| bounds[i as usize].phi > 0.0)
+            .collect();
+        let mut bvh = LightBvh {
+            nodes: Vec::with_capacity(2 * ids.len()),
+            trails: vec![0; bounds.len()],
+        };
+        if !ids.is_empty() {
+            bvh.build_rec(bounds, &mut ids, 0, 0);
+        }
+        bvh
+    }
+
+    /// Whether the tree holds no light.
+    pub fn is_empty(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
+    fn build_rec(&mut self, all: &[LightBounds], ids: &mut [u32], trail: u128, depth: u32) {
+        let node = self.nodes.len();
+        if ids.len() == 1 {
+            self.nodes.push(Node {
+                bounds: all[ids[0] as usize],
+                child_or_light: ids[0],
+                leaf: true,
+            });
+            self.trails[ids[0] as usize] = trail;
+            return;
+        }
+        let total = ids[1..]
+            .iter()
+            .fold(all[ids[0] as usize], |b, &i| b.union(&all[i as usize]));
+        self.nodes.push(Node {
+            bounds: total,
+            child_or_light: 0,
+            leaf: false,
+        });
+        let mid = if depth < MAX_SAH_DEPTH {
+            sah_split(all, ids, &total)
+        } else {
+            None
+        }
+        .unwrap_or_else(|| {
+            // Fallback: halve by count along the widest centroid axis.
+            let axis = centroid_box(all, ids).1.max_position();
+            let mid = ids.len() / 2;
+            ids.select_nth_unstable_by(mid, |&a, &b| {
+                let (ca, cb) = (all[a as usize].centroid(), all[b as usize].centroid());
+                ca[axis].total_cmp(&cb[axis]).then(a.cmp(&b))
+            });
+            mid
+        });
+        let (left, right) = ids.split_at_mut(mid);
+        self.build_rec(all, left, trail, depth + 1);
+        self.nodes[node].child_or_light = self.nodes.len() as u32;
+        self.build_rec(all, right, trail | (1u128 << depth), depth + 1);
+    }
+
+    /// Importance of both children of inner node `k`, first child first.
+    fn child_importance(&self, k: usize, p: Vec3) -> [f32; 2] {
+        let second = self.nodes[k].child_or_light as usize;
+        [
+            self.nodes[k + 1].bounds.importance(p),
+            self.nodes[second].bounds.importance(p),
+        ]
+    }
+
+    /// Chooses a light for point `p` with `u` ∈ [0, 1): (light index, pmf),
+    /// or None when no light can reach `p`.
+    pub fn sample(&self, p: Vec3, mut u: f32) -> Option<(u32, f32)> {
+        if self.nodes.is_empty() {
+            return None;
+        }
+        let mut k = 0;
+        let mut pmf = 1.0f32;
+        loop {
+            let node = &self.nodes[k];
+            if node.leaf {
+                // A lone root was never weighed against a sibling.
+                if k > 0 || node.bounds.importance(p) > 0.0 {
+                    return Some((node.child_or_light, pmf));
+                }
+                return None;
+            }
+            let ci = self.child_importance(k, p);
+            let sum = ci[0] + ci[1];
+            if sum == 0.0 || !sum.is_finite() {
+                return None;
+            }
+            let p0 = ci[0] / sum;
+            // Reuse u: rescale the chosen sub-interval back to [0, 1).
+            if u < p0 {
+                pmf *= p0;
+                u = (u / p0).min(ONE_MINUS_EPS);
+                k += 1;
+            } else {
+                let p1 = ci[1] / sum;
+                pmf *= p1;
+                u = ((u - p0) / p1).clamp(0.0, ONE_MINUS_EPS);
+                k = node.child_or_light as usize;
+            }
+        }
+    }
+
+    /// The probability that [`LightBvh::sample`] at `p` returns `light`
+    /// (bitwise the value it returns with that light).
+    pub fn pmf(&self, p: Vec3, light: u32) -> f32 {
+        if self.nodes.is_empty() {
+            return 0.0;
+        }
+        let mut trail = self.trails[light as usize];
+        let mut k = 0;
+        let mut pmf = 1.0f32;
+        loop {
+            let node = &self.nodes[k];
+            if node.leaf {
+                if node.child_or_light != light {
+                    return 0.0; // left out of the tree
+                }
+                return if k > 0 || node.bounds.importance(p) > 0.0 {
+                    pmf
+                } else {
+                    0.0
+                };
+            }
+            let ci = self.child_importance(k, p);
+            let sum = ci[0] + ci[1];
+            if sum == 0.0 || !sum.is_finite() {
+                return 0.0;
+            }
+            let second = (trail & 1) as usize;
+            pmf *= ci[second] / sum;
+            trail >>= 1;
+            k = if second == 0 {
+                k + 1
+            } else {
+                node.child_or_light as usize
+            };
+        }
+    }
+}
+
+const ONE_MINUS_EPS: f32 = 1.0 - f32::EPSILON / 2.0;
+
+/// Box of the centroids of `ids` and its extent.
+fn centroid_box(all: &[LightBounds], ids: &[u32]) -> (Vec3, Vec3) {
+    let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+    for &i in ids {
+        let c = all[i as usize].centroid();
+        lo = lo.min(c);
+        hi = hi.max(c);
+    }
+    (lo, hi - lo)
+}
+
+/// Orientation measure M_Ω of a cone (pbrt-v4 eq. 12.x / Conty & Kulla eq. 1).
+fn orientation_measure(b: &LightBounds) -> f32 {
+    use std::f32::consts::PI;
+    let theta_o = b.cos_theta_o.clamp(-1.0, 1.0).acos();
+    let theta_e = b.cos_theta_e.clamp(-1.0, 1.0).acos();
+    let theta_w = (theta_o + theta_e).min(PI);
+    let sin_o = theta_o.sin();
+    2.0 * PI * (1.0 - b.cos_theta_o)
+        + PI / 2.0
+            * (2.0 * theta_w * sin_o - (theta_o - 2.0 * theta_w).cos() - 2.0 * theta_o * sin_o
+                + b.cos_theta_o)
+}
+
+/// Split cost of a cluster: power × orientation × surface area, stretched
+/// along `axis` when the parent box is thin there (Conty & Kulla §4.4).
+fn cost(b: &LightBounds, parent: &LightBounds, axis: usize) -> f32 {
+    let d = parent.p_max - parent.p_min;
+    let kr = if d[axis] > 0.0 {
+        d.max_element() / d[axis]
+    } else {
+        1.0
+    };
+    let e = b.p_max - b.p_min;
+    let area = 2.0 * (e.x * e.y + e.y * e.z + e.z * e.x);
+    b.phi * orientation_measure(b) * kr * area.max(1e-8)
+}
+
+/// Bucketed split minimising [`cost`]; partitions `ids` and returns the split
+/// index, or None when no bucket split separates the lights.
+fn sah_split(all: &[LightBounds], ids: &mut [u32], parent: &LightBounds) -> Option<usize> {
+    let (lo, ext) = centroid_box(all, ids);
+    let bucket = |i: u32, axis: usize| {
+        let t = (all[i as usize].centroid()[axis] - lo[axis]) / ext[axis];
+        ((t * BUCKETS as f32) as usize).min(BUCKETS - 1)
+    };
+    let mut best: Option<(f32, usize, usize)> = None;
+    for axis in 0..3 {
+        if ext[axis] <= 0.0 {
+            continue;
+        }
+        let mut bins: [Option<LightBounds>; BUCKETS] = [None; BUCKETS];
+        for &i in ids.iter() {
+            let b = &mut bins[bucket(i, axis)];
+            let l = &all[i as usize];
+            *b = Some(b.map_or(*l, |x| x.union(l)));
+        }
+        // Unions of buckets below and above each split, swept once per side.
+        let mut below = [None::<LightBounds>; BUCKETS];
+        let mut above = [None::<LightBounds>; BUCKETS];
+        let join = |a: Option<LightBounds>, b: &Option<LightBounds>| match (a, b) {
+            (Some(a), Some(b)) => Some(a.union(b)),
+            (a, b) => a.or(*b),
+        };
+        for k in 1..BUCKETS {
+            below[k] = join(below[k - 1], &bins[k - 1]);
+            let j = BUCKETS - 1 - k;
+            above[j] = join(above[j + 1], &bins[j + 1]);
+        }
+        for split in 1..BUCKETS {
+            // below[split] holds buckets 0..split; above[split − 1] holds split..
+            let (Some(l), Some(r)) = (below[split], above[split - 1]) else {
+                continue;
+            };
+            let c = cost(&l, parent, axis) + cost(&r, parent, axis);
+            if best.is_none_or(|(bc, _, _)| c < bc) {
+                best = Some((c, axis, split));
+            }
+        }
+    }
+    let (_, axis, split) = best?;
+    let mut mid = 0;
+    for k in 0..ids.len() {
+        if bucket(ids[k], axis) < split {
+            ids.swap(k, mid);
+            mid += 1;
+        }
+    }
+    (mid > 0 && mid < ids.len()).then_some(mid)
+}
