@@ -73,6 +73,25 @@ fn metal(name: &str, preset: ConductorPreset, roughness: f64) -> MaterialDesc {
     }
 }
 
+/// Car paint: a glossy clear coat (η 1.5) over a coloured base, or over a
+/// metal for metallic paints.
+fn paint(name: &str, albedo: Option<[f64; 3]>, preset: Option<ConductorPreset>) -> MaterialDesc {
+    MaterialDesc {
+        name: name.to_string(),
+        mask: None,
+        texture: None,
+        kind: MaterialKindDesc::Coated {
+            albedo,
+            preset,
+            eta: None,
+            k: None,
+            base_roughness: 0.3,
+            coat_ior: 1.5,
+            coat_roughness: 0.05,
+        },
+    }
+}
+
 /// An always-on emitter radiating from every front face (W·m⁻²·sr⁻¹).
 fn emitter(name: &str, radiance: [f64; 3]) -> MaterialDesc {
     MaterialDesc {
@@ -193,16 +212,16 @@ pub fn town_materials(desc: &TownDesc) -> Vec<MaterialDesc> {
         diffuse("sign_red", [0.55, 0.03, 0.03]),
         diffuse("sign_white", [0.8, 0.8, 0.8]),
         diffuse("sign_blue", [0.04, 0.15, 0.5]),
-        diffuse("paint_red", [0.55, 0.04, 0.03]),
-        diffuse("paint_blue", [0.05, 0.12, 0.45]),
-        diffuse("paint_white", [0.8, 0.8, 0.78]),
-        diffuse("paint_black", [0.03, 0.03, 0.035]),
-        metal("paint_silver", ConductorPreset::Aluminium, 0.3),
-        diffuse("paint_grey", [0.3, 0.31, 0.32]),
-        diffuse("paint_green", [0.08, 0.3, 0.12]),
-        diffuse("paint_yellow", [0.75, 0.6, 0.08]),
-        diffuse("paint_orange", [0.7, 0.25, 0.04]),
-        diffuse("paint_darkblue", [0.02, 0.04, 0.15]),
+        paint("paint_red", Some([0.55, 0.04, 0.03]), None),
+        paint("paint_blue", Some([0.05, 0.12, 0.45]), None),
+        paint("paint_white", Some([0.8, 0.8, 0.78]), None),
+        paint("paint_black", Some([0.03, 0.03, 0.035]), None),
+        paint("paint_silver", None, Some(ConductorPreset::Aluminium)),
+        paint("paint_grey", Some([0.3, 0.31, 0.32]), None),
+        paint("paint_green", Some([0.08, 0.3, 0.12]), None),
+        paint("paint_yellow", Some([0.75, 0.6, 0.08]), None),
+        paint("paint_orange", Some([0.7, 0.25, 0.04]), None),
+        paint("paint_darkblue", Some([0.02, 0.04, 0.15]), None),
         diffuse("cargo", [0.7, 0.7, 0.68]),
         diffuse("rubber", [0.03, 0.03, 0.03]),
         metal("chrome", ConductorPreset::Chrome, 0.05),
