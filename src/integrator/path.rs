@@ -152,14 +152,9 @@ impl<A: Accel> PathContext<'_, A> {
             let w = if st.prev_delta {
                 1.0
             } else {
-                let pdf_l = self.lights.pdf_triangle(
-                    scene,
-                    hit.geom_id,
-                    hit.prim_id,
-                    st.prev_p,
-                    si.p,
-                    si.n_geo,
-                );
+                let pdf_l =
+                    self.lights
+                        .pdf_triangle(hit.geom_id, hit.prim_id, st.prev_p, si.p, si.n_geo);
                 power_heuristic(1.0, st.prev_pdf, 1.0, pdf_l)
             };
             st.l += st.beta * mat.le * w;

@@ -321,32 +321,15 @@ impl LightSet {
         sample_entry(scene, &self.entries[idx], pmf, p, u)
     }
 
-    /// Radiance of the sky and sun disks for a ray escaping along `dir` that
-    /// was sampled with solid-angle pdf `prev_pdf` (or by a delta lobe / the
-    /// camera), MIS-weighted against next-event estimation. Sun disks are not
-    /// dimmed by the sky's cloud deck here; see [`LightSet::escaped_at`].
-    pub fn escaped(&self, scene: &Scene, dir: Vec3, prev_pdf: f32, prev_delta: bool) -> Vec3 {
-        self.escaped_from(scene, None, dir, prev_pdf, prev_delta)
-    }
-
-    /// [`LightSet::escaped`] for a ray leaving render-space point `p`: sun
+    /// Radiance of the sky and sun disks for a ray leaving render-space point
+    /// `p` along `dir`, sampled with solid-angle pdf `prev_pdf` (or by a delta
+    /// lobe / the camera), MIS-weighted against next-event estimation. Sun
     /// disks are dimmed by the cloud deck's transmittance at `p`, exactly as
     /// next-event estimation dims them, so MIS stays unbiased under clouds.
     pub fn escaped_at(
         &self,
         scene: &Scene,
         p: Vec3,
-        dir: Vec3,
-        prev_pdf: f32,
-        prev_delta: bool,
-    ) -> Vec3 {
-        self.escaped_from(scene, Some(p), dir, prev_pdf, prev_delta)
-    }
-
-    fn escaped_from(
-        &self,
-        scene: &Scene,
-        p: Option<Vec3>,
         dir: Vec3,
         prev_pdf: f32,
         prev_delta: bool,
@@ -364,7 +347,7 @@ impl LightSet {
         }
         for sun in &self.suns {
             if dir.dot(sun.axis) >= sun.cos_max {
-                let clouds = p.map_or(1.0, |p| cloud_transmittance(scene, p, dir));
+                let clouds = cloud_transmittance(scene, p, dir);
                 l += sun.le * clouds * weight(sun.pmf * uniform_cone_pdf(sun.cos_max));
             }
         }
@@ -373,15 +356,7 @@ impl LightSet {
 
     /// Pdf per solid angle (with pmf) that NEE would have chosen point `q` on
     /// emissive triangle (geom, prim), seen from `p` with light normal `n_light`.
-    pub fn pdf_triangle(
-        &self,
-        _scene: &Scene,
-        geom: u32,
-        prim: u32,
-        p: Vec3,
-        q: Vec3,
-        n_light: Vec3,
-    ) -> f32 {
+    pub fn pdf_triangle(&self, geom: u32, prim: u32, p: Vec3, q: Vec3, n_light: Vec3) -> f32 {
         let Some(&idx) = self
             .tri_entry
             .get(geom as usize)

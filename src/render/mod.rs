@@ -98,9 +98,11 @@ pub fn render_frame(
     let mut stats = RenderStats::default();
 
     let t0 = Instant::now();
+    // One rain field per frame: the GT's rain mask and every view's paths see it.
+    let rain = crate::integrator::frame_rain(scene, settings.seed, settings.frame);
     let mut left = view_gt(scene, accel, &cams[0], true);
-    if let Some(rain) = crate::integrator::frame_rain(scene, settings.seed, settings.frame) {
-        crate::integrator::gt::add_rain_mask(scene, &rain, &cams[0], &mut left);
+    if let Some(rain) = &rain {
+        crate::integrator::gt::add_rain_mask(scene, rain, &cams[0], &mut left);
     }
     stats.gt_rays += left.depth_z.len() as u64;
     let mut baselines = Vec::with_capacity(rig.baselines_m.len());
@@ -133,7 +135,7 @@ pub fn render_frame(
             lights: &lights,
             surfaces: &surfaces,
             max_depth: settings.max_depth,
-            rain: crate::integrator::frame_rain(scene, settings.seed, settings.frame),
+            rain,
         };
         for (view, cam) in cams.iter().enumerate() {
             progress(view, n_views);
