@@ -61,6 +61,15 @@ pub struct TownDesc {
     /// Ground cover between and around the blocks.
     #[serde(default)]
     pub terrain: TerrainKind,
+    /// Height of the hills around the town, metres, in [0, 150] (default 0:
+    /// flat). The ground stays exactly flat on and within 8 m of the roads,
+    /// blocks and river, then blends over 90 m into hills whose highest point
+    /// is `hills_m`, with trees on them; the town lies in a valley.
+    #[serde(default)]
+    pub hills_m: f64,
+    /// Typical distance between hill tops, metres, in [50, 2000] (default 300).
+    #[serde(default = "default_hill_wavelength")]
+    pub hill_wavelength_m: f64,
     /// Fraction of traffic slots holding a vehicle, in [0, 1].
     pub traffic_density: f64,
     /// Cruising speed of all traffic and the ego vehicle, km/h, in [5, 130].
@@ -132,6 +141,9 @@ fn default_tower_floors() -> [u32; 2] {
 fn default_fps() -> f64 {
     10.0
 }
+fn default_hill_wavelength() -> f64 {
+    300.0
+}
 
 /// Longest vehicle body, metres (the bus); sets the smallest block.
 pub const MAX_VEHICLE_LENGTH_M: f64 = 12.0;
@@ -175,6 +187,8 @@ impl TownDesc {
         range("building_density", self.building_density, 0.0, 1.0)?;
         range("tower_fraction", self.tower_fraction, 0.0, 1.0)?;
         range("vegetation_density", self.vegetation_density, 0.0, 1.0)?;
+        range("hills_m", self.hills_m, 0.0, 150.0)?;
+        range("hill_wavelength_m", self.hill_wavelength_m, 50.0, 2000.0)?;
         range("traffic_density", self.traffic_density, 0.0, 1.0)?;
         range("speed_kmh", self.speed_kmh, 5.0, 130.0)?;
         range("fps", self.fps, 1e-3, 120.0)?;

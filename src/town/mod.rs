@@ -27,6 +27,7 @@ pub mod rng;
 pub mod roads;
 pub mod roundabout;
 pub mod routes;
+pub mod terrain;
 pub mod traffic;
 pub mod vehicles;
 pub mod walkers;
@@ -63,6 +64,9 @@ pub fn static_objects(desc: &TownDesc, seed: u64) -> Vec<ObjectDesc> {
         !l.near_roundabout(&layout::Rect::centered([t[0], t[1]], [0.0, 0.0]))
     });
     out.extend(furniture);
+    if let Some(t) = terrain::Terrain::new(desc, &l, seed) {
+        out.extend(t.vegetation(desc.vegetation_density, seed));
+    }
     number_objects(&mut out);
     out
 }
@@ -116,7 +120,9 @@ pub fn dynamic_objects(frame: &TownFrame) -> Vec<ObjectDesc> {
     out
 }
 
-/// The resolved scene description of one town frame seen from `config`.
+/// The resolved scene description of one town frame seen from `config`;
+/// without the hill mesh, which `load_town_frame` adds as an in-memory OBJ
+/// asset (`terrain::TERRAIN_FILE`).
 pub fn town_scene(desc: &TownDesc, seed: u64, frame: u64, config: CameraConfig) -> SceneDesc {
     let tf = frame_at(desc, seed, frame);
     let mut objects = static_objects(desc, seed);
@@ -149,8 +155,15 @@ pub fn load_town_frame(
     config: CameraConfig,
     town_file: &Path,
 ) -> Result<LoadedScene, SceneError> {
-    let scene = town_scene(desc, seed, frame, config);
-    let (objs, triangle_estimate) = crate::scene::validate::validate(&scene, town_file)?;
+    let mut scene = town_scene(desc, seed, frame, config);
+    let (mut objs, mut triangle_estimate) = crate::scene::validate::validate(&scene, town_file)?;
+    // The hill mesh is generated, not read: add it after validation.
+    if let Some(t) = terrain::Terrain::new(desc, &Layout::new(desc), seed) {
+        let asset = t.asset();
+        triangle_estimate += asset.triangle_count();
+        objs.insert(terrain::TERRAIN_FILE.to_string(), asset);
+        scene.objects.push(t.object());
+    }
     Ok(LoadedScene {
         path: town_file.to_path_buf(),
         desc: scene,
