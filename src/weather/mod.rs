@@ -161,6 +161,10 @@ fn unit_dir(elevation_deg: f64, azimuth_deg: f64) -> glam::DVec3 {
     glam::DVec3::new(e.cos() * a.cos(), e.cos() * a.sin(), e.sin())
 }
 
+/// Cloud cover from which the cloudy preset is a closed overcast deck (CIE
+/// overcast sky, no sun disk); below it the deck is broken and drawn.
+pub const OVERCAST_COVER: f64 = 0.85;
+
 /// Draws the parameters of `weather` from `seed` (the same seed gives the same
 /// look; a dataset passes one seed per sequence).
 pub fn draw_params(weather: Weather, seed: u64) -> WeatherParams {
@@ -220,7 +224,8 @@ pub fn draw_params(weather: Weather, seed: u64) -> WeatherParams {
 /// Replaces the sun(s) and sky of `desc` with the weather's: the physical
 /// sky (which brings the sun, red and dim at sunset, none once set, and a
 /// world-fixed cloud deck of the drawn cover) for clear, sunset, humid and
-/// foggy; the CIE overcast sky, sun diffused, for cloudy and storm; the night
+/// foggy, and for cloudy with broken cover (below `OVERCAST_COVER`); the CIE
+/// overcast sky, sun diffused, for closed cloudy and storm; the night
 /// sky with the drawn moon (phase from its angle to the sun) for night. Point, spot and emissive
 /// lights of the scene stay (street lights, vehicle lights). Humid and storm
 /// also set `[wetness]` (wet roads, puddles); every other preset leaves the
@@ -238,8 +243,19 @@ pub fn apply(desc: &mut SceneDesc, p: &WeatherParams) {
             p.sun_azimuth_deg,
         )
     });
+    // Broken cloud (cloudy below `OVERCAST_COVER`) is the physical sky with
+    // its deck: clouds drawn in the sky, sun through the gaps.
+    let broken = p.preset == Weather::Cloudy && p.cloud_cover < OVERCAST_COVER;
     desc.sky = Some(match p.preset {
         Weather::Clear | Weather::Sunset | Weather::Humid | Weather::Foggy => SkyDesc::Physical {
+            sun_elevation_deg: p.sun_elevation_deg,
+            sun_azimuth_deg: p.sun_azimuth_deg,
+            turbidity: turbidity(p.preset),
+            ground_albedo: 0.1,
+            cloud_cover: p.cloud_cover,
+            cloud_seed: seed,
+        },
+        Weather::Cloudy if broken => SkyDesc::Physical {
             sun_elevation_deg: p.sun_elevation_deg,
             sun_azimuth_deg: p.sun_azimuth_deg,
             turbidity: turbidity(p.preset),
@@ -268,7 +284,7 @@ pub fn apply(desc: &mut SceneDesc, p: &WeatherParams) {
     desc.medium = p.visibility_m.map(|v| haze(p.preset, v));
     desc.rain = (p.rain_mm_per_h > 0.0).then_some(RainDesc {
         rate_mm_per_h: p.rain_mm_per_h,
-        shutter_s: 0.01,
+        shutter_s: 1.0 / 60.0,
         fall_speed_m_per_s: 9.0,
         drop_diameter_mm: 2.5,
         density_scale: 1.0,
