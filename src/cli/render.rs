@@ -178,7 +178,7 @@ fn sensor_noise(
 ) -> Result<Option<SensorNoiseDesc>, CliError> {
     let preset = weather.as_ref().and_then(|p| p.sensor_noise);
     let noise = match iso {
-        Some(iso) if iso == 0.0 => None,
+        Some(0.0) => None,
         Some(iso) => {
             let d = SensorNoiseDesc::at_iso(iso);
             d.check()

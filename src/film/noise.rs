@@ -85,8 +85,7 @@ impl SensorNoise {
                     key.view as u64,
                     site,
                 ]));
-                let electrons =
-                    poisson(mu, &mut rng) + self.read_noise_e as f64 * rng.normal();
+                let electrons = poisson(mu, &mut rng) + self.read_noise_e as f64 * rng.normal();
                 *v = (electrons / ks) as f32;
             }
             *rgb = out.into();

@@ -67,10 +67,8 @@ pub fn build_sky(desc: Option<&SkyDesc>, viewer_world: DVec3) -> (Sky, Option<Li
             cloud_cover,
             cloud_seed,
         } => {
-            let clouds =
-                (*cloud_cover > 0.0).then(|| {
-                CloudLayer::new(*cloud_cover as f32, *cloud_seed).seen_from(viewer_world)
-            });
+            let clouds = (*cloud_cover > 0.0)
+                .then(|| CloudLayer::new(*cloud_cover as f32, *cloud_seed).seen_from(viewer_world));
             source_sky(
                 PhysicalSkyParams {
                     source_dir: dir_from_elevation_azimuth(*sun_elevation_deg, *sun_azimuth_deg)

@@ -204,8 +204,8 @@ pub fn draw_params(weather: Weather, seed: u64) -> WeatherParams {
         MoonParams::new(moon_elevation, moon_azimuth, elevation, azimuth)
     });
     let sensor_noise = match weather {
-        Weather::Night => Some(SensorNoiseDesc::at_iso(rng.range(1600.0, 6400.0).round())),
-        Weather::Storm => Some(SensorNoiseDesc::at_iso(rng.range(400.0, 1600.0).round())),
+        Weather::Night => Some(SensorNoiseDesc::at_iso(rng.range(800.0, 3200.0).round())),
+        Weather::Storm => Some(SensorNoiseDesc::at_iso(rng.range(200.0, 800.0).round())),
         _ => None,
     };
     WeatherParams {
