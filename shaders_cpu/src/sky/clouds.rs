@@ -100,37 +100,6 @@ impl CloudLayer {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn sky_opacity_is_the_shadow_casters_opacity() {
-        // A point on the ground under the viewer's line of sight: its shadow
-        // towards `dir` and the viewer's sky along `dir` meet the same cloud.
-        let layer = CloudLayer::new(0.5, 9).seen_from(DVec3::new(3000.0, -700.0, 1.6));
-        let mut cloudy = 0;
-        for k in 0..64 {
-            let a = k as f32 * 0.37;
-            let dir = Vec3::new(0.5 * a.cos(), 0.5 * a.sin(), 0.866).normalize();
-            let o = layer.sky_opacity(dir);
-            let tr = layer.transmittance(layer.viewer_world, dir);
-            let expect = 1.0 - o * (1.0 - layer.min_transmittance);
-            assert!((tr - expect).abs() < 1e-6, "{dir}: {o} vs {tr}");
-            cloudy += (o > 0.5) as i32;
-        }
-        assert!((5..59).contains(&cloudy), "{cloudy} of 64 cloudy");
-    }
-
-    #[test]
-    fn sky_opacity_fades_to_cover_at_the_horizon_and_is_zero_when_clear() {
-        let layer = CloudLayer::new(0.4, 2);
-        assert_eq!(layer.sky_opacity(Vec3::X), 0.4);
-        assert_eq!(layer.sky_opacity(-Vec3::Z), 0.4);
-        assert_eq!(CloudLayer::new(0.0, 2).sky_opacity(Vec3::Z), 0.0);
-    }
-}
-
 /// Four octaves of value noise in [0, 1].
 fn fbm(p: DVec2, seed: u32) -> f64 {
     let (mut sum, mut amp, mut norm, mut q) = (0.0, 0.5, 0.0, p);
@@ -163,4 +132,35 @@ pub(super) fn hash(x: i64, y: i64, seed: u32) -> f64 {
     z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
     z ^= z >> 31;
     (z >> 11) as f64 / (1u64 << 53) as f64
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sky_opacity_is_the_shadow_casters_opacity() {
+        // A point on the ground under the viewer's line of sight: its shadow
+        // towards `dir` and the viewer's sky along `dir` meet the same cloud.
+        let layer = CloudLayer::new(0.5, 9).seen_from(DVec3::new(3000.0, -700.0, 1.6));
+        let mut cloudy = 0;
+        for k in 0..64 {
+            let a = k as f32 * 0.37;
+            let dir = Vec3::new(0.5 * a.cos(), 0.5 * a.sin(), 0.866).normalize();
+            let o = layer.sky_opacity(dir);
+            let tr = layer.transmittance(layer.viewer_world, dir);
+            let expect = 1.0 - o * (1.0 - layer.min_transmittance);
+            assert!((tr - expect).abs() < 1e-6, "{dir}: {o} vs {tr}");
+            cloudy += (o > 0.5) as i32;
+        }
+        assert!((5..59).contains(&cloudy), "{cloudy} of 64 cloudy");
+    }
+
+    #[test]
+    fn sky_opacity_fades_to_cover_at_the_horizon_and_is_zero_when_clear() {
+        let layer = CloudLayer::new(0.4, 2);
+        assert_eq!(layer.sky_opacity(Vec3::X), 0.4);
+        assert_eq!(layer.sky_opacity(-Vec3::Z), 0.4);
+        assert_eq!(CloudLayer::new(0.0, 2).sky_opacity(Vec3::Z), 0.0);
+    }
 }
