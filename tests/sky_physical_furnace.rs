@@ -114,6 +114,11 @@ fn weather_presets_choose_their_sky_and_source() {
                     assert!(s.x > 2.0 * s.z, "sunset sun not red: {s}");
                 }
             }
+            Weather::Cloudy if p.cloud_cover < parallax::weather::OVERCAST_COVER => {
+                // Broken cloud: the physical sky with its drawn deck and the sun.
+                assert!(matches!(scene.sky, Sky::Physical(_)), "{w}");
+                assert_eq!(suns.len(), 1, "{w}");
+            }
             Weather::Cloudy | Weather::Storm => {
                 assert!(matches!(scene.sky, Sky::Overcast(_)), "{w}");
                 assert!(suns.is_empty(), "{w}: sun not diffused");
@@ -121,8 +126,12 @@ fn weather_presets_choose_their_sky_and_source() {
             Weather::Night => {
                 assert!(matches!(scene.sky, Sky::Physical(_)));
                 assert_eq!(suns.len(), 1, "the moon");
-                // Full moon ≈ 2.5e-6 of the sun, dimmed by the atmosphere.
-                assert!(suns[0].y > 5e-4 && suns[0].y < 2.7e-3, "{:?}", suns[0]);
+                // Full moon ≈ 2.5e-6 of the sun, dimmed by the atmosphere and
+                // scaled by the drawn phase (Lambert-sphere law).
+                let moon = p.moon.expect("night draws a moon");
+                let phase = parallax::light::moon_phase_factor(moon.phase_deg) as f32;
+                let y = suns[0].y / phase;
+                assert!(y > 5e-4 && y < 2.7e-3, "{:?} / {phase}", suns[0]);
             }
         }
     }

@@ -10,8 +10,10 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use super::{parse_baselines, show, thread_pool, CliError};
 use crate::accel::{build_accel, Accel, Backend};
 use crate::camera::StereoRig;
+use crate::film::apply_sensor_noise;
 use crate::output::frame::{camera_file, write_native_frame, WriteOptions};
 use crate::render::{render_frame, RenderSettings};
+use crate::scene::desc::SensorNoiseDesc;
 use crate::scene::{build_scene, load_scene, LoadedScene};
 
 /// Arguments of `parallax render`.
@@ -68,6 +70,11 @@ pub struct RenderArgs {
     /// humid, night, storm, sunset (its drawn parameters go into the camera file).
     #[arg(long)]
     pub weather: Option<crate::weather::Weather>,
+    /// Camera sensor noise at this ISO (shot, read and PRNU noise on the
+    /// linear film, independent per view); overrides a weather preset's. 0
+    /// turns a preset's noise off.
+    #[arg(long, value_name = "ISO")]
+    pub sensor_noise: Option<f64>,
 }
 
 /// Applies command-line overrides to the loaded description and validates them.
@@ -153,12 +160,37 @@ pub fn run(a: RenderArgs) -> Result<(), CliError> {
         )));
     }
     let seed = loaded.desc.render.seed.unwrap_or_else(draw_seed);
-    let weather = a.weather.map(|w| crate::weather::draw_params(w, seed));
+    let mut weather = a.weather.map(|w| crate::weather::draw_params(w, seed));
     if let Some(p) = &weather {
         crate::weather::apply(&mut loaded.desc, p);
     }
+    let noise = sensor_noise(a.sensor_noise, weather.as_mut())?;
     let pool = thread_pool(a.threads)?;
-    pool.install(|| render_to(&loaded, &a, seed, frame, weather.as_ref()))
+    pool.install(|| render_to(&loaded, &a, seed, frame, weather.as_ref(), noise))
+}
+
+/// The frame's sensor noise: `--sensor-noise ISO` (0 = none) over the
+/// weather preset's; the choice is written back into the weather parameters
+/// so the camera file records what was applied.
+fn sensor_noise(
+    iso: Option<f64>,
+    weather: Option<&mut crate::weather::WeatherParams>,
+) -> Result<Option<SensorNoiseDesc>, CliError> {
+    let preset = weather.as_ref().and_then(|p| p.sensor_noise);
+    let noise = match iso {
+        Some(0.0) => None,
+        Some(iso) => {
+            let d = SensorNoiseDesc::at_iso(iso);
+            d.check()
+                .map_err(|e| CliError::input(format!("--sensor-noise: {e}")))?;
+            Some(d)
+        }
+        None => preset,
+    };
+    if let Some(p) = weather {
+        p.sensor_noise = noise;
+    }
+    Ok(noise)
 }
 
 fn render_to(
@@ -167,6 +199,7 @@ fn render_to(
     seed: u64,
     frame: u32,
     weather: Option<&crate::weather::WeatherParams>,
+    noise: Option<SensorNoiseDesc>,
 ) -> Result<(), CliError> {
     let started = Instant::now();
     let rig = StereoRig::from_desc(&loaded.desc.camera);
@@ -185,9 +218,13 @@ fn render_to(
     let n_views = 1 + rig.baselines_m.len();
     let pb = progress_bar(n_views as u64);
     pb.set_message(format!("{} tris", scene.triangle_count()));
-    let out = render_frame(&scene, &accel, &rig, &settings, &|done, _| {
+    let mut out = render_frame(&scene, &accel, &rig, &settings, &|done, _| {
         pb.set_position(done as u64)
     });
+    if let Some(noise) = noise {
+        let scale = out.exposure_scale;
+        apply_sensor_noise(&mut out.images, &noise.model(), scale, seed, frame);
+    }
     pb.finish_and_clear();
     let meta = camera_file(&scene, &rig, &out, &settings, weather);
     write_native_frame(

@@ -1,5 +1,6 @@
 //! Film: the per-view linear HDR radiance buffer, the frame's shared exposure,
-//! the fixed tone curve to 8-bit sRGB, and the AOV vocabulary.
+//! optional sensor noise, the fixed tone curve to 8-bit sRGB, and the AOV
+//! vocabulary.
 //!
 //! Conventions: pixels are row-major, pixel (column i, row j) at `j * width + i`,
 //! row 0 at the top of the image. Radiance is linear, in the renderer's
@@ -10,6 +11,7 @@
 mod adaptation;
 mod aov;
 mod exposure;
+mod noise;
 mod tone;
 
 pub use adaptation::{adaptation_factor, frame_exposure, CD_M2_PER_UNIT, DAYLIGHT_CD_M2};
@@ -20,6 +22,7 @@ pub use exposure::{
     auto_exposure, exposure_ev, log_average_luminance, luminance_rec709, EXPOSURE_EV_MAX,
     EXPOSURE_FLOOR_FRACTION, MIDDLE_GREY,
 };
+pub use noise::{apply_sensor_noise, NoiseKey, SensorNoise, BASE_ISO};
 pub use tone::{quantize_u8, srgb_oetf, tone_curve_aces, tonemap_to_srgb8};
 
 use glam::Vec3;

@@ -29,8 +29,9 @@ fn v3(c: [f64; 3]) -> Vec3 {
 }
 
 /// The sky of `desc` (black without one) and the disk light it brings, if its
-/// source is above the horizon.
-pub fn build_sky(desc: Option<&SkyDesc>) -> (Sky, Option<Light>) {
+/// source is above the horizon. `viewer_world` (the rig) is where the cloud
+/// deck drawn in the sky is seen from.
+pub fn build_sky(desc: Option<&SkyDesc>, viewer_world: DVec3) -> (Sky, Option<Light>) {
     let Some(desc) = desc else {
         return (Sky::Constant { le: Vec3::ZERO }, None);
     };
@@ -66,8 +67,8 @@ pub fn build_sky(desc: Option<&SkyDesc>) -> (Sky, Option<Light>) {
             cloud_cover,
             cloud_seed,
         } => {
-            let clouds =
-                (*cloud_cover > 0.0).then(|| CloudLayer::new(*cloud_cover as f32, *cloud_seed));
+            let clouds = (*cloud_cover > 0.0)
+                .then(|| CloudLayer::new(*cloud_cover as f32, *cloud_seed).seen_from(viewer_world));
             source_sky(
                 PhysicalSkyParams {
                     source_dir: dir_from_elevation_azimuth(*sun_elevation_deg, *sun_azimuth_deg)

@@ -116,7 +116,7 @@ pub fn build_scene(scene: &LoadedScene, origin_world: DVec3) -> Result<Scene, Sc
         .iter()
         .map(|s| s.center.as_vec3().extend(s.radius as f32))
         .collect::<Vec<Vec4>>();
-    let (sky, sky_light) = crate::light::build_sky(desc.sky.as_ref());
+    let (sky, sky_light) = crate::light::build_sky(desc.sky.as_ref(), origin_world);
     Ok(Scene {
         origin_world,
         meshes,

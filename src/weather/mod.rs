@@ -15,7 +15,8 @@ use std::str::FromStr;
 use serde::{Deserialize, Serialize};
 
 use crate::scene::desc::{
-    LightDesc, MediumDesc, MediumKindDesc, RainDesc, SceneDesc, SkyDesc, WetnessDesc,
+    LightDesc, MediumDesc, MediumKindDesc, RainDesc, SceneDesc, SensorNoiseDesc, SkyDesc,
+    WetnessDesc,
 };
 use crate::town::rng::Rng;
 
@@ -109,7 +110,60 @@ pub struct WeatherParams {
     pub wetness: f64,
     /// Rain rate, mm/h (0 without rain).
     pub rain_mm_per_h: f64,
+    /// The moon of the night preset (none by day): where it stands and its phase.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub moon: Option<MoonParams>,
+    /// Camera sensor noise of the preset (none: a noiseless sensor); the
+    /// dark presets (night, storm) shoot at a high ISO.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sensor_noise: Option<SensorNoiseDesc>,
 }
+
+/// The moon's place and phase, drawn independently of the sun: the phase
+/// angle follows from the sun–moon elongation ψ as α = 180° − ψ (the moon
+/// is so far that Earth's and the moon's views of the sun are parallel).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct MoonParams {
+    /// Moon elevation above the horizon, degrees.
+    pub elevation_deg: f64,
+    /// Direction towards the moon, degrees counter-clockwise from world +x.
+    pub azimuth_deg: f64,
+    /// Phase angle sun–moon–observer, degrees: 0 full, 90 half, 180 new.
+    pub phase_deg: f64,
+    /// Unit vector towards the moon, world frame (z up).
+    pub direction_world: [f64; 3],
+}
+
+impl MoonParams {
+    /// The moon at (`elevation_deg`, `azimuth_deg`) with the phase the sun at
+    /// (`sun_elevation_deg`, `sun_azimuth_deg`) gives it.
+    pub fn new(
+        elevation_deg: f64,
+        azimuth_deg: f64,
+        sun_elevation_deg: f64,
+        sun_azimuth_deg: f64,
+    ) -> Self {
+        let moon = unit_dir(elevation_deg, azimuth_deg);
+        let sun = unit_dir(sun_elevation_deg, sun_azimuth_deg);
+        let elongation_deg = moon.dot(sun).clamp(-1.0, 1.0).acos().to_degrees();
+        MoonParams {
+            elevation_deg,
+            azimuth_deg,
+            phase_deg: 180.0 - elongation_deg,
+            direction_world: moon.to_array(),
+        }
+    }
+}
+
+/// Unit world vector at elevation/azimuth in degrees (azimuth CCW from +x, z up).
+fn unit_dir(elevation_deg: f64, azimuth_deg: f64) -> glam::DVec3 {
+    let (e, a) = (elevation_deg.to_radians(), azimuth_deg.to_radians());
+    glam::DVec3::new(e.cos() * a.cos(), e.cos() * a.sin(), e.sin())
+}
+
+/// Cloud cover from which the cloudy preset is a closed overcast deck (CIE
+/// overcast sky, no sun disk); below it the deck is broken and drawn.
+pub const OVERCAST_COVER: f64 = 0.85;
 
 /// Draws the parameters of `weather` from `seed` (the same seed gives the same
 /// look; a dataset passes one seed per sequence).
@@ -143,6 +197,17 @@ pub fn draw_params(weather: Weather, seed: u64) -> WeatherParams {
         ),
         Weather::Sunset => (rng.range(-2.0, 6.0), rng.range(0.0, 0.3), None, 0.0, 0.0),
     };
+    // Drawn after the shared draws, so adding them left the other parameters
+    // of every preset unchanged.
+    let moon = (weather == Weather::Night).then(|| {
+        let (moon_elevation, moon_azimuth) = (rng.range(12.0, 65.0), rng.range(0.0, 360.0));
+        MoonParams::new(moon_elevation, moon_azimuth, elevation, azimuth)
+    });
+    let sensor_noise = match weather {
+        Weather::Night => Some(SensorNoiseDesc::at_iso(rng.range(800.0, 3200.0).round())),
+        Weather::Storm => Some(SensorNoiseDesc::at_iso(rng.range(200.0, 800.0).round())),
+        _ => None,
+    };
     WeatherParams {
         preset: weather,
         sun_elevation_deg: elevation,
@@ -151,22 +216,46 @@ pub fn draw_params(weather: Weather, seed: u64) -> WeatherParams {
         visibility_m: visibility,
         wetness,
         rain_mm_per_h: rain,
+        moon,
+        sensor_noise,
     }
 }
 
 /// Replaces the sun(s) and sky of `desc` with the weather's: the physical
 /// sky (which brings the sun, red and dim at sunset, none once set, and a
 /// world-fixed cloud deck of the drawn cover) for clear, sunset, humid and
-/// foggy; the CIE overcast sky, sun diffused, for cloudy and storm; the night
-/// sky with a full moon opposite the sun for night. Point, spot and emissive
+/// foggy, and for cloudy with broken cover (below `OVERCAST_COVER`); the CIE
+/// overcast sky, sun diffused, for closed cloudy and storm; the night
+/// sky with the drawn moon (phase from its angle to the sun) for night. Point, spot and emissive
 /// lights of the scene stay (street lights, vehicle lights). Humid and storm
 /// also set `[wetness]` (wet roads, puddles); every other preset leaves the
 /// scene dry.
 pub fn apply(desc: &mut SceneDesc, p: &WeatherParams) {
     desc.lights.retain(|l| !matches!(l, LightDesc::Sun { .. }));
     let seed = pattern_seed(p);
+    // Parameters drawn before the moon existed (or by hand) get the full
+    // moon opposite the sun they always had.
+    let moon = p.moon.unwrap_or_else(|| {
+        MoonParams::new(
+            -p.sun_elevation_deg,
+            (p.sun_azimuth_deg + 180.0) % 360.0,
+            p.sun_elevation_deg,
+            p.sun_azimuth_deg,
+        )
+    });
+    // Broken cloud (cloudy below `OVERCAST_COVER`) is the physical sky with
+    // its deck: clouds drawn in the sky, sun through the gaps.
+    let broken = p.preset == Weather::Cloudy && p.cloud_cover < OVERCAST_COVER;
     desc.sky = Some(match p.preset {
         Weather::Clear | Weather::Sunset | Weather::Humid | Weather::Foggy => SkyDesc::Physical {
+            sun_elevation_deg: p.sun_elevation_deg,
+            sun_azimuth_deg: p.sun_azimuth_deg,
+            turbidity: turbidity(p.preset),
+            ground_albedo: 0.1,
+            cloud_cover: p.cloud_cover,
+            cloud_seed: seed,
+        },
+        Weather::Cloudy if broken => SkyDesc::Physical {
             sun_elevation_deg: p.sun_elevation_deg,
             sun_azimuth_deg: p.sun_azimuth_deg,
             turbidity: turbidity(p.preset),
@@ -183,9 +272,9 @@ pub fn apply(desc: &mut SceneDesc, p: &WeatherParams) {
             ground_albedo: 0.1,
         },
         Weather::Night => SkyDesc::Night {
-            moon_elevation_deg: -p.sun_elevation_deg,
-            moon_azimuth_deg: (p.sun_azimuth_deg + 180.0) % 360.0,
-            moon_phase_deg: 0.0,
+            moon_elevation_deg: moon.elevation_deg,
+            moon_azimuth_deg: moon.azimuth_deg,
+            moon_phase_deg: moon.phase_deg,
             sky_glow: 2e-5,
             stars: true,
             star_seed: seed,
@@ -195,7 +284,7 @@ pub fn apply(desc: &mut SceneDesc, p: &WeatherParams) {
     desc.medium = p.visibility_m.map(|v| haze(p.preset, v));
     desc.rain = (p.rain_mm_per_h > 0.0).then_some(RainDesc {
         rate_mm_per_h: p.rain_mm_per_h,
-        shutter_s: 0.01,
+        shutter_s: 1.0 / 60.0,
         fall_speed_m_per_s: 9.0,
         drop_diameter_mm: 2.5,
         density_scale: 1.0,
@@ -247,4 +336,64 @@ fn turbidity(w: Weather) -> f64 {
 fn pattern_seed(p: &WeatherParams) -> u32 {
     let h = p.sun_azimuth_deg.to_bits() ^ p.sun_elevation_deg.to_bits().rotate_left(17);
     (h ^ (h >> 32)) as u32
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn moon_phase_follows_the_sun_moon_angle() {
+        // Opposite the sun: full; a quarter turn away: half; next to it: new.
+        let full = MoonParams::new(30.0, 200.0, -30.0, 20.0);
+        assert!(full.phase_deg.abs() < 1e-9, "{full:?}");
+        let half = MoonParams::new(0.0, 90.0, 0.0, 0.0);
+        assert!((half.phase_deg - 90.0).abs() < 1e-9);
+        let new = MoonParams::new(10.0, 45.0, 10.0, 45.0);
+        assert!((new.phase_deg - 180.0).abs() < 1e-6);
+        let d = glam::DVec3::from(half.direction_world);
+        assert!((d - glam::DVec3::Y).length() < 1e-12);
+    }
+
+    #[test]
+    fn night_moon_is_drawn_above_the_horizon_and_not_always_full() {
+        let mut phases = Vec::new();
+        for seed in 0..40 {
+            let p = draw_params(Weather::Night, seed);
+            let m = p.moon.expect("night has a moon");
+            assert!((12.0..=65.0).contains(&m.elevation_deg));
+            let again = MoonParams::new(
+                m.elevation_deg,
+                m.azimuth_deg,
+                p.sun_elevation_deg,
+                p.sun_azimuth_deg,
+            );
+            assert_eq!(again, m);
+            phases.push(m.phase_deg);
+            let mut desc: SceneDesc =
+                toml::from_str("[camera]\nposition = [0.0, 0.0, 1.5]\n").unwrap();
+            apply(&mut desc, &p);
+            let Some(SkyDesc::Night {
+                moon_elevation_deg,
+                moon_azimuth_deg,
+                moon_phase_deg,
+                ..
+            }) = desc.sky
+            else {
+                panic!("night sky expected");
+            };
+            assert_eq!(
+                (moon_elevation_deg, moon_azimuth_deg, moon_phase_deg),
+                (m.elevation_deg, m.azimuth_deg, m.phase_deg)
+            );
+        }
+        let (lo, hi) = phases
+            .iter()
+            .fold((f64::MAX, f64::MIN), |(a, b), &x| (a.min(x), b.max(x)));
+        assert!(lo < 40.0 && hi > 90.0, "phases {lo}..{hi}");
+        assert!(Weather::ALL
+            .iter()
+            .filter(|&&w| w != Weather::Night)
+            .all(|&w| draw_params(w, 3).moon.is_none()));
+    }
 }

@@ -324,4 +324,29 @@ mod tests {
         let h = rain.intersect(o, DVec3::X, 0.0, 10.0).expect("hit");
         assert!(h.t <= 5.0 - rain.drop_radius_m + 1e-9, "{h:?}");
     }
+
+    #[test]
+    fn streak_is_hit_along_its_whole_length_and_missed_past_its_ends() {
+        let rain = Rain::new(20.0, 0.15, 0.001, 30.0, DVec3::ZERO, 5);
+        let c = [0, 2, 0];
+        let s = rain.streaks(c).next().expect("a streak");
+        let len = rain.streak_length_m;
+        // Horizontal rays aimed at the axis from 4 m away, at heights along it.
+        for k in 0..=10 {
+            let z = s.z - len * (0.02 + 0.96 * k as f64 / 10.0);
+            let o = DVec3::new(s.x - 4.0, s.y, z);
+            let h = rain
+                .hit_streak(o, DVec3::X, s)
+                .expect("hit along the streak");
+            assert!((h.t - (4.0 - rain.drop_radius_m)).abs() < 1e-9);
+            assert!((h.t_far - h.t - 2.0 * rain.drop_radius_m).abs() < 1e-9);
+        }
+        for z in [s.z + 0.01, s.z - len - 0.01] {
+            let o = DVec3::new(s.x - 4.0, s.y, z);
+            assert!(rain.hit_streak(o, DVec3::X, s).is_none(), "z {z}");
+        }
+        // Aimed beside the axis by more than the radius: a miss.
+        let o = DVec3::new(s.x - 4.0, s.y + 1.5 * rain.drop_radius_m, s.z - 0.5 * len);
+        assert!(rain.hit_streak(o, DVec3::X, s).is_none());
+    }
 }

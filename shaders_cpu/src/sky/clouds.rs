@@ -2,6 +2,11 @@
 //! altitude whose opacity is fractal value noise of world (x, y). The sun's
 //! transmittance through it depends only on the world position of the shaded
 //! point and the sun direction, so every view of a frame sees the same shadows.
+//! The same deck is drawn in the sky: a view ray from the frame's viewer
+//! pierces it where a shadow ray towards that direction would, so the clouds
+//! seen overhead are the ones that cast the shadows. Towards the horizon the
+//! pierce point runs tens of km out and the pattern fades to its mean cover
+//! (the distant deck is below a pixel and would only alias).
 //!
 //! World metres, z up; f64 positions so kilometres from the origin stay exact.
 
@@ -20,7 +25,14 @@ pub struct CloudLayer {
     pub min_transmittance: f32,
     /// Noise seed (one per sequence keeps the pattern fixed over a video).
     pub seed: u32,
+    /// World position the sky is seen from (the frame's rig), metres.
+    pub viewer_world: DVec3,
 }
+
+/// Below this |dir.z| the drawn deck is its mean cover; above `FADE_END` the
+/// full pattern (sin⁻¹ 0.03 ≈ 1.7°, sin⁻¹ 0.12 ≈ 6.9°).
+const FADE_START: f32 = 0.03;
+const FADE_END: f32 = 0.12;
 
 impl CloudLayer {
     /// A deck at 1500 m with ~1 km clouds passing 15% of the sun where thick.
@@ -31,7 +43,34 @@ impl CloudLayer {
             feature_m: 1200.0,
             min_transmittance: 0.15,
             seed,
+            viewer_world: DVec3::ZERO,
         }
+    }
+
+    /// The same deck seen from `viewer_world` (the frame's rig position).
+    pub fn seen_from(self, viewer_world: DVec3) -> Self {
+        CloudLayer {
+            viewer_world,
+            ..self
+        }
+    }
+
+    /// Opacity of the deck drawn in the sky along world direction `dir`
+    /// (unit, z up), 0–1: the deck's opacity where the ray from the viewer
+    /// pierces it, blended to the mean `cover` near and below the horizon.
+    pub fn sky_opacity(&self, dir: Vec3) -> f32 {
+        let dz = dir.z;
+        if self.cover <= 0.0 {
+            return 0.0;
+        }
+        if dz <= FADE_START || self.viewer_world.z >= self.altitude_m {
+            return self.cover;
+        }
+        let t = (self.altitude_m - self.viewer_world.z) / dz as f64;
+        let q = self.viewer_world + dir.as_dvec3() * t;
+        let w = ((dz - FADE_START) / (FADE_END - FADE_START)).clamp(0.0, 1.0);
+        let w = w * w * (3.0 - 2.0 * w);
+        self.cover + (self.opacity(q.truncate()) - self.cover) * w
     }
 
     /// Opacity of the deck at world (x, y), 0 (clear) – 1 (thick cloud).
@@ -93,4 +132,35 @@ pub(super) fn hash(x: i64, y: i64, seed: u32) -> f64 {
     z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
     z ^= z >> 31;
     (z >> 11) as f64 / (1u64 << 53) as f64
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sky_opacity_is_the_shadow_casters_opacity() {
+        // A point on the ground under the viewer's line of sight: its shadow
+        // towards `dir` and the viewer's sky along `dir` meet the same cloud.
+        let layer = CloudLayer::new(0.5, 9).seen_from(DVec3::new(3000.0, -700.0, 1.6));
+        let mut cloudy = 0;
+        for k in 0..64 {
+            let a = k as f32 * 0.37;
+            let dir = Vec3::new(0.5 * a.cos(), 0.5 * a.sin(), 0.866).normalize();
+            let o = layer.sky_opacity(dir);
+            let tr = layer.transmittance(layer.viewer_world, dir);
+            let expect = 1.0 - o * (1.0 - layer.min_transmittance);
+            assert!((tr - expect).abs() < 1e-6, "{dir}: {o} vs {tr}");
+            cloudy += (o > 0.5) as i32;
+        }
+        assert!((5..59).contains(&cloudy), "{cloudy} of 64 cloudy");
+    }
+
+    #[test]
+    fn sky_opacity_fades_to_cover_at_the_horizon_and_is_zero_when_clear() {
+        let layer = CloudLayer::new(0.4, 2);
+        assert_eq!(layer.sky_opacity(Vec3::X), 0.4);
+        assert_eq!(layer.sky_opacity(-Vec3::Z), 0.4);
+        assert_eq!(CloudLayer::new(0.0, 2).sky_opacity(Vec3::Z), 0.0);
+    }
 }

@@ -4,9 +4,11 @@
 //! optional world-fixed cloud layer, and the sampling distribution.
 //!
 //! World directions, z up; the source's azimuth rotates the sky-view table.
-//! Partial cloud brightens and greys the sky towards an overcast deck lit by
-//! the clear sky's horizontal irradiance (uniformly: the cloud shapes shade
-//! the ground but are not drawn in the sky).
+//! Partial cloud: where the world-fixed deck is opaque along a view ray the
+//! clear sky gives way to an overcast deck lit by the clear sky's horizontal
+//! irradiance, so the cloud shapes that shade the ground are drawn in the
+//! sky (`CloudLayer::sky_opacity`); the sky's mean stays that of a uniform
+//! blend by the cover fraction.
 
 use super::atmosphere::{sun_visibility, Atmosphere, TransmittanceLut, EARTH_RADIUS_M};
 use super::clouds::CloudLayer;
@@ -97,15 +99,14 @@ impl PhysicalSky {
             source_irradiance_ground: ground.as_vec3(),
             dist: SkyDistribution::new(|_| Vec3::ONE),
         };
-        if let Some(c) = params.clouds.filter(|c| c.cover > 0.0) {
+        if params.clouds.is_some_and(|c| c.cover > 0.0) {
             // The deck scatters what reaches it: the clear sky's diffuse
             // horizontal irradiance plus the direct sun's.
             let e = sky.clear_horizontal_irradiance() + sky.source_irradiance_ground * s.z.max(0.0);
-            let deck = OvercastSky::from_irradiance(e * 0.6, atmo.ground_albedo as f32);
-            sky.overcast = Some(OvercastSky {
-                zenith: deck.zenith * c.cover,
-                ground: deck.ground * c.cover,
-            });
+            sky.overcast = Some(OvercastSky::from_irradiance(
+                e * 0.6,
+                atmo.ground_albedo as f32,
+            ));
         }
         sky.dist = SkyDistribution::new(|d| sky.le(d));
         sky
@@ -122,9 +123,9 @@ impl PhysicalSky {
         // Rotate so the source lies at azimuth 0 of the table.
         let local = Vec3::new(c * dir.x + s * dir.y, -s * dir.x + c * dir.y, dir.z);
         let mut l = self.view.lookup(local);
-        if let Some(o) = &self.overcast {
-            let cover = self.params.clouds.map_or(0.0, |c| c.cover);
-            l = l * (1.0 - cover) + o.le(dir);
+        if let (Some(o), Some(c)) = (&self.overcast, &self.params.clouds) {
+            let a = c.sky_opacity(dir);
+            l = l * (1.0 - a) + o.le(dir) * a;
         }
         if let Some(g) = &self.params.glow {
             l += g.le(dir);

@@ -9,6 +9,7 @@ mod light;
 mod material;
 mod medium;
 mod object;
+mod sensor;
 mod wetness;
 
 pub use light::{LightDesc, SkyDesc};
@@ -18,6 +19,7 @@ pub use material::{
 };
 pub use medium::{build_medium, build_rain, MediumDesc, MediumKindDesc, RainDesc};
 pub use object::{ObjectDesc, PrefabDesc, RepeatDesc, ScaleDesc, ShapeDesc, TransformDesc};
+pub use sensor::SensorNoiseDesc;
 pub use wetness::WetnessDesc;
 
 use serde::{Deserialize, Serialize};
