@@ -13,6 +13,7 @@ use super::manifest::{DisparityRecord, ManifestLine, RenderRecord};
 use super::plan::{frame_seed, sequence_seed, town_frame, town_seed, Job};
 use crate::accel::{build_accel, Backend};
 use crate::camera::StereoRig;
+use crate::film::apply_sensor_noise;
 use crate::output::frame::{camera_file, write_native_frame, CameraFile, WriteOptions};
 use crate::output::FileRecord;
 use crate::render::{render_frame, FrameOutput, RenderSettings};
@@ -124,7 +125,11 @@ pub fn render_job(
         seed,
         frame: job.frame,
     };
-    let out = render_frame(&scene, &accel, &rig, &settings, progress);
+    let mut out = render_frame(&scene, &accel, &rig, &settings, progress);
+    if let Some(noise) = &weather.sensor_noise {
+        let scale = out.exposure_scale;
+        apply_sensor_noise(&mut out.images, &noise.model(), scale, seed, job.frame);
+    }
     let meta = camera_file(&scene, &rig, &out, &settings, Some(&weather));
     Ok(RenderedFrame {
         rig,

@@ -36,7 +36,9 @@ pub struct CameraFile {
     pub exposure_scale: f32,
     /// Exposure in EV (log2 of the scale).
     pub exposure_ev: f32,
-    /// Unit vector towards the (first) sun in world coordinates, if the scene has one.
+    /// Unit vector towards the (first) sun in world coordinates, if the scene
+    /// has one; null under a weather preset's night sky, whose only
+    /// directional light is the moon (recorded in `weather.moon`).
     pub sun_direction_world: Option<[f64; 3]>,
     /// Weather preset and its drawn parameters; null when the frame uses the
     /// scene's own sky and lights (no preset applied).
@@ -169,10 +171,14 @@ pub fn camera_file(
             .collect(),
         exposure_scale: out.exposure_scale,
         exposure_ev: out.exposure_scale.log2(),
-        sun_direction_world: scene.lights.iter().find_map(|l| match l {
-            Light::Sun { dir_to_sun, .. } => Some(dir_to_sun.as_dvec3().to_array()),
-            _ => None,
-        }),
+        sun_direction_world: scene
+            .lights
+            .iter()
+            .find_map(|l| match l {
+                Light::Sun { dir_to_sun, .. } => Some(dir_to_sun.as_dvec3().to_array()),
+                _ => None,
+            })
+            .filter(|_| weather.is_none_or(|w| w.moon.is_none())),
         weather: weather.cloned(),
         seed: settings.seed,
         frame: settings.frame,
