@@ -276,16 +276,6 @@ impl LightSet {
         }
     }
 
-    /// The first `MAX_DISTANT` suns as (direction to the sun, luminance of
-    /// its irradiance), zero-filled: what an in-scattering guide needs.
-    pub fn guide_suns(&self) -> [(Vec3, f32); MAX_DISTANT] {
-        let mut out = [(Vec3::Z, 0.0); MAX_DISTANT];
-        for (o, sun) in out.iter_mut().zip(&self.suns) {
-            *o = (sun.axis, luminance(sun.le) * uniform_cone_solid_angle(sun.cos_max));
-        }
-        out
-    }
-
     /// Pdf per solid angle (with pmf) that NEE from `p` draws sky direction `dir`.
     pub fn sky_pdf(&self, scene: &Scene, p: Vec3, dir: Vec3) -> f32 {
         match &self.fog_sky {
@@ -417,11 +407,6 @@ impl LightSet {
         }
         self.pmf_at(p, idx as usize) * dist2 / (cos_l * area)
     }
-}
-
-/// Solid angle of a cone of half-angle cosine `cos_max`.
-fn uniform_cone_solid_angle(cos_max: f32) -> f32 {
-    2.0 * std::f32::consts::PI * (1.0 - cos_max)
 }
 
 /// Samples one entry with selection probability `pmf`.

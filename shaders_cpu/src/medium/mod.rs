@@ -11,12 +11,10 @@
 //! directions unit; arithmetic inside is f64.
 
 mod equiangular;
-mod guide;
 mod phase;
 mod rain;
 
 pub use equiangular::Equiangular;
-pub use guide::{GuideSample, GuideSun, SegmentGuide};
 pub use phase::{hg, HenyeyGreenstein, PhaseSample};
 pub use rain::{fresnel_dielectric, marshall_palmer_count, DropEvent, Rain, StreakHit, WATER_ETA};
 
