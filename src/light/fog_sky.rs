@@ -47,13 +47,15 @@ impl FogSky {
             let s = depth(k);
             // The largest Tr over the row (at its highest z); below the
             // horizon the ground takes the ray, so only the floor remains.
-            tables.push(clear.reweighted(|_, z_hi| {
-                if z_hi <= 0.0 {
-                    0.0
-                } else {
-                    (-s / z_hi).exp()
-                }
-            }));
+            tables.push(clear.reweighted(
+                |_, z_hi| {
+                    if z_hi <= 0.0 {
+                        0.0
+                    } else {
+                        (-s / z_hi).exp()
+                    }
+                },
+            ));
         }
         tables.insert(0, clear);
         FogSky { medium, tables }
@@ -114,7 +116,10 @@ mod tests {
             let k = fs.tables.iter().position(|x| std::ptr::eq(x, t)).unwrap();
             assert!(depth(k) <= s * (1.0 + 1e-6), "z {z}: level {k} s {s}");
             if k < LEVELS {
-                assert!(depth(k + 1) > s, "z {z}: level {k} s {s} is not the deepest");
+                assert!(
+                    depth(k + 1) > s,
+                    "z {z}: level {k} s {s} is not the deepest"
+                );
             }
         }
     }
@@ -141,7 +146,12 @@ mod tests {
         // (e^{-1.2/0.05}·10 ≈ 0), unlike the clear table.
         let up = Vec3::new(0.0, 0.0, 1.0);
         let side = Vec3::new(1.0, 0.0, 0.03).normalize();
-        assert!(t.pdf(up) > 20.0 * t.pdf(side), "{} {}", t.pdf(up), t.pdf(side));
+        assert!(
+            t.pdf(up) > 20.0 * t.pdf(side),
+            "{} {}",
+            t.pdf(up),
+            t.pdf(side)
+        );
         let clear = &fs.tables[0];
         assert!(clear.pdf(side) > clear.pdf(up));
     }
