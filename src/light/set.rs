@@ -16,6 +16,7 @@ use shaders_cpu::sampling::{
 };
 
 use super::bvh::{LightBounds, LightBvh};
+use super::fog_sky::FogSky;
 use super::{power, sample_explicit, sun_radiance, Light};
 use crate::scene::Scene;
 
@@ -78,6 +79,8 @@ pub struct LightSet {
     p_suns: f32,
     /// pmf of the sky (1 when it emits, else 0).
     sky_pmf: f32,
+    /// Sky tables weighted by the fog's transmittance (scenes with a medium).
+    fog_sky: Option<FogSky>,
     /// Every sun, for rays that escape into one.
     suns: Vec<SunDisk>,
     /// Per mesh, the entry index of each triangle (empty for non-emissive meshes).
@@ -225,6 +228,10 @@ impl LightSet {
             local_suns,
             p_suns,
             sky_pmf: if sky_emits { 1.0 } else { 0.0 },
+            fog_sky: scene
+                .medium
+                .filter(|_| sky_emits)
+                .map(|m| FogSky::new(m, |d| scene.sky.le(d))),
             suns,
             tri_entry,
         }
@@ -251,8 +258,30 @@ impl LightSet {
     }
 
     /// Samples distant light `k` (< `distant_count()`) as seen from `p`.
+    /// Under fog the sky is drawn ∝ its luminance times the fog's
+    /// transmittance from `p` (see `fog_sky.rs`).
     pub fn sample_distant(&self, scene: &Scene, k: usize, p: Vec3, u: Vec2) -> Option<LightSample> {
-        sample_entry(scene, &self.distant[k], 1.0, p, u)
+        match (&self.distant[k], &self.fog_sky) {
+            (Entry::Sky, Some(fs)) => {
+                let (wi, pdf) = fs.table_at(p).sample(u);
+                (pdf > 0.0).then(|| LightSample {
+                    wi,
+                    li: scene.sky.le(wi),
+                    pdf,
+                    dist: f32::INFINITY,
+                    delta: false,
+                })
+            }
+            (entry, _) => sample_entry(scene, entry, 1.0, p, u),
+        }
+    }
+
+    /// Pdf per solid angle (with pmf) that NEE from `p` draws sky direction `dir`.
+    pub fn sky_pdf(&self, scene: &Scene, p: Vec3, dir: Vec3) -> f32 {
+        match &self.fog_sky {
+            Some(fs) => self.sky_pmf * fs.table_at(p).pdf(dir),
+            None => self.sky_pmf * scene.sky.pdf(dir),
+        }
     }
 
     /// Which selection the set uses for [`LightSet::sample`].
@@ -343,7 +372,7 @@ impl LightSet {
         };
         let mut l = scene.sky.le(dir);
         if !prev_delta && l != Vec3::ZERO {
-            l *= weight(self.sky_pmf * scene.sky.pdf(dir));
+            l *= weight(self.sky_pdf(scene, p, dir));
         }
         for sun in &self.suns {
             if dir.dot(sun.axis) >= sun.cos_max {

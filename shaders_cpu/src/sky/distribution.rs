@@ -25,6 +25,8 @@ pub struct SkyDistribution {
     pmf: Vec<f32>,
     /// (1/4π)∫ le dω estimated on the grid (exact for piecewise-constant le).
     mean_le: Vec3,
+    /// Mean luminance of each cell before the floor (row-major, z then φ).
+    cell_lum: Vec<f32>,
 }
 
 impl SkyDistribution {
@@ -48,6 +50,30 @@ impl SkyDistribution {
                 w[j * nphi + i] = acc / 4.0;
             }
         }
+        let cell_lum = w.iter().map(|&x| x as f32).collect();
+        Self::from_weights(w, (sum_le / (4 * nz * nphi) as f64).as_vec3(), cell_lum)
+    }
+
+    /// The same sky with each cell's luminance multiplied by
+    /// `row_weight(z_lo, z_hi)` (≥ 0) of its row's z = cos θ range, e.g. the
+    /// largest transmittance through fog over the row. The 1 % floor is
+    /// taken from the reweighted mean, so the pdf stays positive everywhere.
+    pub fn reweighted(&self, row_weight: impl Fn(f32, f32) -> f32) -> Self {
+        let (nz, nphi) = GRID;
+        let mut w = Vec::with_capacity(nz * nphi);
+        for j in 0..nz {
+            let z_lo = 2.0 * j as f32 / nz as f32 - 1.0;
+            let z_hi = 2.0 * (j + 1) as f32 / nz as f32 - 1.0;
+            let k = row_weight(z_lo, z_hi).max(0.0) as f64;
+            let row = &self.cell_lum[j * nphi..(j + 1) * nphi];
+            w.extend(row.iter().map(|&x| x as f64 * k));
+        }
+        Self::from_weights(w, self.mean_le, self.cell_lum.clone())
+    }
+
+    /// Builds the cdfs from per-cell weights `w` (≥ 0), adding the floor.
+    fn from_weights(mut w: Vec<f64>, mean_le: Vec3, cell_lum: Vec<f32>) -> Self {
+        let (nz, nphi) = GRID;
         let mean = w.iter().sum::<f64>() / w.len() as f64;
         let floor = if mean > 0.0 { 0.01 * mean } else { 1.0 };
         w.iter_mut().for_each(|x| *x += floor);
@@ -71,7 +97,8 @@ impl SkyDistribution {
             marginal,
             conditional,
             pmf,
-            mean_le: (sum_le / (4 * nz * nphi) as f64).as_vec3(),
+            mean_le,
+            cell_lum,
         }
     }
 
