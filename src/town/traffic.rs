@@ -5,7 +5,8 @@
 //! speed profile s(τ) (`profile`: slower in curves, accelerating out) at
 //! its own time offset c_n: s_n(t) = s(ρ_r·G(t) + c_n), where G is one
 //! town-wide stop-and-go clock (ramp up, drive, ramp down, stand) and ρ_r
-//! ≤ 1 scales the route so it advances exactly 1/m_r lap per cycle. The
+//! ≤ 1 scales the route so it advances exactly 1/m_r lap per cycle; the
+//! ring (on the outer roads, without crossers) ignores the clock. The
 //! pose of every object at frame K is a pure function of (desc, seed, K).
 //!
 //! No overlap, by construction: routes share no road surface (each lane
@@ -377,7 +378,12 @@ pub fn frame_at(desc: &TownDesc, seed: u64, frame: u64) -> TownFrame {
     let mut vehicles = Vec::new();
     let mut next_id = 1u32;
     for (ri, rp) in plan.routes.iter().enumerate() {
-        let tau = rp.rate * driven;
+        // The ring never stands (it meets no crosswalk that pedestrians
+        // use): its vehicles drive on while the block loops wait.
+        let tau = match rp.route.kind {
+            RouteKind::Ring => t,
+            RouteKind::Block { .. } => rp.rate * driven,
+        };
         for (n, &(offset, open)) in rp.slots.iter().enumerate() {
             let id = next_id;
             next_id += 1;

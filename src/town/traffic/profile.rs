@@ -127,3 +127,69 @@ impl SpeedProfile {
             .fold(f64::INFINITY, f64::min)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::town::layout::Layout;
+    use crate::town::routes::{routes, Turns};
+
+    fn plain_loop() -> Route {
+        let l = Layout {
+            nx: 1,
+            ny: 1,
+            pitch_m: 90.0,
+            road_w_m: 7.0,
+            lane_w_m: 3.5,
+            lanes: 1,
+            sidewalk_m: 4.0,
+            sidewalks: true,
+            river_row: None,
+            roundabout: None,
+        };
+        routes(&l, &Turns::new(3.5)).remove(0)
+    }
+
+    const LIM: Limits = Limits {
+        v_max_mps: 15.0,
+        a_lat_mps2: 3.0,
+        a_lon_mps2: 3.0,
+    };
+
+    #[test]
+    fn speed_respects_lateral_and_longitudinal_limits() {
+        let route = plain_loop();
+        let p = SpeedProfile::new(&route, LIM);
+        let n = p.speed_mps.len();
+        for k in 0..n {
+            let s = k as f64 * p.step_m;
+            let v = p.speed_mps[k];
+            let kappa = route.curvature(s);
+            assert!(v <= LIM.v_max_mps + 1e-12);
+            assert!(
+                v * v * kappa <= LIM.a_lat_mps2 + 1e-9,
+                "{v} m/s at κ {kappa}"
+            );
+            let w = p.speed_mps[(k + 1) % n];
+            assert!((w * w - v * v).abs() <= 2.0 * LIM.a_lon_mps2 * p.step_m + 1e-9);
+        }
+        // Full speed somewhere on a 80 m straight, a crawl in the corners.
+        assert!(p.speed_mps.iter().any(|&v| v == LIM.v_max_mps));
+        let r = 1.0 / route.segments[1].curvature();
+        let corner = route.starts_m[1] + route.segments[1].length_m() / 2.0;
+        assert!((p.speed_mps(corner) - (LIM.a_lat_mps2 * r).sqrt()).abs() < 1e-6);
+    }
+
+    #[test]
+    fn arc_at_inverts_time_at() {
+        let p = SpeedProfile::new(&plain_loop(), LIM);
+        for k in 0..500 {
+            let s = p.length_m * k as f64 / 500.0;
+            let back = p.arc_at(p.time_at(s));
+            assert!((back - s).abs() < 1e-9, "{s} → {back}");
+        }
+        // Whole laps add the length.
+        let t = 0.37 * p.lap_s();
+        assert!((p.arc_at(t + 3.0 * p.lap_s()) - p.arc_at(t) - 3.0 * p.length_m).abs() < 1e-6);
+    }
+}
