@@ -174,7 +174,7 @@ mod tests {
             assert!((w * w - v * v).abs() <= 2.0 * LIM.a_lon_mps2 * p.step_m + 1e-9);
         }
         // Full speed somewhere on a 80 m straight, a crawl in the corners.
-        assert!(p.speed_mps.iter().any(|&v| v == LIM.v_max_mps));
+        assert!(p.speed_mps.contains(&LIM.v_max_mps));
         let r = 1.0 / route.segments[1].curvature();
         let corner = route.starts_m[1] + route.segments[1].length_m() / 2.0;
         assert!((p.speed_mps(corner) - (LIM.a_lat_mps2 * r).sqrt()).abs() < 1e-6);
