@@ -8,7 +8,7 @@
 use std::path::Path;
 
 use parallax::town::layout::{Layout, Rect};
-use parallax::town::traffic::{Schedule, VehiclePose};
+use parallax::town::traffic::{Plan, VehiclePose};
 use parallax::town::{frame_at, load_town};
 
 const TOWNS: [&str; 8] = [
@@ -57,8 +57,16 @@ fn overlaps(vs: &[&VehiclePose]) -> Vec<(u32, u32)> {
     out
 }
 
-/// Whether the footprint's outline (sampled every 10 cm) lies on roads.
-fn on_road(roads: &[Rect], v: &VehiclePose) -> bool {
+/// Whether the footprint's outline (sampled every 10 cm) lies on roads or
+/// on the roundabout's ring (between its island and outer kerb).
+fn on_road(l: &Layout, roads: &[Rect], v: &VehiclePose) -> bool {
+    let ring = |x: f64, y: f64| {
+        l.roundabout_center().is_some_and(|c| {
+            let (r_in, r_out) = l.roundabout_radii();
+            let d = (x - c[0]).hypot(y - c[1]);
+            d >= r_in && d <= r_out
+        })
+    };
     let c = v.corners();
     (0..4).all(|k| {
         let (p, q) = (c[k], c[(k + 1) % 4]);
@@ -67,7 +75,7 @@ fn on_road(roads: &[Rect], v: &VehiclePose) -> bool {
             let x = p[0] + (q[0] - p[0]) * u;
             let y = p[1] + (q[1] - p[1]) * u;
             let at = Rect::centered([x, y], [0.0, 0.0]);
-            roads.iter().any(|r| r.contains(&at, 1e-6))
+            roads.iter().any(|r| r.contains(&at, 1e-6)) || ring(x, y)
         })
     })
 }
@@ -95,7 +103,7 @@ fn vehicles_never_overlap_stay_on_the_road_turn_and_stop_for_300_frames() {
         let desc = load_town(&path).unwrap_or_else(|e| panic!("{e}"));
         let layout = Layout::new(&desc);
         let roads = layout.road_rects();
-        let sched = Schedule::new(&desc);
+        let sched = Plan::new(&desc).schedule.clone();
         let v_max = sched.speed_mps / desc.fps;
         let frames: Vec<_> = (0..300u64).map(|k| frame_at(&desc, 11, k)).collect();
         let (mut min_count, mut crossing, mut stopped_at_line) = (usize::MAX, 0, 0);
@@ -110,7 +118,7 @@ fn vehicles_never_overlap_stay_on_the_road_turn_and_stop_for_300_frames() {
             );
             for v in &all {
                 assert!(
-                    on_road(&roads, v),
+                    on_road(&layout, &roads, v),
                     "{name} frame {k}: vehicle {} off the road at {:?} heading {}",
                     v.id,
                     v.position,

@@ -54,8 +54,9 @@ pub struct TownDesc {
     #[serde(default)]
     pub river: bool,
     /// A roundabout in place of the most central cross junction (default
-    /// false; needs 2 × 3 blocks or more and blocks ≥ 80 m). It is
-    /// static: traffic routes and pedestrians keep away from it.
+    /// false; needs 2 × 3 blocks or more and blocks ≥ 80 m). Traffic of
+    /// the four blocks around it turns right round the ring; pedestrians
+    /// keep away from it.
     #[serde(default)]
     pub roundabout: bool,
     /// Ground cover between and around the blocks.

@@ -4,9 +4,9 @@
 //! approach arms. The arms end where their kerbs meet the ring and carry a
 //! dashed yield line there (see `roads`).
 //!
-//! Static geometry: no route enters the ring (the four block loops with a
-//! corner here are not driven, see `routes`), so the no-overlap proof of
-//! `traffic` is untouched. Ring pieces are boxes or quads turned about z,
+//! The block loops with a corner here drive a quarter of the ring each
+//! (`routes::ring_turn`: lane k of the road on ring lane k), so routes
+//! still share no surface. Ring pieces are boxes or quads turned about z,
 //! so road surfaces stay exactly at z = 0 (the GT tests rely on it).
 
 use std::f64::consts::{FRAC_PI_2, PI};

@@ -1,9 +1,9 @@
 //! Closed vehicle routes over the road grid: every lane of every road is
-//! part of exactly one route, a rounded rectangle on the lane centreline.
-//! Block loops circle one block clockwise on the lanes beside it (right
-//! turns at every corner); the ring circles the whole town
-//! counter-clockwise on the outer lanes of the outer roads (left turns at
-//! the town corners, straight through the T junctions).
+//! part of exactly one route, a loop of straights and circular arcs on the
+//! lane centreline (right-hand traffic). Block loops circle one block
+//! clockwise on the lanes beside it (right turns at every corner); the ring
+//! circles the whole town counter-clockwise on the outer lanes of the outer
+//! roads (left turns at the town corners, straight through the T junctions).
 //!
 //! Lane k of a road (counted from the centreline) is the band [k·w, (k+1)·w]
 //! beside it, w = lane width. At a corner a route turns inside its own
@@ -12,10 +12,17 @@
 //! beyond the corridor's inner corner, and a body fits the turn when its
 //! footprint stays inside the corridor for the whole arc (`fits_turn`,
 //! checked numerically; the ladder-around-a-corner bound is 2√2·w − 2·width).
+//!
+//! At the roundabout a block loop's right turn becomes: a right-curving
+//! fillet into ring lane k, a counter-clockwise arc round the quarter of
+//! the ring between its two arms, and a mirrored fillet out (`ring_turn`).
+//! The four blocks at the roundabout use the four quarters of the ring, and
+//! lane 0 rides inside lane 1, so routes still share no surface.
 
 use std::f64::consts::{FRAC_PI_2, PI};
 
 use super::layout::Layout;
+use super::roundabout::arm_start_m;
 use super::vehicles::{BodyKind, BODIES};
 
 /// Which loop a route is.
@@ -32,86 +39,326 @@ pub enum RouteKind {
     Ring,
 }
 
-/// One closed route: a rounded rectangle on a lane centreline.
+/// One piece of a route's centreline.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Segment {
+    /// A straight from `from`, heading `heading` (radians from +x).
+    Line {
+        /// Start point, world metres.
+        from: [f64; 2],
+        /// Heading, radians counter-clockwise from +x.
+        heading: f64,
+        /// Length, metres.
+        len_m: f64,
+    },
+    /// A circular arc about `centre`, from polar angle `phi0`, turning by
+    /// `sweep` radians (positive: counter-clockwise, a left turn).
+    Arc {
+        /// Centre, world metres.
+        centre: [f64; 2],
+        /// Radius, metres.
+        radius_m: f64,
+        /// Polar angle of the start point about the centre, radians.
+        phi0: f64,
+        /// Signed turning angle, radians.
+        sweep: f64,
+    },
+}
+
+impl Segment {
+    /// Length, metres.
+    pub fn length_m(&self) -> f64 {
+        match *self {
+            Segment::Line { len_m, .. } => len_m,
+            Segment::Arc {
+                radius_m, sweep, ..
+            } => radius_m * sweep.abs(),
+        }
+    }
+
+    /// Curvature magnitude 1/r, 1/m (0 on straights).
+    pub fn curvature(&self) -> f64 {
+        match *self {
+            Segment::Line { .. } => 0.0,
+            Segment::Arc { radius_m, .. } => 1.0 / radius_m,
+        }
+    }
+
+    /// Position and heading (radians) at distance `u` ∈ [0, length] along it.
+    pub fn at(&self, u: f64) -> ([f64; 2], f64) {
+        match *self {
+            Segment::Line { from, heading, .. } => (
+                [from[0] + u * heading.cos(), from[1] + u * heading.sin()],
+                heading,
+            ),
+            Segment::Arc {
+                centre,
+                radius_m,
+                phi0,
+                sweep,
+            } => {
+                let phi = phi0 + sweep.signum() * u / radius_m;
+                let p = [
+                    centre[0] + radius_m * phi.cos(),
+                    centre[1] + radius_m * phi.sin(),
+                ];
+                (p, phi + sweep.signum() * FRAC_PI_2)
+            }
+        }
+    }
+
+    /// This segment rotated by `rot` radians about the origin, then moved by `by`.
+    fn moved(self, rot: f64, by: [f64; 2]) -> Self {
+        let turn = |p: [f64; 2]| {
+            let (s, c) = rot.sin_cos();
+            [c * p[0] - s * p[1] + by[0], s * p[0] + c * p[1] + by[1]]
+        };
+        match self {
+            Segment::Line {
+                from,
+                heading,
+                len_m,
+            } => Segment::Line {
+                from: turn(from),
+                heading: heading + rot,
+                len_m,
+            },
+            Segment::Arc {
+                centre,
+                radius_m,
+                phi0,
+                sweep,
+            } => Segment::Arc {
+                centre: turn(centre),
+                radius_m,
+                phi0: phi0 + rot,
+                sweep,
+            },
+        }
+    }
+}
+
+/// One closed route: straights and arcs on a lane centreline.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Route {
     /// Which loop.
     pub kind: RouteKind,
     /// Lane number from the centreline, 0-based.
     pub lane: u32,
-    /// Lower-left corner of the lane-centre rectangle, world metres.
-    pub min: [f64; 2],
-    /// Upper-right corner of the lane-centre rectangle, world metres.
-    pub max: [f64; 2],
-    /// Corner arc radius, metres.
-    pub radius_m: f64,
-    /// Clockwise (block loops) or counter-clockwise (the ring).
-    pub clockwise: bool,
+    /// The pieces in driving order; each starts where the previous ends.
+    pub segments: Vec<Segment>,
+    /// Arc length at the start of each segment, metres.
+    pub starts_m: Vec<f64>,
+    /// Arc-length intervals [a, b] (b may exceed the length: wrapped)
+    /// where no standing body may reach: from each stop line through the
+    /// junction to past the departing crosswalk.
+    pub keep_clear_m: Vec<[f64; 2]>,
+    /// Whether the route passes the roundabout.
+    pub roundabout: bool,
 }
 
 impl Route {
-    fn straights(&self) -> [f64; 2] {
-        let r2 = 2.0 * self.radius_m;
-        [
-            self.max[0] - self.min[0] - r2,
-            self.max[1] - self.min[1] - r2,
-        ]
-    }
-
-    /// Length of one straight side along x and along y, metres.
-    pub fn side_m(&self) -> [f64; 2] {
-        self.straights()
+    fn new(
+        kind: RouteKind,
+        lane: u32,
+        segments: Vec<Segment>,
+        keep_clear_m: Vec<[f64; 2]>,
+    ) -> Self {
+        let mut starts_m = Vec::with_capacity(segments.len());
+        let mut s = 0.0;
+        for seg in &segments {
+            starts_m.push(s);
+            s += seg.length_m();
+        }
+        let roundabout = segments.len() > 8;
+        Route {
+            kind,
+            lane,
+            segments,
+            starts_m,
+            keep_clear_m,
+            roundabout,
+        }
     }
 
     /// Perimeter, metres.
     pub fn length_m(&self) -> f64 {
-        let [lx, ly] = self.straights();
-        2.0 * (lx + ly) + 2.0 * PI * self.radius_m
+        let n = self.segments.len() - 1;
+        self.starts_m[n] + self.segments[n].length_m()
     }
 
-    /// Position (x, y) and heading (radians, counter-clockwise from +x) at
-    /// arc length `s` (wrapped). s = 0 is the start of the south side; each
-    /// side is a straight followed by its corner arc.
-    pub fn pose(&self, s: f64) -> ([f64; 2], f64) {
-        let [x0, y0] = self.min;
-        let [x1, y1] = self.max;
-        let r = self.radius_m;
-        let [lx, ly] = self.straights();
-        let mut rem = s.rem_euclid(self.length_m());
-        // The counter-clockwise parametrisation; clockwise mirrors it in x.
-        let sides = [lx, ly, lx, ly];
-        let starts = [[x0 + r, y0], [x1, y0 + r], [x1 - r, y1], [x0, y1 - r]];
-        let centres = [
-            [x1 - r, y0 + r],
-            [x1 - r, y1 - r],
-            [x0 + r, y1 - r],
-            [x0 + r, y0 + r],
-        ];
-        let mut out = (starts[0], 0.0);
-        for q in 0..4 {
-            let h = q as f64 * FRAC_PI_2;
-            if rem < sides[q] {
-                let p = starts[q];
-                out = ([p[0] + rem * h.cos(), p[1] + rem * h.sin()], h);
-                break;
-            }
-            rem -= sides[q];
-            let arc = FRAC_PI_2 * r;
-            if rem < arc || q == 3 {
-                let a = rem.min(arc) / r;
-                let phi = h - FRAC_PI_2 + a;
-                let c = centres[q];
-                out = ([c[0] + r * phi.cos(), c[1] + r * phi.sin()], h + a);
-                break;
-            }
-            rem -= arc;
-        }
-        if self.clockwise {
-            let (p, h) = out;
-            out = ([x0 + x1 - p[0], p[1]], PI - h);
-        }
-        (out.0, out.1.rem_euclid(2.0 * PI))
+    /// The segment index and distance into it at arc length `s` (wrapped).
+    fn locate(&self, s: f64) -> (usize, f64) {
+        let s = s.rem_euclid(self.length_m());
+        let k = self.starts_m.partition_point(|&a| a <= s).max(1) - 1;
+        (k, (s - self.starts_m[k]).min(self.segments[k].length_m()))
     }
+
+    /// Position (x, y) and heading (radians in [0, 2π), counter-clockwise
+    /// from +x) at arc length `s` (wrapped).
+    pub fn pose(&self, s: f64) -> ([f64; 2], f64) {
+        let (k, u) = self.locate(s);
+        let (p, h) = self.segments[k].at(u);
+        (p, h.rem_euclid(2.0 * PI))
+    }
+
+    /// Curvature magnitude 1/r at arc length `s`, 1/m.
+    pub fn curvature(&self, s: f64) -> f64 {
+        self.segments[self.locate(s).0].curvature()
+    }
+
+    /// Whether a standing body covering [s − half, s + half] stays out of
+    /// every keep-clear interval (to within 5 cm: a front exactly at the
+    /// stop line stands).
+    pub fn may_stand(&self, s: f64, half_m: f64) -> bool {
+        let len = self.length_m();
+        let tol = 0.05;
+        self.keep_clear_m.iter().all(|&[a, b]| {
+            // Distance from the interval's start to the body's rear, wrapped.
+            let rear = (s - half_m - a + tol).rem_euclid(len);
+            rear >= b - a && rear + 2.0 * (half_m - tol) <= len
+        })
+    }
+}
+
+/// Stop line distance before a junction edge (painted at 4 m), metres.
+pub const STOP_LINE_AT_M: f64 = 4.2;
+/// Past a junction edge, the end of the departing crosswalk plus 0.5 m.
+const CROSSWALK_CLEAR_M: f64 = 4.0;
+/// From the roundabout centre, where an arm's keep-clear zone begins: the
+/// arm end plus its set-back crosswalk (6–9 m) plus 1 m.
+const RING_CLEAR_EXTRA_M: f64 = 10.0;
+
+/// Radius of ring lane k's centre line (lane 0 innermost), metres.
+pub fn ring_lane_radius_m(l: &Layout, k: u32) -> f64 {
+    let (r_in, _) = l.roundabout_radii();
+    r_in + (k as f64 + 0.5) * (l.lane_w_m + 1.0)
+}
+
+/// The canonical roundabout turn of block lane `k`, roundabout centre at
+/// the origin: arriving along y = −e heading +x, leaving along x = −e
+/// heading −y (e = (k + ½)·w). Returns the three arcs and the cut a: the
+/// turn starts and ends a metres from the lane corner (−e, −e).
+///
+/// A fillet of radius ρ about F = (−√((R+ρ)² − (e+ρ)²), −e−ρ) touches the
+/// line and, externally, the ring circle of radius R at polar angle
+/// θ_in = atan2(F); the exit mirrors it about y = x (θ → π/2 − θ).
+pub fn ring_turn(l: &Layout, k: u32, rho: f64) -> ([Segment; 3], f64) {
+    let e = (k as f64 + 0.5) * l.lane_w_m;
+    let big_r = ring_lane_radius_m(l, k);
+    let fx = -((big_r + rho).powi(2) - (e + rho).powi(2)).sqrt();
+    let theta_in = (-e - rho).atan2(fx).rem_euclid(2.0 * PI);
+    let alpha = 1.5 * PI - theta_in;
+    let theta_out = 2.5 * PI - theta_in;
+    let segs = [
+        Segment::Arc {
+            centre: [fx, -e - rho],
+            radius_m: rho,
+            phi0: FRAC_PI_2,
+            sweep: -alpha,
+        },
+        Segment::Arc {
+            centre: [0.0, 0.0],
+            radius_m: big_r,
+            phi0: theta_in,
+            sweep: theta_out - theta_in,
+        },
+        Segment::Arc {
+            centre: [-e - rho, fx],
+            radius_m: rho,
+            phi0: theta_out + PI,
+            sweep: -alpha,
+        },
+    ];
+    (segs, -fx - e)
+}
+
+/// Fillet radius of the roundabout turns, metres: as gentle as leaves
+/// both fillets on the ring for a stretch.
+pub fn ring_fillet_m(l: &Layout) -> f64 {
+    l.lane_w_m * 1.6
+}
+
+/// A closed loop through the lane-centre rectangle's `corners` (driving
+/// order; the route starts on the straight into `corners[0]`), with plain
+/// arcs of radius `r`, or a roundabout turn at the corner nearest `ring`.
+/// `keep_clear`: record keep-clear zones at the corners (block loops).
+fn loop_route(
+    l: &Layout,
+    kind: RouteKind,
+    lane: u32,
+    corners: [[f64; 2]; 4],
+    r: f64,
+    ring: Option<[f64; 2]>,
+    keep_clear: bool,
+) -> Route {
+    let e = (lane as f64 + 0.5) * l.lane_w_m;
+    let hw = l.road_w_m / 2.0;
+    let rho = ring_fillet_m(l);
+    let at_ring = |c: [f64; 2]| ring.filter(|o| (c[0] - o[0]).hypot(c[1] - o[1]) < l.road_w_m);
+    let cut = |c: [f64; 2]| match at_ring(c) {
+        Some(_) => ring_turn(l, lane, rho).1,
+        None => r,
+    };
+    let unit = |a: [f64; 2], b: [f64; 2]| {
+        let d = [b[0] - a[0], b[1] - a[1]];
+        let n = d[0].hypot(d[1]);
+        ([d[0] / n, d[1] / n], n)
+    };
+    let mut segs = Vec::new();
+    let mut clear = Vec::new();
+    let mut s = 0.0;
+    for q in 0..4 {
+        let (prev, c, next) = (corners[(q + 3) % 4], corners[q], corners[(q + 1) % 4]);
+        let (d_in, side) = unit(prev, c);
+        let (d_out, _) = unit(c, next);
+        let (a0, a1) = (cut(prev), cut(c));
+        let from = [prev[0] + a0 * d_in[0], prev[1] + a0 * d_in[1]];
+        let heading = d_in[1].atan2(d_in[0]);
+        let len_m = side - a0 - a1;
+        segs.push(Segment::Line {
+            from,
+            heading,
+            len_m,
+        });
+        s += len_m;
+        let before = segs.len();
+        // Distance from the lane corner to the junction edge (or to the
+        // roundabout arm's keep-clear start) along the lane.
+        let edge = match at_ring(c) {
+            Some(o) => {
+                let (arcs, _) = ring_turn(l, lane, rho);
+                segs.extend(arcs.map(|a| a.moved(heading, o)));
+                arm_start_m(l) + RING_CLEAR_EXTRA_M - e
+            }
+            None => {
+                let sigma = (d_in[0] * d_out[1] - d_in[1] * d_out[0]).signum();
+                let n_left = [-d_in[1], d_in[0]];
+                let start = [c[0] - r * d_in[0], c[1] - r * d_in[1]];
+                segs.push(Segment::Arc {
+                    centre: [
+                        start[0] + sigma * r * n_left[0],
+                        start[1] + sigma * r * n_left[1],
+                    ],
+                    radius_m: r,
+                    phi0: heading - sigma * FRAC_PI_2,
+                    sweep: sigma * FRAC_PI_2,
+                });
+                hw - e + STOP_LINE_AT_M
+            }
+        };
+        let turn_m: f64 = segs[before..].iter().map(Segment::length_m).sum();
+        let depart = if at_ring(c).is_some() {
+            edge
+        } else {
+            hw - e + CROSSWALK_CLEAR_M
+        };
+        if keep_clear {
+            clear.push([s + a1 - edge, s + turn_m - a1 + depart]);
+        }
+        s += turn_m;
+    }
+    Route::new(kind, lane, segs, clear)
 }
 
 /// Corner geometry shared by every route of a town.
@@ -214,41 +461,31 @@ impl Turns {
     }
 }
 
-/// Every route of the town: block loops (by row, column, lane; none
-/// around the four blocks with a corner at a roundabout), then the ring
-/// lanes from the centreline out.
+/// Every route of the town: block loops (by row, column, lane), then the
+/// ring lanes from the centreline out. Block loops with a corner at the
+/// roundabout take their right turn round the ring.
 pub fn routes(l: &Layout, turns: &Turns) -> Vec<Route> {
     let mut out = Vec::new();
     let r = turns.radius_m;
+    let ring = l.roundabout_center();
     for j in 0..l.ny {
         for i in 0..l.nx {
-            if l.block_touches_roundabout(i, j) {
-                continue; // static roundabout: no route enters it
-            }
             for k in 0..l.lanes {
                 let e = (k as f64 + 0.5) * l.lane_w_m;
-                let (x0, y0) = (i as f64 * l.pitch_m, j as f64 * l.pitch_m);
-                out.push(Route {
-                    kind: RouteKind::Block { i, j },
-                    lane: k,
-                    min: [x0 + e, y0 + e],
-                    max: [x0 + l.pitch_m - e, y0 + l.pitch_m - e],
-                    radius_m: r,
-                    clockwise: true,
-                });
+                let (x0, y0) = (i as f64 * l.pitch_m + e, j as f64 * l.pitch_m + e);
+                let (x1, y1) = (x0 + l.pitch_m - 2.0 * e, y0 + l.pitch_m - 2.0 * e);
+                // Clockwise: west along the south side first.
+                let corners = [[x0, y0], [x0, y1], [x1, y1], [x1, y0]];
+                let kind = RouteKind::Block { i, j };
+                out.push(loop_route(l, kind, k, corners, r, ring, true));
             }
         }
     }
     for k in 0..l.lanes {
         let e = (k as f64 + 0.5) * l.lane_w_m;
-        out.push(Route {
-            kind: RouteKind::Ring,
-            lane: k,
-            min: [-e, -e],
-            max: [l.len_x() + e, l.len_y() + e],
-            radius_m: r,
-            clockwise: false,
-        });
+        let (x0, y0, x1, y1) = (-e, -e, l.len_x() + e, l.len_y() + e);
+        let corners = [[x1, y0], [x1, y1], [x0, y1], [x0, y0]];
+        out.push(loop_route(l, RouteKind::Ring, k, corners, r, None, false));
     }
     out
 }
@@ -257,43 +494,88 @@ pub fn routes(l: &Layout, turns: &Turns) -> Vec<Route> {
 mod tests {
     use super::*;
 
-    fn square() -> Route {
-        Route {
-            kind: RouteKind::Ring,
-            lane: 0,
-            min: [0.0, 0.0],
-            max: [10.0, 10.0],
-            radius_m: 2.0,
-            clockwise: false,
+    fn town(roundabout: bool) -> Layout {
+        Layout {
+            nx: 3,
+            ny: 3,
+            pitch_m: 90.0,
+            road_w_m: 14.0,
+            lane_w_m: 3.5,
+            lanes: 2,
+            sidewalk_m: 4.0,
+            sidewalks: true,
+            river_row: None,
+            roundabout: roundabout.then_some((1, 1)),
         }
     }
 
     #[test]
-    fn rounded_rectangle_is_continuous_and_turns_a_full_circle() {
-        for clockwise in [false, true] {
-            let route = Route {
-                clockwise,
-                ..square()
-            };
+    fn every_route_is_continuous_and_turns_a_full_circle() {
+        let l = town(true);
+        let all = routes(&l, &Turns::new(l.lane_w_m));
+        assert_eq!(all.len(), 9 * 2 + 2);
+        assert_eq!(all.iter().filter(|r| r.roundabout).count(), 4 * 2);
+        for route in &all {
             let len = route.length_m();
-            assert!((len - (4.0 * 6.0 + 4.0 * PI)).abs() < 1e-12);
-            let n = 4000;
+            let n = 20000;
             let mut turned = 0.0;
             let (mut prev_p, mut prev_h) = route.pose(0.0);
             for k in 1..=n {
                 let (p, h) = route.pose(len * k as f64 / n as f64);
-                let step = ((p[0] - prev_p[0]).powi(2) + (p[1] - prev_p[1]).powi(2)).sqrt();
+                let step = (p[0] - prev_p[0]).hypot(p[1] - prev_p[1]);
                 assert!(step <= len / n as f64 + 1e-9, "jump of {step} m at {k}");
                 let mut dh = h - prev_h;
                 dh -= (dh / (2.0 * PI)).round() * 2.0 * PI;
+                // Radii are ≥ 3 m: a step turns by at most step / 3.
+                assert!(
+                    dh.abs() <= len / n as f64 / 3.0 + 1e-9,
+                    "heading jump {dh} at {k}"
+                );
                 turned += dh;
                 (prev_p, prev_h) = (p, h);
             }
-            let want = if clockwise { -2.0 * PI } else { 2.0 * PI };
+            let want = match route.kind {
+                RouteKind::Ring => 2.0 * PI,
+                RouteKind::Block { .. } => -2.0 * PI,
+            };
             assert!((turned - want).abs() < 1e-9, "turned {turned}");
         }
-        // s = 0: start of the south side, heading +x (counter-clockwise).
-        assert_eq!(square().pose(0.0), ([2.0, 0.0], 0.0));
+    }
+
+    #[test]
+    fn roundabout_turn_circles_the_ring_counter_clockwise_in_its_quarter() {
+        let l = town(true);
+        let c = l.roundabout_center().unwrap();
+        for k in 0..l.lanes {
+            let big_r = ring_lane_radius_m(&l, k);
+            for route in routes(&l, &Turns::new(l.lane_w_m))
+                .iter()
+                .filter(|r| r.roundabout && r.lane == k)
+            {
+                let on_ring: Vec<f64> = (0..4000)
+                    .map(|n| route.pose(route.length_m() * n as f64 / 4000.0).0)
+                    .filter(|p| ((p[0] - c[0]).hypot(p[1] - c[1]) - big_r).abs() < 1e-9)
+                    .map(|p| (p[1] - c[1]).atan2(p[0] - c[0]))
+                    .collect();
+                assert!(on_ring.len() > 20, "{} points on the ring", on_ring.len());
+                let spread = on_ring.iter().fold(f64::NEG_INFINITY, |a, &b| a.max(b))
+                    - on_ring.iter().fold(f64::INFINITY, |a, &b| a.min(b));
+                assert!(spread > 0.3 && spread < FRAC_PI_2, "spread {spread}");
+            }
+        }
+        // The canonical turn is tangent where its pieces meet.
+        let (arcs, cut) = ring_turn(&l, 0, ring_fillet_m(&l));
+        let e = 0.5 * l.lane_w_m;
+        assert!((arcs[0].at(0.0).0[0] - (-e - cut)).abs() < 1e-9);
+        for w in arcs.windows(2) {
+            let (p, h) = w[0].at(w[0].length_m());
+            let (q, g) = w[1].at(0.0);
+            assert!((p[0] - q[0]).hypot(p[1] - q[1]) < 1e-9);
+            assert!((h - g).sin().abs() < 1e-9 && (h - g).cos() > 0.0);
+        }
+        let (p, h) = arcs[2].at(arcs[2].length_m());
+        assert!((p[0] + e).abs() < 1e-9 && (p[1] + e + cut).abs() < 1e-9);
+        assert!((h + FRAC_PI_2).sin().abs() < 1e-9);
     }
 
     #[test]

@@ -1,19 +1,28 @@
 //! Traffic over time in closed form. Vehicles ride the closed routes of
-//! `routes` (block loops turning right at every corner, the ring turning
-//! left around the town and going straight through its T junctions) as
-//! rigid trains: slot n of route r sits at arc length o_n + v_r·G(t), where
-//! G is one town-wide stop-and-go clock (drive T_go, stand T_stop). The pose
-//! of every object at frame K is a pure function of (desc, seed, K).
+//! `routes` (block loops turning right at every corner or round the
+//! roundabout, the ring turning left around the town and going straight
+//! through its T junctions). Every vehicle of route r follows the same
+//! speed profile s(τ) (`profile`: slower in curves, accelerating out) at
+//! its own time offset c_n: s_n(t) = s(ρ_r·G(t) + c_n), where G is one
+//! town-wide stop-and-go clock (ramp up, drive, ramp down, stand) and ρ_r
+//! ≤ 1 scales the route so it advances exactly 1/m_r lap per cycle; the
+//! ring (on the outer roads, without crossers) ignores the clock. The
+//! pose of every object at frame K is a pure function of (desc, seed, K).
 //!
 //! No overlap, by construction: routes share no road surface (each lane
-//! belongs to one route and corners stay in their own corridor), and slots
-//! of one route keep a fixed arc spacing ≥ the longest allowed body plus a
-//! gap. Stops: a block loop is square, so with v_r·T_go = a quarter of its
-//! perimeter every slot stands at the same side position at every stop;
-//! slots are placed so one per side stands at the stop line, the others
-//! queue behind it, and slots whose stop position would lie in the
-//! departing junction or crosswalk stay empty. Crosswalks on interior roads
-//! are therefore clear while everything stands (pedestrians cross then).
+//! belongs to one route, corners stay in their own corridor, roundabout
+//! turns in their own quarter of the ring), and time offsets of one route
+//! differ by Δc, chosen so the arc spacing min over τ of s(τ+Δc) − s(τ) is
+//! at least the longest allowed body plus a gap. Stops: the offsets are
+//! shifted by whole Δc each cycle, so the stand positions of a block loop
+//! repeat every m_r cycles; the lead slot stands at the first stop line,
+//! and slots that would stand in a junction, crosswalk or the roundabout at
+//! any of their m_r stands stay empty. Crosswalks on interior roads are
+//! therefore clear while everything stands (pedestrians cross then).
+
+mod profile;
+
+use std::sync::Arc;
 
 use super::desc::TownDesc;
 use super::layout::{Layout, Rect};
@@ -23,10 +32,16 @@ use super::routes::{routes, Route, RouteKind, Turns};
 use super::vehicles::{BodyKind, BODIES, BODY_WEIGHTS};
 use super::walkers;
 
-/// Stop line distance before the junction edge (as painted), metres.
-const STOP_LINE_AT_M: f64 = 4.2;
-/// Gap between consecutive bodies on a route, metres.
-const GAP_M: f64 = 6.0;
+pub use profile::{Limits, SpeedProfile};
+
+/// Gap kept between consecutive bodies of a route at the closest, metres.
+const MIN_GAP_M: f64 = 3.0;
+/// Gap between consecutive bodies on a straight at full speed, at least, metres.
+const CRUISE_GAP_M: f64 = 6.0;
+/// Lateral acceleration bound in curves, m/s².
+pub const A_LAT_MPS2: f64 = 3.0;
+/// Longitudinal acceleration and braking bound, m/s².
+pub const A_LON_MPS2: f64 = 3.0;
 
 /// Pose of one vehicle in one frame.
 #[derive(Clone, Debug, PartialEq)]
@@ -100,14 +115,16 @@ pub struct TownFrame {
     pub pedestrians: Vec<PedestrianPose>,
 }
 
-/// The town-wide stop-and-go clock and the slot layout it implies.
+/// The town-wide stop-and-go clock.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Schedule {
-    /// Driving time per cycle, seconds.
+    /// Driving time per cycle at full clock rate, seconds.
     pub go_s: f64,
+    /// Duration of each of the two clock ramps (start, stop), seconds.
+    pub ramp_s: f64,
     /// Standing time per cycle, seconds (long enough to cross a road).
     pub stop_s: f64,
-    /// Cruising speed of the ring and the innermost block lanes, m/s.
+    /// Speed limit, m/s.
     pub speed_mps: f64,
     /// Corner geometry and the bodies that fit it.
     pub turns: Turns,
@@ -116,8 +133,84 @@ pub struct Schedule {
 }
 
 impl Schedule {
-    /// The schedule of a validated town.
-    pub fn new(desc: &TownDesc) -> Self {
+    /// Cycle length, seconds: ramp up and drive (go_s), ramp down (ramp_s), stand.
+    pub fn cycle_s(&self) -> f64 {
+        self.go_s + self.ramp_s + self.stop_s
+    }
+
+    /// Time from the start of a cycle until everything stands, seconds.
+    pub fn moving_s(&self) -> f64 {
+        self.go_s + self.ramp_s
+    }
+
+    /// Clock time G(t) elapsed by time `t`, seconds: the rate ramps
+    /// linearly 0 → 1 over `ramp_s`, holds, ramps 1 → 0, then stands, so
+    /// each cycle adds exactly `go_s`.
+    pub fn driven_s(&self, t: f64) -> f64 {
+        let n = (t / self.cycle_s()).floor();
+        let tau = t - n * self.cycle_s();
+        let r = self.ramp_s;
+        let g = if tau < r {
+            tau * tau / (2.0 * r)
+        } else if tau < self.go_s {
+            tau - r / 2.0
+        } else if tau < self.go_s + r {
+            let u = self.go_s + r - tau;
+            self.go_s - u * u / (2.0 * r)
+        } else {
+            self.go_s
+        };
+        n * self.go_s + g
+    }
+
+    /// Whether everything stands still at time `t`.
+    pub fn standing(&self, t: f64) -> bool {
+        t.rem_euclid(self.cycle_s()) >= self.moving_s()
+    }
+}
+
+/// How the vehicles of one route move.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RoutePlan {
+    /// The route.
+    pub route: Route,
+    /// Its speed profile.
+    pub profile: SpeedProfile,
+    /// Route time per unit of clock time (≤ 1).
+    pub rate: f64,
+    /// Stops per lap m (block loops), or 0 (the ring stands anywhere).
+    pub stands: usize,
+    /// Slot time offsets c_n (seconds of route time) and whether each may
+    /// hold a vehicle.
+    pub slots: Vec<(f64, bool)>,
+}
+
+/// The schedule and every route's plan of a town.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Plan {
+    /// The clock.
+    pub schedule: Schedule,
+    /// One plan per route, in `routes()` order.
+    pub routes: Vec<RoutePlan>,
+}
+
+impl Plan {
+    /// The plan of a validated town (cached per description).
+    pub fn new(desc: &TownDesc) -> Arc<Plan> {
+        use std::collections::BTreeMap;
+        use std::sync::{Mutex, OnceLock};
+        static CACHE: OnceLock<Mutex<BTreeMap<String, Arc<Plan>>>> = OnceLock::new();
+        let key = format!("{desc:?}");
+        let cache = CACHE.get_or_init(|| Mutex::new(BTreeMap::new()));
+        if let Some(p) = cache.lock().expect("plan cache").get(&key) {
+            return p.clone();
+        }
+        let p = Arc::new(Self::build(desc));
+        cache.lock().expect("plan cache").insert(key, p.clone());
+        p
+    }
+
+    fn build(desc: &TownDesc) -> Plan {
         let l = Layout::new(desc);
         let turns = Turns::new(l.lane_w_m);
         let max_len_m = turns
@@ -126,89 +219,95 @@ impl Schedule {
             .map(|b| b.footprint_m()[0])
             .fold(0.0, f64::max);
         let speed_mps = desc.speed_kmh / 3.6;
-        let quarter = block_quarter_m(&l, &turns, 0);
+        let lim = Limits {
+            v_max_mps: speed_mps,
+            a_lat_mps2: A_LAT_MPS2,
+            a_lon_mps2: A_LON_MPS2,
+        };
+        let all = routes(&l, &turns);
+        let profiles: Vec<SpeedProfile> = all.iter().map(|r| SpeedProfile::new(r, lim)).collect();
+        // A quarter lap of the slowest block loop per cycle (a plain
+        // lane-0 loop, or one round the roundabout, a little longer).
+        let go_s = all
+            .iter()
+            .zip(&profiles)
+            .filter(|(r, _)| matches!(r.kind, RouteKind::Block { .. }))
+            .map(|(_, p)| p.lap_s() / 4.0)
+            .fold(0.0, f64::max);
+        let go_s = if go_s > 0.0 {
+            go_s
+        } else {
+            profiles.iter().map(|p| p.lap_s() / 4.0).fold(0.0, f64::max)
+        };
         let crossing = (l.road_w_m + 1.6) / walkers::WALK_MPS;
-        Schedule {
-            go_s: quarter / speed_mps,
+        let schedule = Schedule {
+            go_s,
+            ramp_s: (speed_mps / A_LON_MPS2).min(go_s / 4.0),
             stop_s: if l.sidewalks { crossing + 2.0 } else { 4.0 },
             speed_mps,
             turns,
             max_len_m,
-        }
-    }
-
-    /// Cycle length T_go + T_stop, seconds.
-    pub fn cycle_s(&self) -> f64 {
-        self.go_s + self.stop_s
-    }
-
-    /// Driving time G(t) elapsed by time `t`, seconds (stands still during
-    /// the last `stop_s` of every cycle).
-    pub fn driven_s(&self, t: f64) -> f64 {
-        let n = (t / self.cycle_s()).floor();
-        let tau = t - n * self.cycle_s();
-        n * self.go_s + tau.min(self.go_s)
-    }
-
-    /// Whether everything stands still at time `t`.
-    pub fn standing(&self, t: f64) -> bool {
-        t.rem_euclid(self.cycle_s()) >= self.go_s
-    }
-
-    /// Speed of `route`, m/s: block loops drive a quarter loop per cycle.
-    pub fn route_speed_mps(&self, route: &Route) -> f64 {
-        match route.kind {
-            RouteKind::Block { .. } => route.length_m() / 4.0 / self.go_s,
-            RouteKind::Ring => self.speed_mps,
-        }
+        };
+        let routes = all
+            .into_iter()
+            .zip(profiles)
+            .map(|(route, profile)| route_plan(&schedule, route, profile))
+            .collect();
+        Plan { schedule, routes }
     }
 }
 
-/// A quarter of the perimeter of a block loop on lane `k`, metres.
-fn block_quarter_m(l: &Layout, turns: &Turns, k: u32) -> f64 {
-    let e = (k as f64 + 0.5) * l.lane_w_m;
-    let side = l.pitch_m - 2.0 * e - 2.0 * turns.radius_m;
-    side + std::f64::consts::FRAC_PI_2 * turns.radius_m
-}
-
-/// Slot arc offsets of `route` with, for block loops, whether each slot may
-/// hold a vehicle (its stop position lies on the straight between the
-/// departing crosswalk and the stop line).
-pub fn slots(l: &Layout, s: &Schedule, route: &Route) -> Vec<(f64, bool)> {
+/// Slots of one route: the most vehicles whose closest spacing stays ≥
+/// the longest body plus `MIN_GAP_M` (and ≥ `CRUISE_GAP_M` on average).
+fn route_plan(s: &Schedule, route: Route, profile: SpeedProfile) -> RoutePlan {
+    let lap = profile.lap_s();
     let len = route.length_m();
-    let min_spacing = s.max_len_m + GAP_M;
-    match route.kind {
-        RouteKind::Ring => {
-            let n = (len / min_spacing).floor().max(1.0) as usize;
-            (0..n).map(|k| (k as f64 * len / n as f64, true)).collect()
-        }
-        RouteKind::Block { .. } => {
-            let quarter = len / 4.0;
-            let per_side = (quarter / min_spacing).floor().max(1.0) as usize;
-            let spacing = quarter / per_side as f64;
-            let r = route.radius_m;
-            let e = (route.lane as f64 + 0.5) * l.lane_w_m;
-            let hw = l.road_w_m / 2.0;
-            let side = route.side_m()[0];
-            // Side coordinates: 0 at the end of the previous corner arc.
-            let stop = side + r - (hw - e) - STOP_LINE_AT_M - s.max_len_m / 2.0;
-            let clear = (hw - e) - r + 3.5 + 0.5 + s.max_len_m / 2.0;
-            (0..4 * per_side)
-                .map(|k| {
-                    let back = (k % per_side) as f64 * spacing;
-                    let offset = stop - back + (k / per_side) as f64 * quarter;
-                    (offset.rem_euclid(len), stop - back >= clear)
-                })
-                .collect()
-        }
+    let need = s.max_len_m + MIN_GAP_M;
+    let fits = |n: usize| n == 1 || profile.min_spacing_m(lap / n as f64) >= need;
+    let most = (len / (s.max_len_m + CRUISE_GAP_M)).floor().max(1.0) as usize;
+    if route.kind == RouteKind::Ring {
+        let n = (1..=most).rev().find(|&n| fits(n)).unwrap_or(1);
+        let slots = (0..n).map(|k| (k as f64 * lap / n as f64, true)).collect();
+        return RoutePlan {
+            route,
+            profile,
+            rate: 1.0,
+            stands: 0,
+            slots,
+        };
+    }
+    let m = (lap / s.go_s - 1e-9).ceil().max(1.0) as usize;
+    let per = (1..=(most / m).max(1))
+        .rev()
+        .find(|&p| fits(m * p))
+        .unwrap_or(1);
+    let n = m * per;
+    let dc = lap / n as f64;
+    let half = s.max_len_m / 2.0;
+    let lead = profile.time_at((route.keep_clear_m[0][0] - half).rem_euclid(len));
+    let slots = (0..n)
+        .map(|k| {
+            let c = lead - k as f64 * dc;
+            let open = (0..m).all(|q| {
+                let at = profile.arc_at((c + q as f64 * lap / m as f64).rem_euclid(lap));
+                route.may_stand(at, half)
+            });
+            (c.rem_euclid(lap), open)
+        })
+        .collect();
+    RoutePlan {
+        route,
+        profile,
+        rate: lap / m as f64 / s.go_s,
+        stands: m,
+        slots,
     }
 }
 
 /// Where the ego drives: (route index, slot index).
 pub fn ego_slot(desc: &TownDesc, seed: u64) -> (usize, usize) {
     let l = Layout::new(desc);
-    let s = Schedule::new(desc);
-    let all = routes(&l, &s.turns);
+    let plan = Plan::new(desc);
     let mut r = Rng::new(&[seed, tag::EGO]);
     // A block away from the town edge when there is one.
     let pick = |n: usize, r: &mut Rng| {
@@ -220,7 +319,7 @@ pub fn ego_slot(desc: &TownDesc, seed: u64) -> (usize, usize) {
     };
     let mut ij = (pick(l.nx, &mut r), pick(l.ny, &mut r));
     if l.block_touches_roundabout(ij.0, ij.1) {
-        // Blocks at the roundabout have no loops: any other block.
+        // The ego keeps to plain blocks: any other block.
         let free: Vec<(usize, usize)> = (0..l.ny)
             .flat_map(|j| (0..l.nx).map(move |i| (i, j)))
             .filter(|&(i, j)| !l.block_touches_roundabout(i, j))
@@ -229,11 +328,13 @@ pub fn ego_slot(desc: &TownDesc, seed: u64) -> (usize, usize) {
     }
     let (i, j) = ij;
     let k = r.int(0, l.lanes - 1);
-    let route = all
+    let route = plan
+        .routes
         .iter()
-        .position(|ro| ro.kind == RouteKind::Block { i, j } && ro.lane == k)
+        .position(|p| p.route.kind == RouteKind::Block { i, j } && p.route.lane == k)
         .expect("the ego route exists");
-    let open: Vec<usize> = slots(&l, &s, &all[route])
+    let open: Vec<usize> = plan.routes[route]
+        .slots
         .iter()
         .enumerate()
         .filter(|(_, (_, ok))| *ok)
@@ -263,7 +364,8 @@ fn weighted_body(r: &mut Rng, allowed: &[BodyKind]) -> BodyKind {
 /// Every object's pose at `frame` (time frame / fps), in closed form.
 pub fn frame_at(desc: &TownDesc, seed: u64, frame: u64) -> TownFrame {
     let l = Layout::new(desc);
-    let sched = Schedule::new(desc);
+    let plan = Plan::new(desc);
+    let sched = &plan.schedule;
     let t = frame as f64 / desc.fps;
     let driven = sched.driven_s(t);
     let (ego_route, ego_slot_n) = ego_slot(desc, seed);
@@ -275,9 +377,14 @@ pub fn frame_at(desc: &TownDesc, seed: u64, frame: u64) -> TownFrame {
     let mut ego = None;
     let mut vehicles = Vec::new();
     let mut next_id = 1u32;
-    for (ri, route) in routes(&l, &sched.turns).iter().enumerate() {
-        let travelled = sched.route_speed_mps(route) * driven;
-        for (n, (offset, open)) in slots(&l, &sched, route).into_iter().enumerate() {
+    for (ri, rp) in plan.routes.iter().enumerate() {
+        // The ring never stands (it meets no crosswalk that pedestrians
+        // use): its vehicles drive on while the block loops wait.
+        let tau = match rp.route.kind {
+            RouteKind::Ring => t,
+            RouteKind::Block { .. } => rp.rate * driven,
+        };
+        for (n, &(offset, open)) in rp.slots.iter().enumerate() {
             let id = next_id;
             next_id += 1;
             let is_ego = ri == ego_route && n == ego_slot_n;
@@ -293,9 +400,9 @@ pub fn frame_at(desc: &TownDesc, seed: u64, frame: u64) -> TownFrame {
             };
             let paint = PAINTS[r.index(PAINTS.len())];
             // Shorter bodies ride forward in their slot, so every front
-            // stands at the stop line (gaps stay ≥ GAP_M: see `slots`).
+            // stands at the stop line (gaps stay ≥ MIN_GAP_M: see `Plan`).
             let shift = (sched.max_len_m - body.footprint_m()[0]) / 2.0;
-            let (p, heading) = route.pose(offset + shift + travelled);
+            let (p, heading) = rp.route.pose(rp.profile.arc_at(tau + offset) + shift);
             let pose = VehiclePose {
                 id,
                 body,
@@ -316,6 +423,6 @@ pub fn frame_at(desc: &TownDesc, seed: u64, frame: u64) -> TownFrame {
         time_s: t,
         ego: ego.expect("the ego slot is always occupied"),
         vehicles,
-        pedestrians: walkers::pedestrians(desc, &l, &sched, seed, t),
+        pedestrians: walkers::pedestrians(desc, &l, sched, seed, t),
     }
 }

@@ -137,10 +137,10 @@ fn crossers(
                 let first = r.int(0, 3) as i64 + 2 * slot as i64;
                 // Crossing c happens in the standing phase of cycle n.
                 let c = (n as i64 + first).rem_euclid(4) as usize;
-                let (p, heading) = if tau >= sched.go_s {
+                let (p, heading) = if tau >= sched.moving_s() {
                     let (a, b) = walks[c];
                     let len = ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt();
-                    let u = (WALK_MPS * (tau - sched.go_s) / len).min(1.0);
+                    let u = (WALK_MPS * (tau - sched.moving_s()) / len).min(1.0);
                     (lerp(a, b, u), (b[1] - a[1]).atan2(b[0] - a[0]))
                 } else {
                     // Round the corner from the previous crossing's end.
