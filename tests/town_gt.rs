@@ -47,7 +47,9 @@ fn town_ground_truth_is_exact_in_every_camera_configuration() {
     for name in TOWNS {
         let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("scenes/{name}.toml"));
         let desc = load_town(&path).unwrap_or_else(|e| panic!("{e}"));
-        let (seed, frame) = (4, 25);
+        // Frame 0: the ego is on a straight (mid-corner, the roll30 rig's B = 3 m
+        // camera sits 0.15 m above the road beside the curb and can be walled in).
+        let (seed, frame) = (4, 0);
         let loaded = load_town_frame(&desc, seed, frame, CameraConfig::Normal, &path).unwrap();
         // One build per town, centred on the normal rig; every configuration
         // sits within 10 m of it.
