@@ -52,6 +52,38 @@ impl SurfaceTable {
         SurfaceTable { first, records }
     }
 
+    /// Asks the CPU to start loading `hit`'s record (both cache lines a
+    /// 48-byte record may straddle); a hint only, results never change.
+    #[inline]
+    pub fn prefetch(&self, scene: &Scene, hit: &Hit) {
+        let geom = hit.geom_id as usize;
+        if geom >= scene.meshes.len() {
+            return;
+        }
+        let Some(r) = self
+            .first
+            .get(geom)
+            .and_then(|&f| self.records.get(f + hit.prim_id as usize))
+        else {
+            return;
+        };
+        #[cfg(target_arch = "x86_64")]
+        {
+            use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
+            let first_byte = (r as *const TriangleRecord).cast::<i8>();
+            // SAFETY: prefetching is a hint that never faults; both addresses
+            // lie inside the record.
+            unsafe {
+                _mm_prefetch::<_MM_HINT_T0>(first_byte);
+                _mm_prefetch::<_MM_HINT_T0>(
+                    first_byte.add(std::mem::size_of::<TriangleRecord>() - 1),
+                );
+            }
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        let _ = r;
+    }
+
     /// The interaction for `hit` of `ray`: equal to `surface_interaction(scene, ray, hit)`
     /// for the scene this table was built from.
     #[inline]

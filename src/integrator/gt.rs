@@ -85,89 +85,108 @@ pub fn exact_t(scene: &Scene, o: DVec3, d: DVec3, hit: &Hit) -> f64 {
     }
 }
 
-/// Traces one row of pixel-centre rays; returns the hits and their exact t.
-fn trace_row(
-    scene: &Scene,
-    accel: &impl Accel,
-    cam: &RenderCamera,
-    j: u32,
-) -> (Vec<Ray>, Vec<Option<Hit>>, Vec<f64>) {
-    let w = cam.intrinsics.width;
-    let o = cam.center_f32();
-    let v = j as f64 + 0.5;
-    let dirs: Vec<DVec3> = (0..w).map(|i| cam.dir(i as f64 + 0.5, v)).collect();
-    let rays: Vec<Ray> = dirs.iter().map(|d| Ray::new(o, d.as_vec3())).collect();
-    let mut hits = vec![None; w as usize];
-    accel.intersect_batch(&rays, &mut hits);
-    let depth = hits
-        .iter()
-        .zip(&dirs)
-        .map(|(h, &d)| match h {
-            Some(h) => exact_t(scene, cam.center, d, h),
-            None => f64::INFINITY,
-        })
-        .collect();
-    (rays, hits, depth)
+/// Per-thread buffers of one row of pixel-centre rays, reused across rows so
+/// the pass allocates nothing per ray.
+#[derive(Default)]
+struct RowScratch {
+    dirs: Vec<DVec3>,
+    rays: Vec<Ray>,
+    hits: Vec<Option<Hit>>,
+}
+
+impl RowScratch {
+    /// Traces row `j` of `cam` (8-wide packets) and writes each pixel's exact
+    /// depth_z into `depth_row`; the rays and hits stay in `self`.
+    fn trace_row(
+        &mut self,
+        scene: &Scene,
+        accel: &impl Accel,
+        cam: &RenderCamera,
+        j: usize,
+        depth_row: &mut [f64],
+    ) {
+        let o = cam.center_f32();
+        let v = j as f64 + 0.5;
+        self.dirs.clear();
+        self.dirs
+            .extend((0..depth_row.len()).map(|i| cam.dir(i as f64 + 0.5, v)));
+        self.rays.clear();
+        self.rays
+            .extend(self.dirs.iter().map(|d| Ray::new(o, d.as_vec3())));
+        self.hits.clear();
+        self.hits.resize(self.rays.len(), None);
+        accel.intersect_batch(&self.rays, &mut self.hits);
+        for ((z, h), &d) in depth_row.iter_mut().zip(&self.hits).zip(&self.dirs) {
+            *z = match h {
+                Some(h) => exact_t(scene, cam.center, d, h),
+                None => f64::INFINITY,
+            };
+        }
+    }
 }
 
 /// Full per-pixel GT of one view (labels included when `labels` is set).
+/// Rows are written in place into the output maps, one task per row.
 pub fn view_gt(scene: &Scene, accel: &impl Accel, cam: &RenderCamera, labels: bool) -> ViewGt {
     let (w, h) = (cam.intrinsics.width, cam.intrinsics.height);
-    let rows: Vec<_> = (0..h)
-        .into_par_iter()
-        .map(|j| {
-            let (rays, hits, depth) = trace_row(scene, accel, cam, j);
-            let n = w as usize;
-            let (mut normal, mut sem, mut inst, mut mask) = (
-                vec![Vec3::ZERO; if labels { n } else { 0 }],
-                vec![SKY_CLASS; if labels { n } else { 0 }],
-                vec![0u16; if labels { n } else { 0 }],
-                vec![mask_bits::SKY; if labels { n } else { 0 }],
-            );
-            if labels {
-                for i in 0..n {
-                    let Some(hit) = hits[i] else { continue };
-                    let si = surface_interaction(scene, &rays[i], &hit);
-                    let facing = if si.n_shading.dot(rays[i].d) > 0.0 {
-                        -1.0
-                    } else {
-                        1.0
-                    };
-                    normal[i] = si.n_shading * facing;
-                    sem[i] = si.semantic;
-                    inst[i] = si.instance;
-                    mask[i] = super::wet::mask_at(scene, &si, rays[i].d);
-                }
-            }
-            (depth, normal, sem, inst, mask)
-        })
-        .collect();
+    let (n, n_labels) = (
+        w as usize * h as usize,
+        if labels { w as usize * h as usize } else { 0 },
+    );
     let mut gt = ViewGt {
         width: w,
         height: h,
-        ..Default::default()
+        depth_z: vec![0.0; n],
+        normal_world: vec![Vec3::ZERO; n_labels],
+        semantic: vec![SKY_CLASS; n_labels],
+        instance: vec![0u16; n_labels],
+        mask: vec![mask_bits::SKY; n_labels],
     };
-    for (depth, normal, sem, inst, mask) in rows {
-        gt.depth_z.extend(depth);
-        gt.normal_world.extend(normal);
-        gt.semantic.extend(sem);
-        gt.instance.extend(inst);
-        gt.mask.extend(mask);
-    }
+    let row_len = w as usize;
+    let label_len = if labels { row_len } else { 0 };
+    // Without labels the label maps are empty and every row gets `None`.
+    let label_rows = gt
+        .normal_world
+        .chunks_mut(label_len.max(1))
+        .zip(gt.semantic.chunks_mut(label_len.max(1)))
+        .zip(gt.instance.chunks_mut(label_len.max(1)))
+        .zip(gt.mask.chunks_mut(label_len.max(1)))
+        .map(Some)
+        .chain(std::iter::repeat_with(|| None));
+    let rows: Vec<_> = gt
+        .depth_z
+        .chunks_mut(row_len)
+        .zip(label_rows)
+        .enumerate()
+        .collect();
+    rows.into_par_iter().for_each_init(
+        RowScratch::default,
+        |scratch, (j, (depth_row, label_row))| {
+            scratch.trace_row(scene, accel, cam, j, depth_row);
+            let Some((((normal, sem), inst), mask)) = label_row else {
+                return;
+            };
+            for (i, (ray, hit)) in scratch.rays.iter().zip(&scratch.hits).enumerate() {
+                let Some(hit) = hit else { continue };
+                let si = surface_interaction(scene, ray, hit);
+                let facing = if si.n_shading.dot(ray.d) > 0.0 {
+                    -1.0
+                } else {
+                    1.0
+                };
+                normal[i] = si.n_shading * facing;
+                sem[i] = si.semantic;
+                inst[i] = si.instance;
+                mask[i] = super::wet::mask_at(scene, &si, ray.d);
+            }
+        },
+    );
     gt
 }
 
 /// Segments C_R → X end at this fraction of |X − C_R| (the contract's 1e-4
 /// relative tolerance).
 const OCCLUSION_T_MAX: f64 = 1.0 - 1e-4;
-
-/// Whether the nearest surface on segment `ray` (origin `o`, direction `seg`,
-/// f64) lies before `OCCLUSION_T_MAX` when re-intersected exactly.
-fn blocked_exactly(scene: &Scene, accel: &impl Accel, ray: &Ray, o: DVec3, seg: DVec3) -> bool {
-    accel
-        .intersect(ray)
-        .is_some_and(|hit| exact_t(scene, o, seg, &hit) < OCCLUSION_T_MAX)
-}
 
 /// Left-view occlusion for the right camera `right`: 255 where the left
 /// surface point is outside the right image or hidden from the right camera.
@@ -212,15 +231,22 @@ pub fn occlusion_mask(
             }
             let mut blocked = vec![false; rays.len()];
             accel.occluded_batch(&rays, &mut blocked);
-            let mut traced = rays.len() as u64;
-            for (k, &(i, seg)) in idx.iter().enumerate() {
-                // Confirm in f64: the nearest blocker must lie before the
-                // tolerance, not just round there in f32.
-                if blocked[k] {
-                    traced += 1;
-                    if blocked_exactly(scene, accel, &rays[k], c_r, seg) {
-                        occ[i] = 255;
-                    }
+            // Confirm in f64: the nearest blocker must lie before the
+            // tolerance, not just round there in f32. The blocked segments of
+            // a row are re-traced together, as packets.
+            let (confirm, confirm_idx): (Vec<Ray>, Vec<(usize, DVec3)>) = rays
+                .iter()
+                .zip(&idx)
+                .zip(&blocked)
+                .filter(|(_, &b)| b)
+                .map(|((r, &k), _)| (*r, k))
+                .unzip();
+            let mut hits = vec![None; confirm.len()];
+            accel.intersect_batch(&confirm, &mut hits);
+            let traced = (rays.len() + confirm.len()) as u64;
+            for (hit, &(i, seg)) in hits.iter().zip(&confirm_idx) {
+                if hit.is_some_and(|hit| exact_t(scene, c_r, seg, &hit) < OCCLUSION_T_MAX) {
+                    occ[i] = 255;
                 }
             }
             (occ, traced)

@@ -5,6 +5,9 @@
 //! Every random number comes from the pixel's `SampleStream`; each bounce
 //! starts at a fixed dimension so the streams of different bounces never shift.
 //! `max_depth` counts scattering events: 1 is direct lighting only.
+//! The surface loop traces a vertex's continuation ray before its shadow rays
+//! and prefetches the next hit's surface record, so that cache miss overlaps
+//! the shadow traversals; contributions are added in the original order.
 //! Scenes with a medium or rain take the volumetric loop of `volpath.rs`;
 //! without them this loop runs unchanged (same bytes).
 
@@ -27,6 +30,42 @@ const DIMS_PER_BOUNCE: u32 = 4;
 pub const CAMERA_DIMS: u32 = 1;
 /// Bounces before Russian roulette may end a path.
 const RR_START: u32 = 3;
+/// Shadow rays one vertex may leave pending: every distant light plus the
+/// sampled light.
+const MAX_SHADOW: usize = crate::light::MAX_DISTANT + 1;
+
+/// A vertex's NEE shadow rays, each with the contribution (throughput
+/// included) it adds to the path's radiance when unoccluded.
+pub(super) struct PendingShadows {
+    len: usize,
+    items: [(Ray, Vec3); MAX_SHADOW],
+}
+
+impl PendingShadows {
+    /// No pending shadow rays.
+    pub fn new() -> Self {
+        PendingShadows {
+            len: 0,
+            items: [(Ray::new(Vec3::ZERO, Vec3::Z), Vec3::ZERO); MAX_SHADOW],
+        }
+    }
+
+    fn push(&mut self, shadow: Ray, contribution: Vec3) {
+        self.items[self.len] = (shadow, contribution);
+        self.len += 1;
+    }
+
+    /// Tests every pending shadow ray in order and adds the unoccluded
+    /// contributions to `l`; leaves the set empty.
+    pub fn resolve(&mut self, accel: &impl Accel, l: &mut Vec3) {
+        for (shadow, contribution) in &self.items[..self.len] {
+            if !accel.occluded(shadow) {
+                *l += *contribution;
+            }
+        }
+        self.len = 0;
+    }
+}
 
 /// Scene, accelerator and lights: what a path needs to see.
 pub struct PathContext<'a, A: Accel> {
@@ -112,12 +151,18 @@ impl<A: Accel> PathContext<'_, A> {
         }
         let mut known_hit = Some(first_hit);
         let mut st = PathState::new(ray.o);
+        let mut pending = PendingShadows::new();
         loop {
             *rays += 1;
             let hit = match known_hit.take() {
                 Some(hit) => hit,
                 None => self.accel.intersect(&ray),
             };
+            if let Some(hit) = &hit {
+                self.surfaces.prefetch(self.scene, hit);
+            }
+            // The previous vertex's shadow rays, while the record loads.
+            pending.resolve(self.accel, &mut st.l);
             let Some(hit) = hit else {
                 st.l += st.beta
                     * self
@@ -125,9 +170,14 @@ impl<A: Accel> PathContext<'_, A> {
                         .escaped_at(self.scene, ray.o, ray.d, st.prev_pdf, st.prev_delta);
                 break;
             };
-            match self.surface_vertex(&ray, &hit, &mut st, stream, rays) {
+            let next =
+                self.surface_vertex_deferred(&ray, &hit, &mut st, stream, rays, &mut pending);
+            match next {
                 Some(next) => ray = next,
-                None => break,
+                None => {
+                    pending.resolve(self.accel, &mut st.l);
+                    break;
+                }
             }
         }
         st.l
@@ -142,6 +192,24 @@ impl<A: Accel> PathContext<'_, A> {
         st: &mut PathState,
         stream: &mut SampleStream,
         rays: &mut u64,
+    ) -> Option<Ray> {
+        let mut pending = PendingShadows::new();
+        let next = self.surface_vertex_deferred(ray, hit, st, stream, rays, &mut pending);
+        pending.resolve(self.accel, &mut st.l);
+        next
+    }
+
+    /// [`PathContext::surface_vertex`] with the NEE shadow rays left in
+    /// `pending` (empty on entry) instead of traced; their contributions are
+    /// added when it is resolved, before anything the next vertex adds.
+    fn surface_vertex_deferred(
+        &self,
+        ray: &Ray,
+        hit: &Hit,
+        st: &mut PathState,
+        stream: &mut SampleStream,
+        rays: &mut u64,
+        pending: &mut PendingShadows,
     ) -> Option<Ray> {
         let scene = self.scene;
         let mut si = self.surfaces.interaction(scene, ray, hit);
@@ -190,10 +258,10 @@ impl<A: Accel> PathContext<'_, A> {
             ];
             for (k, &u) in u_distant.iter().enumerate().take(lights.distant_count()) {
                 let ls = lights.sample_distant(scene, k, si.p, u);
-                st.l += st.beta * self.direct(&si, &bsdf, &frame, wo_local, ls, rays);
+                self.direct(&si, &bsdf, &frame, wo_local, ls, st.beta, pending, rays);
             }
             let ls = lights.sample(scene, si.p, u_select, glam::Vec2::new(u_lx, u_ly));
-            st.l += st.beta * self.direct(&si, &bsdf, &frame, wo_local, ls, rays);
+            self.direct(&si, &bsdf, &frame, wo_local, ls, st.beta, pending, rays);
         }
         let u_bsdf = glam::Vec2::new(u_bx, u_by);
         let bs = bsdf.sample(wo_local, u_lobe, u_bsdf)?;
@@ -219,7 +287,9 @@ impl<A: Accel> PathContext<'_, A> {
         Some(si.spawn_ray(wi))
     }
 
-    /// Next-event estimation for one light sample: shadow-tested, MIS-weighted.
+    /// Next-event estimation for one light sample: MIS-weighted, its
+    /// shadow ray and contribution `beta · f · li · w / pdf` left in `pending`.
+    #[allow(clippy::too_many_arguments)]
     fn direct(
         &self,
         si: &crate::geometry::SurfaceInteraction,
@@ -227,21 +297,23 @@ impl<A: Accel> PathContext<'_, A> {
         frame: &Frame,
         wo_local: Vec3,
         ls: Option<crate::light::LightSample>,
+        beta: Vec3,
+        pending: &mut PendingShadows,
         rays: &mut u64,
-    ) -> Vec3 {
+    ) {
         let Some(ls) = ls else {
-            return Vec3::ZERO;
+            return;
         };
         if ls.pdf <= 0.0 || ls.li == Vec3::ZERO {
-            return Vec3::ZERO;
+            return;
         }
         if is_two_sided(bsdf) && ls.wi.dot(si.n_geo) <= 0.0 {
-            return Vec3::ZERO;
+            return;
         }
         let wi_local = frame.to_local(ls.wi);
         let f = bsdf.eval(wo_local, wi_local) * wi_local.z.abs();
         if f == Vec3::ZERO {
-            return Vec3::ZERO;
+            return;
         }
         let shadow = if ls.dist.is_finite() {
             si.spawn_ray_to(si.p + ls.wi * ls.dist)
@@ -249,9 +321,6 @@ impl<A: Accel> PathContext<'_, A> {
             si.spawn_ray(ls.wi)
         };
         *rays += 1;
-        if self.accel.occluded(&shadow) {
-            return Vec3::ZERO;
-        }
         let w = if ls.delta {
             1.0
         } else {
@@ -264,6 +333,6 @@ impl<A: Accel> PathContext<'_, A> {
         };
         // Delta local lights seen from a medium-free surface need no MIS with
         // equiangular sampling (that only covers medium vertices).
-        f * li * (w / ls.pdf)
+        pending.push(shadow, beta * (f * li * (w / ls.pdf)));
     }
 }

@@ -212,6 +212,10 @@ fn render_view<A: Accel>(
                 scratch.hits.clear();
                 scratch.hits.resize(scratch.rays.len(), None);
                 ctx.accel.intersect_batch(&scratch.rays, &mut scratch.hits);
+                // Start every first hit's record load now, so the misses overlap.
+                for hit in scratch.hits.iter().flatten() {
+                    ctx.surfaces.prefetch(ctx.scene, hit);
+                }
                 let per_pixel = scratch
                     .rays
                     .chunks(spp as usize)
