@@ -59,6 +59,13 @@ pub struct TownDesc {
     /// keep away from it.
     #[serde(default)]
     pub roundabout: bool,
+    /// Highway slip roads (default false): beside every block segment of the
+    /// outer x-roads, on their outer side, an off-ramp leaving the outer lane
+    /// by a taper and an S-curve and an on-ramp merging back, with edge
+    /// lines, hatched gores and gravel shoulders (see `ramps`). Needs long
+    /// blocks: `block_size_m` ≥ road width + 250 m (highway towns).
+    #[serde(default)]
+    pub ramps: bool,
     /// Ground cover between and around the blocks.
     #[serde(default)]
     pub terrain: TerrainKind,
@@ -204,6 +211,13 @@ impl TownDesc {
             if few || self.block_size_m < 80.0 {
                 return Err("roundabout: needs 2 × 3 blocks or more and block_size_m ≥ 80".into());
             }
+        }
+        let ramp_block = super::ramps::min_ramp_block_m(self);
+        if self.ramps && self.block_size_m < ramp_block {
+            return Err(format!(
+                "ramps: needs long blocks (block_size_m ≥ {ramp_block}, as in highway towns), got {}",
+                self.block_size_m
+            ));
         }
         let [lo, hi] = self.floors;
         if !(1 <= lo && lo <= hi && hi <= 12) {

@@ -1,7 +1,8 @@
 //! Street furniture and street trees: trees and street lights along the
 //! sidewalks, traffic lights at every cross junction (one per approach, on
 //! its right-hand corner), stop signs where y-roads meet the outer x-roads
-//! (T junctions), and a few information signs.
+//! (T junctions), and a few information signs. Nothing stands in the clear
+//! zone of a highway ramp site.
 //!
 //! Headings follow the prefabs of `props.rs`: a street light's arm reaches
 //! along local −y, a traffic light's along local +y, signs and signal heads
@@ -10,8 +11,9 @@
 use crate::scene::desc::ObjectDesc;
 
 use super::desc::TownDesc;
-use super::layout::{Layout, STUB_M};
+use super::layout::{Layout, Rect, STUB_M};
 use super::parts::{class, instance};
+use super::ramps::ramp_sites;
 use super::rng::{tag, Rng};
 
 /// Every street tree, light, signal and sign of the town.
@@ -65,6 +67,12 @@ pub fn furniture_objects(desc: &TownDesc, l: &Layout, seed: u64) -> Vec<ObjectDe
             !on_bridge || o.semantic.as_deref() == Some("pole")
         });
     }
+    let zones: Vec<_> = ramp_sites(desc, l).iter().map(|r| r.clear_zone()).collect();
+    out.retain(|o| {
+        let t = o.transform.translate.unwrap_or_default();
+        let at = Rect::centered([t[0], t[1]], [0.0, 0.0]);
+        !zones.iter().any(|z| z.contains(&at, 0.0))
+    });
     let (tl, ts) = (class("traffic_light"), class("traffic_sign"));
     let c = hw + 0.5;
     for j in 0..=l.ny {

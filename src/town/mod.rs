@@ -22,6 +22,7 @@ pub mod layout;
 pub mod materials;
 pub mod parts;
 pub mod props;
+pub mod ramps;
 pub mod rig;
 pub mod rng;
 pub mod roads;
@@ -55,7 +56,8 @@ pub const PEDESTRIAN_ID_BASE: u32 = 55_000;
 /// vegetation and street furniture.
 pub fn static_objects(desc: &TownDesc, seed: u64) -> Vec<ObjectDesc> {
     let l = Layout::new(desc);
-    let mut out = roads::road_objects(&l);
+    let sites = ramps::ramp_sites(desc, &l);
+    let mut out = roads::road_objects(&l, &sites);
     out.extend(buildings::block_objects(desc, &l, seed));
     let mut furniture = furniture::furniture_objects(desc, &l, seed);
     // Nothing stands on the roundabout's ring or sidewalk.
@@ -121,8 +123,8 @@ pub fn dynamic_objects(frame: &TownFrame) -> Vec<ObjectDesc> {
 }
 
 /// The resolved scene description of one town frame seen from `config`;
-/// without the hill mesh, which `load_town_frame` adds as an in-memory OBJ
-/// asset (`terrain::TERRAIN_FILE`).
+/// without the hill and ramp meshes, which `load_town_frame` adds as
+/// in-memory OBJ assets (`terrain::TERRAIN_FILE`, `ramps::RAMP_FILES`).
 pub fn town_scene(desc: &TownDesc, seed: u64, frame: u64, config: CameraConfig) -> SceneDesc {
     let tf = frame_at(desc, seed, frame);
     let mut objects = static_objects(desc, seed);
@@ -163,6 +165,12 @@ pub fn load_town_frame(
         triangle_estimate += asset.triangle_count();
         objs.insert(terrain::TERRAIN_FILE.to_string(), asset);
         scene.objects.push(t.object());
+    }
+    // So are the ramp meshes (curved strips, not boxes).
+    for (file, asset, object) in ramps::ramp_meshes(&ramps::ramp_sites(desc, &Layout::new(desc))) {
+        triangle_estimate += asset.triangle_count();
+        objs.insert(file, asset);
+        scene.objects.push(object);
     }
     Ok(LoadedScene {
         path: town_file.to_path_buf(),

@@ -14,6 +14,7 @@ use crate::scene::desc::ObjectDesc;
 
 use super::layout::{Layout, Rect, GROUND_MARGIN_M, STUB_M};
 use super::parts::{class, ground_quad, repeated, slab, Label};
+use super::ramps::{RampSite, TAPER_M};
 use super::roundabout::{arm_start_m, roundabout_objects};
 
 /// Along which world axis a road runs.
@@ -77,8 +78,10 @@ const STOP_LINE_AT_M: f64 = 4.0;
 /// How far back from the ring a roundabout arm's crosswalk starts, metres.
 const YIELD_CROSSWALK_M: f64 = 6.0;
 
-/// Every road, marking, curb, sidewalk and terrain object of the town.
-pub fn road_objects(l: &Layout) -> Vec<ObjectDesc> {
+/// Every road, marking, curb, sidewalk and terrain object of the town;
+/// beside the ramp `sites` the outer edge line turns dashed along the tapers
+/// and the outer shoulder (or sidewalk) leaves room for taper and gore.
+pub fn road_objects(l: &Layout, sites: &[RampSite]) -> Vec<ObjectDesc> {
     let mut out = Vec::new();
     let b = l.bounds();
     let m = GROUND_MARGIN_M;
@@ -97,6 +100,7 @@ pub fn road_objects(l: &Layout) -> Vec<ObjectDesc> {
         let y = j as f64 * p;
         out.extend(segment_objects(
             l,
+            sites,
             &Segment {
                 axis: Axis::X,
                 c: y,
@@ -119,11 +123,12 @@ pub fn road_objects(l: &Layout) -> Vec<ObjectDesc> {
                     yield_end: [false; 2],
                 },
             );
-            out.extend(segment_objects(l, &s));
+            out.extend(segment_objects(l, sites, &s));
         }
         let e = l.len_x();
         out.extend(segment_objects(
             l,
+            sites,
             &Segment {
                 axis: Axis::X,
                 c: y,
@@ -149,7 +154,7 @@ pub fn road_objects(l: &Layout) -> Vec<ObjectDesc> {
                     yield_end: [false; 2],
                 },
             );
-            out.extend(segment_objects(l, &s));
+            out.extend(segment_objects(l, sites, &s));
         }
     }
     for j in 0..=l.ny {
@@ -185,7 +190,54 @@ fn roundabout_arm(l: &Layout, mut s: Segment) -> Segment {
     s
 }
 
-fn segment_objects(l: &Layout, s: &Segment) -> Vec<ObjectDesc> {
+/// The ramp sites beside segment `s` on its side `sign` (x-roads only).
+fn sites_beside<'a>(s: &Segment, sign: f64, sites: &'a [RampSite]) -> Vec<&'a RampSite> {
+    let mut v: Vec<&RampSite> = sites
+        .iter()
+        .filter(|r| s.axis == Axis::X && (r.y_road_m - s.c).abs() < 1e-9 && r.side == sign)
+        .filter(|r| r.a0 >= s.a0 && r.a1 <= s.a1)
+        .collect();
+    v.sort_by(|a, b| a.a0.total_cmp(&b.a0));
+    v
+}
+
+/// [a0, a1] without the `cuts` (sorted, disjoint, inside it).
+fn uncut(a0: f64, a1: f64, cuts: &[(f64, f64)]) -> Vec<(f64, f64)> {
+    let mut out = Vec::new();
+    let mut at = a0;
+    for &(c0, c1) in cuts {
+        if c0 > at {
+            out.push((at, c0));
+        }
+        at = at.max(c1);
+    }
+    if a1 > at {
+        out.push((at, a1));
+    }
+    out
+}
+
+/// The solid edge line on one side, dashed along the ramp tapers (there it
+/// divides the through lane from the deceleration or acceleration lane).
+fn edge_line(s: &Segment, (s0, s1): (f64, f64), u: f64, ramps: &[&RampSite]) -> Vec<ObjectDesc> {
+    let (m, mark) = ("paint_white_road", class("lane_marking"));
+    let mut o = Vec::new();
+    let tapers: Vec<(f64, f64)> = ramps
+        .iter()
+        .flat_map(|r| [(r.a0, r.a0 + TAPER_M), (r.a1 - TAPER_M, r.a1)])
+        .collect();
+    for &(a, b) in &tapers {
+        o.extend(dashed(s, a, b, u, 0.15, m, mark));
+    }
+    for (a, b) in uncut(s0, s1, &tapers) {
+        if b - a > 0.05 {
+            o.extend(solid(s, a, b, u, 0.15, m, mark));
+        }
+    }
+    o
+}
+
+fn segment_objects(l: &Layout, sites: &[RampSite], s: &Segment) -> Vec<ObjectDesc> {
     let road = class("road");
     let mark = class("lane_marking");
     let side = class("sidewalk");
@@ -222,15 +274,8 @@ fn segment_objects(l: &Layout, s: &Segment) -> Vec<ObjectDesc> {
             }
         }
         for sign in [-1.0, 1.0] {
-            o.extend(solid(
-                s,
-                s0,
-                s1,
-                sign * (hw - 0.25),
-                0.15,
-                "paint_white_road",
-                mark,
-            ));
+            let ramps = sites_beside(s, sign, sites);
+            o.extend(edge_line(s, (s0, s1), sign * (hw - 0.25), &ramps));
         }
     }
     // Crosswalk stripes (parallel to traffic, 0.5 m wide every 1 m) and the
@@ -285,20 +330,26 @@ fn segment_objects(l: &Layout, s: &Segment) -> Vec<ObjectDesc> {
     let sw = l.sidewalk_m;
     for sign in [-1.0f64, 1.0] {
         let sorted = |(a, b): (f64, f64)| (a.min(b), a.max(b));
-        if !l.sidewalks {
-            let shoulder = sorted((sign * hw, sign * (hw + sw)));
-            let (p, q) = (s.xy(s.a0, shoulder.0), s.xy(s.a1, shoulder.1));
-            let (min, max) = (
-                [p[0].min(q[0]), p[1].min(q[1])],
-                [p[0].max(q[0]), p[1].max(q[1])],
-            );
-            o.push(ground_quad(min, max, 0.0, "gravel", class("terrain")));
-            continue;
+        let cuts: Vec<(f64, f64)> = sites_beside(s, sign, sites)
+            .iter()
+            .flat_map(|r| r.shoulder_cuts())
+            .collect();
+        for (a0, a1) in uncut(s.a0, s.a1, &cuts) {
+            if !l.sidewalks {
+                let shoulder = sorted((sign * hw, sign * (hw + sw)));
+                let (p, q) = (s.xy(a0, shoulder.0), s.xy(a1, shoulder.1));
+                let (min, max) = (
+                    [p[0].min(q[0]), p[1].min(q[1])],
+                    [p[0].max(q[0]), p[1].max(q[1])],
+                );
+                o.push(ground_quad(min, max, 0.0, "gravel", class("terrain")));
+                continue;
+            }
+            let curb = (sign * hw, sign * (hw + 0.25));
+            let walk = (sign * (hw + 0.25), sign * (hw + sw));
+            o.push(s.slab((a0, a1), sorted(curb), (0.0, 0.15), "curb", side));
+            o.push(s.slab((a0, a1), sorted(walk), (0.0, 0.14), "sidewalk", side));
         }
-        let curb = (sign * hw, sign * (hw + 0.25));
-        let walk = (sign * (hw + 0.25), sign * (hw + sw));
-        o.push(s.slab((s.a0, s.a1), sorted(curb), (0.0, 0.15), "curb", side));
-        o.push(s.slab((s.a0, s.a1), sorted(walk), (0.0, 0.14), "sidewalk", side));
     }
     o
 }

@@ -3,7 +3,7 @@
 //! `hills_m` in the terrain margin, tessellated as a regular grid mesh.
 //!
 //! h(x, y) = A · w(d) · g(x, y) / peak, where d is the distance from the flat
-//! zone (town bounds and river band), w a C¹ smoothstep from 0 at `FLAT_M` to
+//! zone (town bounds, river band and ramp sites), w a C¹ smoothstep from 0 at `FLAT_M` to
 //! 1 at `FLAT_M + BLEND_M`, and g a blend of a sum of random sinusoids (the
 //! hills) and a ramp in d (so the town sits in a valley). `peak` is the
 //! largest w·g over the mesh vertices, so the highest vertex is exactly A.
@@ -51,6 +51,8 @@ pub struct Terrain {
     amplitude_m: f64,
     flat: Rect,
     river: Option<Rect>,
+    /// Clear zones of the highway ramp sites (flat like the town).
+    ramps: Vec<Rect>,
     waves: Vec<Wave>,
     /// Extent of the terrain mesh (the ground's extent).
     extent: Rect,
@@ -106,6 +108,10 @@ impl Terrain {
             amplitude_m: desc.hills_m,
             flat: b,
             river: l.river_band(),
+            ramps: super::ramps::ramp_sites(desc, l)
+                .iter()
+                .map(|r| r.clear_zone())
+                .collect(),
             waves,
             extent,
             spacing_m,
@@ -132,9 +138,12 @@ impl Terrain {
         self.spacing_m
     }
 
-    /// Distance from the flat zone (town bounds, river band), metres.
+    /// Distance from the flat zone (town bounds, river band, ramp sites), metres.
     fn flat_distance(&self, p: [f64; 2]) -> f64 {
-        let d = rect_distance(&self.flat, p);
+        let d = self
+            .ramps
+            .iter()
+            .fold(rect_distance(&self.flat, p), |d, r| d.min(rect_distance(r, p)));
         match &self.river {
             Some(band) => d.min(rect_distance(band, p)),
             None => d,

@@ -1,0 +1,189 @@
+//! Highway ramps (`ramps = true`): present in town06 only; the ramp surface
+//! joins the highway edge without gaps (rays straight down through taper,
+//! gore and ramp hit road or paint at z = 0); ramp sites keep clear of lots,
+//! buildings and furniture; hills stay flat under them; a bad `ramps` key
+//! is rejected naming it.
+
+use std::path::{Path, PathBuf};
+
+use glam::DVec3;
+use parallax::accel::{build_accel, Accel, Backend, Ray};
+use parallax::scene::build_scene;
+use parallax::scene::semantic::class_id;
+use parallax::town::layout::Layout;
+use parallax::town::ramps::{ramp_sites, RAMP_FILES, TAPER_M};
+use parallax::town::terrain::Terrain;
+use parallax::town::{load_town, load_town_frame, parse_town_str, static_objects, CameraConfig};
+use parallax::town::{town_scene, TownDesc};
+
+const TOWNS: [&str; 8] = [
+    "town01", "town02", "town03", "town04", "town05", "town06", "town07", "town10",
+];
+
+fn town_file(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("scenes/{name}.toml"))
+}
+
+fn town(name: &str) -> TownDesc {
+    load_town(&town_file(name)).unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[test]
+fn ramps_are_built_in_town06_and_nowhere_else() {
+    for name in TOWNS {
+        let desc = town(name);
+        let sites = ramp_sites(&desc, &Layout::new(&desc));
+        if name == "town06" {
+            // Five blocks along both outer highways.
+            assert_eq!(sites.len(), 10, "{name}");
+        } else {
+            assert!(sites.is_empty(), "{name} has ramps");
+        }
+    }
+    let desc = town("town06");
+    let loaded = load_town_frame(&desc, 3, 0, CameraConfig::Normal, Path::new("t.toml")).unwrap();
+    for (file, _, class) in RAMP_FILES {
+        let asset = &loaded.objs[file];
+        assert!(asset.triangle_count() > 1000, "{file}");
+        let object = loaded.desc.objects.iter().find(|o| {
+            matches!(&o.shape, parallax::scene::desc::ShapeDesc::Obj { file: f } if f == file)
+        });
+        assert_eq!(object.unwrap().semantic.as_deref(), Some(class));
+    }
+    // The description without the generated meshes stays the same shape.
+    let plain = town_scene(&desc, 3, 0, CameraConfig::Normal);
+    assert_eq!(plain.objects.len() + 3, loaded.desc.objects.len());
+}
+
+#[test]
+fn ramp_surface_joins_the_highway_edge_without_gaps() {
+    let desc = town("town06");
+    let l = Layout::new(&desc);
+    let loaded = load_town_frame(&desc, 3, 0, CameraConfig::Normal, Path::new("t.toml")).unwrap();
+    let scene = build_scene(&loaded, DVec3::ZERO).unwrap();
+    let accel = build_accel(Backend::default_backend(), &scene.accel_geometry()).unwrap();
+    let (road, paint) = (class_id("road").unwrap(), class_id("lane_marking").unwrap());
+    let mut checked = 0;
+    for s in ramp_sites(&desc, &l) {
+        let len = s.len_m();
+        // Stations through taper, gore and curve at both ends, and mid-ramp.
+        let mut ts: Vec<f64> = (1..90).map(|k| k as f64 * 1.13).collect();
+        ts.extend((1..90).map(|k| len - k as f64 * 1.13));
+        ts.push(len / 2.0);
+        for t in ts {
+            let inner = s.edge(t, false, 0.0);
+            let outer = s.edge(t, true, 0.0);
+            // Across the seam with the highway (o just inside its edge) to
+            // just inside the ramp's outer edge; in the gore (inner edge
+            // off the highway but within the nose) the pavement is continuous.
+            let tm = t.min(len - t);
+            let gore = tm >= TAPER_M && tm <= s.nose_m;
+            let mut os = vec![s.hw - 0.3, s.hw - 1e-3, s.hw + 1e-3];
+            if tm < TAPER_M || gore {
+                let top = if tm < TAPER_M { outer[1] } else { inner[1] };
+                os.extend((1..8).map(|k| s.hw + (top - s.hw) * k as f64 / 8.0));
+            }
+            let mut pts: Vec<[f64; 2]> = os.into_iter().map(|o| [t, o]).collect();
+            if tm >= TAPER_M {
+                for f in [0.02, 0.3, 0.5, 0.7, 0.98] {
+                    pts.push([
+                        inner[0] + (outer[0] - inner[0]) * f,
+                        inner[1] + (outer[1] - inner[1]) * f,
+                    ]);
+                }
+            }
+            for p in pts {
+                let w = s.world(p);
+                let hit = accel
+                    .intersect(&Ray::new(
+                        glam::Vec3::new(w[0] as f32, w[1] as f32, 10.0),
+                        glam::Vec3::NEG_Z,
+                    ))
+                    .unwrap_or_else(|| panic!("nothing below {w:?}"));
+                let c = scene.meshes[hit.geom_id as usize].semantic;
+                let z = 10.0 - hit.t as f64;
+                assert!(c == road || c == paint, "class {c} at {w:?} (t {t}, o {})", p[1]);
+                assert!((-1e-4..0.0085).contains(&z), "z {z} at {w:?}");
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 5000, "{checked}");
+}
+
+#[test]
+fn ramps_keep_clear_of_lots_buildings_and_furniture() {
+    let desc = town("town06");
+    let l = Layout::new(&desc);
+    let zones: Vec<_> = ramp_sites(&desc, &l).iter().map(|s| s.clear_zone()).collect();
+    for z in &zones {
+        for i in 0..l.nx {
+            for j in 0..l.ny {
+                assert!(!z.overlaps(&l.block_interior(i, j)), "lot ({i}, {j})");
+            }
+        }
+        // The zone holds the highway's outer shoulder and nothing of its lanes.
+        assert!(!l.road_rects().iter().any(|r| r.overlaps(z)));
+    }
+    for seed in [0, 7] {
+        let objects = static_objects(&desc, seed);
+        let mut standing = 0;
+        for o in &objects {
+            let class = o.semantic.as_deref().unwrap_or("");
+            if !matches!(
+                class,
+                "building" | "pole" | "vegetation" | "traffic_sign" | "traffic_light"
+            ) {
+                continue;
+            }
+            standing += 1;
+            let t = o.transform.translate.unwrap_or_default();
+            for z in &zones {
+                let inside = (z.min[0]..=z.max[0]).contains(&t[0])
+                    && (z.min[1]..=z.max[1]).contains(&t[1]);
+                assert!(!inside, "{class} at {t:?} on a ramp (seed {seed})");
+            }
+        }
+        assert!(standing > 100, "{standing}");
+    }
+}
+
+#[test]
+fn hills_stay_flat_under_the_ramps() {
+    let text = std::fs::read_to_string(town_file("town06")).unwrap();
+    let hilly = format!("{text}hills_m = 60.0\nhill_wavelength_m = 120.0\n");
+    let desc = parse_town_str(&hilly, Path::new("hilly.toml")).unwrap();
+    let l = Layout::new(&desc);
+    let t = Terrain::new(&desc, &l, 5).unwrap();
+    let mut highest: f64 = 0.0;
+    for s in ramp_sites(&desc, &l) {
+        let z = s.clear_zone();
+        for i in 0..=40 {
+            for j in 0..=10 {
+                let x = z.min[0] + (z.max[0] - z.min[0]) * i as f64 / 40.0;
+                let y = z.min[1] + (z.max[1] - z.min[1]) * j as f64 / 10.0;
+                assert_eq!(t.height_m(x, y), 0.0, "hill at ({x}, {y})");
+            }
+        }
+        // Hills do rise beyond the ramps.
+        let far = s.y_road_m + s.side * 150.0;
+        highest = highest.max(t.height_m((s.a0 + s.a1) / 2.0, far));
+    }
+    assert!(highest > 1.0, "{highest}");
+}
+
+#[test]
+fn bad_ramps_key_is_rejected_naming_it() {
+    let p = Path::new("bad.toml");
+    // town05's blocks are too short for a ramp site.
+    let short = format!("{}ramps = true\n", std::fs::read_to_string(town_file("town05")).unwrap());
+    let e = parse_town_str(&short, p).unwrap_err();
+    assert!(e.contains("ramps") && e.contains("block_size_m"), "{e}");
+    let text = std::fs::read_to_string(town_file("town06")).unwrap();
+    let typed = text.replace("ramps = true", "ramps = 3");
+    let e = parse_town_str(&typed, p).unwrap_err();
+    assert!(e.contains("ramps"), "{e}");
+    let off = text.replace("ramps = true", "ramps = false");
+    let desc = parse_town_str(&off, p).unwrap();
+    assert!(ramp_sites(&desc, &Layout::new(&desc)).is_empty());
+}
