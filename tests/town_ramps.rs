@@ -78,8 +78,9 @@ fn ramp_surface_joins_the_highway_edge_without_gaps() {
             // off the highway but within the nose) the pavement is continuous.
             let tm = t.min(len - t);
             let gore = tm >= TAPER_M && tm <= s.nose_m;
-            let mut os = vec![s.hw - 0.3, s.hw - 1e-3, s.hw + 1e-3];
+            let mut os = vec![s.hw - 0.3, s.hw - 1e-3];
             if tm < TAPER_M || gore {
+                os.push(s.hw + 1e-3);
                 let top = if tm < TAPER_M { outer[1] } else { inner[1] };
                 os.extend((1..8).map(|k| s.hw + (top - s.hw) * k as f64 / 8.0));
             }
