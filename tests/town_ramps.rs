@@ -45,9 +45,9 @@ fn ramps_are_built_in_town06_and_nowhere_else() {
     for (file, _, class) in RAMP_FILES {
         let asset = &loaded.objs[file];
         assert!(asset.triangle_count() > 1000, "{file}");
-        let object = loaded.desc.objects.iter().find(|o| {
-            matches!(&o.shape, parallax::scene::desc::ShapeDesc::Obj { file: f } if f == file)
-        });
+        let object = loaded.desc.objects.iter().find(
+            |o| matches!(&o.shape, parallax::scene::desc::ShapeDesc::Obj { file: f } if f == file),
+        );
         assert_eq!(object.unwrap().semantic.as_deref(), Some(class));
     }
     // The description without the generated meshes stays the same shape.
@@ -103,7 +103,11 @@ fn ramp_surface_joins_the_highway_edge_without_gaps() {
                     .unwrap_or_else(|| panic!("nothing below {w:?}"));
                 let c = scene.meshes[hit.geom_id as usize].semantic;
                 let z = 10.0 - hit.t as f64;
-                assert!(c == road || c == paint, "class {c} at {w:?} (t {t}, o {})", p[1]);
+                assert!(
+                    c == road || c == paint,
+                    "class {c} at {w:?} (t {t}, o {})",
+                    p[1]
+                );
                 assert!((-1e-4..0.0085).contains(&z), "z {z} at {w:?}");
                 checked += 1;
             }
@@ -116,7 +120,10 @@ fn ramp_surface_joins_the_highway_edge_without_gaps() {
 fn ramps_keep_clear_of_lots_buildings_and_furniture() {
     let desc = town("town06");
     let l = Layout::new(&desc);
-    let zones: Vec<_> = ramp_sites(&desc, &l).iter().map(|s| s.clear_zone()).collect();
+    let zones: Vec<_> = ramp_sites(&desc, &l)
+        .iter()
+        .map(|s| s.clear_zone())
+        .collect();
     for z in &zones {
         for i in 0..l.nx {
             for j in 0..l.ny {
@@ -140,8 +147,8 @@ fn ramps_keep_clear_of_lots_buildings_and_furniture() {
             standing += 1;
             let t = o.transform.translate.unwrap_or_default();
             for z in &zones {
-                let inside = (z.min[0]..=z.max[0]).contains(&t[0])
-                    && (z.min[1]..=z.max[1]).contains(&t[1]);
+                let inside =
+                    (z.min[0]..=z.max[0]).contains(&t[0]) && (z.min[1]..=z.max[1]).contains(&t[1]);
                 assert!(!inside, "{class} at {t:?} on a ramp (seed {seed})");
             }
         }
@@ -177,7 +184,10 @@ fn hills_stay_flat_under_the_ramps() {
 fn bad_ramps_key_is_rejected_naming_it() {
     let p = Path::new("bad.toml");
     // town05's blocks are too short for a ramp site.
-    let short = format!("{}ramps = true\n", std::fs::read_to_string(town_file("town05")).unwrap());
+    let short = format!(
+        "{}ramps = true\n",
+        std::fs::read_to_string(town_file("town05")).unwrap()
+    );
     let e = parse_town_str(&short, p).unwrap_err();
     assert!(e.contains("ramps") && e.contains("block_size_m"), "{e}");
     let text = std::fs::read_to_string(town_file("town06")).unwrap();

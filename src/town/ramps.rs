@@ -238,7 +238,8 @@ impl Flat<'_> {
     /// A triangle (dropped when degenerate), turned to face +z.
     fn tri(&mut self, p: [[f64; 2]; 3]) {
         let w = p.map(|q| self.site.world(q));
-        let area = (w[1][0] - w[0][0]) * (w[2][1] - w[0][1]) - (w[2][0] - w[0][0]) * (w[1][1] - w[0][1]);
+        let area =
+            (w[1][0] - w[0][0]) * (w[2][1] - w[0][1]) - (w[2][0] - w[0][0]) * (w[1][1] - w[0][1]);
         if area.abs() < 1e-9 {
             return;
         }
@@ -270,7 +271,10 @@ impl RampSite {
     /// Ramp lane and the gore pavement between it and the highway edge.
     fn road(&self, f: &mut Flat) {
         let len = self.len_m();
-        f.strip(&self.line(0.0, len, false, 0.0), &self.line(0.0, len, true, 0.0));
+        f.strip(
+            &self.line(0.0, len, false, 0.0),
+            &self.line(0.0, len, true, 0.0),
+        );
         for (from, to) in [(TAPER_M, self.nose_m), (len - self.nose_m, len - TAPER_M)] {
             let inner = self.line(from, to, false, 0.0);
             // Projected straight onto the highway edge: shares its line exactly.
@@ -316,9 +320,15 @@ impl RampSite {
     /// Gravel shoulders: outside the ramp all along, inside past the noses.
     fn shoulders(&self, f: &mut Flat) {
         let (len, sw) = (self.len_m(), self.shoulder_m);
-        f.strip(&self.line(0.0, len, true, 0.0), &self.line(0.0, len, true, -sw));
+        f.strip(
+            &self.line(0.0, len, true, 0.0),
+            &self.line(0.0, len, true, -sw),
+        );
         let (t0, t1) = (self.nose_m, len - self.nose_m);
-        f.strip(&self.line(t0, t1, false, 0.0), &self.line(t0, t1, false, -sw));
+        f.strip(
+            &self.line(t0, t1, false, 0.0),
+            &self.line(t0, t1, false, -sw),
+        );
     }
 }
 

@@ -143,7 +143,9 @@ impl Terrain {
         let d = self
             .ramps
             .iter()
-            .fold(rect_distance(&self.flat, p), |d, r| d.min(rect_distance(r, p)));
+            .fold(rect_distance(&self.flat, p), |d, r| {
+                d.min(rect_distance(r, p))
+            });
         match &self.river {
             Some(band) => d.min(rect_distance(band, p)),
             None => d,
