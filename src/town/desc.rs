@@ -63,7 +63,7 @@ pub struct TownDesc {
     /// outer x-roads, on their outer side, an off-ramp leaving the outer lane
     /// by a taper and an S-curve and an on-ramp merging back, with edge
     /// lines, hatched gores and gravel shoulders (see `ramps`). Needs long
-    /// blocks: `block_size_m` ≥ road width + 250 m (highway towns).
+    /// blocks: `block_size_m` ≥ road width + 254 m (highway towns).
     #[serde(default)]
     pub ramps: bool,
     /// Ground cover between and around the blocks.
