@@ -184,14 +184,15 @@ impl BenchReport {
             ),
             line("raw primary single", r.primary_single_mrays),
             line("raw primary packet8", r.primary_packet_mrays),
+            line("raw primary tile4x2", r.primary_tile_mrays),
             line("raw incoherent hit", r.incoherent_closest_mrays),
             line("raw incoherent any", r.incoherent_any_mrays),
             line("raw shading packet8", r.shading_packet_mrays),
             line("raw shading hit", r.shading_closest_mrays),
             line("raw shading any", r.shading_any_mrays),
             format!(
-                "ratio GT / raw packet8        {:.2}",
-                ratio(gt, r.primary_packet_mrays)
+                "ratio GT / raw tile4x2        {:.2}",
+                ratio(gt, r.primary_tile_mrays)
             ),
             format!(
                 "ratio path / raw incoherent   {:.2} (watertight), {:.2} (shading queries path uses)",

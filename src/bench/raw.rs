@@ -20,8 +20,10 @@ use crate::scene::Scene;
 pub struct RawThroughput {
     /// Primary rays one at a time.
     pub primary_single_mrays: Rate,
-    /// Primary rays in 8-wide packets along rows.
+    /// Primary rays in 8-wide packets along rows (8×1 pixels).
     pub primary_packet_mrays: Rate,
+    /// Primary rays in 8-wide packets over 4×2 pixel tiles (the GT pass's shape).
+    pub primary_tile_mrays: Rate,
     /// Incoherent closest-hit rays.
     pub incoherent_closest_mrays: Rate,
     /// Incoherent any-hit rays.
@@ -100,6 +102,24 @@ pub fn raw_throughput(accel: &impl Accel, scene: &Scene, rig: &StereoRig) -> Raw
         rows.par_iter()
             .zip(hits.par_iter_mut())
             .for_each(|(row, hit)| accel.intersect_batch(row, hit))
+    });
+    // The same rays regrouped into 4×2 tiles (pairs of rows, 4 columns at a time).
+    let tiles: Vec<Vec<Ray>> = rows
+        .chunks(2)
+        .map(|band| {
+            (0..w)
+                .step_by(4)
+                .flat_map(|i0| band.iter().flat_map(move |row| &row[i0..(i0 + 4).min(w)]))
+                .copied()
+                .collect()
+        })
+        .collect();
+    let mut tile_hits: Vec<Vec<Option<Hit>>> = tiles.iter().map(|t| vec![None; t.len()]).collect();
+    out.primary_tile_mrays = rate(n, || {
+        tiles
+            .par_iter()
+            .zip(tile_hits.par_iter_mut())
+            .for_each(|(tile, hit)| accel.intersect_batch(tile, hit))
     });
     let secondary: Vec<Ray> = rows
         .iter()
