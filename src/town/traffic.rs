@@ -8,6 +8,9 @@
 //! ≤ 1 scales the route so it advances exactly 1/m_r lap per cycle; the
 //! ring (on the outer roads, without crossers) ignores the clock. The
 //! pose of every object at frame K is a pure function of (desc, seed, K).
+//! Each route carries the bodies its corners fit; in multi-lane towns the
+//! ring's long-vehicle route runs a bus line (every third slot a bus or
+//! truck), spaced for the longest body on it.
 //!
 //! No overlap, by construction: routes share no road surface (each lane
 //! belongs to one route, corners stay in their own corridor, roundabout
