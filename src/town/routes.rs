@@ -1,17 +1,19 @@
-//! Closed vehicle routes over the road grid: every lane of every road is
-//! part of exactly one route, a loop of straights and circular arcs on the
-//! lane centreline (right-hand traffic). Block loops circle one block
-//! clockwise on the lanes beside it (right turns at every corner); the ring
-//! circles the whole town counter-clockwise on the outer lanes of the outer
-//! roads (left turns at the town corners, straight through the T junctions).
+//! Closed vehicle routes over the road grid, on lane centrelines
+//! (right-hand traffic), as loops of straights and circular arcs. Block
+//! loops circle one block clockwise on the lanes beside it (right turns at
+//! every corner); the ring circles the whole town counter-clockwise on the
+//! outer lanes of the outer roads (left turns at the town corners, straight
+//! through the T junctions).
 //!
 //! Lane k of a road (counted from the centreline) is the band [k·w, (k+1)·w]
 //! beside it, w = lane width. At a corner a route turns inside its own
 //! L-shaped corridor (its lane band on both roads), so routes never share
-//! road surface: a corner is an arc of radius w/2 + δ about a point δ
-//! beyond the corridor's inner corner, and a body fits the turn when its
-//! footprint stays inside the corridor for the whole arc (`fits_turn`,
-//! checked numerically; the ladder-around-a-corner bound is 2√2·w − 2·width).
+//! road surface: a corner is an arc about a point δ beyond the corridor's
+//! inner corner, and a body fits when its footprint stays inside the
+//! corridor for the whole arc (`turns`). One lane fits cars only; with two
+//! or more lanes the ring's two outer lanes form one corridor for a route
+//! on the outer lane that carries buses and trucks (lane L−2 of the ring
+//! then carries no route of its own).
 //!
 //! At the roundabout a block loop's right turn becomes: a right-curving
 //! fillet into ring lane k, a counter-clockwise arc round the quarter of
@@ -23,7 +25,11 @@ use std::f64::consts::{FRAC_PI_2, PI};
 
 use super::layout::Layout;
 use super::roundabout::arm_start_m;
-use super::vehicles::{BodyKind, BODIES};
+use super::vehicles::BodyKind;
+
+mod turns;
+
+pub use turns::{fits_corridor, fits_turn, Turns};
 
 /// Which loop a route is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -155,6 +161,8 @@ pub struct Route {
     pub keep_clear_m: Vec<[f64; 2]>,
     /// Whether the route passes the roundabout.
     pub roundabout: bool,
+    /// The body types that fit its corners.
+    pub bodies: Vec<BodyKind>,
 }
 
 impl Route {
@@ -163,6 +171,7 @@ impl Route {
         lane: u32,
         segments: Vec<Segment>,
         keep_clear_m: Vec<[f64; 2]>,
+        bodies: Vec<BodyKind>,
     ) -> Self {
         let mut starts_m = Vec::with_capacity(segments.len());
         let mut s = 0.0;
@@ -178,7 +187,16 @@ impl Route {
             starts_m,
             keep_clear_m,
             roundabout,
+            bodies,
         }
+    }
+
+    /// Longest body that fits its corners, metres.
+    pub fn max_len_m(&self) -> f64 {
+        self.bodies
+            .iter()
+            .map(|b| b.footprint_m()[0])
+            .fold(0.0, f64::max)
     }
 
     /// Perimeter, metres.
@@ -288,10 +306,11 @@ fn loop_route(
     kind: RouteKind,
     lane: u32,
     corners: [[f64; 2]; 4],
-    r: f64,
+    turns: &Turns,
     ring: Option<[f64; 2]>,
     keep_clear: bool,
 ) -> Route {
+    let r = turns.radius_m;
     let e = (lane as f64 + 0.5) * l.lane_w_m;
     let hw = l.road_w_m / 2.0;
     let rho = ring_fillet_m(l);
@@ -358,115 +377,17 @@ fn loop_route(
         }
         s += turn_m;
     }
-    Route::new(kind, lane, segs, clear)
-}
-
-/// Corner geometry shared by every route of a town.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Turns {
-    /// Offset δ of the arc centre beyond the corridor's inner corner, metres.
-    pub delta_m: f64,
-    /// Arc radius w/2 + δ, metres.
-    pub radius_m: f64,
-    /// The body types whose footprint fits the turn.
-    pub bodies: Vec<BodyKind>,
-}
-
-/// Clearance kept from the corridor's walls and inner corner, metres.
-const TURN_MARGIN_M: f64 = 0.05;
-
-/// Whether a `footprint` (length, width) driven through the canonical
-/// corner stays inside its corridor: walls u ≥ 0 and v ≥ 0, inner corner
-/// (w, w) with the quadrant beyond it forbidden; arriving along v = w/2
-/// heading −u, leaving along u = w/2 heading +v.
-pub fn fits_turn(footprint: [f64; 2], lane_w: f64, delta: f64) -> bool {
-    let [len, wid] = footprint;
-    let (m, w) = (TURN_MARGIN_M, lane_w);
-    let r = w / 2.0 + delta;
-    let c = w + delta;
-    let steps = 48;
-    // Poses: a body length of straight before and after the arc, and the arc.
-    let mut poses = Vec::new();
-    for k in 0..=steps {
-        let t = k as f64 / steps as f64;
-        poses.push(([c + len * (1.0 - t), w / 2.0], PI));
-        poses.push(([w / 2.0, c + len * t], FRAC_PI_2));
-        let phi = -FRAC_PI_2 - t * FRAC_PI_2;
-        poses.push(([c + r * phi.cos(), c + r * phi.sin()], PI - t * FRAC_PI_2));
-    }
-    poses.iter().all(|&(p, h)| {
-        let (f, s) = ([h.cos(), h.sin()], [-h.sin(), h.cos()]);
-        // The inner corner must not lie inside the body.
-        let d = [w - p[0], w - p[1]];
-        let (a, b) = (d[0] * f[0] + d[1] * f[1], d[0] * s[0] + d[1] * s[1]);
-        if a.abs() < len / 2.0 + m && b.abs() < wid / 2.0 + m {
-            return false;
-        }
-        let n = 40;
-        (0..4 * n).all(|q| {
-            // Perimeter points, corner to corner.
-            let (edge, t) = (q / n, (q % n) as f64 / n as f64);
-            let (x, y) = match edge {
-                0 => (-0.5 + t, -0.5),
-                1 => (0.5, -0.5 + t),
-                2 => (0.5 - t, 0.5),
-                _ => (-0.5, 0.5 - t),
-            };
-            let (x, y) = (x * len, y * wid);
-            let u = p[0] + x * f[0] + y * s[0];
-            let v = p[1] + x * f[1] + y * s[1];
-            u >= m && v >= m && !(u > w - m && v > w - m)
-        })
-    })
-}
-
-impl Turns {
-    /// The δ (on a 10 cm grid, up to 1.3·w) that lets the most body types
-    /// turn, preferring the larger δ (gentler arcs) on ties.
-    /// Cached per lane width (the search takes tens of milliseconds).
-    pub fn new(lane_w: f64) -> Self {
-        use std::collections::BTreeMap;
-        use std::sync::{Mutex, OnceLock};
-        static CACHE: OnceLock<Mutex<BTreeMap<u64, Turns>>> = OnceLock::new();
-        let cache = CACHE.get_or_init(|| Mutex::new(BTreeMap::new()));
-        if let Some(t) = cache.lock().expect("turn cache").get(&lane_w.to_bits()) {
-            return t.clone();
-        }
-        let t = Self::search(lane_w);
-        cache
-            .lock()
-            .expect("turn cache")
-            .insert(lane_w.to_bits(), t.clone());
-        t
-    }
-
-    fn search(lane_w: f64) -> Self {
-        let mut best = (0usize, 0.0, Vec::new());
-        for k in 0..=(13.0 * lane_w) as usize {
-            let delta = k as f64 * 0.1;
-            let fit: Vec<BodyKind> = BODIES
-                .iter()
-                .copied()
-                .filter(|b| fits_turn(b.footprint_m(), lane_w, delta))
-                .collect();
-            if fit.len() >= best.0 {
-                best = (fit.len(), delta, fit);
-            }
-        }
-        Turns {
-            delta_m: best.1,
-            radius_m: lane_w / 2.0 + best.1,
-            bodies: best.2,
-        }
-    }
+    Route::new(kind, lane, segs, clear, turns.bodies.clone())
 }
 
 /// Every route of the town: block loops (by row, column, lane), then the
 /// ring lanes from the centreline out. Block loops with a corner at the
-/// roundabout take their right turn round the ring.
+/// roundabout take their right turn round the ring. With two or more lanes
+/// the ring's two outer lanes are one long-vehicle route: it drives the
+/// outer lane and swings through both at the town corners
+/// (`Turns::merged`), so buses and trucks fit.
 pub fn routes(l: &Layout, turns: &Turns) -> Vec<Route> {
     let mut out = Vec::new();
-    let r = turns.radius_m;
     let ring = l.roundabout_center();
     for j in 0..l.ny {
         for i in 0..l.nx {
@@ -477,15 +398,23 @@ pub fn routes(l: &Layout, turns: &Turns) -> Vec<Route> {
                 // Clockwise: west along the south side first.
                 let corners = [[x0, y0], [x0, y1], [x1, y1], [x1, y0]];
                 let kind = RouteKind::Block { i, j };
-                out.push(loop_route(l, kind, k, corners, r, ring, true));
+                out.push(loop_route(l, kind, k, corners, turns, ring, true));
             }
         }
     }
+    let merged = Turns::merged(l.lane_w_m, 2);
     for k in 0..l.lanes {
-        let e = (k as f64 + 0.5) * l.lane_w_m;
+        let long_vehicles = l.lanes >= 2 && k + 2 >= l.lanes;
+        if long_vehicles && k + 2 == l.lanes {
+            // Lane L−2 belongs to the long-vehicle route's corners.
+            continue;
+        }
+        let t = if long_vehicles { &merged } else { turns };
+        // The corridor's outer wall is lane k's outer edge.
+        let e = (k + 1) as f64 * l.lane_w_m - t.offset_m;
         let (x0, y0, x1, y1) = (-e, -e, l.len_x() + e, l.len_y() + e);
         let corners = [[x1, y0], [x1, y1], [x0, y1], [x0, y0]];
-        out.push(loop_route(l, RouteKind::Ring, k, corners, r, None, false));
+        out.push(loop_route(l, RouteKind::Ring, k, corners, t, None, false));
     }
     out
 }
@@ -513,7 +442,8 @@ mod tests {
     fn every_route_is_continuous_and_turns_a_full_circle() {
         let l = town(true);
         let all = routes(&l, &Turns::new(l.lane_w_m));
-        assert_eq!(all.len(), 9 * 2 + 2);
+        // The ring's two lanes are one long-vehicle route.
+        assert_eq!(all.len(), 9 * 2 + 1);
         assert_eq!(all.iter().filter(|r| r.roundabout).count(), 4 * 2);
         for route in &all {
             let len = route.length_m();
@@ -576,19 +506,5 @@ mod tests {
         let (p, h) = arcs[2].at(arcs[2].length_m());
         assert!((p[0] + e).abs() < 1e-9 && (p[1] + e + cut).abs() < 1e-9);
         assert!((h + FRAC_PI_2).sin().abs() < 1e-9);
-    }
-
-    #[test]
-    fn cars_fit_a_3_5_m_lane_corner_and_a_bus_does_not() {
-        let t = Turns::new(3.5);
-        assert!(t.bodies.contains(&BodyKind::Sedan), "{t:?}");
-        assert!(!t.bodies.contains(&BodyKind::Bus));
-        // The ladder bound: a 1 m-wide body longer than 2√2·3.5 − 2 never fits.
-        assert!(!fits_turn(
-            [2.0 * 2f64.sqrt() * 3.5 - 2.0 + 0.01, 1.0],
-            3.5,
-            1.0
-        ));
-        assert!(fits_turn([3.0, 1.0], 3.5, 1.0));
     }
 }

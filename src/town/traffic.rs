@@ -8,6 +8,9 @@
 //! ≤ 1 scales the route so it advances exactly 1/m_r lap per cycle; the
 //! ring (on the outer roads, without crossers) ignores the clock. The
 //! pose of every object at frame K is a pure function of (desc, seed, K).
+//! Each route carries the bodies its corners fit; in multi-lane towns the
+//! ring's long-vehicle route runs a bus line (every third slot a bus or
+//! truck), spaced for the longest body on it.
 //!
 //! No overlap, by construction: routes share no road surface (each lane
 //! belongs to one route, corners stay in their own corridor, roundabout
@@ -38,6 +41,8 @@ pub use profile::{Limits, SpeedProfile};
 const MIN_GAP_M: f64 = 3.0;
 /// Gap between consecutive bodies on a straight at full speed, at least, metres.
 const CRUISE_GAP_M: f64 = 6.0;
+/// On long-vehicle routes, slots n ≡ 0 (mod this) hold a bus or truck.
+const LINE_EVERY: usize = 3;
 /// Lateral acceleration bound in curves, m/s².
 pub const A_LAT_MPS2: f64 = 3.0;
 /// Longitudinal acceleration and braking bound, m/s².
@@ -126,9 +131,9 @@ pub struct Schedule {
     pub stop_s: f64,
     /// Speed limit, m/s.
     pub speed_mps: f64,
-    /// Corner geometry and the bodies that fit it.
+    /// Corner geometry of the block loops and the bodies that fit it.
     pub turns: Turns,
-    /// Longest allowed body, metres.
+    /// Longest body on the block loops, metres.
     pub max_len_m: f64,
 }
 
@@ -262,9 +267,10 @@ impl Plan {
 fn route_plan(s: &Schedule, route: Route, profile: SpeedProfile) -> RoutePlan {
     let lap = profile.lap_s();
     let len = route.length_m();
-    let need = s.max_len_m + MIN_GAP_M;
+    let max_len_m = route.max_len_m();
+    let need = max_len_m + MIN_GAP_M;
     let fits = |n: usize| n == 1 || profile.min_spacing_m(lap / n as f64) >= need;
-    let most = (len / (s.max_len_m + CRUISE_GAP_M)).floor().max(1.0) as usize;
+    let most = (len / (max_len_m + CRUISE_GAP_M)).floor().max(1.0) as usize;
     if route.kind == RouteKind::Ring {
         let n = (1..=most).rev().find(|&n| fits(n)).unwrap_or(1);
         let slots = (0..n).map(|k| (k as f64 * lap / n as f64, true)).collect();
@@ -283,7 +289,7 @@ fn route_plan(s: &Schedule, route: Route, profile: SpeedProfile) -> RoutePlan {
         .unwrap_or(1);
     let n = m * per;
     let dc = lap / n as f64;
-    let half = s.max_len_m / 2.0;
+    let half = max_len_m / 2.0;
     let lead = profile.time_at((route.keep_clear_m[0][0] - half).rem_euclid(len));
     let slots = (0..n)
         .map(|k| {
@@ -389,19 +395,29 @@ pub fn frame_at(desc: &TownDesc, seed: u64, frame: u64) -> TownFrame {
             next_id += 1;
             let is_ego = ri == ego_route && n == ego_slot_n;
             let mut r = Rng::new(&[seed, tag::SLOT, ri as u64, n as u64]);
-            let occupied = open && r.chance(desc.traffic_density);
+            // A bus line: every third slot of a long-vehicle route always
+            // holds a bus or truck; the others fill at the traffic density.
+            let line = n % LINE_EVERY == 0 && rp.route.bodies.contains(&BodyKind::Bus);
+            let occupied = open && (r.chance(desc.traffic_density) || line);
             if !(occupied || is_ego) {
                 continue;
             }
             let body = if is_ego {
                 ego_body
+            } else if line {
+                weighted_body(&mut r, &[BodyKind::Bus, BodyKind::Truck])
             } else {
-                weighted_body(&mut r, &sched.turns.bodies)
+                weighted_body(&mut r, &rp.route.bodies)
             };
             let paint = PAINTS[r.index(PAINTS.len())];
             // Shorter bodies ride forward in their slot, so every front
-            // stands at the stop line (gaps stay ≥ MIN_GAP_M: see `Plan`).
-            let shift = (sched.max_len_m - body.footprint_m()[0]) / 2.0;
+            // stands at the stop line (gaps stay ≥ MIN_GAP_M: see `Plan`);
+            // the ring never stands, so its bodies ride their slot centres
+            // (up to 3.75 m ahead, a car would enter corners too fast).
+            let shift = match rp.route.kind {
+                RouteKind::Ring => 0.0,
+                RouteKind::Block { .. } => (rp.route.max_len_m() - body.footprint_m()[0]) / 2.0,
+            };
             let (p, heading) = rp.route.pose(rp.profile.arc_at(tau + offset) + shift);
             let pose = VehiclePose {
                 id,
