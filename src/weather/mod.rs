@@ -246,31 +246,8 @@ pub fn apply(desc: &mut SceneDesc, p: &WeatherParams) {
     // Broken cloud (cloudy below `OVERCAST_COVER`) is the physical sky with
     // its deck: clouds drawn in the sky, sun through the gaps.
     let broken = p.preset == Weather::Cloudy && p.cloud_cover < OVERCAST_COVER;
+    // Cloudy (closed cover) and storm fall through to the overcast sky.
     desc.sky = Some(match p.preset {
-        Weather::Clear | Weather::Sunset | Weather::Humid | Weather::Foggy => SkyDesc::Physical {
-            sun_elevation_deg: p.sun_elevation_deg,
-            sun_azimuth_deg: p.sun_azimuth_deg,
-            turbidity: turbidity(p.preset),
-            ground_albedo: 0.1,
-            cloud_cover: p.cloud_cover,
-            cloud_seed: seed,
-        },
-        Weather::Cloudy if broken => SkyDesc::Physical {
-            sun_elevation_deg: p.sun_elevation_deg,
-            sun_azimuth_deg: p.sun_azimuth_deg,
-            turbidity: turbidity(p.preset),
-            ground_albedo: 0.1,
-            cloud_cover: p.cloud_cover,
-            cloud_seed: seed,
-        },
-        Weather::Cloudy | Weather::Storm => SkyDesc::Overcast {
-            irradiance: overcast_irradiance(
-                p.sun_elevation_deg,
-                p.cloud_cover,
-                p.preset == Weather::Storm,
-            ),
-            ground_albedo: 0.1,
-        },
         Weather::Night => SkyDesc::Night {
             moon_elevation_deg: moon.elevation_deg,
             moon_azimuth_deg: moon.azimuth_deg,
@@ -279,6 +256,26 @@ pub fn apply(desc: &mut SceneDesc, p: &WeatherParams) {
             stars: true,
             star_seed: seed,
             turbidity: 1.0,
+        },
+        Weather::Clear | Weather::Sunset | Weather::Humid | Weather::Foggy | Weather::Cloudy
+            if p.preset != Weather::Cloudy || broken =>
+        {
+            SkyDesc::Physical {
+                sun_elevation_deg: p.sun_elevation_deg,
+                sun_azimuth_deg: p.sun_azimuth_deg,
+                turbidity: turbidity(p.preset),
+                ground_albedo: 0.1,
+                cloud_cover: p.cloud_cover,
+                cloud_seed: seed,
+            }
+        }
+        _ => SkyDesc::Overcast {
+            irradiance: overcast_irradiance(
+                p.sun_elevation_deg,
+                p.cloud_cover,
+                p.preset == Weather::Storm,
+            ),
+            ground_albedo: 0.1,
         },
     });
     desc.medium = p.visibility_m.map(|v| haze(p.preset, v));
