@@ -56,10 +56,22 @@ impl Rate {
     }
 }
 
-fn rate(rays: usize, f: impl FnOnce()) -> Rate {
+/// Wall seconds each raw figure runs for at least: one pass over a frame's
+/// rays takes ~0.1 s, too short for thread wake-up and the 10 ms CPU clock.
+const MIN_RAW_S: f64 = 0.5;
+
+/// The rate of `rays` per call of `f`, calling it until `MIN_RAW_S` passed.
+fn rate(rays: usize, mut f: impl FnMut()) -> Rate {
     let t = Stopwatch::start();
-    f();
-    Rate::of(rays as u64, t.stop())
+    let mut passes = 0u64;
+    loop {
+        f();
+        passes += 1;
+        let span = t.stop();
+        if span.wall_s >= MIN_RAW_S {
+            return Rate::of(rays as u64 * passes, span);
+        }
+    }
 }
 
 /// A uniform direction from the bits of a hash.
