@@ -57,7 +57,7 @@ impl Rate {
 }
 
 /// Wall seconds each raw figure runs for at least: one pass over a frame's
-/// rays takes ~0.1 s, too short for thread wake-up and the 10 ms CPU clock.
+/// rays takes ~0.1 s, too short for the 10 ms CPU clock to be read.
 const MIN_RAW_S: f64 = 0.5;
 
 /// The rate of `rays` per call of `f`, calling it until `MIN_RAW_S` passed.
