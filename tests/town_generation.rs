@@ -3,7 +3,7 @@
 //! every object carries a semantic class, every town file loads and builds,
 //! and bad town files are rejected with the field named.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use glam::DVec3;
 use parallax::scene::build_scene;
@@ -13,17 +13,8 @@ use parallax::town::{
     TownDesc,
 };
 
-const TOWNS: [&str; 8] = [
-    "town01", "town02", "town03", "town04", "town05", "town06", "town07", "town10",
-];
-
-fn town_file(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("scenes/{name}.toml"))
-}
-
-fn town(name: &str) -> TownDesc {
-    load_town(&town_file(name)).unwrap_or_else(|e| panic!("{e}"))
-}
+mod common;
+use common::towns::{town, town_file, TOWNS};
 
 fn hash_of(desc: &TownDesc, seed: u64, frame: u64) -> u64 {
     let loaded = load_town_frame(desc, seed, frame, CameraConfig::Normal, Path::new("t.toml"))

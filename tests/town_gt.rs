@@ -8,8 +8,6 @@
 //!   seen exactly edge-on from the right camera;
 //! - labels: every hit pixel has a class other than "other".
 
-use std::path::Path;
-
 use glam::DVec3;
 use parallax::accel::{build_accel, Accel, Backend, Hit, Ray};
 use parallax::camera::StereoRig;
@@ -18,11 +16,10 @@ use parallax::integrator::RenderCamera;
 use parallax::render::{render_frame, RenderSettings};
 use parallax::scene::semantic::class_id;
 use parallax::scene::{build_scene, Scene};
-use parallax::town::{frame_at, load_town, load_town_frame, rig_desc, CameraConfig, CONFIGS};
+use parallax::town::{frame_at, load_town_frame, rig_desc, CameraConfig, CONFIGS};
 
-const TOWNS: [&str; 8] = [
-    "town01", "town02", "town03", "town04", "town05", "town06", "town07", "town10",
-];
+mod common;
+use common::towns::{town, town_file, TOWNS};
 
 /// Distance from the hit point to the nearest edge of its triangle (metres).
 fn distance_to_edge(scene: &Scene, o: DVec3, d: DVec3, hit: &Hit) -> f64 {
@@ -45,8 +42,8 @@ fn distance_to_edge(scene: &Scene, o: DVec3, d: DVec3, hit: &Hit) -> f64 {
 fn town_ground_truth_is_exact_in_every_camera_configuration() {
     let road = class_id("road").unwrap();
     for name in TOWNS {
-        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("scenes/{name}.toml"));
-        let desc = load_town(&path).unwrap_or_else(|e| panic!("{e}"));
+        let path = town_file(name);
+        let desc = town(name);
         // Frame 0: the ego is on a straight (mid-corner, the roll30 rig's B = 3 m
         // camera sits 0.15 m above the road beside the curb and can be walled in).
         let (seed, frame) = (4, 0);

@@ -4,7 +4,7 @@
 //! buildings and furniture; hills stay flat under them; a bad `ramps` key
 //! is rejected naming it.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use glam::DVec3;
 use parallax::accel::{build_accel, Accel, Backend, Ray};
@@ -13,20 +13,11 @@ use parallax::scene::semantic::class_id;
 use parallax::town::layout::Layout;
 use parallax::town::ramps::{ramp_sites, RAMP_FILES, TAPER_M};
 use parallax::town::terrain::Terrain;
-use parallax::town::{load_town, load_town_frame, parse_town_str, static_objects, CameraConfig};
-use parallax::town::{town_scene, TownDesc};
+use parallax::town::town_scene;
+use parallax::town::{load_town_frame, parse_town_str, static_objects, CameraConfig};
 
-const TOWNS: [&str; 8] = [
-    "town01", "town02", "town03", "town04", "town05", "town06", "town07", "town10",
-];
-
-fn town_file(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("scenes/{name}.toml"))
-}
-
-fn town(name: &str) -> TownDesc {
-    load_town(&town_file(name)).unwrap_or_else(|e| panic!("{e}"))
-}
+mod common;
+use common::towns::{town, town_file, TOWNS};
 
 #[test]
 fn ramps_are_built_in_town06_and_nowhere_else() {

@@ -6,12 +6,10 @@ use std::path::Path;
 
 use parallax::town::layout::Layout;
 use parallax::town::terrain::{Terrain, FLAT_M, GROUND_Z, TERRAIN_FILE};
-use parallax::town::{load_town, load_town_frame, parse_town_str, CameraConfig, TownDesc};
+use parallax::town::{load_town_frame, parse_town_str, CameraConfig, TownDesc};
 
-fn town(name: &str) -> TownDesc {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("scenes/{name}.toml"));
-    load_town(&path).unwrap_or_else(|e| panic!("{e}"))
-}
+mod common;
+use common::towns::town;
 
 fn hills(seed: u64) -> (TownDesc, Layout, Terrain) {
     let desc = town("town04");

@@ -5,15 +5,12 @@
 //! lines, pedestrians stay off the roads except on crosswalks, where some
 //! of them are at some frames, and never touch a vehicle.
 
-use std::path::Path;
-
+use parallax::town::frame_at;
 use parallax::town::layout::{Layout, Rect};
 use parallax::town::traffic::{Plan, VehiclePose};
-use parallax::town::{frame_at, load_town};
 
-const TOWNS: [&str; 8] = [
-    "town01", "town02", "town03", "town04", "town05", "town06", "town07", "town10",
-];
+mod common;
+use common::towns::{town, TOWNS};
 
 /// Separating-axis test of two convex quads (touching does not count).
 fn quads_overlap(a: &[[f64; 2]; 4], b: &[[f64; 2]; 4]) -> bool {
@@ -99,8 +96,7 @@ fn on_crosswalk(l: &Layout, x: f64, y: f64) -> bool {
 fn vehicles_never_overlap_stay_on_the_road_turn_and_stop_for_300_frames() {
     let mut ego_turned = 0;
     for name in TOWNS {
-        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("scenes/{name}.toml"));
-        let desc = load_town(&path).unwrap_or_else(|e| panic!("{e}"));
+        let desc = town(name);
         let layout = Layout::new(&desc);
         let roads = layout.road_rects();
         let sched = Plan::new(&desc).schedule.clone();

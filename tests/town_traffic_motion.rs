@@ -4,15 +4,12 @@
 //! computed in sequence (a shard can start anywhere).
 
 use std::collections::BTreeMap;
-use std::path::Path;
 
 use parallax::town::layout::Layout;
-use parallax::town::{frame_at, load_town, TownDesc, TownFrame};
+use parallax::town::{frame_at, TownDesc, TownFrame};
 
-fn town(name: &str) -> TownDesc {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("scenes/{name}.toml"));
-    load_town(&path).unwrap_or_else(|e| panic!("{e}"))
-}
+mod common;
+use common::towns::town;
 
 fn frames(desc: &TownDesc, n: u64) -> Vec<TownFrame> {
     (0..n).map(|k| frame_at(desc, 11, k)).collect()
