@@ -56,6 +56,11 @@ impl Rate {
     }
 }
 
+// Every parallel loop here hands out one row, tile or chunk per job
+// (`with_max_len(1)`), as the C baseline's atomic counter does: rows differ
+// in cost (sky vs street), and rayon's default split into a few large pieces
+// per thread left one thread idle for a quarter of each pass.
+
 /// Wall seconds each raw figure runs for at least: one pass over a frame's
 /// rays takes ~0.1 s, too short for the 10 ms CPU clock to be read.
 const MIN_RAW_S: f64 = 0.5;
@@ -101,7 +106,7 @@ pub fn raw_throughput(accel: &impl Accel, scene: &Scene, rig: &StereoRig) -> Raw
     let n = w * h;
     let mut out = RawThroughput {
         primary_single_mrays: rate(n, || {
-            rows.par_iter().for_each(|row| {
+            rows.par_iter().with_max_len(1).for_each(|row| {
                 for r in row {
                     std::hint::black_box(accel.intersect(r));
                 }
@@ -113,6 +118,7 @@ pub fn raw_throughput(accel: &impl Accel, scene: &Scene, rig: &StereoRig) -> Raw
     out.primary_packet_mrays = rate(n, || {
         rows.par_iter()
             .zip(hits.par_iter_mut())
+            .with_max_len(1)
             .for_each(|(row, hit)| accel.intersect_batch(row, hit))
     });
     // The same rays regrouped into 4×2 tiles (pairs of rows, 4 columns at a time).
@@ -131,6 +137,7 @@ pub fn raw_throughput(accel: &impl Accel, scene: &Scene, rig: &StereoRig) -> Raw
         tiles
             .par_iter()
             .zip(tile_hits.par_iter_mut())
+            .with_max_len(1)
             .for_each(|(tile, hit)| accel.intersect_batch(tile, hit))
     });
     let secondary: Vec<Ray> = rows
@@ -149,6 +156,7 @@ pub fn raw_throughput(accel: &impl Accel, scene: &Scene, rig: &StereoRig) -> Raw
     out.shading_packet_mrays = rate(n, || {
         rows.par_iter()
             .zip(hits.par_iter_mut())
+            .with_max_len(1)
             .for_each(|(row, hit)| accel.intersect_batch_shading(row, hit))
     });
     // Alternate watertight and shading runs so load changes hit both alike.
@@ -162,7 +170,7 @@ pub fn raw_throughput(accel: &impl Accel, scene: &Scene, rig: &StereoRig) -> Raw
 
 fn incoherent_closest(accel: &impl Accel, rays: &[Ray]) -> Rate {
     rate(rays.len(), || {
-        rays.par_chunks(1024).for_each(|c| {
+        rays.par_chunks(1024).with_max_len(1).for_each(|c| {
             for r in c {
                 std::hint::black_box(accel.intersect(r));
             }
@@ -172,7 +180,7 @@ fn incoherent_closest(accel: &impl Accel, rays: &[Ray]) -> Rate {
 
 fn incoherent_any(accel: &impl Accel, rays: &[Ray]) -> Rate {
     rate(rays.len(), || {
-        rays.par_chunks(1024).for_each(|c| {
+        rays.par_chunks(1024).with_max_len(1).for_each(|c| {
             for r in c {
                 std::hint::black_box(accel.occluded(r));
             }

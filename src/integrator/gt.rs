@@ -188,7 +188,10 @@ pub fn view_gt(scene: &Scene, accel: &impl Accel, cam: &RenderCamera, labels: bo
         .zip(label_bands)
         .enumerate()
         .collect();
-    bands.into_par_iter().for_each_init(
+    // One job per band: sky bands cost almost nothing, street bands a lot, and
+    // rayon's default split (a few large pieces per thread) left one thread
+    // idle for a quarter of the pass.
+    bands.into_par_iter().with_max_len(1).for_each_init(
         BandScratch::default,
         |scratch, (b, (depth_band, label_band))| {
             scratch.trace_band(scene, accel, cam, b * BAND_ROWS, depth_band);
@@ -237,6 +240,7 @@ pub fn occlusion_mask(
     let traced: u64 = occ
         .par_chunks_mut((w * BAND_ROWS).max(1))
         .enumerate()
+        .with_max_len(1)
         .map(|(b, occ)| {
             let j0 = b * BAND_ROWS;
             let mut order = Vec::with_capacity(occ.len());
@@ -300,15 +304,19 @@ pub fn add_rain_mask(
 ) {
     let w = cam.intrinsics.width as usize;
     let o_world = scene.origin_world + cam.center;
-    gt.mask.par_chunks_mut(w).enumerate().for_each(|(j, row)| {
-        for (i, m) in row.iter_mut().enumerate() {
-            let dir = cam.dir(i as f64 + 0.5, j as f64 + 0.5);
-            let len = dir.length();
-            // depth_z is t along the camera-z-normalised direction.
-            let t_max = gt.depth_z[j * w + i] * len;
-            if rain.intersect(o_world, dir / len, 0.0, t_max).is_some() {
-                *m |= mask_bits::RAIN;
+    gt.mask
+        .par_chunks_mut(w)
+        .enumerate()
+        .with_max_len(1)
+        .for_each(|(j, row)| {
+            for (i, m) in row.iter_mut().enumerate() {
+                let dir = cam.dir(i as f64 + 0.5, j as f64 + 0.5);
+                let len = dir.length();
+                // depth_z is t along the camera-z-normalised direction.
+                let t_max = gt.depth_z[j * w + i] * len;
+                if rain.intersect(o_world, dir / len, 0.0, t_max).is_some() {
+                    *m |= mask_bits::RAIN;
+                }
             }
-        }
-    });
+        });
 }

@@ -190,6 +190,7 @@ fn render_view<A: Accel>(
     let o = cam.center_f32();
     let rows: Vec<(Vec<Vec3>, u64)> = (0..h)
         .into_par_iter()
+        .with_max_len(1) // rows differ in cost (sky vs street): balance per row
         .map_init(ChunkScratch::default, |scratch, j| {
             let mut rays = 0u64;
             let mut row = Vec::with_capacity(w as usize);
