@@ -1,6 +1,7 @@
 //! Interruptions through the real binary: SIGKILL after the first manifest
 //! line, then a resume, ends byte-identical to an uninterrupted run; SIGTERM
-//! stops cleanly with no partial frame and no temporary file.
+//! stops cleanly and promptly (at most the frame being written finishes),
+//! with no partial frame and no temporary file.
 
 mod dataset_common;
 
@@ -93,14 +94,13 @@ fn sigterm_stops_with_no_partial_frame() {
     let out = dir.path().join("out");
     let mut child = spawn(&cfg, &out);
     wait_for_first_line(&out, &mut child);
-    let sent = Instant::now();
+    let lines_at_signal = manifest_lines(&out);
     let kill = std::process::Command::new("kill")
         .args(["-TERM", &child.id().to_string()])
         .status()
         .unwrap();
     assert!(kill.success());
     let status = child.wait().unwrap();
-    assert!(sent.elapsed() < Duration::from_secs(20));
     assert_eq!(status.code(), Some(130));
     assert!(temp_files(&out).is_empty(), "{:?}", temp_files(&out));
     // Whatever exists is whole: verify finds frames missing, nothing else.
@@ -108,6 +108,12 @@ fn sigterm_stops_with_no_partial_frame() {
     let t = text(&v);
     let lines = manifest_lines(&out);
     assert!((1..6).contains(&lines), "{t}");
+    // Prompt: a frame being written when the signal came may finish, no
+    // frame that was still rendering may (no wall-clock bound: CI is loaded).
+    assert!(
+        lines <= lines_at_signal + 1,
+        "{lines} lines after {lines_at_signal} at the signal"
+    );
     assert!(t.contains(&format!("{lines} frames ok")), "{t}");
     assert!(
         t.contains(&format!(
