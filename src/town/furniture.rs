@@ -96,7 +96,7 @@ pub fn furniture_objects(desc: &TownDesc, l: &Layout, seed: u64) -> Vec<ObjectDe
                     &[],
                     ts,
                 ));
-            } else {
+            } else if signals::has_signals(l, i, j) {
                 // Lamps dark: `signals::set_lamps` lights them per frame.
                 for s in signals::junction_sites(l, i, j) {
                     out.push(instance(signals::PREFAB, s.at, s.heading_deg, &[], tl));

@@ -28,11 +28,8 @@ pub const LAMP_RADIANCE: [f64; 3] = [55.0, 50.0, 40.0];
 /// ~6400 cd/m² (luminance Y = 0.2126 R + 0.7152 G + 0.0722 B ≈ 64 units),
 /// i.e. EN 12368 class 2's 200 cd over a 200 mm lens, the same for every
 /// colour as that standard asks.
-pub const SIGNAL_RADIANCE: [[f64; 3]; 3] = [
-    [280.0, 6.0, 4.0],
-    [140.0, 48.0, 1.0],
-    [2.0, 84.0, 47.0],
-];
+pub const SIGNAL_RADIANCE: [[f64; 3]; 3] =
+    [[280.0, 6.0, 4.0], [140.0, 48.0, 1.0], [2.0, 84.0, 47.0]];
 /// Car paints vehicles choose from.
 pub const PAINTS: &[&str] = &[
     "paint_red",

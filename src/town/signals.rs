@@ -110,19 +110,27 @@ pub fn junction_sites(l: &Layout, i: usize, j: usize) -> [SignalSite; 4] {
     })
 }
 
-/// Every traffic light of the town: the cross junctions, x-roads j = 1 ..
-/// ny − 1 (the outer x-roads end y-roads in T junctions with stop signs).
-/// `furniture` drops those at the roundabout.
+/// Whether junction (i, j) has traffic lights: every cross junction, on
+/// x-roads j = 1 .. ny − 1 (the outer x-roads end y-roads in T junctions
+/// with stop signs), but the roundabout.
+pub fn has_signals(l: &Layout, i: usize, j: usize) -> bool {
+    j > 0 && j < l.ny && i <= l.nx && l.roundabout != Some((i, j))
+}
+
+/// Every traffic light of the town (`junction_sites` of every junction
+/// that `has_signals`, by x-road, then y-road).
 pub fn signal_sites(l: &Layout) -> Vec<SignalSite> {
     (1..l.ny)
-        .flat_map(|j| (0..=l.nx).flat_map(move |i| junction_sites(l, i, j)))
+        .flat_map(|j| (0..=l.nx).map(move |i| (i, j)))
+        .filter(|&(i, j)| has_signals(l, i, j))
+        .flat_map(|(i, j)| junction_sites(l, i, j))
         .collect()
 }
 
 /// Who drives the approach of `site`: the routes with a straight on its
 /// side of the road (right-hand traffic), heading its way, that runs up
 /// to within `APPROACH_M` of the junction's edge from before it.
-pub fn approach(l: &Layout, routes: &[Route], site: &SignalSite) -> Approach {
+pub fn approach(l: &Layout, routes: &[&Route], site: &SignalSite) -> Approach {
     let d = site.dir();
     let right = [d[1], -d[0]];
     let c = site.centre(l);
@@ -189,7 +197,7 @@ pub struct Signal {
 pub fn signals_at(desc: &TownDesc, frame: u64) -> Vec<Signal> {
     let l = Layout::new(desc);
     let plan = Plan::new(desc);
-    let routes: Vec<Route> = plan.routes.iter().map(|p| p.route.clone()).collect();
+    let routes: Vec<&Route> = plan.routes.iter().map(|p| &p.route).collect();
     let lamp = clock_lamp(&plan.schedule, frame as f64 / desc.fps);
     signal_sites(&l)
         .into_iter()
