@@ -254,3 +254,38 @@ fn key(l: &Layout, at: [f64; 3], heading_deg: f64) -> (usize, usize, i64) {
     let q = (heading_deg / 90.0).round() as i64;
     (ij(at[0]), ij(at[1]), q.rem_euclid(4))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::town::routes::Turns;
+
+    #[test]
+    fn clock_lamp_switches_at_the_clock_phase_boundaries() {
+        // Cycle 17 s: ramp up 0–2 and drive to 10 (green), ramp down to 12
+        // (amber), stand to 17 (red).
+        let s = Schedule {
+            go_s: 10.0,
+            ramp_s: 2.0,
+            stop_s: 5.0,
+            speed_mps: 10.0,
+            turns: Turns::new(3.5),
+            max_len_m: 4.5,
+        };
+        let want = [
+            (0.0, Lamp::Green),
+            (1.0, Lamp::Green),
+            (9.999, Lamp::Green),
+            (10.0, Lamp::Amber),
+            (11.999, Lamp::Amber),
+            (12.0, Lamp::Red),
+            (16.999, Lamp::Red),
+            (17.0, Lamp::Green),
+            (17.0 * 3.0 + 12.5, Lamp::Red),
+        ];
+        for (t, lamp) in want {
+            assert_eq!(clock_lamp(&s, t), lamp, "t = {t}");
+            assert_eq!(lamp == Lamp::Red, s.standing(t), "t = {t}");
+        }
+    }
+}
