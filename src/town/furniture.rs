@@ -1,6 +1,6 @@
 //! Street furniture and street trees: trees and street lights along the
 //! sidewalks, traffic lights at every cross junction (one per approach, on
-//! its right-hand corner), stop signs where y-roads meet the outer x-roads
+//! its right-hand corner: `signals::junction_sites`), stop signs where y-roads meet the outer x-roads
 //! (T junctions), and a few information signs. Nothing stands in the clear
 //! zone of a highway ramp site.
 //!
@@ -15,6 +15,7 @@ use super::layout::{Layout, Rect, STUB_M};
 use super::parts::{class, instance};
 use super::ramps::ramp_sites;
 use super::rng::{tag, Rng};
+use super::signals;
 
 /// Every street tree, light, signal and sign of the town.
 pub fn furniture_objects(desc: &TownDesc, l: &Layout, seed: u64) -> Vec<ObjectDesc> {
@@ -95,20 +96,10 @@ pub fn furniture_objects(desc: &TownDesc, l: &Layout, seed: u64) -> Vec<ObjectDe
                     &[],
                     ts,
                 ));
-            } else {
-                for (at, heading) in [
-                    ([x - c, y - c], 0.0),
-                    ([x + c, y + c], 180.0),
-                    ([x + c, y - c], 90.0),
-                    ([x - c, y + c], 270.0),
-                ] {
-                    out.push(instance(
-                        "traffic_light",
-                        [at[0], at[1], l.walk_z()],
-                        heading,
-                        &[],
-                        tl,
-                    ));
+            } else if signals::has_signals(l, i, j) {
+                // Lamps dark: `signals::set_lamps` lights them per frame.
+                for s in signals::junction_sites(l, i, j) {
+                    out.push(instance(signals::PREFAB, s.at, s.heading_deg, &[], tl));
                 }
             }
         }

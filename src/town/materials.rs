@@ -24,6 +24,12 @@ pub const WALLS: &[&str] = &[
 pub const TOWER_FRAMES: &[&str] = &["concrete", "steel_dark", "plaster_white", "stone"];
 /// Radiance of a street-lamp panel, W·m⁻²·sr⁻¹ (warm white, ~5000 cd/m²).
 pub const LAMP_RADIANCE: [f64; 3] = [55.0, 50.0, 40.0];
+/// Radiance of a lit signal lens (red, amber, green), W·m⁻²·sr⁻¹: each
+/// ~6400 cd/m² (luminance Y = 0.2126 R + 0.7152 G + 0.0722 B ≈ 64 units),
+/// i.e. EN 12368 class 2's 200 cd over a 200 mm lens, the same for every
+/// colour as that standard asks.
+pub const SIGNAL_RADIANCE: [[f64; 3]; 3] =
+    [[280.0, 6.0, 4.0], [140.0, 48.0, 1.0], [2.0, 84.0, 47.0]];
 /// Car paints vehicles choose from.
 pub const PAINTS: &[&str] = &[
     "paint_red",
@@ -102,6 +108,22 @@ fn emitter(name: &str, radiance: [f64; 3]) -> MaterialDesc {
             radiance,
             two_sided: false,
         },
+    }
+}
+
+/// A signal lens when off: a smooth clear coat (η 1.5) over a dark tint.
+fn lens(name: &str, albedo: [f64; 3]) -> MaterialDesc {
+    MaterialDesc {
+        kind: MaterialKindDesc::Coated {
+            albedo: Some(albedo),
+            preset: None,
+            eta: None,
+            k: None,
+            base_roughness: 0.5,
+            coat_ior: 1.5,
+            coat_roughness: 0.02,
+        },
+        ..paint(name, None, None)
     }
 }
 
@@ -206,9 +228,14 @@ pub fn town_materials(desc: &TownDesc) -> Vec<MaterialDesc> {
         emitter("taillight_emit", [12.0, 0.5, 0.3]),
         emitter("window_lit", [2.5, 1.9, 1.1]),
         diffuse("signal_housing", [0.06, 0.06, 0.05]),
-        diffuse("signal_red", [0.6, 0.04, 0.03]),
-        diffuse("signal_amber", [0.6, 0.4, 0.03]),
-        diffuse("signal_green", [0.05, 0.5, 0.15]),
+        // Signal lenses: dark tinted glass when off (a clear coat over a
+        // dark base), emitters when lit (`signals` picks one per head).
+        lens("signal_red", [0.1, 0.015, 0.01]),
+        lens("signal_amber", [0.1, 0.06, 0.01]),
+        lens("signal_green", [0.01, 0.07, 0.04]),
+        emitter("signal_red_lit", SIGNAL_RADIANCE[0]),
+        emitter("signal_amber_lit", SIGNAL_RADIANCE[1]),
+        emitter("signal_green_lit", SIGNAL_RADIANCE[2]),
         diffuse("sign_red", [0.55, 0.03, 0.03]),
         diffuse("sign_white", [0.8, 0.8, 0.8]),
         diffuse("sign_blue", [0.04, 0.15, 0.5]),

@@ -28,6 +28,7 @@ pub mod rng;
 pub mod roads;
 pub mod roundabout;
 pub mod routes;
+pub mod signals;
 pub mod terrain;
 pub mod traffic;
 pub mod vehicles;
@@ -129,6 +130,7 @@ pub fn town_scene(desc: &TownDesc, seed: u64, frame: u64, config: CameraConfig) 
     let tf = frame_at(desc, seed, frame);
     let mut objects = static_objects(desc, seed);
     objects.extend(dynamic_objects(&tf));
+    signals::set_lamps(desc, frame, &mut objects);
     let mut prefabs = props::street_prefabs();
     prefabs.extend(vehicles::vehicle_prefabs());
     SceneDesc {

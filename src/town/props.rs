@@ -1,6 +1,8 @@
 //! Prefabs of the street scene: a facade window (and the lit room that
 //! some windows show), trees of two shapes, a
-//! bush, a street light with an emissive lamp panel, a traffic light, a stop sign, a pedestrian.
+//! bush, a street light with an emissive lamp panel, a traffic light (two
+//! heads whose lens materials are slots the frame's signal phase fills,
+//! see `signals`), a stop sign, a pedestrian.
 //!
 //! Local frames: z up, origin on the ground; a window's facade is the local
 //! x–z plane with the window standing out towards −y; a street light's arm
@@ -9,6 +11,10 @@
 use crate::scene::desc::PrefabDesc;
 
 use super::parts::{blob, class, cuboid, cylinder, repeated, Label};
+
+/// Material slots of a traffic light's lenses, top to bottom (red, amber,
+/// green); both heads of the prefab use them.
+pub const LENS_SLOTS: [&str; 3] = ["signal_red", "signal_amber", "signal_green"];
 
 fn prefab(name: &str, objects: Vec<crate::scene::desc::ObjectDesc>) -> PrefabDesc {
     PrefabDesc {
@@ -94,19 +100,14 @@ pub fn street_prefabs() -> Vec<PrefabDesc> {
         cuboid([0.3, 0.4, 1.1], [0.0, 4.0, 5.15], 0.0, "signal_housing", tl),
         cuboid([0.3, 0.4, 1.1], [0.0, -0.3, 2.8], 0.0, "signal_housing", tl),
     ];
-    for (k, m) in ["signal_red", "signal_amber", "signal_green"]
-        .iter()
-        .enumerate()
-    {
+    // Lenses top to bottom, 1 mm proud of the housing (no shared faces).
+    // Their materials are slots: dark glass here, and `signals` maps the
+    // lit one of each frame to its emitter on the instance.
+    for (k, m) in LENS_SLOTS.iter().enumerate() {
         let z = 5.5 - 0.33 * k as f64;
-        traffic_light.push(cuboid([0.04, 0.24, 0.24], [-0.17, 4.0, z], 0.0, m, tl));
-        traffic_light.push(cuboid(
-            [0.04, 0.24, 0.24],
-            [-0.17, -0.3, z - 2.35],
-            0.0,
-            m,
-            tl,
-        ));
+        for (y, dz) in [(4.0, 0.0), (-0.3, -2.35)] {
+            traffic_light.push(cuboid([0.03, 0.24, 0.24], [-0.166, y, z + dz], 0.0, m, tl));
+        }
     }
     // An octagonal stop sign facing −x.
     let stop_sign = vec![
