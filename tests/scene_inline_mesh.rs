@@ -45,9 +45,11 @@ fn inline_scene(positions: &[[f64; 3]], triangles: &[[u32; 3]], extra: &str) -> 
     s += "[[object]]\nname = \"sheet\"\nkind = \"mesh\"\nmaterial = \"grey\"\n";
     s += extra;
     let list = |v: Vec<String>| format!("[{}]", v.join(", "));
+    // TOML spells NaN `nan`.
+    let num = |x: f64| if x.is_nan() { "nan".into() } else { format!("{x:?}") };
     let p = positions
         .iter()
-        .map(|p| format!("[{:?}, {:?}, {:?}]", p[0], p[1], p[2]))
+        .map(|p| format!("[{}, {}, {}]", num(p[0]), num(p[1]), num(p[2])))
         .collect();
     let t = triangles
         .iter()
