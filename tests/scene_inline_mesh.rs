@@ -21,7 +21,11 @@ fn sheet() -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
     let mut positions = Vec::new();
     for (j, z) in [-1.5, 0.0, 1.5].into_iter().enumerate() {
         for (i, y) in [-2.0, 0.0, 2.0].into_iter().enumerate() {
-            let bump = if i == 1 && j == 1 { -1.25 } else { 0.125 * i as f64 };
+            let bump = if i == 1 && j == 1 {
+                -1.25
+            } else {
+                0.125 * i as f64
+            };
             positions.push([6.0 + bump, y, z]);
         }
     }
@@ -46,7 +50,13 @@ fn inline_scene(positions: &[[f64; 3]], triangles: &[[u32; 3]], extra: &str) -> 
     s += extra;
     let list = |v: Vec<String>| format!("[{}]", v.join(", "));
     // TOML spells NaN `nan`.
-    let num = |x: f64| if x.is_nan() { "nan".into() } else { format!("{x:?}") };
+    let num = |x: f64| {
+        if x.is_nan() {
+            "nan".into()
+        } else {
+            format!("{x:?}")
+        }
+    };
     let p = positions
         .iter()
         .map(|p| format!("[{}, {}, {}]", num(p[0]), num(p[1]), num(p[2])))
@@ -71,7 +81,10 @@ fn inline_mesh_with_a_nan_vertex_is_refused_naming_the_object() {
     assert_eq!(e.kind, SceneErrorKind::Invalid, "{e}");
     assert_eq!(e.key, "object[0].positions", "{e}");
     let msg = e.to_string();
-    assert!(msg.contains("\"sheet\"") && msg.contains("vertex 4"), "{msg}");
+    assert!(
+        msg.contains("\"sheet\"") && msg.contains("vertex 4"),
+        "{msg}"
+    );
     // Absurdly far vertices are refused as in OBJ files.
     let (mut p, t) = sheet();
     p[2][0] = 3e7;
@@ -131,7 +144,8 @@ fn inline_mesh_renders_the_same_ground_truth_as_the_same_obj_file() {
     let mut text = camera_block(41, 31, [0.0, 0.0, 0.0]);
     text += "[render]\nspp = 1\nseed = 3\n";
     text += GREY_UNDER_SKY;
-    text += "[[object]]\nname = \"sheet\"\nkind = \"obj\"\nfile = \"sheet.obj\"\nmaterial = \"grey\"\n";
+    text +=
+        "[[object]]\nname = \"sheet\"\nkind = \"obj\"\nfile = \"sheet.obj\"\nmaterial = \"grey\"\n";
     let from_obj =
         parse_scene_str(&text, &dir.path().join("s.toml")).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(from_obj.triangle_estimate, inline.triangle_estimate);
@@ -162,9 +176,7 @@ fn inline_mesh_renders_the_same_ground_truth_as_the_same_obj_file() {
 #[test]
 fn inline_mesh_description_round_trips_through_toml() {
     let (p, t) = sheet();
-    let normals = "normals = [".to_string()
-        + &vec!["[-1.0, 0.0, 0.0]"; p.len()].join(", ")
-        + "]\n";
+    let normals = "normals = [".to_string() + &vec!["[-1.0, 0.0, 0.0]"; p.len()].join(", ") + "]\n";
     let loaded = parse(&inline_scene(&p, &t, &normals)).unwrap_or_else(|e| panic!("{e}"));
     let back = parse_desc(&loaded.desc.to_toml(), Path::new("back.toml")).unwrap();
     assert_eq!(back, loaded.desc);

@@ -4,8 +4,8 @@
 
 use std::path::Path;
 
-use parallax::town::layout::Layout;
 use parallax::scene::desc::ShapeDesc;
+use parallax::town::layout::Layout;
 use parallax::town::terrain::{Terrain, FLAT_M, GROUND_Z, TERRAIN_NAME};
 use parallax::town::{load_town_frame, parse_town_str, CameraConfig, TownDesc};
 

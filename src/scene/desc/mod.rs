@@ -74,7 +74,11 @@ impl SceneDesc {
             self.rain.as_ref().map(|r| r.check()),
             self.wetness.as_ref().map(|w| w.check()),
         ];
-        checks.into_iter().flatten().find_map(Result::err).map_or(Ok(()), Err)
+        checks
+            .into_iter()
+            .flatten()
+            .find_map(Result::err)
+            .map_or(Ok(()), Err)
     }
 }
 
