@@ -84,14 +84,13 @@ pub fn keep_nondegenerate<P: Copy + Into<DVec3>>(
 }
 
 /// Checks an inline mesh as OBJ files are checked, and one shading normal
-/// of usable length per vertex if any are given; returns the triangles
-/// kept. An error names the field at fault (`positions`, `normals`,
-/// `triangles`).
+/// of usable length per vertex if any are given. An error names the field
+/// at fault (`positions`, `normals`, `triangles`).
 pub fn check_inline(
     positions: &[[f64; 3]],
     normals: &[[f64; 3]],
     triangles: &[[u32; 3]],
-) -> Result<u64, (&'static str, String)> {
+) -> Result<(), (&'static str, String)> {
     check_positions(positions).map_err(|m| ("positions", m))?;
     if !normals.is_empty() && normals.len() != positions.len() {
         let msg = format!(
@@ -117,7 +116,7 @@ pub fn check_inline(
         );
         return Err(("triangles", msg));
     }
-    Ok(kept.len() as u64)
+    Ok(())
 }
 
 /// Triangle count of each tessellated shape (the resource guard uses these).
@@ -278,6 +277,22 @@ mod tests {
                 "inward triangle {t:?}"
             );
         }
+    }
+
+    #[test]
+    fn degeneracy_is_relative_to_edge_length_and_indices_are_checked() {
+        let (a, b) = (DVec3::ZERO, DVec3::X);
+        for s in [1e-6, 1.0, 1e6] {
+            // A sine of 1e-9 is a thin but real triangle at any scale, 1e-13 is not.
+            assert!(!is_degenerate(a * s, b * s, DVec3::new(0.5, 1e-9, 0.0) * s));
+            assert!(is_degenerate(a * s, b * s, DVec3::new(0.5, 1e-13, 0.0) * s));
+        }
+        assert!(is_degenerate(b, b, b));
+        let p = [a, b, DVec3::Y, DVec3::X * 2.0];
+        let (kept, dropped) = keep_nondegenerate(&p, &[[0, 1, 2], [0, 1, 3], [2, 1, 0]]).unwrap();
+        assert_eq!((kept, dropped), (vec![[0, 1, 2], [2, 1, 0]], 1));
+        let e = keep_nondegenerate(&p, &[[0, 1, 4]]).unwrap_err();
+        assert!(e.contains("index 4") && e.contains("4 vertices"), "{e}");
     }
 
     #[test]

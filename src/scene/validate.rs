@@ -381,13 +381,14 @@ impl V<'_> {
                 positions,
                 normals,
                 triangles,
-            } => match super::mesh::check_inline(positions, normals, triangles) {
-                Ok(_) => Ok(()),
-                Err((field, msg)) => Err(match &o.name {
-                    Some(name) => self.err(k(field), format!("mesh \"{name}\": {msg}")),
-                    None => self.err(k(field), msg),
-                }),
-            },
+            } => {
+                super::mesh::check_inline(positions, normals, triangles).map_err(|(field, msg)| {
+                    match &o.name {
+                        Some(name) => self.err(k(field), format!("mesh \"{name}\": {msg}")),
+                        None => self.err(k(field), msg),
+                    }
+                })
+            }
             ShapeDesc::Instance { prefab, .. } => {
                 if o.material.is_some() {
                     return Err(self.err(

@@ -170,8 +170,8 @@ pub fn town_scene(desc: &TownDesc, seed: u64, frame: u64, config: CameraConfig) 
     let town = StaticTown::new(desc, seed);
     let mut objects = town.objects();
     objects.extend(dynamic_objects(&tf));
-    // The meshes go last, so mesh order (and `geometry_hash`) is as when
-    // they were appended after validation.
+    // Meshes last, after the moving objects: keeps geometry ids and
+    // `geometry_hash` values as they were.
     objects.extend(town.meshes());
     let mut prefabs = props::street_prefabs();
     prefabs.extend(vehicles::vehicle_prefabs());
