@@ -9,9 +9,10 @@ use std::path::Path;
 use glam::DVec3;
 use parallax::accel::{build_accel, Accel, Backend, Ray};
 use parallax::scene::build_scene;
+use parallax::scene::desc::ShapeDesc;
 use parallax::scene::semantic::class_id;
 use parallax::town::layout::Layout;
-use parallax::town::ramps::{ramp_sites, RAMP_FILES, TAPER_M};
+use parallax::town::ramps::{ramp_sites, RAMP_MESHES, TAPER_M};
 use parallax::town::terrain::Terrain;
 use parallax::town::town_scene;
 use parallax::town::{load_town_frame, parse_town_str, static_objects, CameraConfig};
@@ -33,17 +34,22 @@ fn ramps_are_built_in_town06_and_nowhere_else() {
     }
     let desc = town("town06");
     let loaded = load_town_frame(&desc, 3, 0, CameraConfig::Normal, Path::new("t.toml")).unwrap();
-    for (file, _, class) in RAMP_FILES {
-        let asset = &loaded.objs[file];
-        assert!(asset.triangle_count() > 1000, "{file}");
-        let object = loaded.desc.objects.iter().find(
-            |o| matches!(&o.shape, parallax::scene::desc::ShapeDesc::Obj { file: f } if f == file),
-        );
-        assert_eq!(object.unwrap().semantic.as_deref(), Some(class));
+    for (name, _, class) in RAMP_MESHES {
+        let object = loaded
+            .desc
+            .objects
+            .iter()
+            .find(|o| o.name.as_deref() == Some(name))
+            .unwrap_or_else(|| panic!("no {name}"));
+        let ShapeDesc::Mesh { triangles, .. } = &object.shape else {
+            panic!("{name} is not an inline mesh")
+        };
+        assert!(triangles.len() > 1000, "{name}");
+        assert_eq!(object.semantic.as_deref(), Some(class));
     }
-    // The description without the generated meshes stays the same shape.
+    // The validated frame is the generated description, meshes included.
     let plain = town_scene(&desc, 3, 0, CameraConfig::Normal);
-    assert_eq!(plain.objects.len() + 3, loaded.desc.objects.len());
+    assert_eq!(plain, loaded.desc);
 }
 
 #[test]

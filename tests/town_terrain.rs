@@ -4,8 +4,9 @@
 
 use std::path::Path;
 
+use parallax::scene::desc::ShapeDesc;
 use parallax::town::layout::Layout;
-use parallax::town::terrain::{Terrain, FLAT_M, GROUND_Z, TERRAIN_FILE};
+use parallax::town::terrain::{Terrain, FLAT_M, GROUND_Z, TERRAIN_NAME};
 use parallax::town::{load_town_frame, parse_town_str, CameraConfig, TownDesc};
 
 mod common;
@@ -164,9 +165,16 @@ fn hill_trees_stand_on_the_terrain_and_the_frame_carries_the_mesh() {
     }
     assert!(on_hills > 100, "only {on_hills} hill trees");
     let loaded = load_town_frame(&desc, 5, 0, CameraConfig::Normal, Path::new("t.toml")).unwrap();
-    let asset = &loaded.objs[TERRAIN_FILE];
-    assert_eq!(asset.triangle_count(), t.mesh().triangles.len() as u64);
-    assert!(loaded.desc.objects.iter().any(
-        |o| o.semantic.as_deref() == Some("terrain") && o.material.as_deref() == Some("ground")
-    ));
+    let hill = loaded
+        .desc
+        .objects
+        .iter()
+        .find(|o| o.name.as_deref() == Some(TERRAIN_NAME))
+        .expect("the frame carries the terrain mesh");
+    let ShapeDesc::Mesh { triangles, .. } = &hill.shape else {
+        panic!("terrain is not an inline mesh")
+    };
+    assert_eq!(triangles, &t.mesh().triangles);
+    assert_eq!(hill.semantic.as_deref(), Some("terrain"));
+    assert_eq!(hill.material.as_deref(), Some("ground"));
 }

@@ -46,14 +46,19 @@ pub fn build_scene(scene: &LoadedScene, origin_world: DVec3) -> Result<Scene, Sc
             })
         };
         let own = placed.object.material.as_deref().map(resolve).transpose()?;
-        let to_mesh = |local: &LocalMesh, tri_material: Vec<u32>| {
+        let at = Placement {
+            world_from_local: placed.world_from_local,
+            origin_world,
+            semantic: placed.semantic,
+            instance: placed.instance,
+        };
+        let to_mesh = |local: LocalMesh, tri_material: Vec<u32>| {
             render_mesh(
-                local,
+                &local.positions,
+                &local.normals,
+                local.triangles,
                 tri_material,
-                placed.world_from_local,
-                origin_world,
-                placed.semantic,
-                placed.instance,
+                &at,
             )
         };
         let local = match &placed.object.shape {
@@ -90,7 +95,21 @@ pub fn build_scene(scene: &LoadedScene, origin_world: DVec3) -> Result<Scene, Sc
                 if merged.normals.len() != merged.positions.len() {
                     merged.normals.clear();
                 }
-                meshes.push(to_mesh(&merged, tri_material));
+                meshes.push(to_mesh(merged, tri_material));
+                return Ok(());
+            }
+            ShapeDesc::Mesh {
+                positions,
+                normals,
+                triangles,
+            } => {
+                // Validation checked the indices; this drops what it dropped.
+                let (kept, _) = mesh::keep_nondegenerate(positions, triangles).map_err(|m| {
+                    let key = format!("{}.triangles", placed.key);
+                    SceneError::at(&scene.path, SceneErrorKind::Invalid, key, m)
+                })?;
+                let m = vec![own.unwrap_or(0); kept.len()];
+                meshes.push(render_mesh(positions, normals, kept, m, &at));
                 return Ok(());
             }
             ShapeDesc::Quad { size } => mesh::quad(*size),
@@ -108,8 +127,8 @@ pub fn build_scene(scene: &LoadedScene, origin_world: DVec3) -> Result<Scene, Sc
             } => mesh::ellipsoid(*radii, *segments, *rings),
             ShapeDesc::Instance { .. } => return Ok(()), // walk expands instances
         };
-        let m = own.unwrap_or(0);
-        meshes.push(to_mesh(&local, vec![m; local.triangles.len()]));
+        let m = vec![own.unwrap_or(0); local.triangles.len()];
+        meshes.push(to_mesh(local, m));
         Ok(())
     })?;
     let spheres_f32 = spheres
@@ -145,34 +164,41 @@ pub fn build_scene(scene: &LoadedScene, origin_world: DVec3) -> Result<Scene, Sc
     })
 }
 
-fn render_mesh(
-    local: &LocalMesh,
-    tri_material: Vec<u32>,
+/// Where a local mesh goes: its placement, the render origin, its labels.
+struct Placement {
     world_from_local: DAffine3,
     origin_world: DVec3,
     semantic: u8,
     instance: u16,
+}
+
+/// A local mesh (positions and optional normals as `DVec3` or `[f64; 3]`)
+/// placed in render space.
+fn render_mesh<P: Copy + Into<DVec3>>(
+    positions: &[P],
+    normals: &[P],
+    triangles: Vec<[u32; 3]>,
+    tri_material: Vec<u32>,
+    at: &Placement,
 ) -> Mesh {
-    let p_render: Vec<DVec3> = local
-        .positions
+    let p_render: Vec<DVec3> = positions
         .iter()
-        .map(|&p| world_from_local.transform_point3(p) - origin_world)
+        .map(|&p| at.world_from_local.transform_point3(p.into()) - at.origin_world)
         .collect();
     // Normals transform with the inverse transpose (non-uniform scale).
-    let normal_from_local = world_from_local.matrix3.inverse().transpose();
+    let normal_from_local = at.world_from_local.matrix3.inverse().transpose();
     Mesh {
         p_f32: p_render.iter().map(|p| p.as_vec3()).collect(),
         p_render,
-        normals: local
-            .normals
+        normals: normals
             .iter()
-            .map(|&n| (normal_from_local * n).normalize().as_vec3())
+            .map(|&n| (normal_from_local * n.into()).normalize().as_vec3())
             .collect(),
         uvs: Vec::new(),
-        triangles: local.triangles.clone(),
+        triangles,
         tri_material,
-        semantic,
-        instance,
+        semantic: at.semantic,
+        instance: at.instance,
     }
 }
 

@@ -2,9 +2,18 @@
 //! cylinder, ellipsoid. Triangles wind counter-clockwise seen from outside
 //! (geometric normal (b − a) × (c − a) points out). Flat shapes carry no
 //! normals; curved ones carry analytic per-vertex normals.
+//!
+//! Also the checks every loaded triangle list passes, OBJ file or inline
+//! `kind = "mesh"`: finite coordinates within ±`MAX_COORD_M`, indices in
+//! range, degenerate triangles dropped and an all-degenerate mesh refused.
 
 use glam::DVec3;
 use std::f64::consts::TAU;
+
+use super::desc::ShapeDesc;
+
+/// Largest accepted coordinate magnitude of a mesh vertex, metres.
+pub const MAX_COORD_M: f64 = 1e7;
 
 /// A tessellated shape in its local frame.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -15,6 +24,99 @@ pub struct LocalMesh {
     pub normals: Vec<DVec3>,
     /// Vertex indices.
     pub triangles: Vec<[u32; 3]>,
+}
+
+impl LocalMesh {
+    /// This mesh as an inline scene shape (`kind = "mesh"`).
+    pub fn into_shape(self) -> ShapeDesc {
+        ShapeDesc::Mesh {
+            positions: self.positions.iter().map(|p| p.to_array()).collect(),
+            normals: self.normals.iter().map(|n| n.to_array()).collect(),
+            triangles: self.triangles,
+        }
+    }
+}
+
+/// Whether triangle abc has no usable area: with e1 = b − a, e2 = c − a and
+/// s = max(|e1|², |e2|²), |e1 × e2|² ≤ 1e-24 · s² (a sine below 1e-12
+/// relative to the longer edge: its normal would be noise) or s = 0.
+pub fn is_degenerate(a: DVec3, b: DVec3, c: DVec3) -> bool {
+    let (e1, e2) = (b - a, c - a);
+    let s = e1.length_squared().max(e2.length_squared());
+    e1.cross(e2).length_squared() <= 1e-24 * s * s || s == 0.0
+}
+
+/// Checks that every vertex is finite and within ±`MAX_COORD_M`.
+pub fn check_positions<P: Copy + Into<DVec3>>(positions: &[P]) -> Result<(), String> {
+    for (i, &p) in positions.iter().enumerate() {
+        let p: DVec3 = p.into();
+        if !p.is_finite() {
+            return Err(format!("vertex {i} is not finite: {p}"));
+        }
+        if p.abs().max_element() > MAX_COORD_M {
+            return Err(format!("vertex {i} = {p} is beyond ±{MAX_COORD_M:e} m"));
+        }
+    }
+    Ok(())
+}
+
+/// The triangles with an area (see `is_degenerate`), in order, and how many
+/// were dropped; an index out of range is an error.
+pub fn keep_nondegenerate<P: Copy + Into<DVec3>>(
+    positions: &[P],
+    triangles: &[[u32; 3]],
+) -> Result<(Vec<[u32; 3]>, usize), String> {
+    let mut kept = Vec::with_capacity(triangles.len());
+    for &t in triangles {
+        if let Some(&bad) = t.iter().find(|&&i| i as usize >= positions.len()) {
+            return Err(format!(
+                "vertex index {bad} out of range ({} vertices)",
+                positions.len()
+            ));
+        }
+        let [a, b, c] = t.map(|i| positions[i as usize].into());
+        if !is_degenerate(a, b, c) {
+            kept.push(t);
+        }
+    }
+    let dropped = triangles.len() - kept.len();
+    Ok((kept, dropped))
+}
+
+/// Checks an inline mesh as OBJ files are checked, and one shading normal
+/// of usable length per vertex if any are given. An error names the field
+/// at fault (`positions`, `normals`, `triangles`).
+pub fn check_inline(
+    positions: &[[f64; 3]],
+    normals: &[[f64; 3]],
+    triangles: &[[u32; 3]],
+) -> Result<(), (&'static str, String)> {
+    check_positions(positions).map_err(|m| ("positions", m))?;
+    if !normals.is_empty() && normals.len() != positions.len() {
+        let msg = format!(
+            "{} normals for {} vertices (give one per vertex, or none)",
+            normals.len(),
+            positions.len()
+        );
+        return Err(("normals", msg));
+    }
+    // A length that is zero, subnormal, infinite or NaN has no direction.
+    if let Some(i) = normals
+        .iter()
+        .position(|&n| !DVec3::from(n).length().is_normal())
+    {
+        let msg = format!("normal {i} = {:?} has no usable direction", normals[i]);
+        return Err(("normals", msg));
+    }
+    let (kept, dropped) = keep_nondegenerate(positions, triangles).map_err(|m| ("triangles", m))?;
+    if kept.is_empty() {
+        let msg = format!(
+            "no usable triangles ({} given, {dropped} degenerate)",
+            triangles.len()
+        );
+        return Err(("triangles", msg));
+    }
+    Ok(())
 }
 
 /// Triangle count of each tessellated shape (the resource guard uses these).
@@ -175,6 +277,22 @@ mod tests {
                 "inward triangle {t:?}"
             );
         }
+    }
+
+    #[test]
+    fn degeneracy_is_relative_to_edge_length_and_indices_are_checked() {
+        let (a, b) = (DVec3::ZERO, DVec3::X);
+        for s in [1e-6, 1.0, 1e6] {
+            // A sine of 1e-9 is a thin but real triangle at any scale, 1e-13 is not.
+            assert!(!is_degenerate(a * s, b * s, DVec3::new(0.5, 1e-9, 0.0) * s));
+            assert!(is_degenerate(a * s, b * s, DVec3::new(0.5, 1e-13, 0.0) * s));
+        }
+        assert!(is_degenerate(b, b, b));
+        let p = [a, b, DVec3::Y, DVec3::X * 2.0];
+        let (kept, dropped) = keep_nondegenerate(&p, &[[0, 1, 2], [0, 1, 3], [2, 1, 0]]).unwrap();
+        assert_eq!((kept, dropped), (vec![[0, 1, 2], [2, 1, 0]], 1));
+        let e = keep_nondegenerate(&p, &[[0, 1, 4]]).unwrap_err();
+        assert!(e.contains("index 4") && e.contains("4 vertices"), "{e}");
     }
 
     #[test]

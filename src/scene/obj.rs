@@ -12,9 +12,9 @@ use glam::DVec3;
 
 use super::desc::{MaterialDesc, MaterialKindDesc};
 use super::load::{SceneError, SceneErrorKind};
+use super::mesh::{check_positions, keep_nondegenerate};
 
-/// Largest accepted coordinate magnitude in an OBJ file, metres.
-pub const MAX_COORD_M: f64 = 1e7;
+pub use super::mesh::MAX_COORD_M;
 
 /// One loaded OBJ file.
 #[derive(Clone, Debug, Default)]
@@ -121,14 +121,7 @@ fn group_from_mesh(mesh: &tobj::Mesh, dropped: &mut usize) -> Result<ObjGroup, S
         .chunks_exact(3)
         .map(|c| DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64))
         .collect();
-    for (i, p) in positions.iter().enumerate() {
-        if !p.is_finite() {
-            return Err(format!("vertex {i} is not finite: {p}"));
-        }
-        if p.abs().max_element() > MAX_COORD_M {
-            return Err(format!("vertex {i} = {p} is beyond ±{MAX_COORD_M:e} m"));
-        }
-    }
+    check_positions(&positions)?;
     let mut normals: Vec<DVec3> = mesh
         .normals
         .chunks_exact(3)
@@ -140,24 +133,13 @@ fn group_from_mesh(mesh: &tobj::Mesh, dropped: &mut usize) -> Result<ObjGroup, S
         // Missing or unusable shading normals: fall back to geometric ones.
         normals.clear();
     }
-    let mut triangles = Vec::with_capacity(mesh.indices.len() / 3);
-    for t in mesh.indices.chunks_exact(3) {
-        let tri = [t[0], t[1], t[2]];
-        if let Some(&bad) = tri.iter().find(|&&i| i as usize >= positions.len()) {
-            return Err(format!(
-                "vertex index {bad} out of range ({} vertices)",
-                positions.len()
-            ));
-        }
-        let [a, b, c] = tri.map(|i| positions[i as usize]);
-        let (e1, e2) = (b - a, c - a);
-        let scale2 = e1.length_squared().max(e2.length_squared());
-        if e1.cross(e2).length_squared() <= 1e-24 * scale2 * scale2 || scale2 == 0.0 {
-            *dropped += 1;
-            continue;
-        }
-        triangles.push(tri);
-    }
+    let triangles: Vec<[u32; 3]> = mesh
+        .indices
+        .chunks_exact(3)
+        .map(|t| [t[0], t[1], t[2]])
+        .collect();
+    let (triangles, n) = keep_nondegenerate(&positions, &triangles)?;
+    *dropped += n;
     Ok(ObjGroup {
         positions,
         normals,

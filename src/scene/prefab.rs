@@ -7,7 +7,7 @@ use std::path::Path;
 
 use super::desc::{ObjectDesc, SceneDesc, ShapeDesc};
 use super::load::{SceneError, SceneErrorKind};
-use super::mesh::{cylinder_triangles, ellipsoid_triangles};
+use super::mesh::{cylinder_triangles, ellipsoid_triangles, keep_nondegenerate};
 use super::transform::repeat_count;
 
 /// Rejects prefabs that instance themselves, directly or through others.
@@ -66,7 +66,8 @@ fn visit(
 }
 
 /// Triangles (spheres count one) the objects build into, saturating.
-/// `obj_triangles` gives each OBJ file's count. Precondition: no cycles.
+/// `obj_triangles` gives each OBJ file's count; inline meshes count their
+/// non-degenerate triangles. Precondition: no cycles.
 pub fn estimate_triangles(
     desc: &SceneDesc,
     objects: &[ObjectDesc],
@@ -95,6 +96,13 @@ fn estimate(
                 segments, rings, ..
             } => ellipsoid_triangles(*segments, *rings),
             ShapeDesc::Obj { file } => objs.get(file).copied().unwrap_or(0),
+            // Exact: the data is in hand (0 when an index is out of range,
+            // which validation reports).
+            ShapeDesc::Mesh {
+                positions,
+                triangles,
+                ..
+            } => keep_nondegenerate(positions, triangles).map_or(0, |(t, _)| t.len() as u64),
             ShapeDesc::Instance { prefab, .. } => match index(desc, prefab) {
                 // Memoised per prefab: a deep DAG of instances stays linear.
                 Some(p) => match memo[p] {

@@ -1,6 +1,7 @@
 //! Full validation of a `SceneDesc`: ranges, references (materials, prefabs,
 //! semantic classes), prefab cycles, resource guards (pixels, frame memory,
-//! triangle count, all before allocating), OBJ loading, and "no light".
+//! triangle count, all before allocating), OBJ loading and inline mesh
+//! checks (`mesh::check_inline`), and "no light".
 //!
 //! Every error names the scene file and the key path of the offending value.
 
@@ -376,6 +377,18 @@ impl V<'_> {
                 Err(self.err(k("file"), "empty file name"))
             }
             ShapeDesc::Obj { .. } => Ok(()),
+            ShapeDesc::Mesh {
+                positions,
+                normals,
+                triangles,
+            } => {
+                super::mesh::check_inline(positions, normals, triangles).map_err(|(field, msg)| {
+                    match &o.name {
+                        Some(name) => self.err(k(field), format!("mesh \"{name}\": {msg}")),
+                        None => self.err(k(field), msg),
+                    }
+                })
+            }
             ShapeDesc::Instance { prefab, .. } => {
                 if o.material.is_some() {
                     return Err(self.err(
@@ -469,7 +482,7 @@ pub fn validate(
             ));
         }
     }
-    weather(&v, desc)?;
+    desc.check_weather().map_err(|(key, msg)| v.err(key, msg))?;
     for (i, l) in desc.lights.iter().enumerate() {
         v.light(i, l)?;
     }
@@ -576,19 +589,6 @@ pub fn validate(
         return Err(SceneError::at(file, K::NoLight, "", msg));
     }
     Ok((objs, exact))
-}
-
-/// The `[medium]`, `[rain]` and `[wetness]` sections (their checks live beside the descriptions).
-fn weather(v: &V, desc: &SceneDesc) -> Result<(), SceneError> {
-    let checks = [
-        desc.medium.as_ref().map(|m| m.check()),
-        desc.rain.as_ref().map(|r| r.check()),
-        desc.wetness.as_ref().map(|w| w.check()),
-    ];
-    match checks.into_iter().flatten().find_map(Result::err) {
-        Some((key, msg)) => Err(v.err(key, msg)),
-        None => Ok(()),
-    }
 }
 
 /// An OBJ path from the scene file's directory.

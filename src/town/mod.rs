@@ -53,25 +53,66 @@ pub const VEHICLE_ID_BASE: u32 = 30_000;
 /// First instance id of pedestrians.
 pub const PEDESTRIAN_ID_BASE: u32 = 55_000;
 
-/// Objects that do not move: roads, markings, sidewalks, terrain, buildings,
-/// vegetation and street furniture.
-pub fn static_objects(desc: &TownDesc, seed: u64) -> Vec<ObjectDesc> {
-    let l = Layout::new(desc);
-    let sites = ramps::ramp_sites(desc, &l);
-    let mut out = roads::road_objects(&l, &sites);
-    out.extend(buildings::block_objects(desc, &l, seed));
-    let mut furniture = furniture::furniture_objects(desc, &l, seed);
-    // Nothing stands on the roundabout's ring or sidewalk.
-    furniture.retain(|o| {
-        let t = o.transform.translate.unwrap_or_default();
-        !l.near_roundabout(&layout::Rect::centered([t[0], t[1]], [0.0, 0.0]))
-    });
-    out.extend(furniture);
-    if let Some(t) = terrain::Terrain::new(desc, &l, seed) {
-        out.extend(t.vegetation(desc.vegetation_density, seed));
+/// The static part of a town, generated once per frame: its layout, ramp
+/// sites and hills, from which every static object is placed.
+pub struct StaticTown<'a> {
+    desc: &'a TownDesc,
+    seed: u64,
+    /// The road grid and blocks.
+    pub layout: Layout,
+    /// Highway slip-road sites (empty unless `ramps = true`).
+    pub sites: Vec<ramps::RampSite>,
+    /// The hills (`None` for a flat town).
+    pub terrain: Option<terrain::Terrain>,
+}
+
+impl<'a> StaticTown<'a> {
+    /// Lays out the town of `desc` and `seed` (depends on nothing else).
+    pub fn new(desc: &'a TownDesc, seed: u64) -> Self {
+        let layout = Layout::new(desc);
+        let sites = ramps::ramp_sites(desc, &layout);
+        let terrain = terrain::Terrain::with_sites(desc, &layout, &sites, seed);
+        StaticTown {
+            desc,
+            seed,
+            layout,
+            sites,
+            terrain,
+        }
     }
-    number_objects(&mut out);
-    out
+
+    /// Roads, markings, sidewalks, buildings, vegetation and street
+    /// furniture, numbered (`number_objects`); not the generated meshes.
+    pub fn objects(&self) -> Vec<ObjectDesc> {
+        let (desc, seed, l) = (self.desc, self.seed, &self.layout);
+        let mut out = roads::road_objects(l, &self.sites);
+        out.extend(buildings::block_objects(desc, l, seed));
+        let mut furniture = furniture::furniture_objects(desc, l, seed);
+        // Nothing stands on the roundabout's ring or sidewalk.
+        furniture.retain(|o| {
+            let t = o.transform.translate.unwrap_or_default();
+            !l.near_roundabout(&layout::Rect::centered([t[0], t[1]], [0.0, 0.0]))
+        });
+        out.extend(furniture);
+        if let Some(t) = &self.terrain {
+            out.extend(t.vegetation(desc.vegetation_density, seed));
+        }
+        number_objects(&mut out);
+        out
+    }
+
+    /// The generated triangle meshes as inline mesh objects: the hills
+    /// (`terrain::TERRAIN_NAME`) and the ramp surfaces (`ramps::RAMP_MESHES`).
+    pub fn meshes(&self) -> Vec<ObjectDesc> {
+        let mut out: Vec<ObjectDesc> = self.terrain.iter().map(|t| t.object()).collect();
+        out.extend(ramps::ramp_meshes(&self.sites));
+        out
+    }
+}
+
+/// Objects that do not move, without the generated meshes (`StaticTown`).
+pub fn static_objects(desc: &TownDesc, seed: u64) -> Vec<ObjectDesc> {
+    StaticTown::new(desc, seed).objects()
 }
 
 /// Gives every pole, tree, bush, sign and traffic light its own instance
@@ -123,14 +164,17 @@ pub fn dynamic_objects(frame: &TownFrame) -> Vec<ObjectDesc> {
     out
 }
 
-/// The resolved scene description of one town frame seen from `config`;
-/// without the hill and ramp meshes, which `load_town_frame` adds as
-/// in-memory OBJ assets (`terrain::TERRAIN_FILE`, `ramps::RAMP_FILES`).
+/// The resolved scene description of one town frame seen from `config`,
+/// generated meshes included.
 pub fn town_scene(desc: &TownDesc, seed: u64, frame: u64, config: CameraConfig) -> SceneDesc {
     let tf = frame_at(desc, seed, frame);
-    let mut objects = static_objects(desc, seed);
+    let town = StaticTown::new(desc, seed);
+    let mut objects = town.objects();
     objects.extend(dynamic_objects(&tf));
     signals::set_lamps(desc, frame, &mut objects);
+    // Meshes last, after the moving objects: keeps geometry ids and
+    // `geometry_hash` values as they were.
+    objects.extend(town.meshes());
     let mut prefabs = props::street_prefabs();
     prefabs.extend(vehicles::vehicle_prefabs());
     SceneDesc {
@@ -159,21 +203,8 @@ pub fn load_town_frame(
     config: CameraConfig,
     town_file: &Path,
 ) -> Result<LoadedScene, SceneError> {
-    let mut scene = town_scene(desc, seed, frame, config);
-    let (mut objs, mut triangle_estimate) = crate::scene::validate::validate(&scene, town_file)?;
-    // The hill mesh is generated, not read: add it after validation.
-    if let Some(t) = terrain::Terrain::new(desc, &Layout::new(desc), seed) {
-        let asset = t.asset();
-        triangle_estimate += asset.triangle_count();
-        objs.insert(terrain::TERRAIN_FILE.to_string(), asset);
-        scene.objects.push(t.object());
-    }
-    // So are the ramp meshes (curved strips, not boxes).
-    for (file, asset, object) in ramps::ramp_meshes(&ramps::ramp_sites(desc, &Layout::new(desc))) {
-        triangle_estimate += asset.triangle_count();
-        objs.insert(file, asset);
-        scene.objects.push(object);
-    }
+    let scene = town_scene(desc, seed, frame, config);
+    let (objs, triangle_estimate) = crate::scene::validate::validate(&scene, town_file)?;
     Ok(LoadedScene {
         path: town_file.to_path_buf(),
         desc: scene,

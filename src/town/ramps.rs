@@ -9,13 +9,13 @@
 //! Local coordinates of a site: `t` along the road from the site start
 //! (world x = a0 + t) and `o` outward from the road centreline, so world
 //! y = y_road + side · o. Everything lies flat at z = 0 (markings 8 mm above),
-//! built as in-memory OBJ meshes (road, lane_marking, terrain shoulders)
-//! that `load_town_frame` adds after validation, like the hill mesh.
+//! built as inline triangle meshes (`kind = "mesh"`: road, lane_marking,
+//! terrain shoulders) that are validated like every scene mesh.
 
 use glam::DVec3;
 
-use crate::scene::desc::{ObjectDesc, ShapeDesc, TransformDesc};
-use crate::scene::obj::{ObjAsset, ObjGroup};
+use crate::scene::desc::{ObjectDesc, TransformDesc};
+use crate::scene::mesh::LocalMesh;
 
 use super::desc::TownDesc;
 use super::layout::{Layout, Rect};
@@ -37,11 +37,11 @@ pub const GORE_NOSE_M: f64 = 2.5;
 const PAINT_TOP_M: f64 = 0.008;
 /// Longest station step along a site, metres.
 const STEP_M: f64 = 2.0;
-/// OBJ keys of the generated meshes, with their material and class.
-pub const RAMP_FILES: [(&str, &str, &str); 3] = [
-    ("<town ramps road>", "asphalt", "road"),
-    ("<town ramps marking>", "paint_white_road", "lane_marking"),
-    ("<town ramps shoulder>", "gravel", "terrain"),
+/// Object names of the generated meshes, with their material and class.
+pub const RAMP_MESHES: [(&str, &str, &str); 3] = [
+    ("ramps_road", "asphalt", "road"),
+    ("ramps_lane_marking", "paint_white_road", "lane_marking"),
+    ("ramps_terrain", "gravel", "terrain"),
 ];
 
 /// Shortest block that fits a ramp site (taper, curves and parallel run
@@ -226,7 +226,7 @@ impl RampSite {
 struct Flat<'a> {
     site: &'a RampSite,
     z: f64,
-    g: ObjGroup,
+    g: LocalMesh,
 }
 
 impl Flat<'_> {
@@ -332,50 +332,41 @@ impl RampSite {
     }
 }
 
-/// The ramp meshes of a town (none without sites): (OBJ key, asset, the
-/// object referencing it) for road, markings and shoulders.
-pub fn ramp_meshes(sites: &[RampSite]) -> Vec<(String, ObjAsset, ObjectDesc)> {
+/// The ramp meshes of a town (none without sites): inline mesh objects
+/// for road, markings and shoulders, in `RAMP_MESHES` order.
+pub fn ramp_meshes(sites: &[RampSite]) -> Vec<ObjectDesc> {
     if sites.is_empty() {
         return Vec::new();
     }
     let mut out = Vec::new();
-    for (k, (file, material, class)) in RAMP_FILES.iter().enumerate() {
-        let mut group = ObjGroup::default();
+    for (k, (name, material, class)) in RAMP_MESHES.iter().enumerate() {
+        let mut mesh = LocalMesh::default();
         for s in sites {
             let z = if k == 1 { PAINT_TOP_M } else { 0.0 };
             let mut f = Flat {
                 site: s,
                 z,
-                g: ObjGroup::default(),
+                g: LocalMesh::default(),
             };
             match k {
                 0 => s.road(&mut f),
                 1 => s.markings(&mut f),
                 _ => s.shoulders(&mut f),
             }
-            let base = group.positions.len() as u32;
-            group.positions.extend(f.g.positions);
-            group
-                .triangles
+            let base = mesh.positions.len() as u32;
+            mesh.positions.extend(f.g.positions);
+            mesh.triangles
                 .extend(f.g.triangles.iter().map(|t| t.map(|i| i + base)));
         }
-        let object = ObjectDesc {
-            name: Some(format!("ramps_{class}")),
+        out.push(ObjectDesc {
+            name: Some(name.to_string()),
             material: Some(material.to_string()),
             semantic: Some(class.to_string()),
             instance: None,
             transform: TransformDesc::default(),
             repeat: Vec::new(),
-            shape: ShapeDesc::Obj {
-                file: file.to_string(),
-            },
-        };
-        let asset = ObjAsset {
-            groups: vec![group],
-            materials: Vec::new(),
-            dropped_degenerate: 0,
-        };
-        out.push((file.to_string(), asset, object));
+            shape: mesh.into_shape(),
+        });
     }
     out
 }

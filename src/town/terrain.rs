@@ -11,17 +11,17 @@
 
 use glam::DVec3;
 
-use crate::scene::desc::{ObjectDesc, ShapeDesc, TransformDesc};
-use crate::scene::obj::{ObjAsset, ObjGroup};
+use crate::scene::desc::{ObjectDesc, TransformDesc};
+use crate::scene::mesh::LocalMesh;
 
 use super::desc::TownDesc;
 use super::layout::{Layout, Rect, GROUND_MARGIN_M};
 use super::parts::{class, instance};
+use super::ramps::RampSite;
 use super::rng::Rng;
 
-/// `file` key of the generated terrain mesh among a town frame's OBJ assets
-/// (it is built in memory, never read from disk).
-pub const TERRAIN_FILE: &str = "<town terrain>";
+/// Name of the terrain mesh object (`kind = "mesh"`) in a town frame.
+pub const TERRAIN_NAME: &str = "terrain";
 /// Distance from the flat zone within which the height is exactly 0, metres.
 pub const FLAT_M: f64 = 8.0;
 /// Width of the blend from flat ground to full hills, metres.
@@ -78,6 +78,12 @@ impl Terrain {
     /// The height field of a (validated) town and seed; `None` when the town
     /// is flat (`hills_m = 0`).
     pub fn new(desc: &TownDesc, l: &Layout, seed: u64) -> Option<Self> {
+        Self::with_sites(desc, l, &super::ramps::ramp_sites(desc, l), seed)
+    }
+
+    /// As `new`, with the town's ramp sites (`ramps::ramp_sites`) already at
+    /// hand: hills stay flat over their clear zones.
+    pub fn with_sites(desc: &TownDesc, l: &Layout, sites: &[RampSite], seed: u64) -> Option<Self> {
         if desc.hills_m <= 0.0 {
             return None;
         }
@@ -108,10 +114,7 @@ impl Terrain {
             amplitude_m: desc.hills_m,
             flat: b,
             river: l.river_band(),
-            ramps: super::ramps::ramp_sites(desc, l)
-                .iter()
-                .map(|r| r.clear_zone())
-                .collect(),
+            ramps: sites.iter().map(|r| r.clear_zone()).collect(),
             waves,
             extent,
             spacing_m,
@@ -204,7 +207,7 @@ impl Terrain {
     /// The terrain grid mesh in world coordinates with smooth normals. Cells
     /// whose four corners are flat are left out (the flat ground quad lies
     /// there), as are cells over the river.
-    pub fn mesh(&self) -> ObjGroup {
+    pub fn mesh(&self) -> LocalMesh {
         let (nx, ny) = self.cells();
         let heights: Vec<f64> = (0..=ny)
             .flat_map(|j| (0..=nx).map(move |i| (i, j)))
@@ -215,7 +218,7 @@ impl Terrain {
             .collect();
         let at = |i: usize, j: usize| j * (nx + 1) + i;
         let mut index = vec![u32::MAX; heights.len()];
-        let mut g = ObjGroup::default();
+        let mut g = LocalMesh::default();
         for j in 0..ny {
             for i in 0..nx {
                 let corners = [at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)];
@@ -247,27 +250,17 @@ impl Terrain {
         g
     }
 
-    /// The mesh as an in-memory OBJ asset (one group, no materials).
-    pub fn asset(&self) -> ObjAsset {
-        ObjAsset {
-            groups: vec![self.mesh()],
-            materials: Vec::new(),
-            dropped_degenerate: 0,
-        }
-    }
-
-    /// The scene object referencing the asset under `TERRAIN_FILE`.
+    /// The terrain as a scene object: an inline mesh (`kind = "mesh"`) of
+    /// ground material, validated like every scene mesh.
     pub fn object(&self) -> ObjectDesc {
         ObjectDesc {
-            name: Some("terrain".to_string()),
+            name: Some(TERRAIN_NAME.to_string()),
             material: Some("ground".to_string()),
             semantic: Some("terrain".to_string()),
             instance: None,
             transform: TransformDesc::default(),
             repeat: Vec::new(),
-            shape: ShapeDesc::Obj {
-                file: TERRAIN_FILE.to_string(),
-            },
+            shape: self.mesh().into_shape(),
         }
     }
 

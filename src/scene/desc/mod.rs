@@ -65,6 +65,21 @@ impl SceneDesc {
     pub fn to_toml(&self) -> String {
         serialize_scene(self)
     }
+
+    /// Checks the `[medium]`, `[rain]` and `[wetness]` sections (their
+    /// checks live beside their descriptions); an error is (key, message).
+    pub(crate) fn check_weather(&self) -> Result<(), (String, String)> {
+        let checks = [
+            self.medium.as_ref().map(|m| m.check()),
+            self.rain.as_ref().map(|r| r.check()),
+            self.wetness.as_ref().map(|w| w.check()),
+        ];
+        checks
+            .into_iter()
+            .flatten()
+            .find_map(Result::err)
+            .map_or(Ok(()), Err)
+    }
 }
 
 /// Writes a description back as TOML; `toml::from_str` of the result gives an

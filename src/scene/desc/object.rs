@@ -140,6 +140,20 @@ pub enum ShapeDesc {
         /// Path relative to the scene file.
         file: String,
     },
+    /// An inline triangle mesh in the local frame (generated geometry, or
+    /// small hand-written meshes), checked as OBJ files are: finite vertices
+    /// within ±1e7 m, indices in range, degenerate triangles dropped (a mesh
+    /// with none left is an error). Needs `material`.
+    Mesh {
+        /// Vertex positions, metres.
+        positions: Vec<[f64; 3]>,
+        /// Per-vertex shading normals, one per position, or none (flat
+        /// shading); each is normalised, so only its direction counts.
+        #[serde(default, skip_serializing_if = "Vec::is_empty")]
+        normals: Vec<[f64; 3]>,
+        /// Vertex indices (0-based), counter-clockwise seen from the front.
+        triangles: Vec<[u32; 3]>,
+    },
     /// A copy of a `[[prefab]]`.
     Instance {
         /// Prefab name.
