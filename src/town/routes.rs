@@ -20,8 +20,13 @@
 //! the ring between its two arms, and a mirrored fillet out (`ring_turn`).
 //! The four blocks at the roundabout use the four quarters of the ring, and
 //! lane 0 rides inside lane 1, so routes still share no surface.
+//!
+//! At a highway loop's curved outer corner (`Layout::loop_corners`) every
+//! route through it (the ring and the corner block's loop) turns on the
+//! arc concentric with the road's: radius R ± (its distance from the
+//! centreline), so it keeps its lane, and no keep-clear zone is recorded.
 
-use std::f64::consts::{FRAC_PI_2, PI};
+use std::f64::consts::{FRAC_PI_2, PI, SQRT_2};
 
 use super::layout::Layout;
 use super::roundabout::arm_start_m;
@@ -315,9 +320,21 @@ fn loop_route(
     let hw = l.road_w_m / 2.0;
     let rho = ring_fillet_m(l);
     let at_ring = |c: [f64; 2]| ring.filter(|o| (c[0] - o[0]).hypot(c[1] - o[1]) < l.road_w_m);
+    let curves = l.loop_corners();
+    let at_curve = |c: [f64; 2]| {
+        curves
+            .iter()
+            .find(|o| (c[0] - o.corner[0]).hypot(c[1] - o.corner[1]) < l.road_w_m)
+    };
+    // A plain turn's radius: on a loop corner the arc about the road's
+    // centre (the lane corner lies on its diagonal, √2·radius away).
+    let radius = |c: [f64; 2]| match at_curve(c) {
+        Some(o) => (c[0] - o.centre[0]).hypot(c[1] - o.centre[1]) / SQRT_2,
+        None => r,
+    };
     let cut = |c: [f64; 2]| match at_ring(c) {
         Some(_) => ring_turn(l, lane, rho).1,
-        None => r,
+        None => radius(c),
     };
     let unit = |a: [f64; 2], b: [f64; 2]| {
         let d = [b[0] - a[0], b[1] - a[1]];
@@ -351,6 +368,7 @@ fn loop_route(
                 arm_start_m(l) + RING_CLEAR_EXTRA_M - e
             }
             None => {
+                let r = radius(c);
                 let sigma = (d_in[0] * d_out[1] - d_in[1] * d_out[0]).signum();
                 let n_left = [-d_in[1], d_in[0]];
                 let start = [c[0] - r * d_in[0], c[1] - r * d_in[1]];
@@ -372,7 +390,7 @@ fn loop_route(
         } else {
             hw - e + CROSSWALK_CLEAR_M
         };
-        if keep_clear {
+        if keep_clear && at_curve(c).is_none() {
             clear.push([s + a1 - edge, s + turn_m - a1 + depart]);
         }
         s += turn_m;
@@ -385,7 +403,8 @@ fn loop_route(
 /// roundabout take their right turn round the ring. With two or more lanes
 /// the ring's two outer lanes are one long-vehicle route: it drives the
 /// outer lane and swings through both at the town corners
-/// (`Turns::merged`), so buses and trucks fit.
+/// (`Turns::merged`), so buses and trucks fit. At curved loop corners the
+/// ring and the corner blocks' loops follow the arcs in their lanes.
 pub fn routes(l: &Layout, turns: &Turns) -> Vec<Route> {
     let mut out = Vec::new();
     let ring = l.roundabout_center();
@@ -435,6 +454,7 @@ mod tests {
             sidewalks: true,
             river_row: None,
             roundabout: roundabout.then_some((1, 1)),
+            loop_radius_m: 0.0,
         }
     }
 
