@@ -466,6 +466,69 @@ mod tests {
         assert_eq!(all.len(), 9 * 2 + 1);
         assert_eq!(all.iter().filter(|r| r.roundabout).count(), 4 * 2);
         for route in &all {
+            assert_closed_loop(route);
+        }
+    }
+
+    #[test]
+    fn loop_corner_routes_ride_arcs_concentric_with_the_road() {
+        let l = Layout {
+            loop_radius_m: 40.0,
+            sidewalks: false,
+            ..town(false)
+        };
+        let all = routes(&l, &Turns::new(l.lane_w_m));
+        let corners = l.loop_corners();
+        let mut arcs = 0;
+        for route in &all {
+            assert_closed_loop(route);
+            for seg in &route.segments {
+                let Segment::Arc {
+                    centre, radius_m, ..
+                } = *seg
+                else {
+                    continue;
+                };
+                let Some(c) = corners
+                    .iter()
+                    .find(|c| (c.centre[0] - centre[0]).hypot(c.centre[1] - centre[1]) < 1e-9)
+                else {
+                    // Plain corners keep the small turn radius.
+                    assert!(radius_m < 10.0, "{radius_m}");
+                    continue;
+                };
+                // Ring: lane centre outside the road centreline; block
+                // loop (corner blocks only): inside it.
+                let e = (radius_m - l.loop_radius_m).abs();
+                let w = l.lane_w_m;
+                assert!(e > route.lane as f64 * w && e < (route.lane + 1) as f64 * w);
+                match route.kind {
+                    RouteKind::Ring => assert!(radius_m > l.loop_radius_m),
+                    RouteKind::Block { i, j } => {
+                        assert!(radius_m < l.loop_radius_m);
+                        let (ci, cj) = c.ij;
+                        assert!((ci == i || ci == i + 1) && (cj == j || cj == j + 1));
+                    }
+                }
+                arcs += 1;
+            }
+            // No keep-clear zone at a curve: one per junction corner.
+            if let RouteKind::Block { i, j } = route.kind {
+                let curved = [(i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1)]
+                    .iter()
+                    .filter(|&&(a, b)| l.loop_corner_at(a, b))
+                    .count();
+                assert_eq!(route.keep_clear_m.len(), 4 - curved);
+            }
+        }
+        // The ring's 4 curves, and 2 lanes × 4 corner blocks.
+        assert_eq!(arcs, 4 + 2 * 4);
+    }
+
+    /// Position and heading are continuous along the loop (radii ≥ 3 m),
+    /// and it turns by one full circle (ring left, block loops right).
+    fn assert_closed_loop(route: &Route) {
+        {
             let len = route.length_m();
             let n = 20000;
             let mut turned = 0.0;
