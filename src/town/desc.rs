@@ -246,9 +246,7 @@ impl TownDesc {
         }
         Ok(())
     }
-}
 
-impl TownDesc {
     /// Largest `loop_corner_radius_m`: the straight from the arc's end to
     /// the next junction keeps room for a queue (half the smallest block).
     pub fn max_loop_corner_radius_m(&self) -> f64 {

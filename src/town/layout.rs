@@ -281,7 +281,8 @@ impl Layout {
             })
         })
     }
-    /// Every road surface rectangle (x-roads, then y-roads; they overlap at junctions).
+    /// Every straight road surface rectangle (x-roads, then y-roads; they
+    /// overlap at junctions); curved loop corners are `on_loop_curve`.
     pub fn road_rects(&self) -> Vec<Rect> {
         (0..=self.ny)
             .map(|j| self.x_road(j))
@@ -324,5 +325,59 @@ impl Layout {
             min: [-STUB_M, -e],
             max: [self.len_x() + STUB_M, self.len_y() + e],
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn looped(r: f64) -> Layout {
+        Layout {
+            nx: 3,
+            ny: 2,
+            pitch_m: 200.0,
+            road_w_m: 14.0,
+            lane_w_m: 3.5,
+            lanes: 2,
+            sidewalk_m: 2.0,
+            sidewalks: false,
+            river_row: None,
+            roundabout: None,
+            loop_radius_m: r,
+        }
+    }
+
+    #[test]
+    fn corner_lots_stay_inside_the_curves_inner_shoulder() {
+        let l = looped(120.0);
+        let clear = l.loop_radius_m - l.road_w_m / 2.0 - l.sidewalk_m - 1.0;
+        for c in l.loop_corners() {
+            let (i, j) = (c.ij.0.min(l.nx - 1), c.ij.1.min(l.ny - 1));
+            let a = l.block_interior(i, j);
+            // The lot corner nearest the junction is exactly `clear` from
+            // the arc centre (every other lot point in the arc's quarter is
+            // nearer).
+            let near = [0, 1].map(|k| {
+                if c.inward[k] > 0.0 {
+                    a.min[k]
+                } else {
+                    a.max[k]
+                }
+            });
+            let d = (near[0] - c.centre[0]).hypot(near[1] - c.centre[1]);
+            assert!((d - clear).abs() < 1e-9, "{:?}: {d} vs {clear}", c.ij);
+            // The arc is road, the old junction and its corner are not.
+            let t = (c.theta.0 + c.theta.1) / 2.0;
+            let r = l.loop_radius_m;
+            let on = |r: f64| [c.centre[0] + r * t.cos(), c.centre[1] + r * t.sin()];
+            assert!(l.on_loop_curve(on(r)) && l.on_loop_curve(on(r + 6.9)));
+            assert!(!l.on_loop_curve(on(r + 7.1)) && !l.on_loop_curve(c.corner));
+            assert!(l.in_loop_corner(c.corner) && l.in_loop_corner(on(r)));
+            assert!(!l.in_loop_corner(l.bounds().center()));
+        }
+        // Lots away from the corners keep their size; square corners cut nothing.
+        assert_eq!(l.block_interior(1, 0), looped(0.0).block_interior(1, 0));
+        assert!(looped(0.0).loop_corners().is_empty());
     }
 }
