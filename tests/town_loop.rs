@@ -119,7 +119,20 @@ fn town04_loop_traffic_keeps_its_lane_on_the_curves_for_300_frames() {
     for (k, f) in frames.iter().enumerate() {
         for v in std::iter::once(&f.ego).chain(&f.vehicles) {
             let route = &plan.routes[v.route].route;
-            let Some(off) = arc_offset(&l, [v.position[0], v.position[1]]) else {
+            let p = [v.position[0], v.position[1]];
+            let Some(off) = arc_offset(&l, p) else {
+                if route.kind == RouteKind::Ring {
+                    // On the straights: outside the centreline rectangle.
+                    let u = [-p[0], -p[1], p[0] - l.len_x(), p[1] - l.len_y()]
+                        .into_iter()
+                        .fold(f64::NEG_INFINITY, f64::max);
+                    let lane = route.lane as f64;
+                    assert!(
+                        u >= lane * w && u <= (lane + 1.0) * w,
+                        "frame {k}: ring vehicle {} at {u} m from the centreline",
+                        v.id
+                    );
+                }
                 continue;
             };
             on_arc += 1;
