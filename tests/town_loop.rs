@@ -1,9 +1,10 @@
 //! Town04's highway loop (`loop_corner_radius_m`): the four outer corners are
 //! curves. Vehicles on the ring and the corner blocks' loops keep to their
 //! lane on the arcs over a 300-frame run within the lateral-acceleration
-//! bound; rays cast down onto the arcs hit asphalt (markings) at z = 0 with
-//! nothing above, the cut-off corners are ground; towns with square corners
-//! keep their roads, routes and lots (hashes pinned before the change).
+//! bound and never stand on them; rays cast down onto the arcs hit asphalt
+//! (or markings) at z = 0 with nothing above, the cut-off corners are
+//! ground; towns with square corners keep their roads, routes and lots
+//! (hashes pinned before the change).
 
 use glam::{DVec3, Vec3};
 use parallax::accel::{build_accel, Accel, Backend, Ray};
@@ -136,6 +137,14 @@ fn town04_loop_traffic_keeps_its_lane_on_the_curves_for_300_frames() {
                 continue;
             };
             on_arc += 1;
+            // Nobody stands on a curve (block loops stop elsewhere).
+            if k > 0 {
+                let prev = &frames[k - 1];
+                let stood = std::iter::once(&prev.ego)
+                    .chain(&prev.vehicles)
+                    .any(|p| p.id == v.id && p.position == v.position);
+                assert!(!stood, "frame {k}: vehicle {} stands on a curve", v.id);
+            }
             // Lane k is the band [k·w, (k+1)·w] from the centreline, outward
             // for the ring, inward for a block loop.
             let (lane, ring) = (route.lane as f64, route.kind == RouteKind::Ring);
