@@ -54,8 +54,9 @@ fn overlaps(vs: &[&VehiclePose]) -> Vec<(u32, u32)> {
     out
 }
 
-/// Whether the footprint's outline (sampled every 10 cm) lies on roads or
-/// on the roundabout's ring (between its island and outer kerb).
+/// Whether the footprint's outline (sampled every 10 cm) lies on roads, on
+/// the roundabout's ring (between its island and outer kerb) or on a curved
+/// loop corner (town04).
 fn on_road(l: &Layout, roads: &[Rect], v: &VehiclePose) -> bool {
     let ring = |x: f64, y: f64| {
         l.roundabout_center().is_some_and(|c| {
@@ -72,7 +73,7 @@ fn on_road(l: &Layout, roads: &[Rect], v: &VehiclePose) -> bool {
             let x = p[0] + (q[0] - p[0]) * u;
             let y = p[1] + (q[1] - p[1]) * u;
             let at = Rect::centered([x, y], [0.0, 0.0]);
-            roads.iter().any(|r| r.contains(&at, 1e-6)) || ring(x, y)
+            roads.iter().any(|r| r.contains(&at, 1e-6)) || ring(x, y) || l.on_loop_curve([x, y])
         })
     })
 }

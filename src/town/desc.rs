@@ -66,6 +66,17 @@ pub struct TownDesc {
     /// blocks: `block_size_m` ≥ road width + 254 m (highway towns).
     #[serde(default)]
     pub ramps: bool,
+    /// Radius of the curved corners of the highway loop, metres, measured
+    /// on the road centreline (default 0: square corners with T junctions).
+    /// When > 0, the four corners where the outer roads meet become quarter
+    /// circles of this radius (asphalt, markings and shoulders follow the
+    /// arc; no junction there); the ring and the corner blocks' loops drive
+    /// the arcs in their lanes, and the corner blocks' lots keep clear of
+    /// them. Range [2 × road width, block_size_m − min_block_size_m / 2];
+    /// needs country roads (`sidewalks = false`), no `ramps` and at least
+    /// 2 × 2 blocks.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub loop_corner_radius_m: f64,
     /// Ground cover between and around the blocks.
     #[serde(default)]
     pub terrain: TerrainKind,
@@ -131,6 +142,9 @@ pub enum SkyKind {
     Hazy,
 }
 
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
+}
 fn yes() -> bool {
     true
 }
@@ -219,6 +233,7 @@ impl TownDesc {
                 self.block_size_m
             ));
         }
+        self.validate_loop_corners()?;
         let [lo, hi] = self.floors;
         if !(1 <= lo && lo <= hi && hi <= 12) {
             return Err(format!("floors: need 1 ≤ min ≤ max ≤ 12, got [{lo}, {hi}]"));
@@ -228,6 +243,33 @@ impl TownDesc {
             return Err(format!(
                 "tower_floors: need 8 ≤ min ≤ max ≤ 60, got [{lo}, {hi}]"
             ));
+        }
+        Ok(())
+    }
+
+    /// Largest `loop_corner_radius_m`: the straight from the arc's end to
+    /// the next junction keeps room for a queue (half the smallest block).
+    pub fn max_loop_corner_radius_m(&self) -> f64 {
+        self.block_size_m - self.min_block_size_m() / 2.0
+    }
+
+    fn validate_loop_corners(&self) -> Result<(), String> {
+        let r = self.loop_corner_radius_m;
+        if r == 0.0 {
+            return Ok(());
+        }
+        let (lo, hi) = (2.0 * self.road_width_m(), self.max_loop_corner_radius_m());
+        if !(r.is_finite() && r >= lo && r <= hi) {
+            return Err(format!(
+                "loop_corner_radius_m: must be 0 or in [{lo}, {hi}], got {r}"
+            ));
+        }
+        let blocks = self.extent_m.map(|e| (e / self.block_size_m).round());
+        if self.sidewalks || self.ramps || blocks[0] < 2.0 || blocks[1] < 2.0 {
+            return Err(
+                "loop_corner_radius_m: needs sidewalks = false, no ramps and 2 × 2 blocks or more"
+                    .into(),
+            );
         }
         Ok(())
     }

@@ -4,6 +4,12 @@
 //! x-roads (east–west) lie at y = j·P for j = 0..=ny and run past the town
 //! edge by `stub_m` on both ends; y-roads (north–south) lie at x = i·P for
 //! i = 0..=nx and end at the outer x-roads (T junctions there). P = block pitch.
+//! With a loop corner radius R > 0 the four outer corners are quarter
+//! circles of radius R (on the centreline) about points R in from both outer
+//! centrelines; the outer roads then end at the arcs' tangent points (no
+//! stubs on the outer x-roads) and the corner blocks' lots keep clear.
+
+use std::f64::consts::FRAC_PI_4;
 
 use super::desc::TownDesc;
 
@@ -79,6 +85,26 @@ pub struct Layout {
     pub river_row: Option<usize>,
     /// The cross junction (i, j) replaced by a roundabout, if any.
     pub roundabout: Option<(usize, usize)>,
+    /// Radius of the loop's curved outer corners on the centreline, metres
+    /// (0: square corners with junctions).
+    pub loop_radius_m: f64,
+}
+
+/// One curved outer corner of the loop: a quarter circle on the road
+/// centreline about `centre`, replacing the junction at grid corner `ij`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LoopCorner {
+    /// Grid junction (i, j) the arc replaces.
+    pub ij: (usize, usize),
+    /// The junction's position, world (x, y), metres.
+    pub corner: [f64; 2],
+    /// Arc centre, world (x, y), metres: R in from the corner along x and y.
+    pub centre: [f64; 2],
+    /// Direction signs (±1, ±1) from the corner towards the centre.
+    pub inward: [f64; 2],
+    /// Polar angles about the centre of the arc's ends, radians, θ0 < θ1 =
+    /// θ0 + π/2 (counter-clockwise).
+    pub theta: (f64, f64),
 }
 
 impl Layout {
@@ -96,6 +122,7 @@ impl Layout {
             sidewalks: desc.sidewalks,
             river_row: None,
             roundabout: None,
+            loop_radius_m: desc.loop_corner_radius_m,
         }
         .with_river(desc.river)
         .with_roundabout(desc.roundabout)
@@ -164,37 +191,132 @@ impl Layout {
     pub fn len_y(&self) -> f64 {
         self.ny as f64 * self.pitch_m
     }
-    /// Road surface of x-road j (stubs included).
+    /// Road surface of x-road j (stubs included); the straight part only
+    /// of an outer x-road with loop corners (between the arcs' ends).
     pub fn x_road(&self, j: usize) -> Rect {
         let y = j as f64 * self.pitch_m;
+        let (a0, a1) = if self.loop_corner_at(0, j) {
+            (self.loop_radius_m, self.len_x() - self.loop_radius_m)
+        } else {
+            (-STUB_M, self.len_x() + STUB_M)
+        };
         Rect {
-            min: [-STUB_M, y - self.road_w_m / 2.0],
-            max: [self.len_x() + STUB_M, y + self.road_w_m / 2.0],
+            min: [a0, y - self.road_w_m / 2.0],
+            max: [a1, y + self.road_w_m / 2.0],
         }
     }
-    /// Road surface of y-road i (ending at the outer x-roads' far kerbs).
+    /// Road surface of y-road i (ending at the outer x-roads' far kerbs);
+    /// the straight part only of an outer y-road with loop corners.
     pub fn y_road(&self, i: usize) -> Rect {
         let x = i as f64 * self.pitch_m;
+        let hw = self.road_w_m / 2.0;
+        let (a0, a1) = if self.loop_corner_at(i, 0) {
+            (self.loop_radius_m, self.len_y() - self.loop_radius_m)
+        } else {
+            (-hw, self.len_y() + hw)
+        };
         Rect {
-            min: [x - self.road_w_m / 2.0, -self.road_w_m / 2.0],
-            max: [x + self.road_w_m / 2.0, self.len_y() + self.road_w_m / 2.0],
+            min: [x - hw, a0],
+            max: [x + hw, a1],
         }
     }
-    /// Every road surface rectangle (x-roads, then y-roads; they overlap at junctions).
+    /// Whether grid junction (i, j) is a curved loop corner (an outer
+    /// corner of a town with `loop_radius_m` > 0).
+    pub fn loop_corner_at(&self, i: usize, j: usize) -> bool {
+        self.loop_radius_m > 0.0 && (i == 0 || i == self.nx) && (j == 0 || j == self.ny)
+    }
+    /// The curved corners of the loop (none with square corners), in the
+    /// order (0, 0), (nx, 0), (0, ny), (nx, ny).
+    pub fn loop_corners(&self) -> Vec<LoopCorner> {
+        if self.loop_radius_m <= 0.0 {
+            return Vec::new();
+        }
+        let r = self.loop_radius_m;
+        [(0, 0), (self.nx, 0), (0, self.ny), (self.nx, self.ny)]
+            .into_iter()
+            .map(|(i, j)| {
+                let corner = [i as f64 * self.pitch_m, j as f64 * self.pitch_m];
+                let inward: [f64; 2] = [
+                    if i == 0 { 1.0 } else { -1.0 },
+                    if j == 0 { 1.0 } else { -1.0 },
+                ];
+                // The arc faces the corner: ±45° about the diagonal to it.
+                let mid = (-inward[1]).atan2(-inward[0]);
+                LoopCorner {
+                    ij: (i, j),
+                    corner,
+                    centre: [corner[0] + r * inward[0], corner[1] + r * inward[1]],
+                    inward,
+                    theta: (mid - FRAC_PI_4, mid + FRAC_PI_4),
+                }
+            })
+            .collect()
+    }
+    /// Whether (x, y) lies on the asphalt of a curved loop corner: within
+    /// half the road width of the arc, in the quarter the arc spans.
+    pub fn on_loop_curve(&self, p: [f64; 2]) -> bool {
+        self.loop_corners().iter().any(|c| {
+            let d = [p[0] - c.centre[0], p[1] - c.centre[1]];
+            let facing = d[0] * c.inward[0] <= 0.0 && d[1] * c.inward[1] <= 0.0;
+            facing && (d[0].hypot(d[1]) - self.loop_radius_m).abs() <= self.road_w_m / 2.0
+        })
+    }
+    /// Whether (x, y) lies in the square between a curved loop corner's
+    /// junction (and the bounds beyond it) and its arc centre, or within
+    /// 5 m past the arc's ends (a street tree's crown would reach over the
+    /// curve): the arc, its shoulders and the cut-off corner, where no
+    /// furniture stands.
+    pub fn in_loop_corner(&self, p: [f64; 2]) -> bool {
+        let b = self.bounds();
+        self.loop_corners().iter().any(|c| {
+            (0..2).all(|k| {
+                let edge = if c.inward[k] > 0.0 {
+                    b.min[k]
+                } else {
+                    b.max[k]
+                };
+                // Distance inward from 1 m beyond the bounds' edge.
+                let d = (p[k] - edge) * c.inward[k] + 1.0;
+                d >= 0.0 && d <= (c.centre[k] - edge).abs() + 6.0
+            })
+        })
+    }
+    /// Every straight road surface rectangle (x-roads, then y-roads; they
+    /// overlap at junctions); curved loop corners are `on_loop_curve`.
     pub fn road_rects(&self) -> Vec<Rect> {
         (0..=self.ny)
             .map(|j| self.x_road(j))
             .chain((0..=self.nx).map(|i| self.y_road(i)))
             .collect()
     }
-    /// Lot area of block (i, j) inside the sidewalks.
+    /// Lot area of block (i, j) inside the sidewalks; at a curved loop
+    /// corner, cut back to the square whose near corner is 1 m inside the
+    /// arc's inner shoulder (the lots never reach the curve).
     pub fn block_interior(&self, i: usize, j: usize) -> Rect {
         let edge = self.road_w_m / 2.0 + self.sidewalk_m;
         let (x0, y0) = (i as f64 * self.pitch_m, j as f64 * self.pitch_m);
-        Rect {
+        let mut a = Rect {
             min: [x0 + edge, y0 + edge],
             max: [x0 + self.pitch_m - edge, y0 + self.pitch_m - edge],
+        };
+        let r = self.loop_radius_m;
+        // The near corner at distance ρ from the arc centre on the diagonal.
+        let cut = r - (r - edge - 1.0) / std::f64::consts::SQRT_2;
+        for c in self.loop_corners() {
+            let (ci, cj) = c.ij;
+            if !((ci == i || ci == i + 1) && (cj == j || cj == j + 1)) {
+                continue;
+            }
+            for k in 0..2 {
+                let at = c.corner[k] + c.inward[k] * cut;
+                if c.inward[k] > 0.0 {
+                    a.min[k] = a.min[k].max(at);
+                } else {
+                    a.max[k] = a.max[k].min(at);
+                }
+            }
         }
+        a
     }
     /// Bounds of everything generated (roads, sidewalks, lots), metres.
     pub fn bounds(&self) -> Rect {
@@ -203,5 +325,59 @@ impl Layout {
             min: [-STUB_M, -e],
             max: [self.len_x() + STUB_M, self.len_y() + e],
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn looped(r: f64) -> Layout {
+        Layout {
+            nx: 3,
+            ny: 2,
+            pitch_m: 200.0,
+            road_w_m: 14.0,
+            lane_w_m: 3.5,
+            lanes: 2,
+            sidewalk_m: 2.0,
+            sidewalks: false,
+            river_row: None,
+            roundabout: None,
+            loop_radius_m: r,
+        }
+    }
+
+    #[test]
+    fn corner_lots_stay_inside_the_curves_inner_shoulder() {
+        let l = looped(120.0);
+        let clear = l.loop_radius_m - l.road_w_m / 2.0 - l.sidewalk_m - 1.0;
+        for c in l.loop_corners() {
+            let (i, j) = (c.ij.0.min(l.nx - 1), c.ij.1.min(l.ny - 1));
+            let a = l.block_interior(i, j);
+            // The lot corner nearest the junction is exactly `clear` from
+            // the arc centre (every other lot point in the arc's quarter is
+            // nearer).
+            let near = [0, 1].map(|k| {
+                if c.inward[k] > 0.0 {
+                    a.min[k]
+                } else {
+                    a.max[k]
+                }
+            });
+            let d = (near[0] - c.centre[0]).hypot(near[1] - c.centre[1]);
+            assert!((d - clear).abs() < 1e-9, "{:?}: {d} vs {clear}", c.ij);
+            // The arc is road, the old junction and its corner are not.
+            let t = (c.theta.0 + c.theta.1) / 2.0;
+            let r = l.loop_radius_m;
+            let on = |r: f64| [c.centre[0] + r * t.cos(), c.centre[1] + r * t.sin()];
+            assert!(l.on_loop_curve(on(r)) && l.on_loop_curve(on(r + 6.9)));
+            assert!(!l.on_loop_curve(on(r + 7.1)) && !l.on_loop_curve(c.corner));
+            assert!(l.in_loop_corner(c.corner) && l.in_loop_corner(on(r)));
+            assert!(!l.in_loop_corner(l.bounds().center()));
+        }
+        // Lots away from the corners keep their size; square corners cut nothing.
+        assert_eq!(l.block_interior(1, 0), looped(0.0).block_interior(1, 0));
+        assert!(looped(0.0).loop_corners().is_empty());
     }
 }

@@ -88,10 +88,12 @@ impl<'a> StaticTown<'a> {
         let mut out = roads::road_objects(l, &self.sites);
         out.extend(buildings::block_objects(desc, l, seed));
         let mut furniture = furniture::furniture_objects(desc, l, seed);
-        // Nothing stands on the roundabout's ring or sidewalk.
+        // Nothing stands on the roundabout's ring or sidewalk, nor in the
+        // square of a curved loop corner (its arc and the cut-off corner).
         furniture.retain(|o| {
             let t = o.transform.translate.unwrap_or_default();
             !l.near_roundabout(&layout::Rect::centered([t[0], t[1]], [0.0, 0.0]))
+                && !l.in_loop_corner([t[0], t[1]])
         });
         out.extend(furniture);
         if let Some(t) = &self.terrain {

@@ -2,7 +2,8 @@
 //! markings (dashed or double solid centre lines, dashed lane dividers, solid
 //! edge lines, stop lines and zebra crosswalks at junctions), curbs, sidewalks
 //! and corner pieces (flat gravel shoulders on country roads), and the
-//! terrain around everything.
+//! terrain around everything. A highway loop's curved outer corners are
+//! built in `corners`; the outer roads' straights end at the arcs.
 //!
 //! A road segment is described in (along, across) coordinates: `along` runs
 //! with the road's positive direction (+x or +y), `across` points to its left
@@ -16,6 +17,10 @@ use super::layout::{Layout, Rect, GROUND_MARGIN_M, STUB_M};
 use super::parts::{class, ground_quad, repeated, slab, Label};
 use super::ramps::{RampSite, TAPER_M};
 use super::roundabout::{arm_start_m, roundabout_objects};
+
+mod corners;
+
+use corners::loop_corner_objects;
 
 /// Along which world axis a road runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -98,18 +103,22 @@ pub fn road_objects(l: &Layout, sites: &[RampSite]) -> Vec<ObjectDesc> {
     let (p, hw) = (l.pitch_m, l.road_w_m / 2.0);
     for j in 0..=l.ny {
         let y = j as f64 * p;
-        out.extend(segment_objects(
-            l,
-            sites,
-            &Segment {
-                axis: Axis::X,
-                c: y,
-                a0: -STUB_M,
-                a1: -hw,
-                junction: [false, true],
-                yield_end: [false; 2],
-            },
-        ));
+        // An outer x-road with loop corners has no stubs.
+        let curved = l.loop_corner_at(0, j);
+        if !curved {
+            out.extend(segment_objects(
+                l,
+                sites,
+                &Segment {
+                    axis: Axis::X,
+                    c: y,
+                    a0: -STUB_M,
+                    a1: -hw,
+                    junction: [false, true],
+                    yield_end: [false; 2],
+                },
+            ));
+        }
         for i in 0..l.nx {
             let x = i as f64 * p;
             let s = roundabout_arm(
@@ -123,24 +132,28 @@ pub fn road_objects(l: &Layout, sites: &[RampSite]) -> Vec<ObjectDesc> {
                     yield_end: [false; 2],
                 },
             );
+            let s = to_loop_arcs(l, s, (i == 0, i + 1 == l.nx), l.len_x(), curved);
             out.extend(segment_objects(l, sites, &s));
         }
         let e = l.len_x();
-        out.extend(segment_objects(
-            l,
-            sites,
-            &Segment {
-                axis: Axis::X,
-                c: y,
-                a0: e + hw,
-                a1: e + STUB_M,
-                junction: [true, false],
-                yield_end: [false; 2],
-            },
-        ));
+        if !curved {
+            out.extend(segment_objects(
+                l,
+                sites,
+                &Segment {
+                    axis: Axis::X,
+                    c: y,
+                    a0: e + hw,
+                    a1: e + STUB_M,
+                    junction: [true, false],
+                    yield_end: [false; 2],
+                },
+            ));
+        }
     }
     for i in 0..=l.nx {
         let x = i as f64 * p;
+        let curved = l.loop_corner_at(i, 0);
         for j in 0..l.ny {
             let y = j as f64 * p;
             let s = roundabout_arm(
@@ -154,18 +167,39 @@ pub fn road_objects(l: &Layout, sites: &[RampSite]) -> Vec<ObjectDesc> {
                     yield_end: [false; 2],
                 },
             );
+            let s = to_loop_arcs(l, s, (j == 0, j + 1 == l.ny), l.len_y(), curved);
             out.extend(segment_objects(l, sites, &s));
         }
     }
     for j in 0..=l.ny {
         for i in 0..=l.nx {
-            if l.roundabout != Some((i, j)) {
+            if l.roundabout != Some((i, j)) && !l.loop_corner_at(i, j) {
                 junction_objects(l, i, j, &mut out);
             }
         }
     }
     out.extend(roundabout_objects(l));
+    out.extend(loop_corner_objects(l));
     out
+}
+
+/// The segment ending at the tangent point of a curved loop corner (R from
+/// the grid corner, no junction there) at a first or last end of an outer
+/// road of length `len`; unchanged elsewhere.
+fn to_loop_arcs(
+    l: &Layout,
+    mut s: Segment,
+    (first, last): (bool, bool),
+    len: f64,
+    curved: bool,
+) -> Segment {
+    if curved && first {
+        (s.a0, s.junction[0]) = (l.loop_radius_m, false);
+    }
+    if curved && last {
+        (s.a1, s.junction[1]) = (len - l.loop_radius_m, false);
+    }
+    s
 }
 
 /// The segment shortened to the ring where it is an arm of the roundabout.

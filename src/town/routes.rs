@@ -20,8 +20,13 @@
 //! the ring between its two arms, and a mirrored fillet out (`ring_turn`).
 //! The four blocks at the roundabout use the four quarters of the ring, and
 //! lane 0 rides inside lane 1, so routes still share no surface.
+//!
+//! At a highway loop's curved outer corner (`Layout::loop_corners`) every
+//! route through it (the ring and the corner block's loop) turns on the
+//! arc concentric with the road's: radius R ± (its distance from the
+//! centreline), so it keeps its lane; nobody stands on the curve.
 
-use std::f64::consts::{FRAC_PI_2, PI};
+use std::f64::consts::{FRAC_PI_2, PI, SQRT_2};
 
 use super::layout::Layout;
 use super::roundabout::arm_start_m;
@@ -157,7 +162,8 @@ pub struct Route {
     pub starts_m: Vec<f64>,
     /// Arc-length intervals [a, b] (b may exceed the length: wrapped)
     /// where no standing body may reach: from each stop line through the
-    /// junction to past the departing crosswalk.
+    /// junction to past the departing crosswalk, then (block loops at a
+    /// loop corner) the whole curve.
     pub keep_clear_m: Vec<[f64; 2]>,
     /// Whether the route passes the roundabout.
     pub roundabout: bool,
@@ -315,9 +321,21 @@ fn loop_route(
     let hw = l.road_w_m / 2.0;
     let rho = ring_fillet_m(l);
     let at_ring = |c: [f64; 2]| ring.filter(|o| (c[0] - o[0]).hypot(c[1] - o[1]) < l.road_w_m);
+    let curves = l.loop_corners();
+    let at_curve = |c: [f64; 2]| {
+        curves
+            .iter()
+            .find(|o| (c[0] - o.corner[0]).hypot(c[1] - o.corner[1]) < l.road_w_m)
+    };
+    // A plain turn's radius: on a loop corner the arc about the road's
+    // centre (the lane corner lies on its diagonal, √2·radius away).
+    let radius = |c: [f64; 2]| match at_curve(c) {
+        Some(o) => (c[0] - o.centre[0]).hypot(c[1] - o.centre[1]) / SQRT_2,
+        None => r,
+    };
     let cut = |c: [f64; 2]| match at_ring(c) {
         Some(_) => ring_turn(l, lane, rho).1,
-        None => r,
+        None => radius(c),
     };
     let unit = |a: [f64; 2], b: [f64; 2]| {
         let d = [b[0] - a[0], b[1] - a[1]];
@@ -326,6 +344,9 @@ fn loop_route(
     };
     let mut segs = Vec::new();
     let mut clear = Vec::new();
+    // Nobody stands on a loop corner's curve; these zones go after the
+    // junctions' (the first zone is where the lead vehicle stands).
+    let mut curves = Vec::new();
     let mut s = 0.0;
     for q in 0..4 {
         let (prev, c, next) = (corners[(q + 3) % 4], corners[q], corners[(q + 1) % 4]);
@@ -351,6 +372,7 @@ fn loop_route(
                 arm_start_m(l) + RING_CLEAR_EXTRA_M - e
             }
             None => {
+                let r = radius(c);
                 let sigma = (d_in[0] * d_out[1] - d_in[1] * d_out[0]).signum();
                 let n_left = [-d_in[1], d_in[0]];
                 let start = [c[0] - r * d_in[0], c[1] - r * d_in[1]];
@@ -372,11 +394,14 @@ fn loop_route(
         } else {
             hw - e + CROSSWALK_CLEAR_M
         };
-        if keep_clear {
+        if keep_clear && at_curve(c).is_some() {
+            curves.push([s, s + turn_m]);
+        } else if keep_clear {
             clear.push([s + a1 - edge, s + turn_m - a1 + depart]);
         }
         s += turn_m;
     }
+    clear.extend(curves);
     Route::new(kind, lane, segs, clear, turns.bodies.clone())
 }
 
@@ -385,7 +410,8 @@ fn loop_route(
 /// roundabout take their right turn round the ring. With two or more lanes
 /// the ring's two outer lanes are one long-vehicle route: it drives the
 /// outer lane and swings through both at the town corners
-/// (`Turns::merged`), so buses and trucks fit.
+/// (`Turns::merged`), so buses and trucks fit. At curved loop corners the
+/// ring and the corner blocks' loops follow the arcs in their lanes.
 pub fn routes(l: &Layout, turns: &Turns) -> Vec<Route> {
     let mut out = Vec::new();
     let ring = l.roundabout_center();
@@ -420,91 +446,4 @@ pub fn routes(l: &Layout, turns: &Turns) -> Vec<Route> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn town(roundabout: bool) -> Layout {
-        Layout {
-            nx: 3,
-            ny: 3,
-            pitch_m: 90.0,
-            road_w_m: 14.0,
-            lane_w_m: 3.5,
-            lanes: 2,
-            sidewalk_m: 4.0,
-            sidewalks: true,
-            river_row: None,
-            roundabout: roundabout.then_some((1, 1)),
-        }
-    }
-
-    #[test]
-    fn every_route_is_continuous_and_turns_a_full_circle() {
-        let l = town(true);
-        let all = routes(&l, &Turns::new(l.lane_w_m));
-        // The ring's two lanes are one long-vehicle route.
-        assert_eq!(all.len(), 9 * 2 + 1);
-        assert_eq!(all.iter().filter(|r| r.roundabout).count(), 4 * 2);
-        for route in &all {
-            let len = route.length_m();
-            let n = 20000;
-            let mut turned = 0.0;
-            let (mut prev_p, mut prev_h) = route.pose(0.0);
-            for k in 1..=n {
-                let (p, h) = route.pose(len * k as f64 / n as f64);
-                let step = (p[0] - prev_p[0]).hypot(p[1] - prev_p[1]);
-                assert!(step <= len / n as f64 + 1e-9, "jump of {step} m at {k}");
-                let mut dh = h - prev_h;
-                dh -= (dh / (2.0 * PI)).round() * 2.0 * PI;
-                // Radii are ≥ 3 m: a step turns by at most step / 3.
-                assert!(
-                    dh.abs() <= len / n as f64 / 3.0 + 1e-9,
-                    "heading jump {dh} at {k}"
-                );
-                turned += dh;
-                (prev_p, prev_h) = (p, h);
-            }
-            let want = match route.kind {
-                RouteKind::Ring => 2.0 * PI,
-                RouteKind::Block { .. } => -2.0 * PI,
-            };
-            assert!((turned - want).abs() < 1e-9, "turned {turned}");
-        }
-    }
-
-    #[test]
-    fn roundabout_turn_circles_the_ring_counter_clockwise_in_its_quarter() {
-        let l = town(true);
-        let c = l.roundabout_center().unwrap();
-        for k in 0..l.lanes {
-            let big_r = ring_lane_radius_m(&l, k);
-            for route in routes(&l, &Turns::new(l.lane_w_m))
-                .iter()
-                .filter(|r| r.roundabout && r.lane == k)
-            {
-                let on_ring: Vec<f64> = (0..4000)
-                    .map(|n| route.pose(route.length_m() * n as f64 / 4000.0).0)
-                    .filter(|p| ((p[0] - c[0]).hypot(p[1] - c[1]) - big_r).abs() < 1e-9)
-                    .map(|p| (p[1] - c[1]).atan2(p[0] - c[0]))
-                    .collect();
-                assert!(on_ring.len() > 20, "{} points on the ring", on_ring.len());
-                let spread = on_ring.iter().fold(f64::NEG_INFINITY, |a, &b| a.max(b))
-                    - on_ring.iter().fold(f64::INFINITY, |a, &b| a.min(b));
-                assert!(spread > 0.3 && spread < FRAC_PI_2, "spread {spread}");
-            }
-        }
-        // The canonical turn is tangent where its pieces meet.
-        let (arcs, cut) = ring_turn(&l, 0, ring_fillet_m(&l));
-        let e = 0.5 * l.lane_w_m;
-        assert!((arcs[0].at(0.0).0[0] - (-e - cut)).abs() < 1e-9);
-        for w in arcs.windows(2) {
-            let (p, h) = w[0].at(w[0].length_m());
-            let (q, g) = w[1].at(0.0);
-            assert!((p[0] - q[0]).hypot(p[1] - q[1]) < 1e-9);
-            assert!((h - g).sin().abs() < 1e-9 && (h - g).cos() > 0.0);
-        }
-        let (p, h) = arcs[2].at(arcs[2].length_m());
-        assert!((p[0] + e).abs() < 1e-9 && (p[1] + e + cut).abs() < 1e-9);
-        assert!((h + FRAC_PI_2).sin().abs() < 1e-9);
-    }
-}
+mod tests;

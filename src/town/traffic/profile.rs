@@ -146,6 +146,7 @@ mod tests {
             sidewalks: true,
             river_row: None,
             roundabout: None,
+            loop_radius_m: 0.0,
         };
         routes(&l, &Turns::new(3.5)).remove(0)
     }
