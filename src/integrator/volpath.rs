@@ -12,10 +12,15 @@
 //! reached by equiangular sampling along each segment (Kulla & Fajardo
 //! 2012), combined with the in-scattering points by the power heuristic over
 //! the distance densities. A purely absorbing medium multiplies by Tr
-//! instead of sampling (its expected value).
+//! instead of sampling (its expected value). After each medium collision a
+//! second direction is drawn from the phase lobe around the sun and its
+//! segment's sun NEE added, power-heuristic MIS against the phase-sampled
+//! continuation's sun NEE (`SunLobe`): the forward lobe made that term a
+//! rare spike (fireflies; in the foggy street RMSE 0.80 → 0.61 × mean at
+//! 16 spp for about 25 % more time, about 15 % lower at equal time).
 //!
-//! Sample dimensions of a segment start at `VOL_DIMS` + 16·bounce, apart
-//! from the surface dimensions, so surface vertices see the streams they see
+//! Sample dimensions of a segment start at `VOL_DIMS` + 16·bounce (the sun
+//! lobe's at `LOBE_DIMS` + 2·bounce), apart from the surface dimensions, so surface vertices see the streams they see
 //! without a medium. Rain is tested on camera and specular-chain segments
 //! only (drops are sub-pixel; seen diffusely they average out to nothing).
 
@@ -37,6 +42,13 @@ const MAX_DROP_PASSES: u32 = 9;
 /// Redirections by drops per path.
 const MAX_DROP_REDIRECTS: u32 = 4;
 
+#[cfg(test)]
+mod tests;
+
+/// First 4D set of the sun-lobe dimensions (two sets per bounce, above
+/// every segment's volume dimensions).
+const LOBE_DIMS: u32 = VOL_DIMS + (1 << 18);
+
 /// Shadow ray from a medium point `p` along a light sample.
 fn shadow_ray(p: Vec3, ls: &LightSample) -> Ray {
     if ls.dist.is_finite() {
@@ -55,12 +67,31 @@ impl<A: Accel> PathContext<'_, A> {
         stream: &mut SampleStream,
         rays: &mut u64,
     ) -> Vec3 {
+        self.li_volume_with(ray, first_hit, stream, rays, true)
+    }
+
+    /// [`PathContext::li_volume`], with the sun-lobe strategy at medium
+    /// vertices on or off (`sun_lobe`; off is plain phase sampling).
+    fn li_volume_with(
+        &self,
+        ray: Ray,
+        first_hit: Option<Hit>,
+        stream: &mut SampleStream,
+        rays: &mut u64,
+        sun_lobe: bool,
+    ) -> Vec3 {
         let mut ray = ray;
         let mut known_hit = Some(first_hit);
         let mut st = PathState::new(ray.o);
         let scene = self.scene;
         let medium = scene.medium.as_ref();
         let mut redirects = 0u32;
+        let sun_lobe = medium
+            .filter(|m| sun_lobe && m.scatters())
+            .and_then(|_| SunLobe::find(scene, self.lights));
+        // The last medium vertex's wo when it also drew a sun-lobe direction:
+        // this segment's sun NEE is then MIS-weighted against that strategy.
+        let mut lobe_wo: Option<Vec3> = None;
         loop {
             *rays += 1;
             let hit = match known_hit.take() {
@@ -128,8 +159,20 @@ impl<A: Accel> PathContext<'_, A> {
                         );
                         st.l += st.beta * c;
                         let u_l = Vec2::new(u_lx, u_ly);
+                        let lobe_w = lobe_wo.zip(sun_lobe).map(|(wo_prev, sl)| {
+                            (
+                                sl.k,
+                                power_heuristic(
+                                    1.0,
+                                    m.phase.pdf(wo_prev, ray.d),
+                                    1.0,
+                                    sl.pdf(m, ray.d),
+                                ),
+                            )
+                        });
                         let nee = self.medium_nee(
-                            m, &ray, t_end, seg.t, seg.pdf, p, wo, u_sel, u_l, &u_distant, rays,
+                            m, &ray, t_end, seg.t, seg.pdf, p, wo, u_sel, u_l, &u_distant, lobe_w,
+                            rays,
                         );
                         st.l += st.beta * m.albedo * (nee * (1.0 - seg.tr_seg));
                     }
@@ -139,6 +182,13 @@ impl<A: Accel> PathContext<'_, A> {
                         }
                         let ph = m.phase.sample(wo, Vec2::new(u_ph0, u_ph1));
                         st.scatter(m, p, ph.pdf);
+                        lobe_wo = None;
+                        if let Some(sl) = sun_lobe.filter(|_| st.bounces < self.max_depth) {
+                            stream.set_dimension(LOBE_DIMS + 2 * st.bounces);
+                            let (u0, u1) = (stream.next_4d(), stream.next_4d());
+                            st.l += st.beta * self.sun_lobe_vertex(m, sl, p, wo, u0, u1, rays);
+                            lobe_wo = Some(wo);
+                        }
                         if ph.pdf <= 0.0 || !st.alive() || !st.survives_roulette(u_rr) {
                             break;
                         }
@@ -161,6 +211,7 @@ impl<A: Accel> PathContext<'_, A> {
                         .escaped_at(scene, ray.o, ray.d, st.prev_pdf, st.prev_delta);
                 break;
             };
+            lobe_wo = None;
             match self.surface_vertex(&ray, &hit, &mut st, stream, rays) {
                 Some(next) => ray = next,
                 None => break,
@@ -186,6 +237,7 @@ impl<A: Accel> PathContext<'_, A> {
         u_sel: f32,
         u_l: Vec2,
         u_distant: &[Vec2; 4],
+        lobe_w: Option<(usize, f32)>,
         rays: &mut u64,
     ) -> Vec3 {
         let scene = self.scene;
@@ -218,7 +270,11 @@ impl<A: Accel> PathContext<'_, A> {
             .enumerate()
             .take(self.lights.distant_count())
         {
-            l += one(self.lights.sample_distant(scene, k, p, u), false);
+            let c = one(self.lights.sample_distant(scene, k, p, u), false);
+            l += match lobe_w {
+                Some((k_sun, w)) if k_sun == k => c * w,
+                _ => c,
+            };
         }
         let ls = self.lights.sample(scene, p, u_sel, u_l);
         l += one(ls, ls.is_some_and(|s| s.delta && s.dist.is_finite()));
@@ -340,5 +396,96 @@ impl PathState {
     /// Whether the throughput can still carry radiance.
     fn alive(&self) -> bool {
         self.beta.is_finite() && self.beta != Vec3::ZERO
+    }
+}
+
+/// The sun as a second strategy for the in-scattering after a medium
+/// vertex: fog's forward lobe makes the next segment's sun NEE a spike
+/// p(d·ω_sun) (≈ 6.5/sr at g = 0.85 against a mean of 1/4π) in the
+/// direction d that phase sampling draws; drawing d ∝ the same lobe around
+/// ω_sun and combining both by the power heuristic bounds it.
+#[derive(Clone, Copy, Debug)]
+struct SunLobe {
+    /// Index of the sun among the distant lights.
+    k: usize,
+    /// Unit direction toward the sun's centre.
+    axis: Vec3,
+}
+
+impl SunLobe {
+    /// The first sun of `scene` that the light set samples as a distant light.
+    fn find(scene: &crate::scene::Scene, lights: &crate::light::LightSet) -> Option<SunLobe> {
+        let (axis, cos_max) = scene.lights.iter().find_map(|l| match *l {
+            crate::light::Light::Sun {
+                dir_to_sun,
+                angular_radius_rad,
+                ..
+            } => Some((dir_to_sun, angular_radius_rad.cos())),
+            _ => None,
+        })?;
+        (0..lights.distant_count())
+            .find(|&k| {
+                lights
+                    .sample_distant(scene, k, Vec3::ZERO, Vec2::splat(0.5))
+                    .is_some_and(|ls| ls.dist.is_infinite() && ls.wi.dot(axis) >= cos_max)
+            })
+            .map(|k| SunLobe { k, axis })
+    }
+
+    /// Pdf per solid angle of drawing direction `d` (the medium's lobe around the sun).
+    fn pdf(&self, m: &Medium, d: Vec3) -> f32 {
+        m.phase.pdf(-self.axis, d)
+    }
+}
+
+impl<A: Accel> PathContext<'_, A> {
+    /// The sun-lobe strategy at medium vertex `p` (incoming `wo`): a
+    /// direction d drawn around the sun, its segment's in-scattering point
+    /// drawn as every segment's, and that point's sun NEE, weighted by
+    /// p(wo, d)/pdf_lobe(d) and the power heuristic against phase sampling.
+    /// Throughput after `p` not included.
+    #[allow(clippy::too_many_arguments)]
+    fn sun_lobe_vertex(
+        &self,
+        m: &Medium,
+        sl: SunLobe,
+        p: Vec3,
+        wo: Vec3,
+        u0: [f32; 4],
+        u1: [f32; 4],
+        rays: &mut u64,
+    ) -> Vec3 {
+        let s = m.phase.sample(-sl.axis, Vec2::new(u0[0], u0[1]));
+        let d = s.wi;
+        let pdf_phase = m.phase.pdf(wo, d);
+        if s.pdf <= 0.0 || pdf_phase <= 0.0 {
+            return Vec3::ZERO;
+        }
+        let w = power_heuristic(1.0, s.pdf, 1.0, pdf_phase);
+        let ray = Ray::new(p, d);
+        *rays += 1;
+        let t_end = self.accel.intersect(&ray).map_or(f32::INFINITY, |h| h.t);
+        let Some(seg) = InScatter::sample(m, &ray, t_end, u0[2]) else {
+            return Vec3::ZERO;
+        };
+        let x = ray.at(seg.t);
+        let Some(ls) = self
+            .lights
+            .sample_distant(self.scene, sl.k, x, Vec2::new(u1[0], u1[1]))
+        else {
+            return Vec3::ZERO;
+        };
+        let f = m.phase.eval(-d, ls.wi);
+        if ls.pdf <= 0.0 || ls.li == Vec3::ZERO || f == 0.0 {
+            return Vec3::ZERO;
+        }
+        *rays += 1;
+        if self.accel.occluded(&shadow_ray(x, &ls)) {
+            return Vec3::ZERO;
+        }
+        // The same weight as the NEE of `medium_nee` against phase sampling.
+        let w_sun = power_heuristic(1.0, ls.pdf, 1.0, m.phase.pdf(-d, ls.wi));
+        let seg_w = m.albedo * (1.0 - seg.tr_seg);
+        seg_w * ls.li * m.tr(x, ls.wi, ls.dist) * (pdf_phase / s.pdf * w * f * w_sun / ls.pdf)
     }
 }
