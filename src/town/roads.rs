@@ -47,6 +47,19 @@ struct Segment {
 }
 
 impl Segment {
+    /// The piece of the `axis` road at centreline `c` from `a0` to `a1`,
+    /// with junctions at the ends `junction` marks and no yield line.
+    fn new(axis: Axis, c: f64, (a0, a1): (f64, f64), junction: [bool; 2]) -> Segment {
+        Segment {
+            axis,
+            c,
+            a0,
+            a1,
+            junction,
+            yield_end: [false; 2],
+        }
+    }
+
     /// World (x, y) of road coordinates.
     fn xy(&self, along: f64, across: f64) -> [f64; 2] {
         match self.axis {
@@ -106,49 +119,20 @@ pub fn road_objects(l: &Layout, sites: &[RampSite]) -> Vec<ObjectDesc> {
         // An outer x-road with loop corners has no stubs.
         let curved = l.loop_corner_at(0, j);
         if !curved {
-            out.extend(segment_objects(
-                l,
-                sites,
-                &Segment {
-                    axis: Axis::X,
-                    c: y,
-                    a0: -STUB_M,
-                    a1: -hw,
-                    junction: [false, true],
-                    yield_end: [false; 2],
-                },
-            ));
+            let stub = Segment::new(Axis::X, y, (-STUB_M, -hw), [false, true]);
+            out.extend(segment_objects(l, sites, &stub));
         }
         for i in 0..l.nx {
             let x = i as f64 * p;
-            let s = roundabout_arm(
-                l,
-                Segment {
-                    axis: Axis::X,
-                    c: y,
-                    a0: x + hw,
-                    a1: x + p - hw,
-                    junction: [true, true],
-                    yield_end: [false; 2],
-                },
-            );
+            let s = Segment::new(Axis::X, y, (x + hw, x + p - hw), [true, true]);
+            let s = roundabout_arm(l, s);
             let s = to_loop_arcs(l, s, (i == 0, i + 1 == l.nx), l.len_x(), curved);
             out.extend(segment_objects(l, sites, &s));
         }
         let e = l.len_x();
         if !curved {
-            out.extend(segment_objects(
-                l,
-                sites,
-                &Segment {
-                    axis: Axis::X,
-                    c: y,
-                    a0: e + hw,
-                    a1: e + STUB_M,
-                    junction: [true, false],
-                    yield_end: [false; 2],
-                },
-            ));
+            let stub = Segment::new(Axis::X, y, (e + hw, e + STUB_M), [true, false]);
+            out.extend(segment_objects(l, sites, &stub));
         }
     }
     for i in 0..=l.nx {
@@ -156,17 +140,8 @@ pub fn road_objects(l: &Layout, sites: &[RampSite]) -> Vec<ObjectDesc> {
         let curved = l.loop_corner_at(i, 0);
         for j in 0..l.ny {
             let y = j as f64 * p;
-            let s = roundabout_arm(
-                l,
-                Segment {
-                    axis: Axis::Y,
-                    c: x,
-                    a0: y + hw,
-                    a1: y + p - hw,
-                    junction: [true, true],
-                    yield_end: [false; 2],
-                },
-            );
+            let s = Segment::new(Axis::Y, x, (y + hw, y + p - hw), [true, true]);
+            let s = roundabout_arm(l, s);
             let s = to_loop_arcs(l, s, (j == 0, j + 1 == l.ny), l.len_y(), curved);
             out.extend(segment_objects(l, sites, &s));
         }
