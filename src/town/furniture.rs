@@ -13,12 +13,18 @@ use crate::scene::desc::ObjectDesc;
 use super::desc::TownDesc;
 use super::layout::{Layout, Rect, STUB_M};
 use super::parts::{class, instance};
-use super::ramps::ramp_sites;
+use super::ramps::RampSite;
 use super::rng::{tag, Rng};
 use super::signals;
 
-/// Every street tree, light, signal and sign of the town.
-pub fn furniture_objects(desc: &TownDesc, l: &Layout, seed: u64) -> Vec<ObjectDesc> {
+/// Every street tree, light, signal and sign of the town, clear of the
+/// ramp `sites` (`ramps::ramp_sites`).
+pub fn furniture_objects(
+    desc: &TownDesc,
+    l: &Layout,
+    sites: &[RampSite],
+    seed: u64,
+) -> Vec<ObjectDesc> {
     let mut out = Vec::new();
     let (p, hw) = (l.pitch_m, l.road_w_m / 2.0);
     let mut r = Rng::new(&[seed, tag::FURNITURE]);
@@ -68,7 +74,7 @@ pub fn furniture_objects(desc: &TownDesc, l: &Layout, seed: u64) -> Vec<ObjectDe
             !on_bridge || o.semantic.as_deref() == Some("pole")
         });
     }
-    let zones: Vec<_> = ramp_sites(desc, l).iter().map(|r| r.clear_zone()).collect();
+    let zones: Vec<_> = sites.iter().map(|r| r.clear_zone()).collect();
     out.retain(|o| {
         let t = o.transform.translate.unwrap_or_default();
         let at = Rect::centered([t[0], t[1]], [0.0, 0.0]);

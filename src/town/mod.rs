@@ -87,7 +87,7 @@ impl<'a> StaticTown<'a> {
         let (desc, seed, l) = (self.desc, self.seed, &self.layout);
         let mut out = roads::road_objects(l, &self.sites);
         out.extend(buildings::block_objects(desc, l, seed));
-        let mut furniture = furniture::furniture_objects(desc, l, seed);
+        let mut furniture = furniture::furniture_objects(desc, l, &self.sites, seed);
         // Nothing stands on the roundabout's ring or sidewalk, nor in the
         // square of a curved loop corner (its arc and the cut-off corner).
         furniture.retain(|o| {
