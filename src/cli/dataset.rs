@@ -105,6 +105,18 @@ pub fn run(a: DatasetArgs) -> Result<(), CliError> {
     let summary = pool
         .install(|| ds::run_dataset(&config, &opts, &stop))
         .map_err(CliError::from)?;
+    if stop.stopped() {
+        // The loop saw the signal before the handler's thread exited: still
+        // an interrupted run (exit 130), never a success.
+        return Err(CliError {
+            message: format!(
+                "stopped by a signal after {} frames; run the same command again to resume in {}",
+                summary.done,
+                show(&a.output)
+            ),
+            code: ds::signals::EXIT_INTERRUPTED,
+        });
+    }
     println!(
         "dataset {} shard {}: {} frames done, {} skipped, {} failed",
         show(&a.output),
