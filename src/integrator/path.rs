@@ -81,6 +81,9 @@ pub struct PathContext<'a, A: Accel> {
     pub max_depth: u32,
     /// This frame's rain field (seeded), if it rains.
     pub rain: Option<Rain>,
+    /// The sun as the medium's second in-scattering strategy
+    /// ([`super::volpath::SunLobe::find`], once per frame), if there is one.
+    pub sun_lobe: Option<super::volpath::SunLobe>,
 }
 
 /// Reflection-only BSDFs see both faces of a surface the same way.

@@ -88,7 +88,7 @@ impl<A: Accel> PathContext<'_, A> {
         let mut redirects = 0u32;
         let sun_lobe = medium
             .filter(|m| sun_lobe && m.scatters())
-            .and_then(|_| SunLobe::find(scene, self.lights));
+            .and(self.sun_lobe);
         // The last medium vertex's wo when it also drew a sun-lobe direction:
         // this segment's sun NEE is then MIS-weighted against that strategy.
         let mut lobe_wo: Option<Vec3> = None;
@@ -405,7 +405,7 @@ impl PathState {
 /// direction d that phase sampling draws; drawing d ∝ the same lobe around
 /// ω_sun and combining both by the power heuristic bounds it.
 #[derive(Clone, Copy, Debug)]
-struct SunLobe {
+pub struct SunLobe {
     /// Index of the sun among the distant lights.
     k: usize,
     /// Unit direction toward the sun's centre.
@@ -414,7 +414,7 @@ struct SunLobe {
 
 impl SunLobe {
     /// The first sun of `scene` that the light set samples as a distant light.
-    fn find(scene: &crate::scene::Scene, lights: &crate::light::LightSet) -> Option<SunLobe> {
+    pub fn find(scene: &crate::scene::Scene, lights: &crate::light::LightSet) -> Option<SunLobe> {
         let (axis, cos_max) = scene.lights.iter().find_map(|l| match *l {
             crate::light::Light::Sun {
                 dir_to_sun,

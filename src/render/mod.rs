@@ -136,6 +136,7 @@ pub fn render_frame(
             surfaces: &surfaces,
             max_depth: settings.max_depth,
             rain,
+            sun_lobe: crate::integrator::volpath::SunLobe::find(scene, &lights),
         };
         for (view, cam) in cams.iter().enumerate() {
             progress(view, n_views);

@@ -77,6 +77,7 @@ pub fn render_left(
         surfaces: &surfaces,
         max_depth,
         rain: None,
+        sun_lobe: parallax::integrator::volpath::SunLobe::find(scene, &lights),
     };
     let cam = RenderCamera::new(&b.rig.left, scene.origin_world);
     let (w, h) = (cam.intrinsics.width, cam.intrinsics.height);

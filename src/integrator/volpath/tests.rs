@@ -10,6 +10,7 @@ use glam::{DVec3, Vec3};
 use crate::accel::{build_accel, Accel, Backend, Ray};
 use crate::geometry::SurfaceTable;
 use crate::integrator::path::PathContext;
+use crate::integrator::volpath::SunLobe;
 use crate::light::LightSet;
 use crate::sampler::{SampleStream, StreamKey};
 use crate::scene::{build_scene, parse_scene_str};
@@ -56,6 +57,7 @@ fn estimate(sun_lobe: bool, dirs: &[Vec3], n: u32) -> Vec<(f64, f64)> {
         surfaces: &surfaces,
         max_depth: 4,
         rain: None,
+        sun_lobe: SunLobe::find(&scene, &lights),
     };
     let key = StreamKey {
         seed: 7,
