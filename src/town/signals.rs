@@ -195,14 +195,18 @@ pub struct Signal {
 /// Every traffic light of the town (`signal_sites` order) at `frame`
 /// (time frame / fps, as `traffic::frame_at`).
 pub fn signals_at(desc: &TownDesc, frame: u64) -> Vec<Signal> {
-    let l = Layout::new(desc);
+    signals_on(desc, &Layout::new(desc), frame)
+}
+
+/// [`signals_at`] on the town's already built layout `l`.
+fn signals_on(desc: &TownDesc, l: &Layout, frame: u64) -> Vec<Signal> {
     let plan = Plan::new(desc);
     let routes: Vec<&Route> = plan.routes.iter().map(|p| &p.route).collect();
     let lamp = clock_lamp(&plan.schedule, frame as f64 / desc.fps);
-    signal_sites(&l)
+    signal_sites(l)
         .into_iter()
         .map(|site| {
-            let approach = approach(&l, &routes, &site);
+            let approach = approach(l, &routes, &site);
             Signal {
                 site,
                 approach,
@@ -221,7 +225,7 @@ pub fn signals_at(desc: &TownDesc, frame: u64) -> Vec<Signal> {
 /// dark glass. Instances are matched to sites by junction and heading.
 pub fn set_lamps(desc: &TownDesc, frame: u64, objects: &mut [ObjectDesc]) {
     let l = Layout::new(desc);
-    let lamps: BTreeMap<(usize, usize, i64), Lamp> = signals_at(desc, frame)
+    let lamps: BTreeMap<(usize, usize, i64), Lamp> = signals_on(desc, &l, frame)
         .iter()
         .map(|s| (key(&l, s.site.at, s.site.heading_deg), s.lamp))
         .collect();
