@@ -292,31 +292,3 @@ pub fn occlusion_mask(
         .sum();
     (occ, traced)
 }
-
-/// Sets the rain bit (`mask_bits::RAIN`) of `gt.mask` where the pixel-centre
-/// ray meets a rain streak before the surface. Depth and every other map stay
-/// untouched: rain is not a surface (GROUND_TRUTH.md).
-pub fn add_rain_mask(
-    scene: &Scene,
-    rain: &shaders_cpu::medium::Rain,
-    cam: &RenderCamera,
-    gt: &mut ViewGt,
-) {
-    let w = cam.intrinsics.width as usize;
-    let o_world = scene.origin_world + cam.center;
-    gt.mask
-        .par_chunks_mut(w)
-        .enumerate()
-        .with_max_len(1)
-        .for_each(|(j, row)| {
-            for (i, m) in row.iter_mut().enumerate() {
-                let dir = cam.dir(i as f64 + 0.5, j as f64 + 0.5);
-                let len = dir.length();
-                // depth_z is t along the camera-z-normalised direction.
-                let t_max = gt.depth_z[j * w + i] * len;
-                if rain.intersect(o_world, dir / len, 0.0, t_max).is_some() {
-                    *m |= mask_bits::RAIN;
-                }
-            }
-        });
-}

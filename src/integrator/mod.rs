@@ -6,6 +6,7 @@
 
 pub mod gt;
 pub mod path;
+pub mod rain;
 pub mod texture;
 pub mod volpath;
 pub mod wet;
@@ -47,12 +48,14 @@ impl RenderCamera {
 }
 
 /// The scene's rain field seeded for one frame: streak positions are a pure
-/// function of (seed, frame, world cell), the same in every view.
+/// function of (seed, frame, world cell), the same in every view; streaks
+/// are pre-filtered to pixels of `f_px` pixels per unit focal length.
 pub fn frame_rain(
     scene: &crate::scene::Scene,
     seed: u64,
     frame: u32,
+    f_px: f64,
 ) -> Option<shaders_cpu::medium::Rain> {
     let seed = crate::sampler::hash_words(&[seed, frame as u64, 0x7261_696e]);
-    scene.rain.map(|r| shaders_cpu::medium::Rain { seed, ..r })
+    scene.rain.map(|r| r.for_frame(seed, 1.0 / f_px))
 }

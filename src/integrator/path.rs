@@ -8,12 +8,11 @@
 //! The surface loop traces a vertex's continuation ray before its shadow rays
 //! and prefetches the next hit's surface record, so that cache miss overlaps
 //! the shadow traversals; contributions are added in the original order.
-//! Scenes with a medium or rain take the volumetric loop of `volpath.rs`;
-//! without them this loop runs unchanged (same bytes).
+//! Scenes with a medium take the volumetric loop of `volpath.rs`;
+//! without one this loop runs unchanged (same bytes).
 
 use glam::Vec3;
 use shaders_cpu::bsdf::Bsdf;
-use shaders_cpu::medium::Rain;
 use shaders_cpu::sampling::{power_heuristic, Frame};
 
 use crate::accel::{Accel, Hit, Ray};
@@ -79,8 +78,6 @@ pub struct PathContext<'a, A: Accel> {
     pub surfaces: &'a SurfaceTable,
     /// Maximum number of scattering events.
     pub max_depth: u32,
-    /// This frame's rain field (seeded), if it rains.
-    pub rain: Option<Rain>,
     /// The sun as the medium's second in-scattering strategy
     /// ([`super::volpath::SunLobe::find`], once per frame), if there is one.
     pub sun_lobe: Option<super::volpath::SunLobe>,
@@ -149,7 +146,7 @@ impl<A: Accel> PathContext<'_, A> {
         stream: &mut SampleStream,
         rays: &mut u64,
     ) -> Vec3 {
-        if self.scene.medium.is_some() || self.rain.is_some() {
+        if self.scene.medium.is_some() {
             return self.li_volume(ray, first_hit, stream, rays);
         }
         let mut known_hit = Some(first_hit);

@@ -1,6 +1,5 @@
 //! Volumetric path tracing (pbrt-v4 `VolPathIntegrator`, §14.2, without null
 //! collisions: our media have closed-form transmittance). Per segment:
-//! rain drops first (a drop that redirects the ray ends the segment), then
 //! free-flight sampling of the medium up to the segment end; a collision
 //! weights the path by the albedo (σ_s·Tr / (σ_t·Tr)) and continues by phase
 //! sampling. In-scattering is estimated on every segment, collided or not:
@@ -20,12 +19,12 @@
 //! 16 spp for about 25 % more time, about 15 % lower at equal time).
 //!
 //! Sample dimensions of a segment start at `VOL_DIMS` + 16·bounce (the sun
-//! lobe's at `LOBE_DIMS` + 2·bounce), apart from the surface dimensions, so surface vertices see the streams they see
-//! without a medium. Rain is tested on camera and specular-chain segments
-//! only (drops are sub-pixel; seen diffusely they average out to nothing).
+//! lobe's at `LOBE_DIMS` + 2·bounce), apart from the surface dimensions, so
+//! surface vertices see the streams they see without a medium. Rain is not
+//! traced here: its streaks are composited per pixel (`rain.rs`).
 
 use glam::{Vec2, Vec3};
-use shaders_cpu::medium::{DropEvent, Equiangular, Medium};
+use shaders_cpu::medium::{Equiangular, Medium};
 use shaders_cpu::sampling::power_heuristic;
 
 use super::path::{PathContext, PathState};
@@ -35,12 +34,8 @@ use crate::sampler::SampleStream;
 
 /// First 4D set of the volume dimensions (far above every surface dimension).
 const VOL_DIMS: u32 = 1 << 20;
-/// 4D sets per segment: five for the medium, the rest for rain drops.
+/// 4D sets per segment (five used; the spacing keeps the streams as they were).
 const VOL_DIMS_PER_BOUNCE: u32 = 16;
-/// Drops a segment may pass before rain is ignored on it.
-const MAX_DROP_PASSES: u32 = 9;
-/// Redirections by drops per path.
-const MAX_DROP_REDIRECTS: u32 = 4;
 
 #[cfg(test)]
 mod tests;
@@ -59,7 +54,7 @@ fn shadow_ray(p: Vec3, ls: &LightSample) -> Ray {
 }
 
 impl<A: Accel> PathContext<'_, A> {
-    /// Radiance along `ray` in a scene with a medium and/or rain.
+    /// Radiance along `ray` in a scene with a medium.
     pub(super) fn li_volume(
         &self,
         ray: Ray,
@@ -85,7 +80,6 @@ impl<A: Accel> PathContext<'_, A> {
         let mut st = PathState::new(ray.o);
         let scene = self.scene;
         let medium = scene.medium.as_ref();
-        let mut redirects = 0u32;
         let sun_lobe = medium
             .filter(|m| sun_lobe && m.scatters())
             .and(self.sun_lobe);
@@ -112,30 +106,7 @@ impl<A: Accel> PathContext<'_, A> {
                 Vec2::new(b2, b3),
             ];
 
-            // Rain: the first drop that redirects the ray ends the segment.
-            let mut t_end = t_surf;
-            let mut drop_exit = None;
-            if let Some(rain) = self.rain.as_ref().filter(|_| st.prev_delta) {
-                if redirects < MAX_DROP_REDIRECTS {
-                    let o_world = scene.origin_world + ray.o.as_dvec3();
-                    let d = ray.d.as_dvec3();
-                    let mut t0 = 0.0f64;
-                    for _ in 0..MAX_DROP_PASSES {
-                        let Some(h) = rain.intersect(o_world, d, t0, t_surf as f64) else {
-                            break;
-                        };
-                        let u = stream.next_4d();
-                        match rain.drop_event(o_world, d, &h, u) {
-                            DropEvent::Pass => t0 = h.t_far,
-                            DropEvent::Redirect { p_world, dir } => {
-                                t_end = h.t as f32;
-                                drop_exit = Some(((p_world - scene.origin_world).as_vec3(), dir));
-                                break;
-                            }
-                        }
-                    }
-                }
-            }
+            let t_end = t_surf;
 
             if let Some(m) = medium {
                 if !m.scatters() {
@@ -196,13 +167,6 @@ impl<A: Accel> PathContext<'_, A> {
                         continue;
                     }
                 }
-            }
-            if let Some((p, dir)) = drop_exit {
-                // A drop is a smooth dielectric: delta scattering, weight 1.
-                redirects += 1;
-                st.prev_p = p;
-                ray = Ray::new(p, dir);
-                continue;
             }
             let Some(hit) = hit else {
                 st.l += st.beta

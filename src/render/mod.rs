@@ -17,6 +17,7 @@ use crate::film::Film;
 use crate::geometry::SurfaceTable;
 use crate::integrator::gt::{occlusion_mask, view_gt, ViewGt};
 use crate::integrator::path::PathContext;
+use crate::integrator::rain;
 use crate::integrator::RenderCamera;
 use crate::light::LightSet;
 use crate::sampler::{SampleStream, StreamKey};
@@ -98,16 +99,28 @@ pub fn render_frame(
     let mut stats = RenderStats::default();
 
     let t0 = Instant::now();
-    // One rain field per frame: the GT's rain mask and every view's paths see it.
-    let rain = crate::integrator::frame_rain(scene, settings.seed, settings.frame);
+    // One rain field per frame: every view sees its streaks (opacity per
+    // pixel, composited after the path pass) and the left mask marks them.
+    let rain = crate::integrator::frame_rain(scene, settings.seed, settings.frame, f_px);
+    let mut rain_alpha = Vec::new();
     let mut left = view_gt(scene, accel, &cams[0], true);
     if let Some(rain) = &rain {
-        crate::integrator::gt::add_rain_mask(scene, rain, &cams[0], &mut left);
+        let alpha = rain::rain_opacity(scene, rain, &cams[0], &left.depth_z);
+        rain::mark_rain(&mut left.mask, &alpha);
+        rain_alpha.push(alpha);
     }
     stats.gt_rays += left.depth_z.len() as u64;
     let mut baselines = Vec::with_capacity(rig.baselines_m.len());
     for (b, &baseline_m) in rig.baselines_m.iter().enumerate() {
         let right = view_gt(scene, accel, &cams[1 + b], false);
+        if let Some(rain) = &rain {
+            rain_alpha.push(rain::rain_opacity(
+                scene,
+                rain,
+                &cams[1 + b],
+                &right.depth_z,
+            ));
+        }
         let (occlusion, occ_rays) =
             occlusion_mask(scene, accel, &cams[0], &cams[1 + b], &left, baseline_m);
         stats.gt_rays += right.depth_z.len() as u64 + occ_rays;
@@ -135,7 +148,6 @@ pub fn render_frame(
             lights: &lights,
             surfaces: &surfaces,
             max_depth: settings.max_depth,
-            rain,
             sun_lobe: crate::integrator::volpath::SunLobe::find(scene, &lights),
         };
         for (view, cam) in cams.iter().enumerate() {
@@ -152,6 +164,12 @@ pub fn render_frame(
             images.push(film);
         }
         progress(n_views, n_views);
+        if let Some(left_film) = images.first().filter(|_| !rain_alpha.is_empty()) {
+            let l_drop = rain::drop_radiance(left_film);
+            for (film, alpha) in images.iter_mut().zip(&rain_alpha) {
+                rain::composite(film, alpha, l_drop);
+            }
+        }
     }
     stats.path_seconds = t1.elapsed().as_secs_f64();
     let exposure_scale = images.first().map_or(1.0, crate::film::frame_exposure);

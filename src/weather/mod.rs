@@ -20,6 +20,11 @@ use crate::scene::desc::{
 };
 use crate::town::rng::Rng;
 
+/// Opacity factor of the storm's streaks: their physical coverage (≤ 4 %)
+/// leaves them invisible at a 10 ms exposure; ×8 makes them read as the
+/// streaks an eye or a video camera shows in heavy rain.
+const STORM_STREAK_GAIN: f64 = 8.0;
+
 /// Stream tag of the weather draws (apart from the town generator's tags).
 const WEATHER_TAG: u64 = 0x5745_4154_4845_5200;
 
@@ -193,7 +198,7 @@ pub fn draw_params(weather: Weather, seed: u64) -> WeatherParams {
             1.0,
             Some(rng.range(800.0, 2500.0)),
             rng.range(0.8, 1.0),
-            rng.range(4.0, 16.0),
+            rng.range(10.0, 40.0),
         ),
         Weather::Sunset => (rng.range(-2.0, 6.0), rng.range(0.0, 0.3), None, 0.0, 0.0),
     };
@@ -279,13 +284,17 @@ pub fn apply(desc: &mut SceneDesc, p: &WeatherParams) {
         },
     });
     desc.medium = p.visibility_m.map(|v| haze(p.preset, v));
+    // Heavy rain seen at a 10 ms exposure: every drop from 1.5 mm up (the
+    // ones a camera resolves as streaks), each falling at its own speed,
+    // within 15 m (farther streaks cover < 0.1 % of a pixel: the haze).
     desc.rain = (p.rain_mm_per_h > 0.0).then_some(RainDesc {
         rate_mm_per_h: p.rain_mm_per_h,
-        shutter_s: 1.0 / 60.0,
-        fall_speed_m_per_s: 9.0,
-        drop_diameter_mm: 2.5,
+        shutter_s: 0.01,
+        fall_speed_m_per_s: None,
+        drop_diameter_mm: 1.5,
         density_scale: 1.0,
-        extent_m: 30.0,
+        extent_m: 15.0,
+        streak_gain: STORM_STREAK_GAIN,
     });
     desc.wetness = wetness(p);
 }

@@ -76,7 +76,6 @@ pub fn render_left(
         lights: &lights,
         surfaces: &surfaces,
         max_depth,
-        rain: None,
         sun_lobe: parallax::integrator::volpath::SunLobe::find(scene, &lights),
     };
     let cam = RenderCamera::new(&b.rig.left, scene.origin_world);

@@ -16,7 +16,10 @@ mod rain;
 
 pub use equiangular::Equiangular;
 pub use phase::{hg, HenyeyGreenstein, PhaseSample};
-pub use rain::{fresnel_dielectric, marshall_palmer_count, DropEvent, Rain, StreakHit, WATER_ETA};
+pub use rain::{
+    atlas_fall_speed, marshall_palmer_count, marshall_palmer_lambda, Rain, Streak, StreakHit,
+    MAX_DROP_DIAMETER_MM,
+};
 
 use glam::{DVec3, Vec3};
 

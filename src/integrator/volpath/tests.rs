@@ -56,7 +56,6 @@ fn estimate(sun_lobe: bool, dirs: &[Vec3], n: u32) -> Vec<(f64, f64)> {
         lights: &lights,
         surfaces: &surfaces,
         max_depth: 4,
-        rain: None,
         sun_lobe: SunLobe::find(&scene, &lights),
     };
     let key = StreamKey {

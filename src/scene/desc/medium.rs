@@ -58,10 +58,13 @@ pub struct RainDesc {
     /// fall speed × shutter.
     #[serde(default = "default_shutter")]
     pub shutter_s: f64,
-    /// Terminal fall speed in m/s, > 0 (default 9, a 2–3 mm drop).
-    #[serde(default = "default_fall_speed")]
-    pub fall_speed_m_per_s: f64,
-    /// Drop diameter in millimetres, in (0, 8] (default 2.5).
+    /// One terminal fall speed for every drop in m/s, in (0, 20] (absent:
+    /// each drop's from its diameter, Atlas et al. 1973: 4 m/s at 1 mm,
+    /// 9.2 at 5 mm).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fall_speed_m_per_s: Option<f64>,
+    /// Smallest drawn drop diameter in millimetres, in (0, 8] (default 2.5);
+    /// diameters from it to 6 mm follow Marshall–Palmer's e^{−ΛD}.
     #[serde(default = "default_drop_diameter")]
     pub drop_diameter_mm: f64,
     /// Only drops at least `drop_diameter_mm` are drawn: their number density
@@ -71,6 +74,12 @@ pub struct RainDesc {
     /// Radius in metres of the rain volume around the rig, in (0, 500] (default 30).
     #[serde(default = "default_extent")]
     pub extent_m: f64,
+    /// Factor on every streak's opacity, in (0, 100] (default 1: the
+    /// physical coverage, under 4 % even for a drop beside the lens, which
+    /// a 10 ms exposure leaves nearly invisible). The storm preset raises it
+    /// so streaks read as they do to an eye or on video.
+    #[serde(default = "default_streak_gain")]
+    pub streak_gain: f64,
 }
 
 fn default_albedo() -> [f64; 3] {
@@ -82,8 +91,8 @@ fn default_g() -> f64 {
 fn default_shutter() -> f64 {
     0.01
 }
-fn default_fall_speed() -> f64 {
-    9.0
+fn default_streak_gain() -> f64 {
+    1.0
 }
 fn default_drop_diameter() -> f64 {
     2.5
@@ -190,13 +199,9 @@ impl RainDesc {
     pub(crate) fn check(&self) -> Result<(), KeyError> {
         in_range("rain.rate_mm_per_h", self.rate_mm_per_h, 0.0, 300.0, true)?;
         in_range("rain.shutter_s", self.shutter_s, 0.0, 1.0, true)?;
-        in_range(
-            "rain.fall_speed_m_per_s",
-            self.fall_speed_m_per_s,
-            0.0,
-            20.0,
-            true,
-        )?;
+        if let Some(v) = self.fall_speed_m_per_s {
+            in_range("rain.fall_speed_m_per_s", v, 0.0, 20.0, true)?;
+        }
         in_range(
             "rain.drop_diameter_mm",
             self.drop_diameter_mm,
@@ -205,7 +210,8 @@ impl RainDesc {
             true,
         )?;
         in_range("rain.density_scale", self.density_scale, 0.0, 100.0, true)?;
-        in_range("rain.extent_m", self.extent_m, 0.0, 500.0, true)
+        in_range("rain.extent_m", self.extent_m, 0.0, 500.0, true)?;
+        in_range("rain.streak_gain", self.streak_gain, 0.0, 100.0, true)
     }
 }
 
@@ -232,16 +238,23 @@ pub fn build_medium(m: &MediumDesc, origin_world: glam::DVec3) -> shaders_cpu::m
 }
 
 /// The rain field of a description around the rig at `origin_world`
-/// (seed 0; the renderer sets the frame's seed).
+/// (seed 0 and no pixel size: the renderer sets the frame's seed and its
+/// camera's pixel, `Rain::for_frame`).
 pub fn build_rain(r: &RainDesc, origin_world: glam::DVec3) -> shaders_cpu::medium::Rain {
-    use shaders_cpu::medium::{marshall_palmer_count, Rain};
+    use shaders_cpu::medium::{marshall_palmer_count, marshall_palmer_lambda, Rain};
     let density = marshall_palmer_count(r.rate_mm_per_h, r.drop_diameter_mm) * r.density_scale;
-    Rain::new(
+    let rain = Rain::new(
         density,
-        r.fall_speed_m_per_s * r.shutter_s,
-        0.5e-3 * r.drop_diameter_mm,
+        r.drop_diameter_mm,
+        marshall_palmer_lambda(r.rate_mm_per_h),
+        r.shutter_s,
+        r.fall_speed_m_per_s,
         r.extent_m,
         origin_world,
-        0,
-    )
+        0.0,
+    );
+    Rain {
+        opacity_gain: r.streak_gain,
+        ..rain
+    }
 }
