@@ -4,9 +4,9 @@
 
 /// Mask bit 0: the pixel sees the sky (no surface hit).
 pub const MASK_SKY: u8 = 1 << 0;
-/// Mask bit 1: the pixel is covered by rain: its centre ray meets, before the
-/// surface, a streak whose drop covers at least `Rain::MASK_MIN_COVERAGE`
-/// (1 %) of the pixel's area × exposure.
+/// Mask bit 1: the pixel is covered by rain: the streaks its centre ray meets
+/// before the surface blend in with an opacity of at least 1 %
+/// (`integrator::rain::MASK_MIN_OPACITY`).
 pub const MASK_RAIN: u8 = 1 << 1;
 /// Mask bit 2: the first surface is transparent (glass, water).
 pub const MASK_TRANSPARENT: u8 = 1 << 2;
