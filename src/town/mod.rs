@@ -15,9 +15,11 @@
 
 pub mod buildings;
 pub mod desc;
+pub mod drape;
 pub mod export;
 pub mod farms;
 pub mod furniture;
+pub mod grade;
 pub mod layout;
 pub mod materials;
 pub mod parts;
@@ -64,6 +66,8 @@ pub struct StaticTown<'a> {
     pub sites: Vec<ramps::RampSite>,
     /// The hills (`None` for a flat town).
     pub terrain: Option<terrain::Terrain>,
+    /// The ground-elevation field (`None` for a level town).
+    pub grade: Option<grade::Grade>,
 }
 
 impl<'a> StaticTown<'a> {
@@ -78,6 +82,7 @@ impl<'a> StaticTown<'a> {
             layout,
             sites,
             terrain,
+            grade: grade::Grade::new(desc, seed),
         }
     }
 
@@ -100,7 +105,10 @@ impl<'a> StaticTown<'a> {
             out.extend(t.vegetation(desc.vegetation_density, seed));
         }
         number_objects(&mut out);
-        out
+        match &self.grade {
+            Some(g) => drape::drape_objects(out, g),
+            None => out,
+        }
     }
 
     /// The generated triangle meshes as inline mesh objects: the hills
@@ -108,6 +116,9 @@ impl<'a> StaticTown<'a> {
     pub fn meshes(&self) -> Vec<ObjectDesc> {
         let mut out: Vec<ObjectDesc> = self.terrain.iter().map(|t| t.object()).collect();
         out.extend(ramps::ramp_meshes(&self.sites));
+        if let Some(g) = &self.grade {
+            drape::drape_meshes(&mut out, g);
+        }
         out
     }
 }
@@ -142,13 +153,12 @@ pub fn dynamic_objects(frame: &TownFrame) -> Vec<ObjectDesc> {
             instance: (VEHICLE_ID_BASE + v.id).min(PEDESTRIAN_ID_BASE - 1) as u16,
         };
         let map = [("car_paint", v.paint)];
-        out.push(instance(
-            v.body.prefab(),
-            v.position,
-            v.heading_deg,
-            &map,
-            l,
-        ));
+        let mut o = instance(v.body.prefab(), v.position, v.heading_deg, &map, l);
+        if v.pitch_deg != 0.0 || v.roll_deg != 0.0 {
+            let r = grade::body_rotation_deg(v.heading_deg, v.pitch_deg, v.roll_deg);
+            o.transform.rotate_deg = Some(r);
+        }
+        out.push(o);
     }
     for p in &frame.pedestrians {
         let l = Label {

@@ -28,6 +28,7 @@ mod profile;
 use std::sync::Arc;
 
 use super::desc::TownDesc;
+use super::grade::Grade;
 use super::layout::{Layout, Rect};
 use super::materials::PAINTS;
 use super::rng::{tag, Rng};
@@ -61,6 +62,10 @@ pub struct VehiclePose {
     pub position: [f64; 3],
     /// Heading, degrees counter-clockwise from +x, in [0, 360).
     pub heading_deg: f64,
+    /// Nose-up pitch on a grade, degrees (0 on level ground).
+    pub pitch_deg: f64,
+    /// Roll on a cross-slope, degrees, > 0 with the left side higher.
+    pub roll_deg: f64,
     /// Index into `routes()`.
     pub route: usize,
 }
@@ -375,6 +380,7 @@ pub fn frame_at(desc: &TownDesc, seed: u64, frame: u64) -> TownFrame {
     let t = frame as f64 / desc.fps;
     let driven = sched.driven_s(t);
     let (ego_route, ego_slot_n) = ego_slot(desc, seed);
+    let grade = Grade::new(desc, seed);
     let ego_body = if sched.turns.bodies.contains(&BodyKind::Sedan) {
         BodyKind::Sedan
     } else {
@@ -425,8 +431,11 @@ pub fn frame_at(desc: &TownDesc, seed: u64, frame: u64) -> TownFrame {
                 paint,
                 position: [p[0], p[1], 0.0],
                 heading_deg: heading.to_degrees(),
+                pitch_deg: 0.0,
+                roll_deg: 0.0,
                 route: ri,
             };
+            let pose = on_ground(pose, grade.as_ref());
             if is_ego {
                 ego = Some(pose);
             } else {
@@ -439,6 +448,25 @@ pub fn frame_at(desc: &TownDesc, seed: u64, frame: u64) -> TownFrame {
         time_s: t,
         ego: ego.expect("the ego slot is always occupied"),
         vehicles,
-        pedestrians: walkers::pedestrians(desc, &l, sched, seed, t),
+        pedestrians: walkers::pedestrians(desc, &l, sched, seed, t)
+            .into_iter()
+            .map(|mut p| {
+                if let Some(g) = &grade {
+                    p.position[2] += g.height_m(p.position[0], p.position[1]);
+                }
+                p
+            })
+            .collect(),
     }
+}
+
+/// The pose set on the ground field: z from h at the footprint centre,
+/// pitch and roll from ∇h (unchanged on level ground).
+fn on_ground(mut v: VehiclePose, grade: Option<&Grade>) -> VehiclePose {
+    if let Some(g) = grade {
+        let p = g.pose(v.position[0], v.position[1], v.heading_deg);
+        v.position[2] += p.z_m;
+        (v.pitch_deg, v.roll_deg) = (p.pitch_deg, p.roll_deg);
+    }
+    v
 }
