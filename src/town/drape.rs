@@ -162,6 +162,9 @@ fn drape_piece(
     }
 }
 
+/// Material, class and instance id of a merged draped mesh.
+type MeshKey = (Option<String>, Option<String>, Option<u16>);
+
 /// The town's static objects laid on the field `grade` (order kept; draped
 /// pieces merge into one mesh per material, class and instance, placed
 /// where the first of them was).
@@ -170,14 +173,15 @@ pub fn drape_objects(objects: Vec<ObjectDesc>, grade: &Grade) -> Vec<ObjectDesc>
     let mut base: BTreeMap<u16, f64> = BTreeMap::new();
     for o in &objects {
         if let Some(id) = building_id(o) {
-            let t = o.transform.translate.unwrap_or_default();
-            let h = grade.height_m(t[0], t[1]);
+            let h = footprint_points(o)
+                .iter()
+                .map(|p| grade.height_m(p[0], p[1]))
+                .fold(f64::INFINITY, f64::min);
             base.entry(id).and_modify(|b| *b = b.min(h)).or_insert(h);
         }
     }
     let mut out: Vec<ObjectDesc> = Vec::with_capacity(objects.len());
-    let mut meshes: BTreeMap<(Option<String>, Option<String>, Option<u16>), (usize, LocalMesh)> =
-        BTreeMap::new();
+    let mut meshes: BTreeMap<MeshKey, (usize, LocalMesh)> = BTreeMap::new();
     for o in objects {
         if let Some(piece) = ground_piece(&o) {
             let key = (o.material.clone(), o.semantic.clone(), o.instance);
@@ -229,6 +233,28 @@ pub fn drape_objects(objects: Vec<ObjectDesc>, grade: &Grade) -> Vec<ObjectDesc>
         o.shape = mesh.into_shape();
     }
     out
+}
+
+/// Points of an object's footprint, world (x, y): a box's four corners
+/// (turned about z), any other shape's origin; every repeat copy.
+fn footprint_points(o: &ObjectDesc) -> Vec<[f64; 2]> {
+    let t = o.transform.translate.unwrap_or_default();
+    let corners: Vec<[f64; 2]> = match (&o.shape, heading_only(&o.transform)) {
+        (ShapeDesc::Box { size }, Some(h)) => {
+            let (c, s) = (h.to_radians().cos(), h.to_radians().sin());
+            [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+                .map(|(a, b)| {
+                    let (u, v) = (a * size[0] / 2.0, b * size[1] / 2.0);
+                    [t[0] + c * u - s * v, t[1] + s * u + c * v]
+                })
+                .to_vec()
+        }
+        _ => vec![[t[0], t[1]]],
+    };
+    repeat_offsets(&o.repeat)
+        .iter()
+        .flat_map(|d| corners.iter().map(move |p| [p[0] + d.x, p[1] + d.y]))
+        .collect()
 }
 
 /// The object moved up by `dz` metres.
