@@ -22,6 +22,7 @@ pub mod furniture;
 pub mod grade;
 pub mod layout;
 pub mod materials;
+pub mod overpass;
 pub mod parts;
 pub mod props;
 pub mod ramps;
@@ -68,6 +69,8 @@ pub struct StaticTown<'a> {
     pub terrain: Option<terrain::Terrain>,
     /// The ground-elevation field (`None` for a level town).
     pub grade: Option<grade::Grade>,
+    /// The overpass (`None` without one).
+    pub overpass: Option<overpass::Overpass>,
 }
 
 impl<'a> StaticTown<'a> {
@@ -76,6 +79,7 @@ impl<'a> StaticTown<'a> {
         let layout = Layout::new(desc);
         let sites = ramps::ramp_sites(desc, &layout);
         let terrain = terrain::Terrain::with_sites(desc, &layout, &sites, seed);
+        let overpass = overpass::Overpass::new(desc, &layout);
         StaticTown {
             desc,
             seed,
@@ -83,6 +87,7 @@ impl<'a> StaticTown<'a> {
             sites,
             terrain,
             grade: grade::Grade::new(desc, seed),
+            overpass,
         }
     }
 
@@ -104,6 +109,9 @@ impl<'a> StaticTown<'a> {
         if let Some(t) = &self.terrain {
             out.extend(t.vegetation(desc.vegetation_density, seed));
         }
+        if let Some(o) = &self.overpass {
+            clear_for_overpass(o, &mut out);
+        }
         number_objects(&mut out);
         match &self.grade {
             Some(g) => drape::drape_objects(out, g),
@@ -119,8 +127,35 @@ impl<'a> StaticTown<'a> {
         if let Some(g) = &self.grade {
             drape::drape_meshes(&mut out, g);
         }
+        out.extend(self.overpass.iter().flat_map(overpass::overpass_meshes));
         out
     }
+}
+
+/// Removes every building with a part, and every other object standing,
+/// in the overpass's clear zone (the highway's lights under the deck, lots
+/// and trees on its approaches); roads, markings and ground stay.
+fn clear_for_overpass(o: &overpass::Overpass, objects: &mut Vec<ObjectDesc>) {
+    let zone = o.clear_zone();
+    let inside = |ob: &ObjectDesc| {
+        let t = ob.transform.translate.unwrap_or_default();
+        zone.contains(&layout::Rect::centered([t[0], t[1]], [0.0, 0.0]), 0.0)
+    };
+    let flat = |ob: &ObjectDesc| {
+        matches!(
+            ob.semantic.as_deref(),
+            Some("road" | "lane_marking" | "terrain" | "sidewalk")
+        )
+    };
+    let buildings: std::collections::BTreeSet<u16> = objects
+        .iter()
+        .filter(|ob| ob.semantic.as_deref() == Some("building") && inside(ob))
+        .filter_map(|ob| ob.instance)
+        .collect();
+    objects.retain(|ob| {
+        let gone = ob.instance.is_some_and(|i| buildings.contains(&i));
+        !gone && (flat(ob) || !inside(ob))
+    });
 }
 
 /// Objects that do not move, without the generated meshes (`StaticTown`).

@@ -112,7 +112,7 @@ fn assert_closed_loop(route: &Route) {
             (prev_p, prev_h) = (p, h);
         }
         let want = match route.kind {
-            RouteKind::Ring => 2.0 * PI,
+            RouteKind::Ring | RouteKind::Overpass => 2.0 * PI,
             RouteKind::Block { .. } => -2.0 * PI,
         };
         assert!((turned - want).abs() < 1e-9, "turned {turned}");
