@@ -70,6 +70,7 @@ fn loop_corner_routes_ride_arcs_concentric_with_the_road() {
                     let (ci, cj) = c.ij;
                     assert!((ci == i || ci == i + 1) && (cj == j || cj == j + 1));
                 }
+                RouteKind::Overpass => panic!("routes() builds no overpass route"),
             }
             arcs += 1;
         }
