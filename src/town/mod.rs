@@ -6,7 +6,10 @@
 //! moving objects come from `traffic::frame_at(desc, seed, frame)` in closed
 //! form. World frame: z up, metres, the road grid starts at the origin. The
 //! ego vehicle is part of the scene below its cameras (they sit above the
-//! front edge of its roof, so the `normal` view does not see it).
+//! front edge of its roof, so the `normal` view does not see it). A graded
+//! town (`road_grade_m`) is generated level, then laid onto its ground
+//! field (`grade`, `drape`); vehicles take z, pitch and roll from it. An
+//! overpass (`overpass`) adds its road, deck and traffic loop on top.
 //!
 //! Instance ids: buildings from 1000, every pole, tree, bush, sign and
 //! traffic light from `FURNITURE_ID_BASE`, vehicles (ego included) from

@@ -46,7 +46,7 @@ const CRUISE_GAP_M: f64 = 6.0;
 /// On long-vehicle routes, slots n ≡ 0 (mod this) hold a bus or truck.
 const LINE_EVERY: usize = 3;
 /// Height difference beyond which two vehicles are on different levels,
-/// metres: taller than every body (the bus, 3.2 m) and less than the
+/// metres: taller than every body (the bus roof, 3.1 m) and less than the
 /// overpass's `TOP_M`.
 pub const LEVEL_GAP_M: f64 = 4.0;
 /// Lateral acceleration bound in curves, m/s².
