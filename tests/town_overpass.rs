@@ -199,3 +199,94 @@ fn ego_sees_the_overpass_in_some_frames() {
     eprintln!("ego sees the overpass at (seed, frame): {seen:?}");
     assert!(!seen.is_empty());
 }
+
+/// The ground truth of a frame looking at the bridge (seed 13, frame 620:
+/// the ego on the highway 130 m east of it) in every configuration: every
+/// structure pixel whose depth puts it at the bridge lies exactly on one of
+/// its planes (the deck's underside, its east face, parapets, a pier or
+/// abutment face), the underside among them for cameras below the deck.
+#[test]
+fn ground_truth_on_the_bridge_lies_on_its_planes() {
+    use parallax::camera::StereoRig;
+    use parallax::integrator::RenderCamera;
+    use parallax::render::{render_frame, RenderSettings};
+    use parallax::town::overpass::{HALF_WIDTH_M, PARAPET_M};
+    use parallax::town::{rig_desc, CONFIGS};
+    let desc = town("town06");
+    let l = Layout::new(&desc);
+    let o = Overpass::new(&desc, &l).unwrap();
+    let (seed, frame) = (13, 620);
+    let loaded = load_town_frame(
+        &desc,
+        seed,
+        frame,
+        CameraConfig::Normal,
+        &town_file("town06"),
+    )
+    .expect("town06 loads");
+    let origin = DVec3::from(loaded.desc.camera.position);
+    let scene = build_scene(&loaded, origin).unwrap();
+    let accel = build_accel(Backend::default_backend(), &scene.accel_geometry()).unwrap();
+    let building = class_id("building").unwrap();
+    let ego = frame_at(&desc, seed, frame).ego;
+    let east = o.x_m + HALF_WIDTH_M + PARAPET_M.0;
+    for config in [CONFIGS[0], CONFIGS[3], CONFIGS[4]] {
+        let mut rd = rig_desc(config, &ego);
+        (rd.width, rd.height, rd.baselines_cm) = (320, 180, vec![54.0]);
+        let rig = StereoRig::from_desc(&rd);
+        let settings = RenderSettings {
+            spp: 0,
+            max_depth: 1,
+            seed,
+            frame: frame as u32,
+        };
+        let out = render_frame(&scene, &accel, &rig, &settings, &|_, _| {});
+        let cam = RenderCamera::new(&rig.left, scene.origin_world);
+        let (mut on_bridge, mut under) = (0, 0);
+        for j in 0..180u32 {
+            for i in 0..320u32 {
+                let k = (j * 320 + i) as usize;
+                let z = out.left.depth_z[k];
+                if !z.is_finite() || out.left.semantic[k] != building {
+                    continue;
+                }
+                let (u, v) = (i as f64 + 0.5, j as f64 + 0.5);
+                let p = cam.center + cam.dir(u, v) * z + scene.origin_world;
+                if (p.x - o.x_m).abs() > 8.0 || p.y < o.deck.0 - 1.0 || p.y > o.deck.1 + 1.0 {
+                    continue;
+                }
+                let tol = 1e-5 * z;
+                // Every plane of the structure's faces seen from the east.
+                let under_z = TOP_M - parallax::town::overpass::DECK_M;
+                let (xo, yp) = (o.x_m, o.pier_y_m);
+                let zs = [under_z, under_z - 0.8, TOP_M + PARAPET_M.1];
+                let xs = [
+                    east,
+                    xo + HALF_WIDTH_M,
+                    xo - HALF_WIDTH_M,
+                    xo + 3.1,
+                    xo - 1.9,
+                ];
+                let ys = [o.deck.0, o.deck.1, yp - 0.6, yp + 0.6, yp - 0.7, yp + 0.7];
+                let faces: Vec<f64> = zs
+                    .iter()
+                    .map(|&c| (p.z - c).abs())
+                    .chain(xs.iter().map(|&c| (p.x - c).abs()))
+                    .chain(ys.iter().map(|&c| (p.y - c).abs()))
+                    .collect();
+                let best = faces.iter().copied().fold(f64::INFINITY, f64::min);
+                assert!(
+                    best <= tol,
+                    "{config} ({i},{j}): {p:?} off the bridge's planes by {best}"
+                );
+                on_bridge += 1;
+                under += ((p.z - under_z).abs() <= tol) as usize;
+            }
+        }
+        assert!(on_bridge > 100, "{config}: only {on_bridge} bridge pixels");
+        // Cameras below the deck see its underside (10 m up, they see its top).
+        if rd.position[2] < CLEARANCE_M {
+            assert!(under > 10, "{config}: only {under} underside pixels");
+        }
+    }
+}
