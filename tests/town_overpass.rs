@@ -1,6 +1,7 @@
 //! Town06's overpass (`overpass = true`): a vertical ray where it crosses
 //! the south highway hits the overpass road on the deck, then the deck's
-//! underside ≥ 4.5 m above the highway, then the highway; its traffic rides
+//! underside ≥ 4.5 m above the highway, then the highway, and its road is
+//! open to the sky along its whole route; its traffic rides
 //! the height profile over 300 frames, is on the deck wherever it is above
 //! another road, never meets another route at grade (no junction, no turn
 //! into the highway) and vehicles on the two levels do not count as
@@ -75,6 +76,19 @@ fn vertical_ray_at_the_crossing_hits_deck_then_highway_with_clearance() {
     let c = column(o.x_m, ramp_y);
     let ramp_at_grade = c.iter().any(|&(k, z)| k == road && z.abs() < 1e-4);
     assert!((c[0].1 - TOP_M).abs() < 0.01 && ramp_at_grade, "{c:?}");
+    // Open to the sky along its whole route: the first surface below 30 m
+    // is its asphalt or paint, at the profile's height.
+    let mark = class_id("lane_marking").unwrap();
+    let r = o.route();
+    let mut s = 0.0;
+    while s < r.length_m() {
+        let (p, _) = r.pose(s);
+        let c = column(p[0], p[1]);
+        let want = o.profile(p[1]).0;
+        assert!(c[0].0 == road || c[0].0 == mark, "{p:?}: {c:?}");
+        assert!((c[0].1 - want).abs() < 0.01, "{p:?}: {c:?} vs {want}");
+        s += 3.0;
+    }
     // At the loops the overpass road is at grade, beside nothing.
     for ctr in o.loop_centres() {
         let c = column(ctr[0], ctr[1]);
