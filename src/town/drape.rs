@@ -54,12 +54,13 @@ fn building_id(o: &ObjectDesc) -> Option<u16> {
 }
 
 /// The piece to drape: (size x, size y, bottom z, top z) in its local
-/// frame, or `None` when the object is not a flat ground piece.
+/// frame, or `None` when the object is not a flat ground piece (a building
+/// part never is: the building moves as one).
 fn ground_piece(o: &ObjectDesc) -> Option<([f64; 2], f64, f64)> {
     heading_only(&o.transform)?;
     let z = o.transform.translate.unwrap_or_default()[2];
     match &o.shape {
-        ShapeDesc::Quad { size } => Some((*size, z, z)),
+        ShapeDesc::Quad { size } if building_id(o).is_none() => Some((*size, z, z)),
         ShapeDesc::Box { size } if building_id(o).is_none() => {
             let (bottom, top) = (z - size[2] / 2.0, z + size[2] / 2.0);
             let ground = GROUND_CLASSES.contains(&o.semantic.as_deref().unwrap_or(""));
