@@ -1,6 +1,7 @@
 //! Hills around towns (`town::terrain`): exactly flat on roads and blocks,
 //! continuous, deterministic per seed, reaching the configured height, with
-//! a finite mesh and hill trees standing on the ground; bad keys are named.
+//! a finite mesh and hill trees standing on the ground (on the hills plus
+//! the town's ground field when it has one); bad keys are named.
 
 use std::path::Path;
 
@@ -153,12 +154,15 @@ fn hill_trees_stand_on_the_terrain_and_the_frame_carries_the_mesh() {
     let (desc, l, t) = hills(5);
     let b = l.bounds();
     let objects = parallax::town::static_objects(&desc, 5);
+    // Town04 also rolls (`road_grade_m`): the hills ride its ground field.
+    let field = parallax::town::grade::Grade::new(&desc, 5);
     let mut on_hills = 0;
     for o in &objects {
         let p = o.transform.translate.unwrap_or_default();
         let outside = p[0] < b.min[0] || p[0] > b.max[0] || p[1] < b.min[1] || p[1] > b.max[1];
         if o.semantic.as_deref() == Some("vegetation") && outside {
-            let ground = t.height_m(p[0], p[1]) + GROUND_Z;
+            let base = field.map_or(0.0, |g| g.height_m(p[0], p[1]));
+            let ground = t.height_m(p[0], p[1]) + GROUND_Z + base;
             assert!((p[2] - (ground - 0.15)).abs() < 1e-9, "tree at {p:?}");
             on_hills += 1;
         }

@@ -1,5 +1,6 @@
 //! Traffic over a 300-frame sequence in every town: no two vehicles (ego
-//! included) ever overlap (exact rectangle test), every vehicle stays on the
+//! included) on the same level ever overlap (exact rectangle test; a car on
+//! the overpass deck and one on the highway below are on two levels), every vehicle stays on the
 //! road surface, nothing teleports (the ego moves at most v_max / fps per
 //! frame), vehicles turn by 90° at junctions and stand still near stop
 //! lines, pedestrians stay off the roads except on crosswalks, where some
@@ -7,6 +8,7 @@
 
 use parallax::town::frame_at;
 use parallax::town::layout::{Layout, Rect};
+use parallax::town::overpass::Overpass;
 use parallax::town::traffic::{Plan, VehiclePose};
 
 mod common;
@@ -46,7 +48,8 @@ fn overlaps(vs: &[&VehiclePose]) -> Vec<(u32, u32)> {
             if boxes[b].min[0] >= boxes[a].max[0] {
                 break;
             }
-            if boxes[a].overlaps(&boxes[b]) && quads_overlap(&corners[a], &corners[b]) {
+            let touch = vs[a].same_level(vs[b]);
+            if touch && boxes[a].overlaps(&boxes[b]) && quads_overlap(&corners[a], &corners[b]) {
                 out.push((vs[a].id, vs[b].id));
             }
         }
@@ -55,9 +58,9 @@ fn overlaps(vs: &[&VehiclePose]) -> Vec<(u32, u32)> {
 }
 
 /// Whether the footprint's outline (sampled every 10 cm) lies on roads, on
-/// the roundabout's ring (between its island and outer kerb) or on a curved
-/// loop corner (town04).
-fn on_road(l: &Layout, roads: &[Rect], v: &VehiclePose) -> bool {
+/// the roundabout's ring (between its island and outer kerb), on a curved
+/// loop corner (town04) or on the overpass road and its loops (town06).
+fn on_road(l: &Layout, roads: &[Rect], over: Option<&Overpass>, v: &VehiclePose) -> bool {
     let ring = |x: f64, y: f64| {
         l.roundabout_center().is_some_and(|c| {
             let (r_in, r_out) = l.roundabout_radii();
@@ -73,7 +76,10 @@ fn on_road(l: &Layout, roads: &[Rect], v: &VehiclePose) -> bool {
             let x = p[0] + (q[0] - p[0]) * u;
             let y = p[1] + (q[1] - p[1]) * u;
             let at = Rect::centered([x, y], [0.0, 0.0]);
-            roads.iter().any(|r| r.contains(&at, 1e-6)) || ring(x, y) || l.on_loop_curve([x, y])
+            roads.iter().any(|r| r.contains(&at, 1e-6))
+                || ring(x, y)
+                || l.on_loop_curve([x, y])
+                || over.is_some_and(|o| o.on_surface([x, y]))
         })
     })
 }
@@ -100,6 +106,7 @@ fn vehicles_never_overlap_stay_on_the_road_turn_and_stop_for_300_frames() {
         let desc = town(name);
         let layout = Layout::new(&desc);
         let roads = layout.road_rects();
+        let over = Overpass::new(&desc, &layout);
         let sched = Plan::new(&desc).schedule.clone();
         let v_max = sched.speed_mps / desc.fps;
         let frames: Vec<_> = (0..300u64).map(|k| frame_at(&desc, 11, k)).collect();
@@ -115,7 +122,7 @@ fn vehicles_never_overlap_stay_on_the_road_turn_and_stop_for_300_frames() {
             );
             for v in &all {
                 assert!(
-                    on_road(&layout, &roads, v),
+                    on_road(&layout, &roads, over.as_ref(), v),
                     "{name} frame {k}: vehicle {} off the road at {:?} heading {}",
                     v.id,
                     v.position,

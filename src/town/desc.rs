@@ -89,6 +89,30 @@ pub struct TownDesc {
     /// Typical distance between hill tops, metres, in [50, 2000] (default 300).
     #[serde(default = "default_hill_wavelength")]
     pub hill_wavelength_m: f64,
+    /// Amplitude of the ground-elevation field under the whole town,
+    /// metres, in [0, 50] (default 0: level). Roads, markings, shoulders,
+    /// junctions, lots, buildings, furniture, hills and every vehicle,
+    /// pedestrian and the ego follow h(x, y) = A/2 · (sin(k·u + φ₀) +
+    /// sin(k·v + φ₁)) with k = 2π / `road_grade_wavelength_m` and (u, v) the
+    /// ground turned by a seeded angle (see `grade`). The steepest grade,
+    /// A · k / √2, must stay ≤ 6 %; not with a river (water lies level).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub road_grade_m: f64,
+    /// Wavelength of the ground-elevation field, metres, in [200, 5000]
+    /// (default 800): the distance from one crest to the next.
+    #[serde(
+        default = "default_grade_wavelength",
+        skip_serializing_if = "is_default_grade_wavelength"
+    )]
+    pub road_grade_wavelength_m: f64,
+    /// An overpass (default false): a two-lane road on a bridge crossing
+    /// over the first outer x-road (the south highway) in the middle of the
+    /// block column nearest the town centre, with approach grades, a deck
+    /// with parapets and piers, from a turning loop in the country south of
+    /// the town to one inside the block (see `overpass`). Its traffic loop
+    /// meets no other road. Needs `ramps` and a level town (no grade).
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub overpass: bool,
     /// Fraction of traffic slots holding a vehicle, in [0, 1].
     pub traffic_density: f64,
     /// Cruising speed of all traffic and the ego vehicle, km/h, in [5, 130].
@@ -144,6 +168,15 @@ pub enum SkyKind {
 
 fn is_zero(v: &f64) -> bool {
     *v == 0.0
+}
+fn is_false(v: &bool) -> bool {
+    !*v
+}
+fn default_grade_wavelength() -> f64 {
+    800.0
+}
+fn is_default_grade_wavelength(v: &f64) -> bool {
+    *v == default_grade_wavelength()
 }
 fn yes() -> bool {
     true
@@ -211,6 +244,28 @@ impl TownDesc {
         range("vegetation_density", self.vegetation_density, 0.0, 1.0)?;
         range("hills_m", self.hills_m, 0.0, 150.0)?;
         range("hill_wavelength_m", self.hill_wavelength_m, 50.0, 2000.0)?;
+        range("road_grade_m", self.road_grade_m, 0.0, 50.0)?;
+        range(
+            "road_grade_wavelength_m",
+            self.road_grade_wavelength_m,
+            200.0,
+            5000.0,
+        )?;
+        let steepest = super::grade::max_grade(self.road_grade_m, self.road_grade_wavelength_m);
+        if steepest > super::grade::MAX_GRADE {
+            return Err(format!(
+                "road_grade_m: the steepest grade road_grade_m · 2π / road_grade_wavelength_m / √2 \
+                 is {:.1} %, more than {} %",
+                steepest * 100.0,
+                super::grade::MAX_GRADE * 100.0
+            ));
+        }
+        if self.road_grade_m > 0.0 && self.river {
+            return Err("road_grade_m: not with a river (the water lies level)".into());
+        }
+        if self.overpass && (!self.ramps || self.road_grade_m > 0.0) {
+            return Err("overpass: needs ramps = true and no road_grade_m".into());
+        }
         range("traffic_density", self.traffic_density, 0.0, 1.0)?;
         range("speed_kmh", self.speed_kmh, 5.0, 130.0)?;
         range("fps", self.fps, 1e-3, 120.0)?;

@@ -6,7 +6,10 @@
 //! moving objects come from `traffic::frame_at(desc, seed, frame)` in closed
 //! form. World frame: z up, metres, the road grid starts at the origin. The
 //! ego vehicle is part of the scene below its cameras (they sit above the
-//! front edge of its roof, so the `normal` view does not see it).
+//! front edge of its roof, so the `normal` view does not see it). A graded
+//! town (`road_grade_m`) is generated level, then laid onto its ground
+//! field (`grade`, `drape`); vehicles take z, pitch and roll from it. An
+//! overpass (`overpass`) adds its road, deck and traffic loop on top.
 //!
 //! Instance ids: buildings from 1000, every pole, tree, bush, sign and
 //! traffic light from `FURNITURE_ID_BASE`, vehicles (ego included) from
@@ -15,11 +18,14 @@
 
 pub mod buildings;
 pub mod desc;
+pub mod drape;
 pub mod export;
 pub mod farms;
 pub mod furniture;
+pub mod grade;
 pub mod layout;
 pub mod materials;
+pub mod overpass;
 pub mod parts;
 pub mod props;
 pub mod ramps;
@@ -64,6 +70,10 @@ pub struct StaticTown<'a> {
     pub sites: Vec<ramps::RampSite>,
     /// The hills (`None` for a flat town).
     pub terrain: Option<terrain::Terrain>,
+    /// The ground-elevation field (`None` for a level town).
+    pub grade: Option<grade::Grade>,
+    /// The overpass (`None` without one).
+    pub overpass: Option<overpass::Overpass>,
 }
 
 impl<'a> StaticTown<'a> {
@@ -72,12 +82,15 @@ impl<'a> StaticTown<'a> {
         let layout = Layout::new(desc);
         let sites = ramps::ramp_sites(desc, &layout);
         let terrain = terrain::Terrain::with_sites(desc, &layout, &sites, seed);
+        let overpass = overpass::Overpass::new(desc, &layout);
         StaticTown {
             desc,
             seed,
             layout,
             sites,
             terrain,
+            grade: grade::Grade::new(desc, seed),
+            overpass,
         }
     }
 
@@ -99,8 +112,14 @@ impl<'a> StaticTown<'a> {
         if let Some(t) = &self.terrain {
             out.extend(t.vegetation(desc.vegetation_density, seed));
         }
+        if let Some(o) = &self.overpass {
+            clear_for_overpass(o, &mut out);
+        }
         number_objects(&mut out);
-        out
+        match &self.grade {
+            Some(g) => drape::drape_objects(out, g),
+            None => out,
+        }
     }
 
     /// The generated triangle meshes as inline mesh objects: the hills
@@ -108,8 +127,38 @@ impl<'a> StaticTown<'a> {
     pub fn meshes(&self) -> Vec<ObjectDesc> {
         let mut out: Vec<ObjectDesc> = self.terrain.iter().map(|t| t.object()).collect();
         out.extend(ramps::ramp_meshes(&self.sites));
+        if let Some(g) = &self.grade {
+            drape::drape_meshes(&mut out, g);
+        }
+        out.extend(self.overpass.iter().flat_map(overpass::overpass_meshes));
         out
     }
+}
+
+/// Removes every building with a part, and every other object standing,
+/// in the overpass's clear zone (the highway's lights under the deck, lots
+/// and trees on its approaches); roads, markings and ground stay.
+fn clear_for_overpass(o: &overpass::Overpass, objects: &mut Vec<ObjectDesc>) {
+    let zone = o.clear_zone();
+    let inside = |ob: &ObjectDesc| {
+        let t = ob.transform.translate.unwrap_or_default();
+        zone.contains(&layout::Rect::centered([t[0], t[1]], [0.0, 0.0]), 0.0)
+    };
+    let flat = |ob: &ObjectDesc| {
+        matches!(
+            ob.semantic.as_deref(),
+            Some("road" | "lane_marking" | "terrain" | "sidewalk")
+        )
+    };
+    let buildings: std::collections::BTreeSet<u16> = objects
+        .iter()
+        .filter(|ob| ob.semantic.as_deref() == Some("building") && inside(ob))
+        .filter_map(|ob| ob.instance)
+        .collect();
+    objects.retain(|ob| {
+        let gone = ob.instance.is_some_and(|i| buildings.contains(&i));
+        !gone && (flat(ob) || !inside(ob))
+    });
 }
 
 /// Objects that do not move, without the generated meshes (`StaticTown`).
@@ -142,13 +191,12 @@ pub fn dynamic_objects(frame: &TownFrame) -> Vec<ObjectDesc> {
             instance: (VEHICLE_ID_BASE + v.id).min(PEDESTRIAN_ID_BASE - 1) as u16,
         };
         let map = [("car_paint", v.paint)];
-        out.push(instance(
-            v.body.prefab(),
-            v.position,
-            v.heading_deg,
-            &map,
-            l,
-        ));
+        let mut o = instance(v.body.prefab(), v.position, v.heading_deg, &map, l);
+        if v.pitch_deg != 0.0 || v.roll_deg != 0.0 {
+            let r = grade::body_rotation_deg(v.heading_deg, v.pitch_deg, v.roll_deg);
+            o.transform.rotate_deg = Some(r);
+        }
+        out.push(o);
     }
     for p in &frame.pedestrians {
         let l = Label {

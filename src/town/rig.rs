@@ -10,6 +10,8 @@
 use std::fmt;
 use std::str::FromStr;
 
+use glam::{DMat3, DVec3, EulerRot};
+
 use crate::scene::desc::RigDesc;
 
 use super::traffic::VehiclePose;
@@ -94,8 +96,14 @@ impl FromStr for CameraConfig {
 }
 
 /// The rig of `config` on the ego vehicle: 1600×900, 60° horizontal FOV and
-/// the default baselines (the scene's `[camera]` defaults).
+/// the default baselines (the scene's `[camera]` defaults). On a grade the
+/// rig rides the ego's body frame: its offset and its pitch and roll are
+/// taken in the body frame Rz(heading)·Ry(−pitch)·Rx(roll) and turned back
+/// into the rig's yaw, pitch and roll (the same Z-Y-X order).
 pub fn rig_desc(config: CameraConfig, ego: &VehiclePose) -> RigDesc {
+    if ego.pitch_deg != 0.0 || ego.roll_deg != 0.0 {
+        return tilted_rig_desc(config, ego);
+    }
     let (height_m, pitch_deg, roll_deg) = config.pose();
     let yaw = ego.heading_deg.to_radians();
     let (x, y) = (
@@ -114,21 +122,56 @@ pub fn rig_desc(config: CameraConfig, ego: &VehiclePose) -> RigDesc {
     }
 }
 
+/// `rig_desc` for an ego pitched or rolled on a grade.
+fn tilted_rig_desc(config: CameraConfig, ego: &VehiclePose) -> RigDesc {
+    let (height_m, pitch_deg, roll_deg) = config.pose();
+    let rot = super::grade::body_rotation_deg(ego.heading_deg, ego.pitch_deg, ego.roll_deg)
+        .map(f64::to_radians);
+    let body = DMat3::from_euler(EulerRot::ZYX, rot[2], rot[1], rot[0]);
+    let p = DVec3::from(ego.position) + body * DVec3::new(CAMERA_FORWARD_M, 0.0, height_m);
+    // The rig's rotation is Rz(yaw)·Ry(pitch down)·Rx(roll) ahead of its
+    // fixed camera axes (`camera::rig::world_from_camera_rotation`).
+    let cam = body
+        * DMat3::from_euler(
+            EulerRot::ZYX,
+            0.0,
+            pitch_deg.to_radians(),
+            roll_deg.to_radians(),
+        );
+    let (yaw, pitch, roll) = cam.to_euler(EulerRot::ZYX);
+    RigDesc {
+        width: 1600,
+        height: 900,
+        hfov_deg: 60.0,
+        baselines_cm: vec![10.0, 54.0, 100.0, 200.0, 300.0],
+        position: p.to_array(),
+        yaw_deg: yaw.to_degrees(),
+        pitch_deg: pitch.to_degrees(),
+        roll_deg: roll.to_degrees(),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::town::vehicles::BodyKind;
 
-    #[test]
-    fn names_round_trip_and_rigs_sit_on_the_ego() {
-        let ego = VehiclePose {
+    fn ego_level() -> VehiclePose {
+        VehiclePose {
             id: 1,
             body: BodyKind::Sedan,
             paint: "paint_red",
             position: [10.0, -1.75, 0.0],
             heading_deg: 90.0,
+            pitch_deg: 0.0,
+            roll_deg: 0.0,
             route: 0,
-        };
+        }
+    }
+
+    #[test]
+    fn names_round_trip_and_rigs_sit_on_the_ego() {
+        let ego = ego_level();
         for c in CONFIGS {
             assert_eq!(c.name().parse::<CameraConfig>(), Ok(c));
             let r = rig_desc(c, &ego);
@@ -141,5 +184,45 @@ mod tests {
         }
         assert_eq!(CameraConfig::Roll30.pose(), (1.65, 0.0, 30.0));
         assert_eq!(CameraConfig::Pitch30.pose(), (10.0, 30.0, 0.0));
+    }
+
+    #[test]
+    fn rig_on_a_tilted_ego_is_the_level_rig_turned_by_the_body() {
+        use crate::camera::StereoRig;
+        let turn = |yaw: f64, pitch: f64, roll: f64| {
+            let mut d = rig_desc(CameraConfig::Normal, &ego_level());
+            (d.yaw_deg, d.pitch_deg, d.roll_deg) = (yaw, pitch, roll);
+            StereoRig::from_desc(&d).left.world_from_camera
+        };
+        let ego = VehiclePose {
+            id: 1,
+            body: BodyKind::Sedan,
+            paint: "paint_red",
+            position: [10.0, -1.75, 3.0],
+            heading_deg: 120.0,
+            pitch_deg: 2.5,
+            roll_deg: -1.5,
+            route: 0,
+        };
+        let r = crate::town::grade::body_rotation_deg(120.0, 2.5, -1.5).map(f64::to_radians);
+        let body = DMat3::from_rotation_z(r[2])
+            * DMat3::from_rotation_y(r[1])
+            * DMat3::from_rotation_x(r[0]);
+        for c in CONFIGS {
+            let (h, pitch, roll) = c.pose();
+            let rd = rig_desc(c, &ego);
+            let got = turn(rd.yaw_deg, rd.pitch_deg, rd.roll_deg);
+            let level = turn(0.0, pitch, roll);
+            let want = body * level;
+            assert!((got - want).abs_diff_eq(DMat3::ZERO, 1e-12), "{c}");
+            let p = DVec3::from(rd.position) - DVec3::from(ego.position);
+            assert!((p - body * DVec3::new(CAMERA_FORWARD_M, 0.0, h)).length() < 1e-12);
+            // The nose-up ego lifts the camera's forward axis by its pitch.
+            if c == CameraConfig::Normal {
+                let f = got.z_axis;
+                let up = f.z.asin().to_degrees();
+                assert!((up - 2.5).abs() < 1e-9, "{up}");
+            }
+        }
     }
 }

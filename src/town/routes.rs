@@ -48,6 +48,8 @@ pub enum RouteKind {
     },
     /// Counter-clockwise around the whole town.
     Ring,
+    /// Over the overpass and round its two turning loops (`overpass`).
+    Overpass,
 }
 
 /// One piece of a route's centreline.
@@ -172,7 +174,8 @@ pub struct Route {
 }
 
 impl Route {
-    fn new(
+    /// A route of `segments` (each starting where the previous ends).
+    pub(crate) fn new(
         kind: RouteKind,
         lane: u32,
         segments: Vec<Segment>,

@@ -154,7 +154,7 @@ pub fn approach(l: &Layout, routes: &[&Route], site: &SignalSite) -> Approach {
             let lat = rel[0] * right[0] + rel[1] * right[1];
             if lat > 0.0 && lat < hw && a0 < -hw && a0 + len_m > -hw - APPROACH_M {
                 match r.kind {
-                    RouteKind::Ring => free = true,
+                    RouteKind::Ring | RouteKind::Overpass => free = true,
                     RouteKind::Block { .. } => clock = true,
                 }
             }

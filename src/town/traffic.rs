@@ -28,8 +28,10 @@ mod profile;
 use std::sync::Arc;
 
 use super::desc::TownDesc;
+use super::grade::Grade;
 use super::layout::{Layout, Rect};
 use super::materials::PAINTS;
+use super::overpass::Overpass;
 use super::rng::{tag, Rng};
 use super::routes::{routes, Route, RouteKind, Turns};
 use super::vehicles::{BodyKind, BODIES, BODY_WEIGHTS};
@@ -43,6 +45,10 @@ const MIN_GAP_M: f64 = 3.0;
 const CRUISE_GAP_M: f64 = 6.0;
 /// On long-vehicle routes, slots n ≡ 0 (mod this) hold a bus or truck.
 const LINE_EVERY: usize = 3;
+/// Height difference beyond which two vehicles are on different levels,
+/// metres: taller than every body (the bus roof, 3.1 m) and less than the
+/// overpass's `TOP_M`.
+pub const LEVEL_GAP_M: f64 = 4.0;
 /// Lateral acceleration bound in curves, m/s².
 pub const A_LAT_MPS2: f64 = 3.0;
 /// Longitudinal acceleration and braking bound, m/s².
@@ -61,6 +67,10 @@ pub struct VehiclePose {
     pub position: [f64; 3],
     /// Heading, degrees counter-clockwise from +x, in [0, 360).
     pub heading_deg: f64,
+    /// Nose-up pitch on a grade, degrees (0 on level ground).
+    pub pitch_deg: f64,
+    /// Roll on a cross-slope, degrees, > 0 with the left side higher.
+    pub roll_deg: f64,
     /// Index into `routes()`.
     pub route: usize,
 }
@@ -76,6 +86,13 @@ impl VehiclePose {
             let (a, b) = (a * len / 2.0, b * w / 2.0);
             [x + a * f[0] + b * s[0], y + a * f[1] + b * s[1]]
         })
+    }
+
+    /// Whether two vehicles are on the same level (their bodies could
+    /// touch): heights less than `LEVEL_GAP_M` apart. A vehicle on the
+    /// overpass deck and one on the road below are not.
+    pub fn same_level(&self, other: &VehiclePose) -> bool {
+        (self.position[2] - other.position[2]).abs() < LEVEL_GAP_M
     }
 
     /// The axis-aligned bounds of the footprint.
@@ -229,7 +246,8 @@ impl Plan {
             a_lat_mps2: A_LAT_MPS2,
             a_lon_mps2: A_LON_MPS2,
         };
-        let all = routes(&l, &turns);
+        let mut all = routes(&l, &turns);
+        all.extend(Overpass::new(desc, &l).map(|o| o.route()));
         let profiles: Vec<SpeedProfile> = all.iter().map(|r| SpeedProfile::new(r, lim)).collect();
         // A quarter lap of the slowest block loop per cycle (a plain
         // lane-0 loop, or one round the roundabout, a little longer).
@@ -271,7 +289,7 @@ fn route_plan(s: &Schedule, route: Route, profile: SpeedProfile) -> RoutePlan {
     let need = max_len_m + MIN_GAP_M;
     let fits = |n: usize| n == 1 || profile.min_spacing_m(lap / n as f64) >= need;
     let most = (len / (max_len_m + CRUISE_GAP_M)).floor().max(1.0) as usize;
-    if route.kind == RouteKind::Ring {
+    if matches!(route.kind, RouteKind::Ring | RouteKind::Overpass) {
         let n = (1..=most).rev().find(|&n| fits(n)).unwrap_or(1);
         let slots = (0..n).map(|k| (k as f64 * lap / n as f64, true)).collect();
         return RoutePlan {
@@ -375,6 +393,8 @@ pub fn frame_at(desc: &TownDesc, seed: u64, frame: u64) -> TownFrame {
     let t = frame as f64 / desc.fps;
     let driven = sched.driven_s(t);
     let (ego_route, ego_slot_n) = ego_slot(desc, seed);
+    let grade = Grade::new(desc, seed);
+    let overpass = Overpass::new(desc, &l);
     let ego_body = if sched.turns.bodies.contains(&BodyKind::Sedan) {
         BodyKind::Sedan
     } else {
@@ -387,7 +407,7 @@ pub fn frame_at(desc: &TownDesc, seed: u64, frame: u64) -> TownFrame {
         // The ring never stands (it meets no crosswalk that pedestrians
         // use): its vehicles drive on while the block loops wait.
         let tau = match rp.route.kind {
-            RouteKind::Ring => t,
+            RouteKind::Ring | RouteKind::Overpass => t,
             RouteKind::Block { .. } => rp.rate * driven,
         };
         for (n, &(offset, open)) in rp.slots.iter().enumerate() {
@@ -415,7 +435,7 @@ pub fn frame_at(desc: &TownDesc, seed: u64, frame: u64) -> TownFrame {
             // the ring never stands, so its bodies ride their slot centres
             // (up to 3.75 m ahead, a car would enter corners too fast).
             let shift = match rp.route.kind {
-                RouteKind::Ring => 0.0,
+                RouteKind::Ring | RouteKind::Overpass => 0.0,
                 RouteKind::Block { .. } => (rp.route.max_len_m() - body.footprint_m()[0]) / 2.0,
             };
             let (p, heading) = rp.route.pose(rp.profile.arc_at(tau + offset) + shift);
@@ -425,7 +445,13 @@ pub fn frame_at(desc: &TownDesc, seed: u64, frame: u64) -> TownFrame {
                 paint,
                 position: [p[0], p[1], 0.0],
                 heading_deg: heading.to_degrees(),
+                pitch_deg: 0.0,
+                roll_deg: 0.0,
                 route: ri,
+            };
+            let pose = match (&overpass, rp.route.kind) {
+                (Some(o), RouteKind::Overpass) => on_overpass(pose, o),
+                _ => on_ground(pose, grade.as_ref()),
             };
             if is_ego {
                 ego = Some(pose);
@@ -439,6 +465,33 @@ pub fn frame_at(desc: &TownDesc, seed: u64, frame: u64) -> TownFrame {
         time_s: t,
         ego: ego.expect("the ego slot is always occupied"),
         vehicles,
-        pedestrians: walkers::pedestrians(desc, &l, sched, seed, t),
+        pedestrians: walkers::pedestrians(desc, &l, sched, seed, t)
+            .into_iter()
+            .map(|mut p| {
+                if let Some(g) = &grade {
+                    p.position[2] += g.height_m(p.position[0], p.position[1]);
+                }
+                p
+            })
+            .collect(),
     }
+}
+
+/// The pose on the overpass road: z and pitch from its height profile.
+fn on_overpass(mut v: VehiclePose, o: &Overpass) -> VehiclePose {
+    let (z, pitch) = o.pose([v.position[0], v.position[1]], v.heading_deg);
+    v.position[2] = z;
+    v.pitch_deg = pitch;
+    v
+}
+
+/// The pose set on the ground field: z from h at the footprint centre,
+/// pitch and roll from ∇h (unchanged on level ground).
+fn on_ground(mut v: VehiclePose, grade: Option<&Grade>) -> VehiclePose {
+    if let Some(g) = grade {
+        let p = g.pose(v.position[0], v.position[1], v.heading_deg);
+        v.position[2] += p.z_m;
+        (v.pitch_deg, v.roll_deg) = (p.pitch_deg, p.roll_deg);
+    }
+    v
 }

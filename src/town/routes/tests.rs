@@ -70,6 +70,7 @@ fn loop_corner_routes_ride_arcs_concentric_with_the_road() {
                     let (ci, cj) = c.ij;
                     assert!((ci == i || ci == i + 1) && (cj == j || cj == j + 1));
                 }
+                RouteKind::Overpass => panic!("routes() builds no overpass route"),
             }
             arcs += 1;
         }
@@ -112,7 +113,7 @@ fn assert_closed_loop(route: &Route) {
             (prev_p, prev_h) = (p, h);
         }
         let want = match route.kind {
-            RouteKind::Ring => 2.0 * PI,
+            RouteKind::Ring | RouteKind::Overpass => 2.0 * PI,
             RouteKind::Block { .. } => -2.0 * PI,
         };
         assert!((turned - want).abs() < 1e-9, "turned {turned}");
