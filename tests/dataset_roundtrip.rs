@@ -132,11 +132,21 @@ fn different_configuration_in_a_used_directory_is_refused_unless_forced() {
         text(&refused)
     );
     assert!(!out.join("town01/roll05_clear").exists());
+    // A file of the user's beside the old frames survives the restart.
+    std::fs::write(out.join("town01/normal_clear/notes.txt"), b"mine").unwrap();
     let forced = dataset(&b, &out, &["--force"]);
     ok(&forced);
     assert!(out
         .join("town01/roll05_clear/0000/left/rgb/000000.png")
         .is_file());
+    assert!(
+        !out.join("town01/normal_clear/0000").exists(),
+        "the replaced dataset's frames are gone"
+    );
+    assert_eq!(
+        std::fs::read(out.join("town01/normal_clear/notes.txt")).unwrap(),
+        b"mine"
+    );
 
     let foreign = dir.path().join("foreign");
     std::fs::create_dir_all(&foreign).unwrap();

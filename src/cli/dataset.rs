@@ -34,7 +34,8 @@ pub struct DatasetArgs {
     /// calibration render) and exit without writing.
     #[arg(long)]
     pub dry_run: bool,
-    /// Start over in a non-empty directory holding another configuration.
+    /// Start over in a non-empty directory holding another configuration
+    /// (that dataset's frames and manifests are removed; other files stay).
     #[arg(long)]
     pub force: bool,
     /// On resume, check the SHA-256 of complete frames (not only their sizes).

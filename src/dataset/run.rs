@@ -104,9 +104,12 @@ pub fn prepare_root(root: &Path, config: &DatasetConfig, force: bool) -> Result<
         if !force {
             return Err(DatasetError::input(format!(
                 "{}: {why}; choose another directory or pass --force to start over \
-                 (the old manifests are removed)",
+                 (the old dataset's frames and manifests are removed)",
                 root.display()
             )));
+        }
+        if matches!(existing, Ok(Some(_))) {
+            remove_old_frames(root)?;
         }
         for dir in [MANIFEST_DIR, FAILURES_DIR] {
             let p = root.join(dir);
@@ -116,6 +119,45 @@ pub fn prepare_root(root: &Path, config: &DatasetConfig, force: bool) -> Result<
         }
     }
     write_json(&root.join(DATASET_JSON), &meta)?;
+    Ok(())
+}
+
+/// Removes the frames of the dataset being replaced: every file its
+/// manifests list and every native-layout frame file (also of frames whose
+/// line was never written), then the directories that leaves empty. Files
+/// parallax did not write stay.
+fn remove_old_frames(root: &Path) -> Result<(), DatasetError> {
+    let read = |e| OutputError::wrap(root, Access::Read, e);
+    let mut doomed: BTreeSet<PathBuf> = super::manifest::read_manifests(root)
+        .map_err(read)?
+        .into_iter()
+        .filter_map(|l| l.parsed.ok())
+        .flat_map(|l| l.files.into_iter().map(|f| PathBuf::from(f.path)))
+        .collect();
+    doomed.extend(
+        walk_files(root)
+            .map_err(read)?
+            .into_iter()
+            .filter(|rel| job_of_path(rel).is_some()),
+    );
+    let mut dirs = BTreeSet::new();
+    for rel in doomed {
+        let p = root.join(&rel);
+        match fs::remove_file(&p) {
+            Ok(()) => {}
+            Err(e) if e.kind() == io::ErrorKind::NotFound => continue,
+            Err(e) => return Err(OutputError::wrap(&p, Access::Write, e).into()),
+        }
+        let parents = rel
+            .ancestors()
+            .skip(1)
+            .filter(|a| !a.as_os_str().is_empty());
+        dirs.extend(parents.map(Path::to_path_buf));
+    }
+    // Deepest first; a directory still holding anything stays.
+    for dir in dirs.iter().rev() {
+        let _ = fs::remove_dir(root.join(dir));
+    }
     Ok(())
 }
 

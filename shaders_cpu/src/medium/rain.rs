@@ -323,12 +323,9 @@ impl Rain {
         t_max: f64,
         min_coverage: f64,
     ) -> Option<StreakHit> {
-        let mut first = None;
-        self.walk(o, d, t_min, t_max, min_coverage, |h| {
-            first = Some(h);
-            false
-        });
-        first
+        let mut hit = [StreakHit::default()];
+        let n = self.streaks_along(o, d, (t_min, t_max), min_coverage, &mut hit);
+        (n == 1).then_some(hit[0])
     }
 
     /// The streaks along o + t·d as [`Rain::first_streak`] finds them, in
