@@ -1,16 +1,19 @@
-//! The sun-lobe strategy is an extra MIS technique, not a new estimate: with
-//! it on and off the volumetric path tracer must agree in expectation (fog
-//! slab over a ground plane, sun low ahead, several bounces), and on fog's
-//! forward lobe it must lower the variance it was made for.
+//! The medium-vertex strategies change the variance, not the estimate: with
+//! each on and off the volumetric path tracer must agree in expectation (fog
+//! slab over a ground plane, sun low ahead, several bounces); the sun lobe
+//! must lower the variance it was made for on fog's forward lobe, and the
+//! albedo roulette must keep a grey medium's throughput.
 
 use std::path::Path;
 
 use glam::{DVec3, Vec3};
+use shaders_cpu::medium::{Density, HenyeyGreenstein, Medium};
 
 use crate::accel::{build_accel, Accel, Backend, Ray};
 use crate::geometry::SurfaceTable;
 use crate::integrator::path::PathContext;
-use crate::integrator::volpath::SunLobe;
+use crate::integrator::path::PathState;
+use crate::integrator::volpath::{Strategies, SunLobe};
 use crate::light::LightSet;
 use crate::sampler::{SampleStream, StreamKey};
 use crate::scene::{build_scene, parse_scene_str};
@@ -43,7 +46,7 @@ material = "ground"
 "#;
 
 /// Per direction: (mean, variance of one sample) of the green radiance.
-fn estimate(sun_lobe: bool, dirs: &[Vec3], n: u32) -> Vec<(f64, f64)> {
+fn estimate(strategies: Strategies, dirs: &[Vec3], n: u32) -> Vec<(f64, f64)> {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/inline.toml");
     let loaded = parse_scene_str(SCENE, &path).expect("scene parses");
     let scene = build_scene(&loaded, DVec3::ZERO).expect("scene builds");
@@ -73,7 +76,7 @@ fn estimate(sun_lobe: bool, dirs: &[Vec3], n: u32) -> Vec<(f64, f64)> {
                 let mut stream = SampleStream::new(key, i as u32, k / 256, k % 256);
                 let ray = Ray::new(o, d.normalize());
                 let hit = accel.intersect(&ray);
-                let l = ctx.li_volume_with(ray, hit, &mut stream, &mut rays, sun_lobe);
+                let l = ctx.li_volume_with(ray, hit, &mut stream, &mut rays, strategies);
                 s1 += l.y as f64;
                 s2 += (l.y as f64).powi(2);
             }
@@ -83,18 +86,27 @@ fn estimate(sun_lobe: bool, dirs: &[Vec3], n: u32) -> Vec<(f64, f64)> {
         .collect()
 }
 
+/// Toward the sun's azimuth (level and up), across, and down at the ground.
+const DIRS: [Vec3; 4] = [
+    Vec3::new(1.0, 0.3, 0.05),
+    Vec3::new(1.0, 0.6, 0.3),
+    Vec3::new(0.0, 1.0, 0.1),
+    Vec3::new(1.0, 0.0, -0.3),
+];
+
 #[test]
 fn sun_lobe_keeps_the_mean_and_lowers_the_variance() {
-    // Toward the sun's azimuth (level and up), across, and down at the ground.
-    let dirs = [
-        Vec3::new(1.0, 0.3, 0.05),
-        Vec3::new(1.0, 0.6, 0.3),
-        Vec3::new(0.0, 1.0, 0.1),
-        Vec3::new(1.0, 0.0, -0.3),
-    ];
+    let dirs = DIRS;
     let n = 16384;
-    let off = estimate(false, &dirs, n);
-    let on = estimate(true, &dirs, n);
+    let on = estimate(Strategies::default(), &dirs, n);
+    let off = estimate(
+        Strategies {
+            sun_lobe: false,
+            ..Strategies::default()
+        },
+        &dirs,
+        n,
+    );
     let (mut var_off, mut var_on) = (0.0, 0.0);
     for (d, (a, b)) in dirs.iter().zip(off.iter().zip(&on)) {
         let se = ((a.1 + b.1) / n as f64).sqrt();
@@ -112,4 +124,71 @@ fn sun_lobe_keeps_the_mean_and_lowers_the_variance() {
         var_on += b.1;
     }
     assert!(var_on < 0.8 * var_off, "variance {var_on} vs {var_off}");
+}
+
+#[test]
+fn albedo_roulette_keeps_the_mean() {
+    // The ground (albedo 0.3) dims paths before they scatter again in the
+    // fog, where the throughput roulette would have killed and boosted them.
+    let n = 16384;
+    let on = estimate(Strategies::default(), &DIRS, n);
+    let off = estimate(
+        Strategies {
+            albedo_roulette: false,
+            ..Strategies::default()
+        },
+        &DIRS,
+        n,
+    );
+    for (d, (a, b)) in DIRS.iter().zip(off.iter().zip(&on)) {
+        let se = ((a.1 + b.1) / n as f64).sqrt();
+        eprintln!("{d}: throughput {:.4}, albedo {:.4}, se {se:.4}", a.0, b.0);
+        assert!(
+            (a.0 - b.0).abs() < 4.0 * se,
+            "{d}: {} vs {} ± {se}",
+            a.0,
+            b.0
+        );
+    }
+}
+
+fn medium(albedo: Vec3) -> Medium {
+    Medium {
+        density: Density::Homogeneous { sigma_t: 0.1 },
+        albedo,
+        phase: HenyeyGreenstein { g: 0.85 },
+        z_min: f64::NEG_INFINITY,
+        z_max: f64::INFINITY,
+    }
+}
+
+#[test]
+fn albedo_roulette_keeps_grey_throughput_and_expected_weight() {
+    for albedo in [Vec3::splat(0.8), Vec3::new(0.9, 0.5, 0.2)] {
+        let m = medium(albedo);
+        let n = 1000;
+        let mut sum = Vec3::ZERO;
+        let mut survivors = 0;
+        for i in 0..n {
+            let mut st = PathState::new(Vec3::ZERO);
+            st.beta = Vec3::splat(0.4);
+            st.scatter(&m, Vec3::ZERO, 1.0);
+            let u = (i as f32 + 0.5) / n as f32;
+            if st.survives_albedo_roulette(&m, u) {
+                survivors += 1;
+                // β·albedo/max(albedo): grey keeps β from before the collision.
+                let expected = 0.4 * albedo / albedo.max_element();
+                assert!(
+                    (st.beta - expected).abs().max_element() < 1e-6,
+                    "{}",
+                    st.beta
+                );
+                sum += st.beta;
+            }
+        }
+        // Survival probability max(albedo); expected weight β·albedo.
+        assert_eq!(survivors, (albedo.max_element() * n as f32).round() as i32);
+        let mean = sum / n as f32;
+        assert!((mean - 0.4 * albedo).abs().max_element() < 1e-5, "{mean}");
+    }
 }
