@@ -3,16 +3,18 @@
 //! pbrt-v4 §A.5: concentric disk (Shirley–Chiu 1997), Malley's method for the
 //! cosine hemisphere (§A.5.3), uniform sphere/hemisphere/cone (§A.5.2), and the
 //! low-distortion triangle map of Heitz 2019 ("A Low-Distortion Map Between
-//! Triangle and Square"). Directions are unit vectors around +z.
+//! Triangle and Square"). Directions are unit vectors around +z. Angles go
+//! through `sin_cos_turns` (in turns, no libm call).
 
+use super::trig::sin_cos_turns;
 use glam::{Vec2, Vec3};
-use std::f32::consts::{FRAC_1_PI, FRAC_PI_2, FRAC_PI_4, PI};
+use std::f32::consts::{FRAC_1_PI, PI};
 
 /// Uniform point on the unit disk by the polar map (r = √u₀, φ = 2πu₁).
 pub fn sample_uniform_disk_polar(u: Vec2) -> Vec2 {
     let r = u.x.sqrt();
-    let phi = 2.0 * PI * u.y;
-    Vec2::new(r * phi.cos(), r * phi.sin())
+    let (sin_phi, cos_phi) = sin_cos_turns(u.y);
+    Vec2::new(r * cos_phi, r * sin_phi)
 }
 
 /// Uniform point on the unit disk by Shirley–Chiu's concentric map (pbrt-v4
@@ -22,13 +24,15 @@ pub fn sample_uniform_disk_concentric(u: Vec2) -> Vec2 {
     if o.x == 0.0 && o.y == 0.0 {
         return Vec2::ZERO;
     }
-    // Square wedges map to disk wedges: the larger |coordinate| is the radius.
-    let (r, theta) = if o.x.abs() > o.y.abs() {
-        (o.x, FRAC_PI_4 * (o.y / o.x))
+    // Square wedges map to disk wedges: the larger |coordinate| is the
+    // radius; the angle in turns is θ/2π (π/4 rad = 1/8 turn).
+    let (r, theta_turns) = if o.x.abs() > o.y.abs() {
+        (o.x, 0.125 * (o.y / o.x))
     } else {
-        (o.y, FRAC_PI_2 - FRAC_PI_4 * (o.x / o.y))
+        (o.y, 0.25 - 0.125 * (o.x / o.y))
     };
-    r * Vec2::new(theta.cos(), theta.sin())
+    let (sin_theta, cos_theta) = sin_cos_turns(theta_turns);
+    r * Vec2::new(cos_theta, sin_theta)
 }
 
 /// Cosine-weighted direction on the +z hemisphere (Malley's method: a uniform
@@ -48,8 +52,8 @@ pub fn cosine_hemisphere_pdf(cos_theta: f32) -> f32 {
 pub fn sample_uniform_sphere(u: Vec2) -> Vec3 {
     let z = 1.0 - 2.0 * u.x;
     let r = (1.0 - z * z).max(0.0).sqrt();
-    let phi = 2.0 * PI * u.y;
-    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+    let (sin_phi, cos_phi) = sin_cos_turns(u.y);
+    Vec3::new(r * cos_phi, r * sin_phi, z)
 }
 
 /// Pdf per solid angle of [`sample_uniform_sphere`]: 1/(4π).
@@ -61,8 +65,8 @@ pub fn uniform_sphere_pdf() -> f32 {
 pub fn sample_uniform_hemisphere(u: Vec2) -> Vec3 {
     let z = u.x;
     let r = (1.0 - z * z).max(0.0).sqrt();
-    let phi = 2.0 * PI * u.y;
-    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+    let (sin_phi, cos_phi) = sin_cos_turns(u.y);
+    Vec3::new(r * cos_phi, r * sin_phi, z)
 }
 
 /// Pdf per solid angle of [`sample_uniform_hemisphere`]: 1/(2π).
@@ -75,8 +79,8 @@ pub fn uniform_hemisphere_pdf() -> f32 {
 pub fn sample_uniform_cone(u: Vec2, cos_theta_max: f32) -> Vec3 {
     let cos_theta = (1.0 - u.x) + u.x * cos_theta_max;
     let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
-    let phi = 2.0 * PI * u.y;
-    Vec3::new(sin_theta * phi.cos(), sin_theta * phi.sin(), cos_theta)
+    let (sin_phi, cos_phi) = sin_cos_turns(u.y);
+    Vec3::new(sin_theta * cos_phi, sin_theta * sin_phi, cos_theta)
 }
 
 /// Pdf per solid angle of [`sample_uniform_cone`]: 1 / (2π (1 − cos θmax)).
