@@ -22,10 +22,15 @@ use crate::light::LightSet;
 use crate::sampler::SampleStream;
 use crate::scene::Scene;
 
-/// 4D sample sets per bounce: (light choice, light u, light v, lobe),
-/// (BSDF u, BSDF v, roulette, unused), then two sets of two 2D samples for the
-/// distant lights (up to `MAX_DISTANT` = 4).
+/// 4D sample sets per bounce: (BSDF u, BSDF v, lobe, roulette), two 2D
+/// samples for distant lights 0 and 1, (light choice, light u, light v,
+/// unused) for the local light, two 2D samples for distant lights 2 and 3
+/// (`MAX_DISTANT` = 4). A set no light needs is not drawn.
 const DIMS_PER_BOUNCE: u32 = 4;
+/// Offsets in the bounce of the sets of distant lights (0, 1) and (2, 3).
+const DISTANT_SETS: [u32; 2] = [1, 3];
+/// Offset in the bounce of the local light's set.
+const LOCAL_SET: u32 = 2;
 /// 4D sets used by the camera before the first bounce (pixel jitter).
 pub const CAMERA_DIMS: u32 = 1;
 /// Bounces before Russian roulette may end a path.
@@ -241,30 +246,33 @@ impl<A: Accel> PathContext<'_, A> {
         }
         let frame = Frame::from_z(si.n_shading);
         let wo_local = frame.to_local(wo);
-        stream.set_dimension(CAMERA_DIMS + st.bounces * DIMS_PER_BOUNCE);
-        let [u_select, u_lx, u_ly, u_lobe] = stream.next_4d();
-        let [u_bx, u_by, u_rr, _] = stream.next_4d();
+        let dim = CAMERA_DIMS + st.bounces * DIMS_PER_BOUNCE;
+        stream.set_dimension(dim);
+        let [u_bx, u_by, u_lobe, u_rr] = stream.next_4d();
         if !bsdf.is_delta() {
+            // Each light set is drawn at its own fixed dimension and only when
+            // it is used: outdoors (sun and sky, no local lights) that is one
+            // draw, not three.
             let lights = self.lights;
-            let [a0, a1, a2, a3] = stream.next_4d();
-            // The last set of the bounce: skipping it shifts nothing.
-            let [b0, b1, b2, b3] = if lights.distant_count() > 2 {
-                stream.next_4d()
-            } else {
-                [0.0; 4]
-            };
-            let u_distant = [
-                glam::Vec2::new(a0, a1),
-                glam::Vec2::new(a2, a3),
-                glam::Vec2::new(b0, b1),
-                glam::Vec2::new(b2, b3),
-            ];
-            for (k, &u) in u_distant.iter().enumerate().take(lights.distant_count()) {
+            let n_distant = lights.distant_count();
+            let mut u_distant = [glam::Vec2::ZERO; crate::light::MAX_DISTANT];
+            for (k, pair) in u_distant.chunks_mut(2).enumerate() {
+                if 2 * k < n_distant {
+                    stream.set_dimension(dim + DISTANT_SETS[k]);
+                    let [a0, a1, a2, a3] = stream.next_4d();
+                    pair.copy_from_slice(&[glam::Vec2::new(a0, a1), glam::Vec2::new(a2, a3)]);
+                }
+            }
+            for (k, &u) in u_distant.iter().enumerate().take(n_distant) {
                 let ls = lights.sample_distant(scene, k, si.p, u);
                 self.direct(&si, &bsdf, &frame, wo_local, ls, st.beta, pending, rays);
             }
-            let ls = lights.sample(scene, si.p, u_select, glam::Vec2::new(u_lx, u_ly));
-            self.direct(&si, &bsdf, &frame, wo_local, ls, st.beta, pending, rays);
+            if !lights.is_empty() {
+                stream.set_dimension(dim + LOCAL_SET);
+                let [u_select, u_lx, u_ly, _] = stream.next_4d();
+                let ls = lights.sample(scene, si.p, u_select, glam::Vec2::new(u_lx, u_ly));
+                self.direct(&si, &bsdf, &frame, wo_local, ls, st.beta, pending, rays);
+            }
         }
         let u_bsdf = glam::Vec2::new(u_bx, u_by);
         let bs = bsdf.sample(wo_local, u_lobe, u_bsdf)?;

@@ -26,11 +26,12 @@ pub fn sample_uniform_disk_concentric(u: Vec2) -> Vec2 {
     }
     // Square wedges map to disk wedges: the larger |coordinate| is the
     // radius; the angle in turns is θ/2π (π/4 rad = 1/8 turn).
-    let (r, theta_turns) = if o.x.abs() > o.y.abs() {
-        (o.x, 0.125 * (o.y / o.x))
-    } else {
-        (o.y, 0.25 - 0.125 * (o.x / o.y))
-    };
+    // Written as selects around one division: the wedge is a coin flip per
+    // sample, and a branch on it mispredicts half the time.
+    let x_major = o.x.abs() > o.y.abs();
+    let (r, other) = if x_major { (o.x, o.y) } else { (o.y, o.x) };
+    let ratio = 0.125 * (other / r);
+    let theta_turns = if x_major { ratio } else { 0.25 - ratio };
     let (sin_theta, cos_theta) = sin_cos_turns(theta_turns);
     r * Vec2::new(cos_theta, sin_theta)
 }
