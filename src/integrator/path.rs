@@ -72,6 +72,55 @@ impl PendingShadows {
     }
 }
 
+/// Every sample one surface vertex may use, drawn at the bounce's fixed
+/// dimensions. They depend on the stream and the bounce only, so the surface
+/// loop draws them before tracing the vertex's shadow rays: their hash chains
+/// then run while Embree traverses instead of stalling the shading after it.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct BounceSamples {
+    /// BSDF direction.
+    u_bsdf: glam::Vec2,
+    /// BSDF lobe choice.
+    u_lobe: f32,
+    /// Russian roulette.
+    u_rr: f32,
+    /// One 2D sample per distant light.
+    u_distant: [glam::Vec2; crate::light::MAX_DISTANT],
+    /// Local light choice and its 2D sample.
+    u_local: (f32, glam::Vec2),
+}
+
+impl BounceSamples {
+    /// The samples of scattering event `bounces`. Each light set is drawn at
+    /// its own fixed dimension and only when a light uses it: outdoors (sun
+    /// and sky, no local lights) that is two draws, not four.
+    fn draw(stream: &mut SampleStream, bounces: u32, lights: &LightSet) -> Self {
+        let dim = CAMERA_DIMS + bounces * DIMS_PER_BOUNCE;
+        stream.set_dimension(dim);
+        let [u_bx, u_by, u_lobe, u_rr] = stream.next_4d();
+        let mut u = BounceSamples {
+            u_bsdf: glam::Vec2::new(u_bx, u_by),
+            u_lobe,
+            u_rr,
+            ..Default::default()
+        };
+        let n_distant = lights.distant_count();
+        for (k, pair) in u.u_distant.chunks_mut(2).enumerate() {
+            if 2 * k < n_distant {
+                stream.set_dimension(dim + DISTANT_SETS[k]);
+                let [a0, a1, a2, a3] = stream.next_4d();
+                pair.copy_from_slice(&[glam::Vec2::new(a0, a1), glam::Vec2::new(a2, a3)]);
+            }
+        }
+        if !lights.is_empty() {
+            stream.set_dimension(dim + LOCAL_SET);
+            let [u_select, u_lx, u_ly, _] = stream.next_4d();
+            u.u_local = (u_select, glam::Vec2::new(u_lx, u_ly));
+        }
+        u
+    }
+}
+
 /// Scene, accelerator and lights: what a path needs to see.
 pub struct PathContext<'a, A: Accel> {
     /// The frame's scene.
@@ -166,8 +215,12 @@ impl<A: Accel> PathContext<'_, A> {
                 Some(hit) => hit,
                 None => self.accel.intersect(&ray),
             };
+            let mut u = BounceSamples::default();
             if let Some(hit) = &hit {
                 self.surfaces.prefetch(self.scene, hit);
+                if st.bounces < self.max_depth {
+                    u = BounceSamples::draw(stream, st.bounces, self.lights);
+                }
             }
             // The previous vertex's shadow rays, while the record loads.
             pending.resolve(self.accel, &mut st.l);
@@ -178,8 +231,7 @@ impl<A: Accel> PathContext<'_, A> {
                         .escaped_at(self.scene, ray.o, ray.d, st.prev_pdf, st.prev_delta);
                 break;
             };
-            let next =
-                self.surface_vertex_deferred(&ray, &hit, &mut st, stream, rays, &mut pending);
+            let next = self.surface_vertex_deferred(&ray, &hit, &mut st, &u, rays, &mut pending);
             match next {
                 Some(next) => ray = next,
                 None => {
@@ -202,7 +254,12 @@ impl<A: Accel> PathContext<'_, A> {
         rays: &mut u64,
     ) -> Option<Ray> {
         let mut pending = PendingShadows::new();
-        let next = self.surface_vertex_deferred(ray, hit, st, stream, rays, &mut pending);
+        let u = if st.bounces < self.max_depth {
+            BounceSamples::draw(stream, st.bounces, self.lights)
+        } else {
+            BounceSamples::default()
+        };
+        let next = self.surface_vertex_deferred(ray, hit, st, &u, rays, &mut pending);
         pending.resolve(self.accel, &mut st.l);
         next
     }
@@ -210,12 +267,13 @@ impl<A: Accel> PathContext<'_, A> {
     /// [`PathContext::surface_vertex`] with the NEE shadow rays left in
     /// `pending` (empty on entry) instead of traced; their contributions are
     /// added when it is resolved, before anything the next vertex adds.
+    /// `u` holds this bounce's samples (unused once `max_depth` is reached).
     fn surface_vertex_deferred(
         &self,
         ray: &Ray,
         hit: &Hit,
         st: &mut PathState,
-        stream: &mut SampleStream,
+        u: &BounceSamples,
         rays: &mut u64,
         pending: &mut PendingShadows,
     ) -> Option<Ray> {
@@ -246,36 +304,19 @@ impl<A: Accel> PathContext<'_, A> {
         }
         let frame = Frame::from_z(si.n_shading);
         let wo_local = frame.to_local(wo);
-        let dim = CAMERA_DIMS + st.bounces * DIMS_PER_BOUNCE;
-        stream.set_dimension(dim);
-        let [u_bx, u_by, u_lobe, u_rr] = stream.next_4d();
         if !bsdf.is_delta() {
-            // Each light set is drawn at its own fixed dimension and only when
-            // it is used: outdoors (sun and sky, no local lights) that is one
-            // draw, not three.
             let lights = self.lights;
-            let n_distant = lights.distant_count();
-            let mut u_distant = [glam::Vec2::ZERO; crate::light::MAX_DISTANT];
-            for (k, pair) in u_distant.chunks_mut(2).enumerate() {
-                if 2 * k < n_distant {
-                    stream.set_dimension(dim + DISTANT_SETS[k]);
-                    let [a0, a1, a2, a3] = stream.next_4d();
-                    pair.copy_from_slice(&[glam::Vec2::new(a0, a1), glam::Vec2::new(a2, a3)]);
-                }
-            }
-            for (k, &u) in u_distant.iter().enumerate().take(n_distant) {
-                let ls = lights.sample_distant(scene, k, si.p, u);
+            for (k, &u_light) in u.u_distant.iter().enumerate().take(lights.distant_count()) {
+                let ls = lights.sample_distant(scene, k, si.p, u_light);
                 self.direct(&si, &bsdf, &frame, wo_local, ls, st.beta, pending, rays);
             }
             if !lights.is_empty() {
-                stream.set_dimension(dim + LOCAL_SET);
-                let [u_select, u_lx, u_ly, _] = stream.next_4d();
-                let ls = lights.sample(scene, si.p, u_select, glam::Vec2::new(u_lx, u_ly));
+                let (u_select, u_light) = u.u_local;
+                let ls = lights.sample(scene, si.p, u_select, u_light);
                 self.direct(&si, &bsdf, &frame, wo_local, ls, st.beta, pending, rays);
             }
         }
-        let u_bsdf = glam::Vec2::new(u_bx, u_by);
-        let bs = bsdf.sample(wo_local, u_lobe, u_bsdf)?;
+        let bs = bsdf.sample(wo_local, u.u_lobe, u.u_bsdf)?;
         if bs.pdf <= 0.0 {
             return None;
         }
@@ -292,7 +333,7 @@ impl<A: Accel> PathContext<'_, A> {
         st.prev_delta = bs.delta;
         st.prev_p = si.p;
         st.bounces += 1;
-        if !st.survives_roulette(u_rr) {
+        if !st.survives_roulette(u.u_rr) {
             return None;
         }
         Some(si.spawn_ray(wi))
