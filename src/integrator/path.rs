@@ -3,7 +3,9 @@
 //! and error-bounded secondary-ray origins (pbrt-v4 `PathIntegrator`, §13.4).
 //!
 //! Every random number comes from the pixel's `SampleStream`; each bounce
-//! starts at a fixed dimension so the streams of different bounces never shift.
+//! starts at a fixed dimension so the streams of different bounces never shift,
+//! which also lets a vertex's samples (`BounceSamples`) be drawn as soon as its
+//! hit is known, before the previous vertex's shadow rays are traced.
 //! `max_depth` counts scattering events: 1 is direct lighting only.
 //! The surface loop traces a vertex's continuation ray before its shadow rays
 //! and prefetches the next hit's surface record, so that cache miss overlaps
