@@ -19,6 +19,7 @@ pub fn sample_uniform_disk_polar(u: Vec2) -> Vec2 {
 
 /// Uniform point on the unit disk by Shirley–Chiu's concentric map (pbrt-v4
 /// §A.5.1); area pdf 1/π. Preserves adjacency, so stratification survives.
+#[inline]
 pub fn sample_uniform_disk_concentric(u: Vec2) -> Vec2 {
     let o = 2.0 * u - Vec2::ONE;
     if o.x == 0.0 && o.y == 0.0 {
@@ -38,6 +39,7 @@ pub fn sample_uniform_disk_concentric(u: Vec2) -> Vec2 {
 
 /// Cosine-weighted direction on the +z hemisphere (Malley's method: a uniform
 /// disk point lifted to the hemisphere); pdf `cos θ / π`.
+#[inline]
 pub fn sample_cosine_hemisphere(u: Vec2) -> Vec3 {
     let d = sample_uniform_disk_concentric(u);
     let z = (1.0 - d.length_squared()).max(0.0).sqrt();
@@ -45,11 +47,13 @@ pub fn sample_cosine_hemisphere(u: Vec2) -> Vec3 {
 }
 
 /// Pdf per solid angle of [`sample_cosine_hemisphere`]; zero below the horizon.
+#[inline]
 pub fn cosine_hemisphere_pdf(cos_theta: f32) -> f32 {
     cos_theta.max(0.0) * FRAC_1_PI
 }
 
 /// Uniform direction on the unit sphere (z = 1 − 2u₀, pbrt-v4 §A.5.2).
+#[inline]
 pub fn sample_uniform_sphere(u: Vec2) -> Vec3 {
     let z = 1.0 - 2.0 * u.x;
     let r = (1.0 - z * z).max(0.0).sqrt();
@@ -58,6 +62,7 @@ pub fn sample_uniform_sphere(u: Vec2) -> Vec3 {
 }
 
 /// Pdf per solid angle of [`sample_uniform_sphere`]: 1/(4π).
+#[inline]
 pub fn uniform_sphere_pdf() -> f32 {
     0.25 * FRAC_1_PI
 }
@@ -77,6 +82,7 @@ pub fn uniform_hemisphere_pdf() -> f32 {
 
 /// Uniform direction in the cone of half-angle θmax around +z, given
 /// `cos_theta_max` in [-1, 1] (cos θ uniform in [cos θmax, 1]).
+#[inline]
 pub fn sample_uniform_cone(u: Vec2, cos_theta_max: f32) -> Vec3 {
     let cos_theta = (1.0 - u.x) + u.x * cos_theta_max;
     let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
@@ -85,6 +91,7 @@ pub fn sample_uniform_cone(u: Vec2, cos_theta_max: f32) -> Vec3 {
 }
 
 /// Pdf per solid angle of [`sample_uniform_cone`]: 1 / (2π (1 − cos θmax)).
+#[inline]
 pub fn uniform_cone_pdf(cos_theta_max: f32) -> f32 {
     1.0 / (2.0 * PI * (1.0 - cos_theta_max))
 }
