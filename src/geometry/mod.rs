@@ -5,6 +5,7 @@
 //! traversal keeps its precision kilometres from the world origin.
 
 mod exact;
+mod huge;
 mod interaction;
 mod offset;
 mod table;

@@ -25,21 +25,77 @@ pub fn offset_ray_origin(p: Vec3, p_error: Vec3, n_geo: Vec3, w: Vec3) -> Vec3 {
     if w.dot(n_geo) < 0.0 {
         offset = -offset;
     }
-    let mut po = p + offset;
+    let po = p + offset;
     // Round away from p so the offset survives the final rounding.
-    for i in 0..3 {
-        if offset[i] > 0.0 {
-            po[i] = po[i].next_up();
-        } else if offset[i] < 0.0 {
-            po[i] = po[i].next_down();
-        }
+    Vec3::new(
+        step_away(po.x, offset.x),
+        step_away(po.y, offset.y),
+        step_away(po.z, offset.z),
+    )
+}
+
+/// `x.next_up()` for `dir` > 0, `x.next_down()` for `dir` < 0, else `x`.
+///
+/// For finite non-zero `x` this is ±1 on the bit pattern (the sign of `x`
+/// decides which way is up), done without branching on `dir`: the offset's
+/// signs follow the surface normal, a coin flip from vertex to vertex.
+#[inline(always)]
+fn step_away(x: f32, dir: f32) -> f32 {
+    if !x.is_finite() || x == 0.0 {
+        // ±0 steps to a subnormal of either sign, infinities and NaN stay.
+        return if dir > 0.0 {
+            x.next_up()
+        } else if dir < 0.0 {
+            x.next_down()
+        } else {
+            x
+        };
     }
-    po
+    let up = (dir > 0.0) as i32 - (dir < 0.0) as i32;
+    // Magnitude grows with the bits: up is +1 for positive x, −1 for negative.
+    let delta = if x.is_sign_negative() { -up } else { up };
+    f32::from_bits(x.to_bits().wrapping_add_signed(delta))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn step_away_equals_next_up_and_next_down() {
+        let xs = [
+            1.0f32,
+            -1.0,
+            0.0,
+            -0.0,
+            1e-45,
+            -1e-45,
+            f32::MAX,
+            -f32::MAX,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+            123.456,
+            -7.5e-20,
+            f32::MIN_POSITIVE,
+        ];
+        for x in xs {
+            for dir in [1.0f32, -2.0, 0.0, -0.0, f32::NAN] {
+                let expect = if dir > 0.0 {
+                    x.next_up()
+                } else if dir < 0.0 {
+                    x.next_down()
+                } else {
+                    x
+                };
+                assert_eq!(
+                    step_away(x, dir).to_bits(),
+                    expect.to_bits(),
+                    "x {x:e} dir {dir}"
+                );
+            }
+        }
+    }
 
     #[test]
     fn offset_origin_lies_on_the_side_of_travel() {

@@ -10,6 +10,7 @@
 
 use glam::Vec3;
 
+use super::huge::HugeArray;
 use super::interaction::{sphere_interaction, triangle_interaction};
 use super::{Ray, SurfaceInteraction};
 use crate::accel::Hit;
@@ -31,25 +32,32 @@ struct TriangleRecord {
 pub struct SurfaceTable {
     /// Index of each mesh's first record.
     first: Vec<usize>,
-    records: Vec<TriangleRecord>,
+    /// On huge pages: vertices read them at random (see `huge.rs`).
+    records: HugeArray<TriangleRecord>,
 }
 
 impl SurfaceTable {
     /// Copies positions and materials of every triangle of `scene`.
     pub fn build(scene: &Scene) -> Self {
         let mut first = Vec::with_capacity(scene.meshes.len());
-        let total = scene.meshes.iter().map(|m| m.triangles.len()).sum();
-        let mut records = Vec::with_capacity(total);
+        let mut total = 0;
         for mesh in &scene.meshes {
-            first.push(records.len());
-            records.extend(mesh.triangles.iter().zip(&mesh.tri_material).map(
-                |(tri, &material)| TriangleRecord {
+            first.push(total);
+            total += mesh.triangles.len();
+        }
+        let records = scene.meshes.iter().flat_map(|mesh| {
+            mesh.triangles
+                .iter()
+                .zip(&mesh.tri_material)
+                .map(|(tri, &material)| TriangleRecord {
                     p: tri.map(|i| mesh.p_f32[i as usize]),
                     material,
-                },
-            ));
+                })
+        });
+        SurfaceTable {
+            first,
+            records: HugeArray::from_exact_iter(total, records),
         }
-        SurfaceTable { first, records }
     }
 
     /// Asks the CPU to start loading `hit`'s record (both cache lines a

@@ -3,7 +3,9 @@
 //! and error-bounded secondary-ray origins (pbrt-v4 `PathIntegrator`, §13.4).
 //!
 //! Every random number comes from the pixel's `SampleStream`; each bounce
-//! starts at a fixed dimension so the streams of different bounces never shift.
+//! starts at a fixed dimension so the streams of different bounces never shift,
+//! which also lets a vertex's samples (`BounceSamples`) be drawn as soon as its
+//! hit is known, before the previous vertex's shadow rays are traced.
 //! `max_depth` counts scattering events: 1 is direct lighting only.
 //! The surface loop traces a vertex's continuation ray before its shadow rays
 //! and prefetches the next hit's surface record, so that cache miss overlaps
@@ -21,10 +23,15 @@ use crate::light::LightSet;
 use crate::sampler::SampleStream;
 use crate::scene::Scene;
 
-/// 4D sample sets per bounce: (light choice, light u, light v, lobe),
-/// (BSDF u, BSDF v, roulette, unused), then two sets of two 2D samples for the
-/// distant lights (up to `MAX_DISTANT` = 4).
+/// 4D sample sets per bounce: (BSDF u, BSDF v, lobe, roulette), two 2D
+/// samples for distant lights 0 and 1, (light choice, light u, light v,
+/// unused) for the local light, two 2D samples for distant lights 2 and 3
+/// (`MAX_DISTANT` = 4). A set no light needs is not drawn.
 const DIMS_PER_BOUNCE: u32 = 4;
+/// Offsets in the bounce of the sets of distant lights (0, 1) and (2, 3).
+const DISTANT_SETS: [u32; 2] = [1, 3];
+/// Offset in the bounce of the local light's set.
+const LOCAL_SET: u32 = 2;
 /// 4D sets used by the camera before the first bounce (pixel jitter).
 pub const CAMERA_DIMS: u32 = 1;
 /// Bounces before Russian roulette may end a path.
@@ -63,6 +70,55 @@ impl PendingShadows {
             }
         }
         self.len = 0;
+    }
+}
+
+/// Every sample one surface vertex may use, drawn at the bounce's fixed
+/// dimensions. They depend on the stream and the bounce only, so the surface
+/// loop draws them before tracing the vertex's shadow rays: their hash chains
+/// then run while Embree traverses instead of stalling the shading after it.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct BounceSamples {
+    /// BSDF direction.
+    u_bsdf: glam::Vec2,
+    /// BSDF lobe choice.
+    u_lobe: f32,
+    /// Russian roulette.
+    u_rr: f32,
+    /// One 2D sample per distant light.
+    u_distant: [glam::Vec2; crate::light::MAX_DISTANT],
+    /// Local light choice and its 2D sample.
+    u_local: (f32, glam::Vec2),
+}
+
+impl BounceSamples {
+    /// The samples of scattering event `bounces`. Each light set is drawn at
+    /// its own fixed dimension and only when a light uses it: outdoors (sun
+    /// and sky, no local lights) that is two draws, not four.
+    fn draw(stream: &mut SampleStream, bounces: u32, lights: &LightSet) -> Self {
+        let dim = CAMERA_DIMS + bounces * DIMS_PER_BOUNCE;
+        stream.set_dimension(dim);
+        let [u_bx, u_by, u_lobe, u_rr] = stream.next_4d();
+        let mut u = BounceSamples {
+            u_bsdf: glam::Vec2::new(u_bx, u_by),
+            u_lobe,
+            u_rr,
+            ..Default::default()
+        };
+        let n_distant = lights.distant_count();
+        for (k, pair) in u.u_distant.chunks_mut(2).enumerate() {
+            if 2 * k < n_distant {
+                stream.set_dimension(dim + DISTANT_SETS[k]);
+                let [a0, a1, a2, a3] = stream.next_4d();
+                pair.copy_from_slice(&[glam::Vec2::new(a0, a1), glam::Vec2::new(a2, a3)]);
+            }
+        }
+        if !lights.is_empty() {
+            stream.set_dimension(dim + LOCAL_SET);
+            let [u_select, u_lx, u_ly, _] = stream.next_4d();
+            u.u_local = (u_select, glam::Vec2::new(u_lx, u_ly));
+        }
+        u
     }
 }
 
@@ -158,8 +214,12 @@ impl<A: Accel> PathContext<'_, A> {
                 Some(hit) => hit,
                 None => self.accel.intersect(&ray),
             };
+            let mut u = BounceSamples::default();
             if let Some(hit) = &hit {
                 self.surfaces.prefetch(self.scene, hit);
+                if st.bounces < self.max_depth {
+                    u = BounceSamples::draw(stream, st.bounces, self.lights);
+                }
             }
             // The previous vertex's shadow rays, while the record loads.
             pending.resolve(self.accel, &mut st.l);
@@ -170,8 +230,7 @@ impl<A: Accel> PathContext<'_, A> {
                         .escaped_at(self.scene, ray.o, ray.d, st.prev_pdf, st.prev_delta);
                 break;
             };
-            let next =
-                self.surface_vertex_deferred(&ray, &hit, &mut st, stream, rays, &mut pending);
+            let next = self.surface_vertex_deferred(&ray, &hit, &mut st, &u, rays, &mut pending);
             match next {
                 Some(next) => ray = next,
                 None => {
@@ -194,7 +253,12 @@ impl<A: Accel> PathContext<'_, A> {
         rays: &mut u64,
     ) -> Option<Ray> {
         let mut pending = PendingShadows::new();
-        let next = self.surface_vertex_deferred(ray, hit, st, stream, rays, &mut pending);
+        let u = if st.bounces < self.max_depth {
+            BounceSamples::draw(stream, st.bounces, self.lights)
+        } else {
+            BounceSamples::default()
+        };
+        let next = self.surface_vertex_deferred(ray, hit, st, &u, rays, &mut pending);
         pending.resolve(self.accel, &mut st.l);
         next
     }
@@ -202,12 +266,13 @@ impl<A: Accel> PathContext<'_, A> {
     /// [`PathContext::surface_vertex`] with the NEE shadow rays left in
     /// `pending` (empty on entry) instead of traced; their contributions are
     /// added when it is resolved, before anything the next vertex adds.
+    /// `u` holds this bounce's samples (unused once `max_depth` is reached).
     fn surface_vertex_deferred(
         &self,
         ray: &Ray,
         hit: &Hit,
         st: &mut PathState,
-        stream: &mut SampleStream,
+        u: &BounceSamples,
         rays: &mut u64,
         pending: &mut PendingShadows,
     ) -> Option<Ray> {
@@ -238,33 +303,19 @@ impl<A: Accel> PathContext<'_, A> {
         }
         let frame = Frame::from_z(si.n_shading);
         let wo_local = frame.to_local(wo);
-        stream.set_dimension(CAMERA_DIMS + st.bounces * DIMS_PER_BOUNCE);
-        let [u_select, u_lx, u_ly, u_lobe] = stream.next_4d();
-        let [u_bx, u_by, u_rr, _] = stream.next_4d();
         if !bsdf.is_delta() {
             let lights = self.lights;
-            let [a0, a1, a2, a3] = stream.next_4d();
-            // The last set of the bounce: skipping it shifts nothing.
-            let [b0, b1, b2, b3] = if lights.distant_count() > 2 {
-                stream.next_4d()
-            } else {
-                [0.0; 4]
-            };
-            let u_distant = [
-                glam::Vec2::new(a0, a1),
-                glam::Vec2::new(a2, a3),
-                glam::Vec2::new(b0, b1),
-                glam::Vec2::new(b2, b3),
-            ];
-            for (k, &u) in u_distant.iter().enumerate().take(lights.distant_count()) {
-                let ls = lights.sample_distant(scene, k, si.p, u);
+            for (k, &u_light) in u.u_distant.iter().enumerate().take(lights.distant_count()) {
+                let ls = lights.sample_distant(scene, k, si.p, u_light);
                 self.direct(&si, &bsdf, &frame, wo_local, ls, st.beta, pending, rays);
             }
-            let ls = lights.sample(scene, si.p, u_select, glam::Vec2::new(u_lx, u_ly));
-            self.direct(&si, &bsdf, &frame, wo_local, ls, st.beta, pending, rays);
+            if !lights.is_empty() {
+                let (u_select, u_light) = u.u_local;
+                let ls = lights.sample(scene, si.p, u_select, u_light);
+                self.direct(&si, &bsdf, &frame, wo_local, ls, st.beta, pending, rays);
+            }
         }
-        let u_bsdf = glam::Vec2::new(u_bx, u_by);
-        let bs = bsdf.sample(wo_local, u_lobe, u_bsdf)?;
+        let bs = bsdf.sample(wo_local, u.u_lobe, u.u_bsdf)?;
         if bs.pdf <= 0.0 {
             return None;
         }
@@ -281,7 +332,7 @@ impl<A: Accel> PathContext<'_, A> {
         st.prev_delta = bs.delta;
         st.prev_p = si.p;
         st.bounces += 1;
-        if !st.survives_roulette(u_rr) {
+        if !st.survives_roulette(u.u_rr) {
             return None;
         }
         Some(si.spawn_ray(wi))

@@ -71,6 +71,41 @@ pub fn sun_radiance(irradiance: Vec3, angular_radius_rad: f32) -> Vec3 {
     irradiance / (solid_angle * 0.5 * (1.0 + cos_max))
 }
 
+/// A sun disk prepared for sampling: everything but the draw itself (two
+/// cosines, an f64 solid angle and a frame) computed once per frame instead
+/// of at every vertex. Samples are bit-identical to sampling the `Light`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct SunSampler {
+    /// Frame whose z axis points at the sun's centre.
+    frame: Frame,
+    /// Cosine of the sampled cone's half-angle (see [`sun_cone`]).
+    cos_max: f32,
+    /// Radiance of the disk.
+    le: Vec3,
+    /// Solid-angle pdf of a uniform cone sample.
+    pdf: f32,
+}
+
+impl SunSampler {
+    /// The sampler of a sun towards unit `dir_to_sun` (see [`Light::Sun`]).
+    pub(crate) fn new(dir_to_sun: Vec3, angular_radius_rad: f32, irradiance: Vec3) -> Self {
+        let cos_max = angular_radius_rad.cos();
+        SunSampler {
+            frame: Frame::from_z(dir_to_sun),
+            cos_max,
+            le: sun_radiance(irradiance, angular_radius_rad),
+            pdf: uniform_cone_pdf(cos_max),
+        }
+    }
+
+    /// A direction uniform in the disk's cone: (wi, radiance, pdf per solid angle).
+    #[inline]
+    pub(crate) fn sample(&self, u: glam::Vec2) -> (Vec3, Vec3, f32) {
+        let wi = self.frame.from_local(sample_uniform_cone(u, self.cos_max));
+        (wi, self.le, self.pdf)
+    }
+}
+
 /// Direction and radiance of a sample of one explicit light seen from `p`:
 /// (wi, radiance or intensity/d², pdf per solid angle or 1 for delta, distance).
 fn sample_explicit(light: &Light, p: Vec3, u: glam::Vec2) -> Option<(Vec3, Vec3, f32, f32, bool)> {
@@ -80,10 +115,9 @@ fn sample_explicit(light: &Light, p: Vec3, u: glam::Vec2) -> Option<(Vec3, Vec3,
             angular_radius_rad,
             irradiance,
         } => {
-            let cos_max = angular_radius_rad.cos();
-            let wi = Frame::from_z(dir_to_sun).from_local(sample_uniform_cone(u, cos_max));
-            let le = sun_radiance(irradiance, angular_radius_rad);
-            Some((wi, le, uniform_cone_pdf(cos_max), f32::INFINITY, false))
+            let (wi, le, pdf) =
+                SunSampler::new(dir_to_sun, angular_radius_rad, irradiance).sample(u);
+            Some((wi, le, pdf, f32::INFINITY, false))
         }
         Light::Point { p: pl, intensity } => {
             let d = pl - p;

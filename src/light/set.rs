@@ -17,15 +17,21 @@ use shaders_cpu::sampling::{
 
 use super::bvh::{LightBounds, LightBvh};
 use super::fog_sky::FogSky;
-use super::{power, sample_explicit, sun_radiance, Light};
+use super::{power, sample_explicit, sun_radiance, Light, SunSampler};
 use crate::scene::Scene;
 
 /// One entry the sampler can pick.
 #[derive(Clone, Copy, Debug)]
 enum Entry {
     Explicit(Light),
+    /// A sun of the distant group, prepared for sampling.
+    Sun(SunSampler),
     Sky,
-    Triangle { geom: u32, prim: u32, area: f32 },
+    Triangle {
+        geom: u32,
+        prim: u32,
+        area: f32,
+    },
 }
 
 /// How one local light is chosen per vertex.
@@ -140,7 +146,11 @@ impl LightSet {
                     (!in_distant).then_some(entries.len()),
                 ));
                 if in_distant {
-                    distant.push(Entry::Explicit(*light));
+                    distant.push(Entry::Sun(SunSampler::new(
+                        dir_to_sun,
+                        angular_radius_rad,
+                        irradiance,
+                    )));
                     continue;
                 }
             }
@@ -423,6 +433,16 @@ fn sample_entry(scene: &Scene, entry: &Entry, pmf: f32, p: Vec3, u: Vec2) -> Opt
                 pdf: pdf * pmf,
                 dist,
                 delta,
+            })
+        }
+        Entry::Sun(ref sun) => {
+            let (wi, li, pdf) = sun.sample(u);
+            Some(LightSample {
+                wi,
+                li: li * cloud_transmittance(scene, p, wi),
+                pdf: pdf * pmf,
+                dist: f32::INFINITY,
+                delta: false,
             })
         }
         Entry::Sky => {

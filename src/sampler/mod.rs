@@ -54,20 +54,37 @@ pub fn mix64(mut z: u64) -> u64 {
 
 /// Hashes several words into one 64-bit key.
 pub fn hash_words(words: &[u64]) -> u64 {
-    words
-        .iter()
-        .fold(0x51_7cc1_b727_220a, |h, &w| mix64(h ^ mix64(w)))
+    hash_fold(HASH_INIT, words)
+}
+
+/// Initial state of [`hash_words`].
+const HASH_INIT: u64 = 0x51_7cc1_b727_220a;
+
+/// [`hash_words`] continued from state `h`.
+fn hash_fold(h: u64, words: &[u64]) -> u64 {
+    words.iter().fold(h, |h, &w| mix64(h ^ mix64(w)))
+}
+
+thread_local! {
+    /// The last view key this thread opened streams for, with its hash state.
+    static VIEW_STATE: std::cell::Cell<Option<(StreamKey, u64)>> = const { std::cell::Cell::new(None) };
 }
 
 impl SampleStream {
     /// The stream of `sample_index` for pixel `(i, j)` of the keyed view.
     pub fn new(key: StreamKey, i: u32, j: u32, sample_index: u32) -> Self {
-        let pixel_key = hash_words(&[
-            key.seed,
-            key.frame as u64,
-            key.view as u64,
-            ((j as u64) << 32) | i as u64,
-        ]);
+        // = hash_words(&[seed, frame, view, (j << 32) | i]): the fold's state
+        // after the view's three words is kept per thread, since a thread
+        // asks for thousands of pixels of one view in a row.
+        let view_state = VIEW_STATE.with(|cell| match cell.get() {
+            Some((k, state)) if k == key => state,
+            _ => {
+                let state = hash_fold(HASH_INIT, &[key.seed, key.frame as u64, key.view as u64]);
+                cell.set(Some((key, state)));
+                state
+            }
+        });
+        let pixel_key = hash_fold(view_state, &[((j as u64) << 32) | i as u64]);
         SampleStream {
             pixel_key,
             sample_index,
@@ -164,6 +181,17 @@ mod tests {
         assert_eq!(a, b);
         assert_ne!(a, c);
         assert_ne!(a, d);
+    }
+
+    #[test]
+    fn pixel_key_equals_hash_of_all_four_words_across_views() {
+        // Alternating views must not reuse the other view's cached state.
+        for view in [0, 1, 0, 2, 2, 0] {
+            let k = key(view);
+            let st = SampleStream::new(k, 17, 4, 0);
+            let expect = hash_words(&[7, 3, view as u64, (4u64 << 32) | 17]);
+            assert_eq!(st.pixel_key, expect);
+        }
     }
 
     #[test]

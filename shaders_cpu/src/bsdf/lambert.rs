@@ -10,6 +10,7 @@ use glam::{Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
 
 /// f(wo, wi) of a Lambertian reflector.
+#[inline]
 pub fn eval(albedo: Vec3, wo: Vec3, wi: Vec3) -> Vec3 {
     if wo.z * wi.z > 0.0 {
         albedo * FRAC_1_PI
@@ -19,6 +20,7 @@ pub fn eval(albedo: Vec3, wo: Vec3, wi: Vec3) -> Vec3 {
 }
 
 /// Pdf of [`sample`]: |cos θi|/π in `wo`'s hemisphere.
+#[inline]
 pub fn pdf(wo: Vec3, wi: Vec3) -> f32 {
     if wo.z * wi.z > 0.0 {
         cosine_hemisphere_pdf(wi.z.abs())
@@ -28,6 +30,7 @@ pub fn pdf(wo: Vec3, wi: Vec3) -> f32 {
 }
 
 /// Cosine-weighted sample in `wo`'s hemisphere; `None` for grazing `wo`.
+#[inline]
 pub fn sample(albedo: Vec3, wo: Vec3, u: Vec2) -> Option<BsdfSample> {
     if wo.z == 0.0 {
         return None;

@@ -86,6 +86,7 @@ pub enum Bsdf {
 
 impl Bsdf {
     /// f(wo, wi), local frame (zero for delta lobes).
+    #[inline]
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
         match *self {
             Bsdf::Lambert { albedo } => lambert::eval(albedo, wo, wi),
@@ -95,6 +96,7 @@ impl Bsdf {
         }
     }
     /// Pdf per solid angle of sampling `wi` given `wo` (zero for delta lobes).
+    #[inline]
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
         match *self {
             Bsdf::Lambert { .. } => lambert::pdf(wo, wi),
@@ -104,6 +106,7 @@ impl Bsdf {
         }
     }
     /// Samples `wi` given `wo`, a lobe-selection number and a 2D sample.
+    #[inline]
     pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
         match *self {
             Bsdf::Lambert { albedo } => lambert::sample(albedo, wo, u),
@@ -115,6 +118,7 @@ impl Bsdf {
         }
     }
     /// Whether every lobe is a delta (eval and pdf are then always zero).
+    #[inline]
     pub fn is_delta(&self) -> bool {
         match *self {
             Bsdf::Lambert { .. } => false,

@@ -3,6 +3,7 @@
 use glam::Vec3;
 
 /// Relative luminance Y of a linear Rec.709 RGB colour (ITU-R BT.709 weights).
+#[inline]
 pub fn luminance(rgb: Vec3) -> f32 {
     rgb.dot(Vec3::new(0.2126, 0.7152, 0.0722))
 }

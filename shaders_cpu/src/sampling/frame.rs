@@ -19,6 +19,7 @@ pub struct Frame {
 impl Frame {
     /// Frame whose z axis is `n` (must be unit length); tangents are continuous
     /// except across the n.z = 0 sign flip.
+    #[inline]
     pub fn from_z(n: Vec3) -> Frame {
         // copysign instead of a branch on n.z (Duff et al. listing 3).
         let sign = 1.0f32.copysign(n.z);
@@ -30,11 +31,13 @@ impl Frame {
     }
 
     /// World (or parent-space) vector → coordinates in this frame.
+    #[inline]
     pub fn to_local(&self, v: Vec3) -> Vec3 {
         Vec3::new(v.dot(self.x), v.dot(self.y), v.dot(self.z))
     }
 
     /// Coordinates in this frame → world (or parent-space) vector.
+    #[inline]
     pub fn from_local(&self, v: Vec3) -> Vec3 {
         self.x * v.x + self.y * v.y + self.z * v.z
     }

@@ -6,6 +6,7 @@
 /// Power heuristic (β = 2) weight of a sample drawn from strategy f.
 ///
 /// Returns a value in [0, 1]; infinite `f_pdf` (a delta) gives 1.
+#[inline]
 pub fn power_heuristic(nf: f32, f_pdf: f32, ng: f32, g_pdf: f32) -> f32 {
     let f = nf * f_pdf;
     let g = ng * g_pdf;

@@ -8,11 +8,13 @@
 mod color;
 mod frame;
 mod mis;
+mod trig;
 mod warps;
 
 pub use color::luminance;
 pub use frame::Frame;
 pub use mis::{balance_heuristic, power_heuristic};
+pub use trig::sin_cos_turns;
 pub use warps::{
     cosine_hemisphere_pdf, sample_cosine_hemisphere, sample_uniform_cone,
     sample_uniform_disk_concentric, sample_uniform_disk_polar, sample_uniform_hemisphere,

@@ -3,36 +3,43 @@
 //! pbrt-v4 §A.5: concentric disk (Shirley–Chiu 1997), Malley's method for the
 //! cosine hemisphere (§A.5.3), uniform sphere/hemisphere/cone (§A.5.2), and the
 //! low-distortion triangle map of Heitz 2019 ("A Low-Distortion Map Between
-//! Triangle and Square"). Directions are unit vectors around +z.
+//! Triangle and Square"). Directions are unit vectors around +z. Angles go
+//! through `sin_cos_turns` (in turns, no libm call).
 
+use super::trig::sin_cos_turns;
 use glam::{Vec2, Vec3};
-use std::f32::consts::{FRAC_1_PI, FRAC_PI_2, FRAC_PI_4, PI};
+use std::f32::consts::{FRAC_1_PI, PI};
 
 /// Uniform point on the unit disk by the polar map (r = √u₀, φ = 2πu₁).
 pub fn sample_uniform_disk_polar(u: Vec2) -> Vec2 {
     let r = u.x.sqrt();
-    let phi = 2.0 * PI * u.y;
-    Vec2::new(r * phi.cos(), r * phi.sin())
+    let (sin_phi, cos_phi) = sin_cos_turns(u.y);
+    Vec2::new(r * cos_phi, r * sin_phi)
 }
 
 /// Uniform point on the unit disk by Shirley–Chiu's concentric map (pbrt-v4
 /// §A.5.1); area pdf 1/π. Preserves adjacency, so stratification survives.
+#[inline]
 pub fn sample_uniform_disk_concentric(u: Vec2) -> Vec2 {
     let o = 2.0 * u - Vec2::ONE;
     if o.x == 0.0 && o.y == 0.0 {
         return Vec2::ZERO;
     }
-    // Square wedges map to disk wedges: the larger |coordinate| is the radius.
-    let (r, theta) = if o.x.abs() > o.y.abs() {
-        (o.x, FRAC_PI_4 * (o.y / o.x))
-    } else {
-        (o.y, FRAC_PI_2 - FRAC_PI_4 * (o.x / o.y))
-    };
-    r * Vec2::new(theta.cos(), theta.sin())
+    // Square wedges map to disk wedges: the larger |coordinate| is the
+    // radius; the angle in turns is θ/2π (π/4 rad = 1/8 turn).
+    // Written as selects around one division: the wedge is a coin flip per
+    // sample, and a branch on it mispredicts half the time.
+    let x_major = o.x.abs() > o.y.abs();
+    let (r, other) = if x_major { (o.x, o.y) } else { (o.y, o.x) };
+    let ratio = 0.125 * (other / r);
+    let theta_turns = if x_major { ratio } else { 0.25 - ratio };
+    let (sin_theta, cos_theta) = sin_cos_turns(theta_turns);
+    r * Vec2::new(cos_theta, sin_theta)
 }
 
 /// Cosine-weighted direction on the +z hemisphere (Malley's method: a uniform
 /// disk point lifted to the hemisphere); pdf `cos θ / π`.
+#[inline]
 pub fn sample_cosine_hemisphere(u: Vec2) -> Vec3 {
     let d = sample_uniform_disk_concentric(u);
     let z = (1.0 - d.length_squared()).max(0.0).sqrt();
@@ -40,19 +47,22 @@ pub fn sample_cosine_hemisphere(u: Vec2) -> Vec3 {
 }
 
 /// Pdf per solid angle of [`sample_cosine_hemisphere`]; zero below the horizon.
+#[inline]
 pub fn cosine_hemisphere_pdf(cos_theta: f32) -> f32 {
     cos_theta.max(0.0) * FRAC_1_PI
 }
 
 /// Uniform direction on the unit sphere (z = 1 − 2u₀, pbrt-v4 §A.5.2).
+#[inline]
 pub fn sample_uniform_sphere(u: Vec2) -> Vec3 {
     let z = 1.0 - 2.0 * u.x;
     let r = (1.0 - z * z).max(0.0).sqrt();
-    let phi = 2.0 * PI * u.y;
-    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+    let (sin_phi, cos_phi) = sin_cos_turns(u.y);
+    Vec3::new(r * cos_phi, r * sin_phi, z)
 }
 
 /// Pdf per solid angle of [`sample_uniform_sphere`]: 1/(4π).
+#[inline]
 pub fn uniform_sphere_pdf() -> f32 {
     0.25 * FRAC_1_PI
 }
@@ -61,8 +71,8 @@ pub fn uniform_sphere_pdf() -> f32 {
 pub fn sample_uniform_hemisphere(u: Vec2) -> Vec3 {
     let z = u.x;
     let r = (1.0 - z * z).max(0.0).sqrt();
-    let phi = 2.0 * PI * u.y;
-    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+    let (sin_phi, cos_phi) = sin_cos_turns(u.y);
+    Vec3::new(r * cos_phi, r * sin_phi, z)
 }
 
 /// Pdf per solid angle of [`sample_uniform_hemisphere`]: 1/(2π).
@@ -72,14 +82,16 @@ pub fn uniform_hemisphere_pdf() -> f32 {
 
 /// Uniform direction in the cone of half-angle θmax around +z, given
 /// `cos_theta_max` in [-1, 1] (cos θ uniform in [cos θmax, 1]).
+#[inline]
 pub fn sample_uniform_cone(u: Vec2, cos_theta_max: f32) -> Vec3 {
     let cos_theta = (1.0 - u.x) + u.x * cos_theta_max;
     let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
-    let phi = 2.0 * PI * u.y;
-    Vec3::new(sin_theta * phi.cos(), sin_theta * phi.sin(), cos_theta)
+    let (sin_phi, cos_phi) = sin_cos_turns(u.y);
+    Vec3::new(sin_theta * cos_phi, sin_theta * sin_phi, cos_theta)
 }
 
 /// Pdf per solid angle of [`sample_uniform_cone`]: 1 / (2π (1 − cos θmax)).
+#[inline]
 pub fn uniform_cone_pdf(cos_theta_max: f32) -> f32 {
     1.0 / (2.0 * PI * (1.0 - cos_theta_max))
 }

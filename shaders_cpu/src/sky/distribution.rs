@@ -7,7 +7,7 @@
 //! Weights are the cell's mean luminance (2 × 2 points) plus a floor of 1% of
 //! the sphere mean, so the pdf is positive wherever the sky can emit.
 
-use crate::sampling::luminance;
+use crate::sampling::{luminance, sin_cos_turns};
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 
@@ -132,9 +132,10 @@ impl SkyDistribution {
 /// Direction of unit grid coordinates (u.x along φ, u.y along z).
 fn dir_of(u: Vec2) -> Vec3 {
     let z = (2.0 * u.y - 1.0).clamp(-1.0, 1.0);
-    let phi = -PI + 2.0 * PI * u.x;
+    // φ = −π + 2π·u.x, i.e. u.x − 1/2 turns.
+    let (sin_phi, cos_phi) = sin_cos_turns(u.x - 0.5);
     let r = (1.0 - z * z).max(0.0).sqrt();
-    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+    Vec3::new(r * cos_phi, r * sin_phi, z)
 }
 
 /// Index of the cdf interval containing `u` and the position within it.

@@ -8,6 +8,7 @@ use crate::sampling::{
 use glam::{Vec2, Vec3};
 
 /// Draws a direction; `u.x` both selects the component and is re-stretched.
+#[inline]
 pub(super) fn sample_dir(p_cos: f32, u: Vec2) -> Vec3 {
     if u.x < p_cos {
         let ux = (u.x / p_cos).min(1.0 - f32::EPSILON / 2.0);
@@ -19,6 +20,7 @@ pub(super) fn sample_dir(p_cos: f32, u: Vec2) -> Vec3 {
 }
 
 /// Mixture pdf per solid angle of [`sample_dir`].
+#[inline]
 pub(super) fn dir_pdf(p_cos: f32, dir: Vec3) -> f32 {
     p_cos * cosine_hemisphere_pdf(dir.z) + (1.0 - p_cos) * uniform_sphere_pdf()
 }
