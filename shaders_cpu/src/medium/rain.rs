@@ -129,10 +129,6 @@ pub(super) fn sphere_roots(o: DVec3, d: DVec3, r: f64) -> Option<(f64, f64)> {
 }
 
 impl Rain {
-    /// Pixel-centre rays meet a streak for [`Rain::intersect`] when its
-    /// coverage seen level (α = 90°) is at least this: the drop covers ≥ 1 %
-    /// of the pixel's area × exposure.
-    pub const MASK_MIN_COVERAGE: f64 = 0.01;
     /// Streaks covering less than this of a pixel's area × exposure are left
     /// out of [`Rain::opacity`] (they would change no 8-bit pixel).
     pub const MIN_OPACITY_COVERAGE: f64 = 1e-4;
@@ -468,12 +464,6 @@ impl Rain {
         let len = self.fall_speed(2e3 * hit.drop_radius_m) * self.shutter_s;
         let len_px = len / (self.pixel_angle_rad * hit.t_axis.max(1e-3));
         1.0 + (self.opacity_gain - 1.0) * (len_px / RESOLVED_STREAK_PX).min(1.0)
-    }
-
-    /// First streak along o + t·d visible enough for the rain mask
-    /// (level coverage ≥ [`Rain::MASK_MIN_COVERAGE`]).
-    pub fn intersect(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> Option<StreakHit> {
-        self.first_streak(o, d, t_min, t_max, Self::MASK_MIN_COVERAGE)
     }
 
     /// Ray against one streak capsule, `None` below `min_coverage` (level
