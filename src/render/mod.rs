@@ -113,7 +113,8 @@ pub fn render_frame(
     let mut baselines = Vec::with_capacity(rig.baselines_m.len());
     for (b, &baseline_m) in rig.baselines_m.iter().enumerate() {
         let right = view_gt(scene, accel, &cams[1 + b], false);
-        if let Some(rain) = &rain {
+        // Right views need rain only to composite their images.
+        if let Some(rain) = rain.as_ref().filter(|_| settings.spp > 0) {
             rain_alpha.push(rain::rain_opacity(
                 scene,
                 rain,
