@@ -179,15 +179,14 @@ pub fn mark_rain(mask: &mut [u8], alpha: &[f32]) {
 }
 
 /// Radiance of a drop seen in the frame whose left view is `left`: the
-/// view's mean radiance × the drop's transmission.
+/// view's mean radiance (over its finite pixels) × the drop's transmission.
 pub fn drop_radiance(left: &Film) -> Vec3 {
-    let n = left.rgb.len().max(1) as f64;
-    let sum = left
+    let (sum, n) = left
         .rgb
         .iter()
         .filter(|c| c.is_finite())
-        .fold(glam::DVec3::ZERO, |s, c| s + c.as_dvec3());
-    (sum / n).as_vec3() * DROP_TRANSMISSION
+        .fold((DVec3::ZERO, 0u64), |(s, n), c| (s + c.as_dvec3(), n + 1));
+    (sum / n.max(1) as f64).as_vec3() * DROP_TRANSMISSION
 }
 
 /// Composites streaks of opacity `alpha` and radiance `l_drop` over `film`.
