@@ -23,10 +23,12 @@ use common::towns::{town, town_file, TOWNS};
 
 /// Hashes of every shipped town's network at radius 0, computed before
 /// curved corners existed: (name, road objects, routes, lots and road rects).
+/// town01's road objects were re-pinned when its bridge parapets became
+/// `building` (a label, no geometry, changed).
 const PINNED_HASHES: [(&str, u64, u64, u64); 8] = [
     (
         "town01",
-        0x1baff2cb75d3c75,
+        0x84d6_b241_7fd4_c315,
         0x89b70e8fbe17f859,
         0xc40523585be7686d,
     ),

@@ -400,8 +400,9 @@ fn river_objects(l: &Layout, band: &Rect, out: &mut Vec<ObjectDesc>) {
     for i in 0..=l.nx {
         let x = i as f64 * l.pitch_m;
         let (min, max) = ([x - reach, band.min[1]], [x + reach, band.max[1]]);
-        // The deck is a structure (its sides are seen across the river);
-        // only the asphalt on top of it is road.
+        // The deck and its parapets are a structure (their sides are seen
+        // across the river), labelled like the overpass's; only the asphalt
+        // on top of the deck is road.
         out.push(slab(min, max, -0.8, -0.005, "concrete", class("building")));
         for sx in [-1.0, 1.0] {
             let xe = x + sx * (reach - 0.1);
@@ -411,7 +412,7 @@ fn river_objects(l: &Layout, band: &Rect, out: &mut Vec<ObjectDesc>) {
                 0.0,
                 1.1,
                 "concrete",
-                class("sidewalk"),
+                class("building"),
             );
             out.push(parapet);
         }
