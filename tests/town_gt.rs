@@ -12,16 +12,14 @@
 
 use glam::DVec3;
 use parallax::accel::{build_accel, Accel, Backend, Hit, Ray};
-use parallax::camera::StereoRig;
 use parallax::integrator::gt::exact_t;
 use parallax::integrator::RenderCamera;
-use parallax::render::{render_frame, RenderSettings};
 use parallax::scene::semantic::class_id;
 use parallax::scene::{build_scene, Scene};
-use parallax::town::{frame_at, load_town_frame, rig_desc, CameraConfig, CONFIGS};
+use parallax::town::{frame_at, load_town_frame, CameraConfig, CONFIGS};
 
 mod common;
-use common::towns::{town, town_file, TOWNS};
+use common::towns::{gt_frame, town, town_file, TOWNS};
 
 /// Ray parameter along `d` from `o` (render space) of the plane of the
 /// triangle the accelerator hits, in f64 from the mesh's vertices.
@@ -69,18 +67,17 @@ fn town_ground_truth_is_exact_in_every_camera_configuration() {
         let accel = build_accel(Backend::default_backend(), &scene.accel_geometry()).unwrap();
         let ego = frame_at(&desc, seed, frame).ego;
         for config in CONFIGS {
-            let mut rd = rig_desc(config, &ego);
-            (rd.width, rd.height, rd.baselines_cm) = (160, 90, vec![54.0, 300.0]);
-            let rig = StereoRig::from_desc(&rd);
-            let settings = RenderSettings {
-                spp: 0,
-                max_depth: 1,
-                seed,
-                frame: frame as u32,
-            };
-            let out = render_frame(&scene, &accel, &rig, &settings, &|_, _| {});
-            let left = RenderCamera::new(&rig.left, scene.origin_world);
             let (w, h) = (160u32, 90u32);
+            let (rig, out) = gt_frame(
+                &scene,
+                &accel,
+                config,
+                &ego,
+                (w, h),
+                &[54.0, 300.0],
+                (seed, frame),
+            );
+            let left = RenderCamera::new(&rig.left, scene.origin_world);
             let (mut road_px, mut hits) = (0usize, 0usize);
             for j in 0..h {
                 for i in 0..w {

@@ -18,7 +18,7 @@ use parallax::town::traffic::Plan;
 use parallax::town::{frame_at, load_town_frame, parse_town_str, CameraConfig};
 
 mod common;
-use common::towns::{town, town_file};
+use common::towns::{gt_frame, town, town_file};
 
 const SEED: u64 = 5;
 
@@ -221,11 +221,9 @@ fn ego_sees_the_overpass_in_some_frames() {
 /// abutment face), the underside among them for cameras below the deck.
 #[test]
 fn ground_truth_on_the_bridge_lies_on_its_planes() {
-    use parallax::camera::StereoRig;
     use parallax::integrator::RenderCamera;
-    use parallax::render::{render_frame, RenderSettings};
     use parallax::town::overpass::{HALF_WIDTH_M, PARAPET_M};
-    use parallax::town::{rig_desc, CONFIGS};
+    use parallax::town::CONFIGS;
     let desc = town("town06");
     let l = Layout::new(&desc);
     let o = Overpass::new(&desc, &l).unwrap();
@@ -245,16 +243,15 @@ fn ground_truth_on_the_bridge_lies_on_its_planes() {
     let ego = frame_at(&desc, seed, frame).ego;
     let east = o.x_m + HALF_WIDTH_M + PARAPET_M.0;
     for config in [CONFIGS[0], CONFIGS[3], CONFIGS[4]] {
-        let mut rd = rig_desc(config, &ego);
-        (rd.width, rd.height, rd.baselines_cm) = (320, 180, vec![54.0]);
-        let rig = StereoRig::from_desc(&rd);
-        let settings = RenderSettings {
-            spp: 0,
-            max_depth: 1,
-            seed,
-            frame: frame as u32,
-        };
-        let out = render_frame(&scene, &accel, &rig, &settings, &|_, _| {});
+        let (rig, out) = gt_frame(
+            &scene,
+            &accel,
+            config,
+            &ego,
+            (320, 180),
+            &[54.0],
+            (seed, frame),
+        );
         let cam = RenderCamera::new(&rig.left, scene.origin_world);
         let (mut on_bridge, mut under) = (0, 0);
         for j in 0..180u32 {
@@ -299,7 +296,7 @@ fn ground_truth_on_the_bridge_lies_on_its_planes() {
         }
         assert!(on_bridge > 100, "{config}: only {on_bridge} bridge pixels");
         // Cameras below the deck see its underside (10 m up, they see its top).
-        if rd.position[2] < CLEARANCE_M {
+        if rig.left.center_world.z < CLEARANCE_M {
             assert!(under > 10, "{config}: only {under} underside pixels");
         }
     }

@@ -2,7 +2,11 @@
 
 use std::path::{Path, PathBuf};
 
-use parallax::town::{load_town, TownDesc};
+use parallax::accel::Accel;
+use parallax::camera::StereoRig;
+use parallax::render::{render_frame, FrameOutput, RenderSettings};
+use parallax::scene::Scene;
+use parallax::town::{load_town, rig_desc, CameraConfig, TownDesc, VehiclePose};
 
 /// Every town shipped in `scenes/`.
 pub const TOWNS: [&str; 8] = [
@@ -17,4 +21,28 @@ pub fn town_file(name: &str) -> PathBuf {
 /// The parsed town file `scenes/NAME.toml` (panics with the loader's message).
 pub fn town(name: &str) -> TownDesc {
     load_town(&town_file(name)).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The ground-truth pass alone (spp 0) of `config`'s rig on `ego`, resized
+/// to `width`×`height` with `baselines_cm`, over an already built town scene.
+pub fn gt_frame(
+    scene: &Scene,
+    accel: &impl Accel,
+    config: CameraConfig,
+    ego: &VehiclePose,
+    size: (u32, u32),
+    baselines_cm: &[f64],
+    (seed, frame): (u64, u64),
+) -> (StereoRig, FrameOutput) {
+    let mut rd = rig_desc(config, ego);
+    (rd.width, rd.height, rd.baselines_cm) = (size.0, size.1, baselines_cm.to_vec());
+    let rig = StereoRig::from_desc(&rd);
+    let settings = RenderSettings {
+        spp: 0,
+        max_depth: 1,
+        seed,
+        frame: frame as u32,
+    };
+    let out = render_frame(scene, accel, &rig, &settings, &|_, _| {});
+    (rig, out)
 }
