@@ -252,6 +252,12 @@ impl LightSet {
         self.distant.len()
     }
 
+    /// Whether distant light `k` is directional (a sun: every shadow ray
+    /// towards it from nearby points is nearly parallel).
+    pub fn distant_is_directional(&self, k: usize) -> bool {
+        matches!(self.distant[k], Entry::Sun(_))
+    }
+
     /// Number of local lights one is selected from.
     pub fn len(&self) -> usize {
         self.entries.len()
