@@ -43,6 +43,7 @@ pub enum Light {
 }
 
 pub mod bvh;
+mod entry;
 mod fog_sky;
 mod set;
 mod sky;
