@@ -513,3 +513,6 @@ impl<A: Accel> PathContext<'_, A> {
         pending.push(shadow, beta * (f * li * (w / ls.pdf)), coherent);
     }
 }
+
+#[cfg(test)]
+mod tests;
