@@ -419,16 +419,16 @@ impl<A: Accel> PathContext<'_, A> {
         if !bsdf.is_delta() {
             let lights = self.lights;
             for (k, &u_light) in u.u_distant.iter().enumerate().take(lights.distant_count()) {
-                let ls = lights.sample_distant(scene, k, si.p, u_light);
-                let coherent = lights.distant_is_directional(k);
-                let nee = (&si, &bsdf, &frame, wo_local, coherent);
+                // The radiance (sky, cloud deck) only for samples kept.
+                let ls = lights.sample_distant_dir(scene, k, si.p, u_light);
+                let nee = (&si, &bsdf, &frame, wo_local, Some(k));
                 self.direct(nee, ls, st.beta, pending, rays);
             }
             if !lights.is_empty() {
                 let (u_select, u_light) = u.u_local;
                 let ls = lights.sample(scene, si.p, u_select, u_light);
                 self.direct(
-                    (&si, &bsdf, &frame, wo_local, false),
+                    (&si, &bsdf, &frame, wo_local, None),
                     ls,
                     st.beta,
                     pending,
@@ -462,7 +462,9 @@ impl<A: Accel> PathContext<'_, A> {
     /// Next-event estimation for one light sample: MIS-weighted, its
     /// shadow ray and contribution `beta · f · li · w / pdf` left in `pending`.
     /// `vertex` is the shading point, its BSDF, frame and local `wo`, and
-    /// whether the light is directional (its shadow rays coherent).
+    /// for distant light k `Some(k)`: then `ls` carries no radiance
+    /// ([`LightSet::sample_distant_dir`]) and it is evaluated here, after the
+    /// checks that may reject the sample.
     fn direct(
         &self,
         vertex: (
@@ -470,18 +472,18 @@ impl<A: Accel> PathContext<'_, A> {
             &Bsdf,
             &Frame,
             Vec3,
-            bool,
+            Option<usize>,
         ),
         ls: Option<crate::light::LightSample>,
         beta: Vec3,
         pending: &mut PendingShadows,
         rays: &mut u64,
     ) {
-        let (si, bsdf, frame, wo_local, coherent) = vertex;
-        let Some(ls) = ls else {
+        let (si, bsdf, frame, wo_local, distant) = vertex;
+        let Some(mut ls) = ls else {
             return;
         };
-        if ls.pdf <= 0.0 || ls.li == Vec3::ZERO {
+        if ls.pdf <= 0.0 || distant.is_none() && ls.li == Vec3::ZERO {
             return;
         }
         if is_two_sided(bsdf) && ls.wi.dot(si.n_geo) <= 0.0 {
@@ -492,6 +494,13 @@ impl<A: Accel> PathContext<'_, A> {
         if f == Vec3::ZERO {
             return;
         }
+        if let Some(k) = distant {
+            ls.li = self.lights.distant_li(self.scene, k, si.p, ls.wi);
+            if ls.li == Vec3::ZERO {
+                return;
+            }
+        }
+        let coherent = distant.is_some_and(|k| self.lights.distant_is_directional(k));
         let shadow = if ls.dist.is_finite() {
             si.spawn_ray_to(si.p + ls.wi * ls.dist)
         } else {

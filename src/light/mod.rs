@@ -99,6 +99,12 @@ impl SunSampler {
         }
     }
 
+    /// Radiance of the disk.
+    #[inline]
+    pub(crate) fn le(&self) -> Vec3 {
+        self.le
+    }
+
     /// A direction uniform in the disk's cone: (wi, radiance, pdf per solid angle).
     #[inline]
     pub(crate) fn sample(&self, u: glam::Vec2) -> (Vec3, Vec3, f32) {

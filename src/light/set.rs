@@ -263,6 +263,46 @@ impl LightSet {
         }
     }
 
+    /// [`LightSet::sample_distant`] with the radiance left out (`li` is
+    /// zero): [`LightSet::distant_li`] gives it for the drawn direction, the
+    /// same bits, so a caller can skip it (sky tables, the cloud deck) for
+    /// samples it rejects first.
+    pub fn sample_distant_dir(
+        &self,
+        scene: &Scene,
+        k: usize,
+        p: Vec3,
+        u: Vec2,
+    ) -> Option<LightSample> {
+        let (wi, pdf) = match (&self.distant[k], &self.fog_sky) {
+            (Entry::Sky, Some(fs)) => fs.table_at(p).sample(u),
+            (Entry::Sky, None) => scene.sky.sample_dir(u),
+            (Entry::Sun(sun), _) => {
+                let (wi, _, pdf) = sun.sample(u);
+                (wi, pdf)
+            }
+            _ => unreachable!("distant lights are suns and the sky"),
+        };
+        (pdf > 0.0).then_some(LightSample {
+            wi,
+            li: Vec3::ZERO,
+            pdf,
+            dist: f32::INFINITY,
+            delta: false,
+        })
+    }
+
+    /// Radiance of distant light `k` arriving at `p` from `wi` (drawn by
+    /// [`LightSet::sample_distant_dir`]): the sky's, or the sun's dimmed by
+    /// the cloud deck at `p`.
+    pub fn distant_li(&self, scene: &Scene, k: usize, p: Vec3, wi: Vec3) -> Vec3 {
+        match &self.distant[k] {
+            Entry::Sky => scene.sky.le(wi),
+            Entry::Sun(sun) => sun.le() * cloud_transmittance(scene, p, wi),
+            _ => unreachable!("distant lights are suns and the sky"),
+        }
+    }
+
     /// Pdf per solid angle (with pmf) that NEE from `p` draws sky direction `dir`.
     pub fn sky_pdf(&self, scene: &Scene, p: Vec3, dir: Vec3) -> f32 {
         match &self.fog_sky {

@@ -144,12 +144,17 @@ impl Sky {
     }
     /// Samples a world direction; returns (dir, radiance, pdf per solid angle).
     pub fn sample(&self, u: Vec2) -> (Vec3, Vec3, f32) {
+        let (dir, pdf) = self.sample_dir(u);
+        (dir, self.le(dir), pdf)
+    }
+    /// [`Sky::sample`] without the radiance: (dir, pdf per solid angle), for
+    /// callers that evaluate `le` only for directions they keep.
+    pub fn sample_dir(&self, u: Vec2) -> (Vec3, f32) {
         if let Some(t) = self.table() {
-            let (dir, pdf) = t.sample(u);
-            return (dir, self.le(dir), pdf);
+            return t.sample(u);
         }
         let dir = sampling::sample_dir(self.cosine_lobe_prob(), u);
-        (dir, self.le(dir), self.pdf(dir))
+        (dir, self.pdf(dir))
     }
     /// Pdf per solid angle of `sample` producing `dir`.
     pub fn pdf(&self, dir: Vec3) -> f32 {
