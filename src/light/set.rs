@@ -507,3 +507,6 @@ fn scene_radius(scene: &Scene) -> f32 {
         .fold(0.0f32, f32::max);
     r.clamp(1.0, 100.0)
 }
+
+#[cfg(test)]
+mod tests;
