@@ -317,4 +317,10 @@ impl Accel for EmbreeAccel {
     fn intersect_batch_shading(&self, rays: &[Ray], hits: &mut [Option<Hit>]) {
         intersect_packets(self.shading_scene(), rays, hits, true);
     }
+
+    fn occluded_batch_shading(&self, rays: &[Ray], out: &mut [bool]) {
+        // The path pass batches only shadow rays towards one directional
+        // light from neighbouring points: coherent.
+        occluded_packets(self.shading_scene(), rays, out, true);
+    }
 }

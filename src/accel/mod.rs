@@ -113,6 +113,12 @@ pub trait Accel: Send + Sync {
     fn intersect_batch_shading(&self, rays: &[Ray], hits: &mut [Option<Hit>]) {
         self.intersect_batch(rays, hits)
     }
+    /// [`Accel::occluded_batch`] for shading rays (see [`Accel::intersect_shading`]).
+    fn occluded_batch_shading(&self, rays: &[Ray], out: &mut [bool]) {
+        for (r, o) in rays.iter().zip(out.iter_mut()) {
+            *o = self.occluded_shading(r);
+        }
+    }
 }
 
 /// The view of an accelerator the path pass traces with: every query goes to
@@ -134,6 +140,10 @@ impl<A: Accel> Accel for ShadingAccel<'_, A> {
 
     fn intersect_batch(&self, rays: &[Ray], hits: &mut [Option<Hit>]) {
         self.0.intersect_batch_shading(rays, hits)
+    }
+
+    fn occluded_batch(&self, rays: &[Ray], out: &mut [bool]) {
+        self.0.occluded_batch_shading(rays, out)
     }
 
     fn backend_name(&self) -> &'static str {
@@ -339,6 +349,10 @@ impl Accel for AnyAccel {
 
     fn intersect_batch_shading(&self, rays: &[Ray], hits: &mut [Option<Hit>]) {
         dispatch!(self, a => a.intersect_batch_shading(rays, hits))
+    }
+
+    fn occluded_batch_shading(&self, rays: &[Ray], out: &mut [bool]) {
+        dispatch!(self, a => a.occluded_batch_shading(rays, out))
     }
 }
 

@@ -41,10 +41,19 @@ const RR_START: u32 = 3;
 const MAX_SHADOW: usize = crate::light::MAX_DISTANT + 1;
 
 /// A vertex's NEE shadow rays, each with the contribution (throughput
-/// included) it adds to the path's radiance when unoccluded.
+/// included) it adds to the path's radiance when unoccluded. Rays towards a
+/// directional light are marked coherent: a chunk of paths may trace those
+/// together in packets and record the answers (`set_occluded`) before the
+/// set is resolved.
 pub(super) struct PendingShadows {
     len: usize,
     items: [(Ray, Vec3); MAX_SHADOW],
+    /// Bit k: item k goes towards a directional light.
+    coherent: u8,
+    /// Bit k: item k's occlusion is already known ...
+    known: u8,
+    /// ... and bit k says whether it is occluded.
+    blocked: u8,
 }
 
 impl PendingShadows {
@@ -53,23 +62,79 @@ impl PendingShadows {
         PendingShadows {
             len: 0,
             items: [(Ray::new(Vec3::ZERO, Vec3::Z), Vec3::ZERO); MAX_SHADOW],
+            coherent: 0,
+            known: 0,
+            blocked: 0,
         }
     }
 
-    fn push(&mut self, shadow: Ray, contribution: Vec3) {
+    fn push(&mut self, shadow: Ray, contribution: Vec3, coherent: bool) {
         self.items[self.len] = (shadow, contribution);
+        self.coherent |= (coherent as u8) << self.len;
         self.len += 1;
     }
 
-    /// Tests every pending shadow ray in order and adds the unoccluded
-    /// contributions to `l`; leaves the set empty.
+    /// The coherent rays not yet answered, with their item index.
+    fn coherent_rays(&self) -> impl Iterator<Item = (usize, &Ray)> {
+        let todo = self.coherent & !self.known;
+        self.items[..self.len]
+            .iter()
+            .enumerate()
+            .filter(move |(k, _)| todo >> k & 1 != 0)
+            .map(|(k, (ray, _))| (k, ray))
+    }
+
+    /// Records whether item `k`'s shadow ray is occluded.
+    fn set_occluded(&mut self, k: usize, occluded: bool) {
+        self.known |= 1 << k;
+        self.blocked = self.blocked & !(1 << k) | (occluded as u8) << k;
+    }
+
+    /// Tests every pending shadow ray in order (unless already answered) and
+    /// adds the unoccluded contributions to `l`; leaves the set empty.
     pub fn resolve(&mut self, accel: &impl Accel, l: &mut Vec3) {
-        for (shadow, contribution) in &self.items[..self.len] {
-            if !accel.occluded(shadow) {
+        for (k, (shadow, contribution)) in self.items[..self.len].iter().enumerate() {
+            let occluded = if self.known >> k & 1 != 0 {
+                self.blocked >> k & 1 != 0
+            } else {
+                accel.occluded(shadow)
+            };
+            if !occluded {
                 *l += *contribution;
             }
         }
         self.len = 0;
+        self.coherent = 0;
+        self.known = 0;
+        self.blocked = 0;
+    }
+}
+
+/// A camera path stopped after its first surface vertex with that vertex's
+/// shadow rays untraced ([`PathContext::start_path`]), so that a chunk of
+/// neighbouring paths can trace their coherent shadow rays (the sun's: one
+/// direction, nearby origins) as packets before each path goes on
+/// ([`PathContext::finish_path`]).
+pub struct PathStart {
+    st: PathState,
+    pending: PendingShadows,
+    /// The continuation ray; None once the path has ended.
+    next: Option<Ray>,
+}
+
+impl PathStart {
+    /// Appends the path's coherent shadow rays not yet answered to `rays`,
+    /// with (`path`, item) to `slots`.
+    pub fn collect_coherent(&self, path: usize, rays: &mut Vec<Ray>, slots: &mut Vec<(u32, u8)>) {
+        for (k, ray) in self.pending.coherent_rays() {
+            rays.push(*ray);
+            slots.push((path as u32, k as u8));
+        }
+    }
+
+    /// Records the answer for the path's shadow ray `item` (from `collect_coherent`).
+    pub fn set_occluded(&mut self, item: u8, occluded: bool) {
+        self.pending.set_occluded(item as usize, occluded);
     }
 }
 
@@ -197,23 +262,71 @@ impl<A: Accel> PathContext<'_, A> {
     /// (e.g. from a packet of camera rays); `first_hit` counts as a traced ray.
     pub fn li_from_hit(
         &self,
-        mut ray: Ray,
+        ray: Ray,
         first_hit: Option<Hit>,
         stream: &mut SampleStream,
         rays: &mut u64,
     ) -> Vec3 {
-        if self.scene.medium.is_some() {
-            return self.li_volume(ray, first_hit, stream, rays);
-        }
-        let mut known_hit = Some(first_hit);
+        let start = self.start_path(ray, first_hit, stream, rays);
+        self.finish_path(start, stream, rays)
+    }
+
+    /// The first part of [`PathContext::li_from_hit`]: the first surface
+    /// vertex, its shadow rays left pending. Scenes with a medium run the
+    /// whole volumetric path here.
+    pub fn start_path(
+        &self,
+        ray: Ray,
+        first_hit: Option<Hit>,
+        stream: &mut SampleStream,
+        rays: &mut u64,
+    ) -> PathStart {
         let mut st = PathState::new(ray.o);
         let mut pending = PendingShadows::new();
+        if self.scene.medium.is_some() {
+            st.l = self.li_volume(ray, first_hit, stream, rays);
+            return PathStart {
+                st,
+                pending,
+                next: None,
+            };
+        }
+        *rays += 1;
+        let Some(hit) = first_hit else {
+            st.l += st.beta
+                * self
+                    .lights
+                    .escaped_at(self.scene, ray.o, ray.d, st.prev_pdf, st.prev_delta);
+            return PathStart {
+                st,
+                pending,
+                next: None,
+            };
+        };
+        self.surfaces.prefetch(self.scene, &hit);
+        let u = if st.bounces < self.max_depth {
+            BounceSamples::draw(stream, st.bounces, self.lights)
+        } else {
+            BounceSamples::default()
+        };
+        let next = self.surface_vertex_deferred(&ray, &hit, &mut st, &u, rays, &mut pending);
+        PathStart { st, pending, next }
+    }
+
+    /// The rest of a path begun by [`PathContext::start_path`]: its radiance.
+    pub fn finish_path(&self, start: PathStart, stream: &mut SampleStream, rays: &mut u64) -> Vec3 {
+        let PathStart {
+            mut st,
+            mut pending,
+            next,
+        } = start;
+        let Some(mut ray) = next else {
+            pending.resolve(self.accel, &mut st.l);
+            return st.l;
+        };
         loop {
             *rays += 1;
-            let hit = match known_hit.take() {
-                Some(hit) => hit,
-                None => self.accel.intersect(&ray),
-            };
+            let hit = self.accel.intersect(&ray);
             let mut u = BounceSamples::default();
             if let Some(hit) = &hit {
                 self.surfaces.prefetch(self.scene, hit);
@@ -306,13 +419,21 @@ impl<A: Accel> PathContext<'_, A> {
         if !bsdf.is_delta() {
             let lights = self.lights;
             for (k, &u_light) in u.u_distant.iter().enumerate().take(lights.distant_count()) {
-                let ls = lights.sample_distant(scene, k, si.p, u_light);
-                self.direct(&si, &bsdf, &frame, wo_local, ls, st.beta, pending, rays);
+                // The radiance (sky, cloud deck) only for samples kept.
+                let ls = lights.sample_distant_dir(scene, k, si.p, u_light);
+                let nee = (&si, &bsdf, &frame, wo_local, Some(k));
+                self.direct(nee, ls, st.beta, pending, rays);
             }
             if !lights.is_empty() {
                 let (u_select, u_light) = u.u_local;
                 let ls = lights.sample(scene, si.p, u_select, u_light);
-                self.direct(&si, &bsdf, &frame, wo_local, ls, st.beta, pending, rays);
+                self.direct(
+                    (&si, &bsdf, &frame, wo_local, None),
+                    ls,
+                    st.beta,
+                    pending,
+                    rays,
+                );
             }
         }
         let bs = bsdf.sample(wo_local, u.u_lobe, u.u_bsdf)?;
@@ -340,22 +461,29 @@ impl<A: Accel> PathContext<'_, A> {
 
     /// Next-event estimation for one light sample: MIS-weighted, its
     /// shadow ray and contribution `beta · f · li · w / pdf` left in `pending`.
-    #[allow(clippy::too_many_arguments)]
+    /// `vertex` is the shading point, its BSDF, frame and local `wo`, and
+    /// for distant light k `Some(k)`: then `ls` carries no radiance
+    /// ([`LightSet::sample_distant_dir`]) and it is evaluated here, after the
+    /// checks that may reject the sample.
     fn direct(
         &self,
-        si: &crate::geometry::SurfaceInteraction,
-        bsdf: &Bsdf,
-        frame: &Frame,
-        wo_local: Vec3,
+        vertex: (
+            &crate::geometry::SurfaceInteraction,
+            &Bsdf,
+            &Frame,
+            Vec3,
+            Option<usize>,
+        ),
         ls: Option<crate::light::LightSample>,
         beta: Vec3,
         pending: &mut PendingShadows,
         rays: &mut u64,
     ) {
-        let Some(ls) = ls else {
+        let (si, bsdf, frame, wo_local, distant) = vertex;
+        let Some(mut ls) = ls else {
             return;
         };
-        if ls.pdf <= 0.0 || ls.li == Vec3::ZERO {
+        if ls.pdf <= 0.0 || distant.is_none() && ls.li == Vec3::ZERO {
             return;
         }
         if is_two_sided(bsdf) && ls.wi.dot(si.n_geo) <= 0.0 {
@@ -366,6 +494,13 @@ impl<A: Accel> PathContext<'_, A> {
         if f == Vec3::ZERO {
             return;
         }
+        if let Some(k) = distant {
+            ls.li = self.lights.distant_li(self.scene, k, si.p, ls.wi);
+            if ls.li == Vec3::ZERO {
+                return;
+            }
+        }
+        let coherent = distant.is_some_and(|k| self.lights.distant_is_directional(k));
         let shadow = if ls.dist.is_finite() {
             si.spawn_ray_to(si.p + ls.wi * ls.dist)
         } else {
@@ -384,6 +519,9 @@ impl<A: Accel> PathContext<'_, A> {
         };
         // Delta local lights seen from a medium-free surface need no MIS with
         // equiangular sampling (that only covers medium vertices).
-        pending.push(shadow, beta * (f * li * (w / ls.pdf)));
+        pending.push(shadow, beta * (f * li * (w / ls.pdf)), coherent);
     }
 }
+
+#[cfg(test)]
+mod tests;

@@ -43,6 +43,7 @@ pub enum Light {
 }
 
 pub mod bvh;
+mod entry;
 mod fog_sky;
 mod set;
 mod sky;
@@ -96,6 +97,12 @@ impl SunSampler {
             le: sun_radiance(irradiance, angular_radius_rad),
             pdf: uniform_cone_pdf(cos_max),
         }
+    }
+
+    /// Radiance of the disk.
+    #[inline]
+    pub(crate) fn le(&self) -> Vec3 {
+        self.le
     }
 
     /// A direction uniform in the disk's cone: (wi, radiance, pdf per solid angle).

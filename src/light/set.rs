@@ -11,28 +11,14 @@
 //! directly in MIS weights.
 
 use glam::{Vec2, Vec3};
-use shaders_cpu::sampling::{
-    luminance, power_heuristic, sample_uniform_triangle, uniform_cone_pdf,
-};
+use shaders_cpu::sampling::{luminance, power_heuristic, uniform_cone_pdf};
 
 use super::bvh::{LightBounds, LightBvh};
+pub use super::entry::LightSample;
+use super::entry::{cloud_transmittance, sample_entry, Entry};
 use super::fog_sky::FogSky;
-use super::{power, sample_explicit, sun_radiance, Light, SunSampler};
+use super::{power, sun_radiance, Light, SunSampler};
 use crate::scene::Scene;
-
-/// One entry the sampler can pick.
-#[derive(Clone, Copy, Debug)]
-enum Entry {
-    Explicit(Light),
-    /// A sun of the distant group, prepared for sampling.
-    Sun(SunSampler),
-    Sky,
-    Triangle {
-        geom: u32,
-        prim: u32,
-        area: f32,
-    },
-}
 
 /// How one local light is chosen per vertex.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -44,21 +30,6 @@ pub enum LightSelection {
     Power,
     /// Independent of the point: uniform over local lights.
     Uniform,
-}
-
-/// A light sample as seen from a shading point.
-#[derive(Clone, Copy, Debug)]
-pub struct LightSample {
-    /// Unit direction towards the light.
-    pub wi: Vec3,
-    /// Incident radiance (for delta lights: intensity / distance²).
-    pub li: Vec3,
-    /// Pdf per solid angle including the selection pmf (delta lights: the pmf).
-    pub pdf: f32,
-    /// Distance to the light sample (infinite for the sun and sky).
-    pub dist: f32,
-    /// Whether the light is a delta distribution (no MIS possible).
-    pub delta: bool,
 }
 
 /// Most distant lights sampled at every vertex; further suns join the
@@ -252,6 +223,12 @@ impl LightSet {
         self.distant.len()
     }
 
+    /// Whether distant light `k` is directional (a sun: every shadow ray
+    /// towards it from nearby points is nearly parallel).
+    pub fn distant_is_directional(&self, k: usize) -> bool {
+        matches!(self.distant[k], Entry::Sun(_))
+    }
+
     /// Number of local lights one is selected from.
     pub fn len(&self) -> usize {
         self.entries.len()
@@ -283,6 +260,46 @@ impl LightSet {
                 })
             }
             (entry, _) => sample_entry(scene, entry, 1.0, p, u),
+        }
+    }
+
+    /// [`LightSet::sample_distant`] with the radiance left out (`li` is
+    /// zero): [`LightSet::distant_li`] gives it for the drawn direction, the
+    /// same bits, so a caller can skip it (sky tables, the cloud deck) for
+    /// samples it rejects first.
+    pub fn sample_distant_dir(
+        &self,
+        scene: &Scene,
+        k: usize,
+        p: Vec3,
+        u: Vec2,
+    ) -> Option<LightSample> {
+        let (wi, pdf) = match (&self.distant[k], &self.fog_sky) {
+            (Entry::Sky, Some(fs)) => fs.table_at(p).sample(u),
+            (Entry::Sky, None) => scene.sky.sample_dir(u),
+            (Entry::Sun(sun), _) => {
+                let (wi, _, pdf) = sun.sample(u);
+                (wi, pdf)
+            }
+            _ => unreachable!("distant lights are suns and the sky"),
+        };
+        (pdf > 0.0).then_some(LightSample {
+            wi,
+            li: Vec3::ZERO,
+            pdf,
+            dist: f32::INFINITY,
+            delta: false,
+        })
+    }
+
+    /// Radiance of distant light `k` arriving at `p` from `wi` (drawn by
+    /// [`LightSet::sample_distant_dir`]): the sky's, or the sun's dimmed by
+    /// the cloud deck at `p`.
+    pub fn distant_li(&self, scene: &Scene, k: usize, p: Vec3, wi: Vec3) -> Vec3 {
+        match &self.distant[k] {
+            Entry::Sky => scene.sky.le(wi),
+            Entry::Sun(sun) => sun.le() * cloud_transmittance(scene, p, wi),
+            _ => unreachable!("distant lights are suns and the sky"),
         }
     }
 
@@ -419,71 +436,6 @@ impl LightSet {
     }
 }
 
-/// Samples one entry with selection probability `pmf`.
-fn sample_entry(scene: &Scene, entry: &Entry, pmf: f32, p: Vec3, u: Vec2) -> Option<LightSample> {
-    match *entry {
-        Entry::Explicit(light) => {
-            let (wi, mut li, pdf, dist, delta) = sample_explicit(&light, p, u)?;
-            if matches!(light, Light::Sun { .. }) {
-                li *= cloud_transmittance(scene, p, wi);
-            }
-            Some(LightSample {
-                wi,
-                li,
-                pdf: pdf * pmf,
-                dist,
-                delta,
-            })
-        }
-        Entry::Sun(ref sun) => {
-            let (wi, li, pdf) = sun.sample(u);
-            Some(LightSample {
-                wi,
-                li: li * cloud_transmittance(scene, p, wi),
-                pdf: pdf * pmf,
-                dist: f32::INFINITY,
-                delta: false,
-            })
-        }
-        Entry::Sky => {
-            let (wi, li, pdf) = scene.sky.sample(u);
-            (pdf > 0.0).then_some(LightSample {
-                wi,
-                li,
-                pdf: pdf * pmf,
-                dist: f32::INFINITY,
-                delta: false,
-            })
-        }
-        Entry::Triangle { geom, prim, area } => {
-            let m = &scene.meshes[geom as usize];
-            let [a, b, c] = m.triangles[prim as usize].map(|i| m.p_f32[i as usize]);
-            let bary = sample_uniform_triangle(u);
-            let q = a * bary[0] + b * bary[1] + c * bary[2];
-            let d = q - p;
-            let dist2 = d.length_squared();
-            if dist2 == 0.0 || area == 0.0 {
-                return None;
-            }
-            let n = (b - a).cross(c - a).normalize();
-            let dist = dist2.sqrt();
-            let wi = d / dist;
-            let cos_l = -n.dot(wi);
-            let mat = &scene.materials[m.tri_material[prim as usize] as usize];
-            if cos_l <= 0.0 && !mat.two_sided_emission || cos_l == 0.0 {
-                return None;
-            }
-            Some(LightSample {
-                wi,
-                li: mat.le,
-                pdf: pmf * dist2 / (cos_l.abs() * area),
-                dist,
-                delta: false,
-            })
-        }
-    }
-}
-
 /// BVH bounds of an explicit local light; suns get none (phi 0: not in the tree).
 fn explicit_bounds(light: &Light) -> LightBounds {
     let point =
@@ -517,14 +469,6 @@ fn explicit_bounds(light: &Light) -> LightBounds {
             point(p, dir, intensity, theta_o.cos(), theta_e.cos())
         }
     }
-}
-
-/// Sun transmittance through the sky's cloud deck from render-space `p`
-/// (a function of the world position only, so every view agrees).
-fn cloud_transmittance(scene: &Scene, p: Vec3, wi: Vec3) -> f32 {
-    scene
-        .sky
-        .cloud_transmittance(scene.origin_world + p.as_dvec3(), wi)
 }
 
 /// Selection probabilities: half by power, half uniform. Power alone starves
@@ -563,3 +507,6 @@ fn scene_radius(scene: &Scene) -> f32 {
         .fold(0.0f32, f32::max);
     r.clamp(1.0, 100.0)
 }
+
+#[cfg(test)]
+mod tests;

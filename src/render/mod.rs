@@ -16,7 +16,7 @@ use crate::camera::StereoRig;
 use crate::film::Film;
 use crate::geometry::SurfaceTable;
 use crate::integrator::gt::{occlusion_mask, view_gt, ViewGt};
-use crate::integrator::path::PathContext;
+use crate::integrator::path::{PathContext, PathStart};
 use crate::integrator::rain;
 use crate::integrator::RenderCamera;
 use crate::light::LightSet;
@@ -187,19 +187,31 @@ pub fn render_frame(
 /// samples each, the chunk fills `PACKET_PIXELS · spp / 8` 8-wide packets).
 const PACKET_PIXELS: u32 = 8;
 
+/// Side of the square pixel tiles scheduled as units of work (a multiple of
+/// `PACKET_PIXELS`, so chunks never straddle tiles): neighbouring paths then
+/// run back to back on one thread and their secondary rays find the same
+/// BVH nodes in cache, which rows of the full width would evict.
+const TILE_PX: u32 = 16;
+
 /// Per-thread buffers for one chunk of camera rays.
 #[derive(Default)]
 struct ChunkScratch {
     rays: Vec<crate::accel::Ray>,
     hits: Vec<Option<crate::accel::Hit>>,
     streams: Vec<SampleStream>,
+    starts: Vec<PathStart>,
+    shadow_rays: Vec<crate::accel::Ray>,
+    shadow_slots: Vec<(u32, u8)>,
+    occluded: Vec<bool>,
 }
 
 /// Path-traces one view; pixels are independent, so any thread count gives the same film.
 ///
-/// The camera rays of a few neighbouring pixels go through the accelerator's
-/// batch query (Embree: coherent 8-wide packets); every later bounce is traced
-/// ray by ray. A pixel's samples are summed in sample order either way.
+/// Work is split into `TILE_PX`² tiles, assembled in raster order after.
+/// The camera rays of a few neighbouring pixels of one tile row go through
+/// the accelerator's batch query (Embree: coherent 8-wide packets); every
+/// later bounce is traced ray by ray. A pixel's samples are summed in sample
+/// order either way.
 fn render_view<A: Accel>(
     ctx: &PathContext<'_, A>,
     cam: &RenderCamera,
@@ -207,58 +219,45 @@ fn render_view<A: Accel>(
     spp: u32,
 ) -> (Film, u64) {
     let (w, h) = (cam.intrinsics.width, cam.intrinsics.height);
-    let o = cam.center_f32();
-    let rows: Vec<(Vec<Vec3>, u64)> = (0..h)
+    let tiles_x = w.div_ceil(TILE_PX);
+    let n_tiles = tiles_x * h.div_ceil(TILE_PX);
+    let tiles: Vec<(Vec<Vec3>, u64)> = (0..n_tiles)
         .into_par_iter()
-        .with_max_len(1) // rows differ in cost (sky vs street): balance per row
-        .map_init(ChunkScratch::default, |scratch, j| {
+        .with_max_len(1) // tiles differ in cost (sky vs street): balance per tile
+        .map_init(ChunkScratch::default, |scratch, t| {
+            let (x0, y0) = ((t % tiles_x) * TILE_PX, (t / tiles_x) * TILE_PX);
+            let (x1, y1) = ((x0 + TILE_PX).min(w), (y0 + TILE_PX).min(h));
             let mut rays = 0u64;
-            let mut row = Vec::with_capacity(w as usize);
-            for i0 in (0..w).step_by(PACKET_PIXELS as usize) {
-                let i1 = (i0 + PACKET_PIXELS).min(w);
-                scratch.rays.clear();
-                scratch.streams.clear();
-                for i in i0..i1 {
-                    for s in 0..spp {
-                        let mut stream = SampleStream::new(key, i, j, s);
-                        let jitter = stream.next_2d();
-                        let d = cam
-                            .dir(i as f64 + jitter.x as f64, j as f64 + jitter.y as f64)
-                            .as_vec3()
-                            .normalize();
-                        scratch.rays.push(crate::accel::Ray::new(o, d));
-                        scratch.streams.push(stream);
-                    }
-                }
-                scratch.hits.clear();
-                scratch.hits.resize(scratch.rays.len(), None);
-                ctx.accel.intersect_batch(&scratch.rays, &mut scratch.hits);
-                // Start every first hit's record load now, so the misses overlap.
-                for hit in scratch.hits.iter().flatten() {
-                    ctx.surfaces.prefetch(ctx.scene, hit);
-                }
-                let per_pixel = scratch
-                    .rays
-                    .chunks(spp as usize)
-                    .zip(scratch.hits.chunks(spp as usize))
-                    .zip(scratch.streams.chunks_mut(spp as usize));
-                for ((ray_px, hit_px), stream_px) in per_pixel {
-                    let mut sum = Vec3::ZERO;
-                    for ((ray, hit), stream) in ray_px.iter().zip(hit_px).zip(stream_px) {
-                        let li = ctx.li_from_hit(*ray, *hit, stream, &mut rays);
-                        // A non-finite sample would poison the pixel: drop it.
-                        if li.is_finite() {
-                            sum += li;
-                        }
-                    }
-                    row.push(sum / spp as f32);
+            let mut tile = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
+            for j in y0..y1 {
+                for i0 in (x0..x1).step_by(PACKET_PIXELS as usize) {
+                    let i1 = (i0 + PACKET_PIXELS).min(x1);
+                    render_chunk(
+                        ctx,
+                        cam,
+                        key,
+                        spp,
+                        (i0..i1, j),
+                        scratch,
+                        &mut tile,
+                        &mut rays,
+                    );
                 }
             }
-            (row, rays)
+            (tile, rays)
         })
         .collect();
-    let rays = rows.iter().map(|r| r.1).sum();
-    let rgb = rows.into_iter().flat_map(|r| r.0).collect();
+    let rays = tiles.iter().map(|t| t.1).sum();
+    let mut rgb = vec![Vec3::ZERO; w as usize * h as usize];
+    for (t, (tile, _)) in tiles.iter().enumerate() {
+        let t = t as u32;
+        let (x0, y0) = ((t % tiles_x) * TILE_PX, (t / tiles_x) * TILE_PX);
+        let tw = ((x0 + TILE_PX).min(w) - x0) as usize;
+        for (row, px) in tile.chunks(tw).enumerate() {
+            let start = (y0 as usize + row) * w as usize + x0 as usize;
+            rgb[start..start + tw].copy_from_slice(px);
+        }
+    }
     (
         Film {
             width: w as usize,
@@ -267,4 +266,79 @@ fn render_view<A: Accel>(
         },
         rays,
     )
+}
+
+/// Path-traces pixels `i` of row `j` (spp samples each, camera rays as one
+/// batch) and appends their mean radiance to `out`; adds traced rays to `rays`.
+#[allow(clippy::too_many_arguments)]
+fn render_chunk<A: Accel>(
+    ctx: &PathContext<'_, A>,
+    cam: &RenderCamera,
+    key: StreamKey,
+    spp: u32,
+    (i, j): (std::ops::Range<u32>, u32),
+    scratch: &mut ChunkScratch,
+    out: &mut Vec<Vec3>,
+    rays: &mut u64,
+) {
+    let o = cam.center_f32();
+    scratch.rays.clear();
+    scratch.streams.clear();
+    for i in i {
+        for s in 0..spp {
+            let mut stream = SampleStream::new(key, i, j, s);
+            let jitter = stream.next_2d();
+            let d = cam
+                .dir(i as f64 + jitter.x as f64, j as f64 + jitter.y as f64)
+                .as_vec3()
+                .normalize();
+            scratch.rays.push(crate::accel::Ray::new(o, d));
+            scratch.streams.push(stream);
+        }
+    }
+    scratch.hits.clear();
+    scratch.hits.resize(scratch.rays.len(), None);
+    ctx.accel.intersect_batch(&scratch.rays, &mut scratch.hits);
+    // Start every first hit's record load now, so the misses overlap.
+    for hit in scratch.hits.iter().flatten() {
+        ctx.surfaces.prefetch(ctx.scene, hit);
+    }
+    // Every path's first vertex; then the chunk's coherent shadow rays (the
+    // sun's, from neighbouring points) in packets; then each path goes on.
+    scratch.starts.clear();
+    for ((ray, hit), stream) in scratch
+        .rays
+        .iter()
+        .zip(&scratch.hits)
+        .zip(&mut scratch.streams)
+    {
+        scratch
+            .starts
+            .push(ctx.start_path(*ray, *hit, stream, rays));
+    }
+    scratch.shadow_rays.clear();
+    scratch.shadow_slots.clear();
+    for (p, start) in scratch.starts.iter().enumerate() {
+        start.collect_coherent(p, &mut scratch.shadow_rays, &mut scratch.shadow_slots);
+    }
+    scratch.occluded.clear();
+    scratch.occluded.resize(scratch.shadow_rays.len(), false);
+    ctx.accel
+        .occluded_batch(&scratch.shadow_rays, &mut scratch.occluded);
+    for (&(p, item), &occluded) in scratch.shadow_slots.iter().zip(&scratch.occluded) {
+        scratch.starts[p as usize].set_occluded(item, occluded);
+    }
+    let mut starts = scratch.starts.drain(..);
+    for stream_px in scratch.streams.chunks_mut(spp as usize) {
+        let mut sum = Vec3::ZERO;
+        // The pixel's streams lead the zip: it must not pull a start too many.
+        for (stream, start) in stream_px.iter_mut().zip(starts.by_ref()) {
+            let li = ctx.finish_path(start, stream, rays);
+            // A non-finite sample would poison the pixel: drop it.
+            if li.is_finite() {
+                sum += li;
+            }
+        }
+        out.push(sum / spp as f32);
+    }
 }

@@ -75,6 +75,29 @@ impl PartialEq for Sky {
     }
 }
 
+/// asin(z)·2/π for z ∈ [0, 1] (larger z clamps to 1): the elevation as a
+/// fraction of the right angle, without libm's `asinf`. Abramowitz & Stegun
+/// 4.4.46, asin z = π/2 − √(1 − z)·P₇(z) with |error| ≤ 2·10⁻⁸, so the
+/// result is within a few f32 ulps of the exact value.
+#[inline]
+fn elevation_fraction(z: f32) -> f32 {
+    // A&S's fitted coefficients; the first is 1.5707963050, not π/2.
+    #[allow(clippy::approx_constant)]
+    const A: [f32; 8] = [
+        1.570_796_3,
+        -0.214_598_8,
+        0.088_978_99,
+        -0.050_174_3,
+        0.030_891_88,
+        -0.017_088_126,
+        0.006_670_09,
+        -0.001_262_491_1,
+    ];
+    let z = z.min(1.0);
+    let p = A.iter().rev().fold(0.0, |acc, &a| acc * z + a);
+    1.0 - (1.0 - z).sqrt() * p * FRAC_2_PI
+}
+
 impl Sky {
     /// An overcast sky with its sampling distribution.
     pub fn overcast(sky: OvercastSky) -> Sky {
@@ -114,20 +137,24 @@ impl Sky {
                 if dir.z < 0.0 {
                     ground
                 } else {
-                    let t = dir.z.min(1.0).asin() * FRAC_2_PI;
-                    horizon.lerp(zenith, t)
+                    horizon.lerp(zenith, elevation_fraction(dir.z))
                 }
             }
         }
     }
     /// Samples a world direction; returns (dir, radiance, pdf per solid angle).
     pub fn sample(&self, u: Vec2) -> (Vec3, Vec3, f32) {
+        let (dir, pdf) = self.sample_dir(u);
+        (dir, self.le(dir), pdf)
+    }
+    /// [`Sky::sample`] without the radiance: (dir, pdf per solid angle), for
+    /// callers that evaluate `le` only for directions they keep.
+    pub fn sample_dir(&self, u: Vec2) -> (Vec3, f32) {
         if let Some(t) = self.table() {
-            let (dir, pdf) = t.sample(u);
-            return (dir, self.le(dir), pdf);
+            return t.sample(u);
         }
         let dir = sampling::sample_dir(self.cosine_lobe_prob(), u);
-        (dir, self.le(dir), self.pdf(dir))
+        (dir, self.pdf(dir))
     }
     /// Pdf per solid angle of `sample` producing `dir`.
     pub fn pdf(&self, dir: Vec3) -> f32 {
@@ -207,6 +234,20 @@ mod tests {
         let d = Vec3::new(0.866_025_4, 0.0, 0.5);
         let expect = Vec3::new(0.8, 0.9, 1.0).lerp(Vec3::new(0.2, 0.4, 1.0), 1.0 / 3.0);
         assert!((s.le(d) - expect).length() < 1e-5);
+    }
+
+    #[test]
+    fn elevation_fraction_matches_asin_to_f32_precision() {
+        let mut worst = 0.0f64;
+        for i in 0..=100_000 {
+            let z = i as f32 / 100_000.0;
+            let exact = (z as f64).asin() * std::f64::consts::FRAC_2_PI;
+            worst = worst.max((elevation_fraction(z) as f64 - exact).abs());
+        }
+        assert!(worst < 3e-7, "worst error {worst:e}");
+        assert!(elevation_fraction(0.0).abs() < 1e-7);
+        assert!((elevation_fraction(1.0) - 1.0).abs() < 1e-7);
+        assert!((elevation_fraction(1.5) - 1.0).abs() < 1e-7);
     }
 
     #[test]
