@@ -186,9 +186,25 @@ impl PathState {
     }
 }
 
+/// The radiance of one camera ray, split by the first event on it: `l_fog`
+/// is the part whose first event is a medium scatter before the first
+/// surface or the sky (smooth over the image, filtered by
+/// `film::filter_fog`); `l - l_fog` is what the surface or sky sends.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LiSample {
+    /// Total radiance (W·sr⁻¹·m⁻², linear RGB).
+    pub l: Vec3,
+    /// Its first-medium-scatter part (zero without a scattering medium).
+    pub l_fog: Vec3,
+    /// Opacity 1 − Tr of the camera ray's first segment, in [0, 1] (zero
+    /// without a scattering medium): `l_fog / opacity` is the mean radiance
+    /// scattered toward the camera along that segment.
+    pub opacity: f32,
+}
+
 impl<A: Accel> PathContext<'_, A> {
     /// Radiance arriving along `ray` (unit direction); adds traced rays to `rays`.
-    pub fn li(&self, ray: Ray, stream: &mut SampleStream, rays: &mut u64) -> Vec3 {
+    pub fn li(&self, ray: Ray, stream: &mut SampleStream, rays: &mut u64) -> LiSample {
         let hit = self.accel.intersect(&ray);
         self.li_from_hit(ray, hit, stream, rays)
     }
@@ -201,7 +217,7 @@ impl<A: Accel> PathContext<'_, A> {
         first_hit: Option<Hit>,
         stream: &mut SampleStream,
         rays: &mut u64,
-    ) -> Vec3 {
+    ) -> LiSample {
         if self.scene.medium.is_some() {
             return self.li_volume(ray, first_hit, stream, rays);
         }
@@ -239,7 +255,10 @@ impl<A: Accel> PathContext<'_, A> {
                 }
             }
         }
-        st.l
+        LiSample {
+            l: st.l,
+            ..LiSample::default()
+        }
     }
 
     /// One surface vertex: emission (MIS-weighted), NEE, BSDF sampling and

@@ -30,7 +30,7 @@ use glam::{Vec2, Vec3};
 use shaders_cpu::medium::{Equiangular, Medium};
 use shaders_cpu::sampling::power_heuristic;
 
-use super::path::{PathContext, PathState};
+use super::path::{LiSample, PathContext, PathState};
 use crate::accel::{Accel, Hit, Ray};
 use crate::light::LightSample;
 use crate::sampler::SampleStream;
@@ -40,8 +40,11 @@ const VOL_DIMS: u32 = 1 << 20;
 /// 4D sets per segment (five used; the spacing keeps the streams as they were).
 const VOL_DIMS_PER_BOUNCE: u32 = 16;
 
+mod guide;
 #[cfg(test)]
 mod tests;
+
+pub use guide::{centre_opacity, filter_view_inscatter};
 
 /// First 4D set of the sun-lobe dimensions (two sets per bounce, above
 /// every segment's volume dimensions).
@@ -64,7 +67,7 @@ impl<A: Accel> PathContext<'_, A> {
         first_hit: Option<Hit>,
         stream: &mut SampleStream,
         rays: &mut u64,
-    ) -> Vec3 {
+    ) -> LiSample {
         self.li_volume_with(ray, first_hit, stream, rays, Strategies::default())
     }
 
@@ -77,7 +80,7 @@ impl<A: Accel> PathContext<'_, A> {
         stream: &mut SampleStream,
         rays: &mut u64,
         strategies: Strategies,
-    ) -> Vec3 {
+    ) -> LiSample {
         let mut ray = ray;
         let mut known_hit = Some(first_hit);
         let mut st = PathState::new(ray.o);
@@ -89,7 +92,13 @@ impl<A: Accel> PathContext<'_, A> {
         // The last medium vertex's wo when it also drew a sun-lobe direction:
         // this segment's sun NEE is then MIS-weighted against that strategy.
         let mut lobe_wo: Option<Vec3> = None;
+        // The split of `LiSample`: radiance gathered when the camera ray's
+        // first segment passes its medium to the surface or sky (None while
+        // on it, and for good once it collides: then all is fog).
+        let mut l_fog_passed: Option<Vec3> = None;
+        let mut opacity = 0.0;
         loop {
+            let first_segment = st.bounces == 0;
             *rays += 1;
             let hit = match known_hit.take() {
                 Some(hit) => hit,
@@ -125,6 +134,9 @@ impl<A: Accel> PathContext<'_, A> {
                     // ∝ σ_t·Tr on the segment, weighted by (1 − Tr)·albedo.
                     let p = ray.at(seg.t);
                     let wo = -ray.d;
+                    if first_segment {
+                        opacity = 1.0 - seg.tr_seg;
+                    }
                     if st.bounces < self.max_depth {
                         let c = self.equiangular(
                             m,
@@ -181,6 +193,9 @@ impl<A: Accel> PathContext<'_, A> {
                     }
                 }
             }
+            if first_segment {
+                l_fog_passed = Some(st.l);
+            }
             let Some(hit) = hit else {
                 st.l += st.beta
                     * self
@@ -194,7 +209,11 @@ impl<A: Accel> PathContext<'_, A> {
                 None => break,
             }
         }
-        st.l
+        LiSample {
+            l: st.l,
+            l_fog: l_fog_passed.unwrap_or(st.l),
+            opacity,
+        }
     }
 
     /// NEE from an in-scattering point `p` (ray parameter `t`, drawn with

@@ -13,7 +13,7 @@ use rayon::prelude::*;
 
 use crate::accel::{Accel, ShadingAccel};
 use crate::camera::StereoRig;
-use crate::film::Film;
+use crate::film::{Film, FogLayer};
 use crate::geometry::SurfaceTable;
 use crate::integrator::gt::{occlusion_mask, view_gt, ViewGt};
 use crate::integrator::path::PathContext;
@@ -158,7 +158,18 @@ pub fn render_frame(
                 frame: settings.frame,
                 view: view as u32,
             };
-            let (film, rays) = render_view(&ctx, cam, key, settings.spp);
+            let (mut film, fog, rays) = render_view(&ctx, cam, key, settings.spp);
+            // Fog in-scattering filtered per view, guided by this view's
+            // exact pixel-centre depth (left, or baseline b's right view).
+            if scene.filter_inscatter {
+                let depth_z = match view {
+                    0 => left.depth_z_f32(),
+                    v => baselines[v - 1].depth_right.clone(),
+                };
+                crate::integrator::volpath::filter_view_inscatter(
+                    scene, cam, &depth_z, &mut film, &fog,
+                );
+            }
             stats.path_rays += rays;
             stats.samples +=
                 cam.intrinsics.width as u64 * cam.intrinsics.height as u64 * settings.spp as u64;
@@ -195,7 +206,9 @@ struct ChunkScratch {
     streams: Vec<SampleStream>,
 }
 
-/// Path-traces one view; pixels are independent, so any thread count gives the same film.
+/// Path-traces one view; pixels are independent, so any thread count gives
+/// the same film. Also returns the first-scatter part of its radiance (the
+/// fog filter's input) and the rays traced.
 ///
 /// The camera rays of a few neighbouring pixels go through the accelerator's
 /// batch query (Embree: coherent 8-wide packets); every later bounce is traced
@@ -205,10 +218,11 @@ fn render_view<A: Accel>(
     cam: &RenderCamera,
     key: StreamKey,
     spp: u32,
-) -> (Film, u64) {
+) -> (Film, FogLayer, u64) {
     let (w, h) = (cam.intrinsics.width, cam.intrinsics.height);
     let o = cam.center_f32();
-    let rows: Vec<(Vec<Vec3>, u64)> = (0..h)
+    // Per pixel: (mean radiance, mean l_fog, mean first-segment opacity).
+    let rows: Vec<(Vec<(Vec3, Vec3, f32)>, u64)> = (0..h)
         .into_par_iter()
         .with_max_len(1) // rows differ in cost (sky vs street): balance per row
         .map_init(ChunkScratch::default, |scratch, j| {
@@ -243,28 +257,28 @@ fn render_view<A: Accel>(
                     .zip(scratch.hits.chunks(spp as usize))
                     .zip(scratch.streams.chunks_mut(spp as usize));
                 for ((ray_px, hit_px), stream_px) in per_pixel {
-                    let mut sum = Vec3::ZERO;
+                    let (mut sum, mut fog, mut opacity) = (Vec3::ZERO, Vec3::ZERO, 0.0f32);
                     for ((ray, hit), stream) in ray_px.iter().zip(hit_px).zip(stream_px) {
                         let li = ctx.li_from_hit(*ray, *hit, stream, &mut rays);
                         // A non-finite sample would poison the pixel: drop it.
-                        if li.is_finite() {
-                            sum += li;
+                        if li.l.is_finite() {
+                            sum += li.l;
+                            fog += li.l_fog;
+                            opacity += li.opacity;
                         }
                     }
-                    row.push(sum / spp as f32);
+                    let n = spp as f32;
+                    row.push((sum / n, fog / n, opacity / n));
                 }
             }
             (row, rays)
         })
         .collect();
     let rays = rows.iter().map(|r| r.1).sum();
-    let rgb = rows.into_iter().flat_map(|r| r.0).collect();
-    (
-        Film {
-            width: w as usize,
-            height: h as usize,
-            rgb,
-        },
-        rays,
-    )
+    let mut film = Film::new(w as usize, h as usize);
+    let mut fog = FogLayer::new(w as usize, h as usize);
+    for (k, px) in rows.into_iter().flat_map(|r| r.0).enumerate() {
+        (film.rgb[k], fog.l_fog[k], fog.opacity[k]) = px;
+    }
+    (film, fog, rays)
 }
