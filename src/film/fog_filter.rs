@@ -7,10 +7,12 @@
 //! as a ratio of two cross-bilateral sums (Σ w·l_fog / Σ w·opacity, the same
 //! weights on both), multiplies back by the pixel's own opacity and puts it in
 //! place of the pixel's noisy l_fog: pixel = (L − l_fog) + opacity·S̃.
-//! Weights: Gaussian in image distance (separable: a row pass, then a column
-//! pass), Gaussian in the pixel-centre opacity and relative depth_z of the
-//! ground-truth pass, and zero between sky and surface pixels (Eisemann &
-//! Durand 2004, Petschnigg et al. 2004: joint/cross bilateral filtering).
+//! Kernel: an edge-avoiding à-trous cascade (Dammertz et al. 2010; dilated
+//! B3 splines, each level a row then a column pass) whose range weights come
+//! only from the guide — the pixel-centre opacity and relative depth_z of
+//! the ground-truth pass, zero between sky and surface (a cross/joint
+//! bilateral, Petschnigg et al. 2004) — so it is linear in the data and the
+//! ratio stays a ratio of two sums filtered alike.
 //! Pixels are row-major (`Film`); every output pixel is a fixed-order sum,
 //! so any thread count gives the same bytes.
 
@@ -61,11 +63,12 @@ pub struct FogGuide<'a> {
 /// Filter widths.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FogFilter {
-    /// Spatial Gaussian σ in pixels (> 0); the kernel reaches 3σ.
+    /// Spatial σ in pixels (> 0): the à-trous cascade gets as many levels
+    /// as its σ needs to reach this.
     pub sigma_px: f32,
     /// Range σ on the pixel-centre opacity difference (> 0).
     pub sigma_opacity: f32,
-    /// Range σ on |Δdepth_z| / min(depth_z) between two surface pixels (> 0).
+    /// Range σ on |Δ ln depth_z| (the relative depth step) between two surface pixels (> 0).
     pub sigma_depth_rel: f32,
 }
 
@@ -82,7 +85,9 @@ impl FogFilter {
     }
 }
 
-/// Spatial σ at 160 pixels across (the tuning images' width).
+/// Spatial σ at 160 pixels across (the tuning images' width): in the foggy
+/// street at 16 spp relative RMSE 0.28 at σ ≈ 1, 0.25 at 2.2, 0.246 at 4.6;
+/// the rest of the error is the surfaces' own noise.
 const SIGMA_PX_AT_160: f32 = 2.0;
 
 /// Replaces the first-scatter part of every pixel of `film` by its
@@ -112,19 +117,40 @@ pub fn filter_fog(film: &mut Film, fog: &FogLayer, guide: &FogGuide<'_>, filter:
         .zip(&fog.opacity)
         .map(|(l, &o)| l.extend(o))
         .collect();
-    let taps = spatial_taps(filter.sigma_px);
     let range = RangeWeight::new(filter);
-    // Row pass: neighbours at stride 1 within the row.
-    let rows = pass(&data, &keys, w, h, &taps, &range, Axis::Row);
-    // Column pass on the row pass's sums.
-    let sums = pass(&rows, &keys, w, h, &taps, &range, Axis::Column);
+    let mut cur = data;
+    let mut tmp = vec![Vec4::ZERO; n];
+    for level in 0..atrous_levels(filter.sigma_px) {
+        let step = 1usize << level;
+        // Rows, then columns, of the dilated B3 kernel.
+        atrous_pass(&cur, &mut tmp, &keys, w, h, step, &range, Axis::Row);
+        atrous_pass(&tmp, &mut cur, &keys, w, h, step, &range, Axis::Column);
+    }
     for (k, px) in film.rgb.iter_mut().enumerate() {
-        let s = sums[k];
-        // Below this summed opacity the ratio is noise over nothing.
-        if s.w > 1e-6 {
+        let s = cur[k];
+        // Below this mean opacity the ratio is noise over nothing.
+        if s.w > 1e-7 {
             *px = *px - fog.l_fog[k] + s.truncate() * (fog.opacity[k] / s.w);
         }
     }
+}
+
+/// The B3-spline taps of one à-trous level at offsets −2..=2 (Dammertz et al.
+/// 2010, "Edge-avoiding À-Trous wavelet transform"); its variance is one
+/// pixel², so L levels (dilations 1, 2, …, 2^(L−1)) make a kernel of
+/// σ² = (4^L − 1)/3.
+const B3: [f32; 5] = [1.0 / 16.0, 0.25, 0.375, 0.25, 1.0 / 16.0];
+
+/// The à-trous level count whose kernel's σ is nearest `sigma_px` by
+/// ratio, in 1..=10.
+fn atrous_levels(sigma_px: f32) -> u32 {
+    let ln_err = |l: u32| {
+        let sigma_l = ((4f32.powi(l as i32) - 1.0) / 3.0).sqrt();
+        (sigma_l / sigma_px.max(1e-3)).ln().abs()
+    };
+    (1..=10)
+        .min_by(|&a, &b| ln_err(a).total_cmp(&ln_err(b)))
+        .unwrap_or(1)
 }
 
 /// Which neighbours a pass visits.
@@ -134,57 +160,52 @@ enum Axis {
     Column,
 }
 
-/// Weighted sums of `data` over each pixel's neighbours along `axis`
-/// (spatial weight × range weight against the centre's key).
-fn pass(
+/// One edge-avoiding à-trous pass along `axis` with dilation `step`: each
+/// pixel of `out` is the normalised sum of B3 tap × range weight × `data`
+/// over its five neighbours (those inside the image).
+#[allow(clippy::too_many_arguments)]
+fn atrous_pass(
     data: &[Vec4],
+    out: &mut [Vec4],
     keys: &[Key],
     w: usize,
     h: usize,
-    taps: &[f32],
+    step: usize,
     range: &RangeWeight,
     axis: Axis,
-) -> Vec<Vec4> {
-    let r = taps.len() - 1;
-    let mut out = vec![Vec4::ZERO; w * h];
+) {
     out.par_chunks_mut(w).enumerate().for_each(|(j, row)| {
         for (i, o) in row.iter_mut().enumerate() {
             let c = j * w + i;
             let kc = keys[c];
             let (pos, len, stride) = match axis {
-                Axis::Row => (i, w, 1),
-                Axis::Column => (j, h, w),
+                Axis::Row => (i as isize, w as isize, 1isize),
+                Axis::Column => (j as isize, h as isize, w as isize),
             };
-            let lo = pos.saturating_sub(r);
-            let hi = (pos + r).min(len - 1);
             let mut s = Vec4::ZERO;
-            for q in lo..=hi {
-                let k = c + q * stride - pos * stride;
-                let wr = range.weight(kc, keys[k]);
-                if wr > 0.0 {
-                    s += data[k] * (taps[q.abs_diff(pos)] * wr);
+            let mut wsum = 0.0;
+            for (t, &b3) in B3.iter().enumerate() {
+                let d = (t as isize - 2) * step as isize;
+                let q = pos + d;
+                if q < 0 || q >= len {
+                    continue;
                 }
+                let k = (c as isize + d * stride) as usize;
+                let wt = b3 * range.weight(kc, keys[k]);
+                s += data[k] * wt;
+                wsum += wt;
             }
-            *o = s;
+            // The centre tap always counts, so wsum ≥ 3/8.
+            *o = s / wsum;
         }
     });
-    out
-}
-
-/// Gaussian weights at distances 0..=ceil(3σ) pixels.
-fn spatial_taps(sigma_px: f32) -> Vec<f32> {
-    let sigma = sigma_px.max(1e-3);
-    let r = (3.0 * sigma).ceil() as usize;
-    (0..=r)
-        .map(|d| (-0.5 * (d as f32 / sigma).powi(2)).exp())
-        .collect()
 }
 
 /// A pixel's guide values.
 #[derive(Clone, Copy, Debug)]
 struct Key {
-    /// depth_z, or +inf for sky.
-    z: f32,
+    /// ln depth_z (a difference is the relative depth step), +inf for sky.
+    ln_z: f32,
     /// Pixel-centre opacity.
     opacity: f32,
 }
@@ -192,8 +213,8 @@ struct Key {
 impl Key {
     fn new(z: f32, opacity: f32) -> Key {
         Key {
-            z: if z.is_finite() && z > 0.0 {
-                z
+            ln_z: if z.is_finite() && z > 0.0 {
+                z.ln()
             } else {
                 f32::INFINITY
             },
@@ -221,20 +242,22 @@ impl RangeWeight {
     /// and surface, Gaussian in opacity and (surfaces) relative depth.
     #[inline]
     fn weight(&self, a: Key, b: Key) -> f32 {
-        let sky_a = a.z.is_infinite();
-        if sky_a != b.z.is_infinite() {
+        let sky_a = a.ln_z.is_infinite();
+        if sky_a != b.ln_z.is_infinite() {
             return 0.0;
         }
         let d_o = a.opacity - b.opacity;
         let mut e = d_o * d_o * self.inv_opacity2;
         if !sky_a {
-            let rel = (a.z - b.z) / a.z.min(b.z);
+            let rel = a.ln_z - b.ln_z;
             e += rel * rel * self.inv_rel2;
         }
-        if e > 18.0 {
+        // A rational stand-in for exp(−e/2) (equal to second order, a
+        // heavier tail cut at 3σ): no transcendental call per tap.
+        if e > 9.0 {
             0.0
         } else {
-            (-0.5 * e).exp()
+            1.0 / (1.0 + e * (0.5 + e * 0.125))
         }
     }
 }
@@ -310,11 +333,13 @@ mod tests {
     }
 
     #[test]
-    fn spatial_taps_are_a_gaussian_reaching_three_sigma() {
-        let t = spatial_taps(2.0);
-        assert_eq!(t.len(), 7);
-        assert_eq!(t[0], 1.0);
-        assert!((t[2] - (-0.5f32).exp()).abs() < 1e-6);
-        assert_eq!(spatial_taps(0.4).len(), 3);
+    fn atrous_levels_reach_the_asked_sigma() {
+        // σ² = (4^L − 1)/3: 1, √5, √21, √85 for L = 1..4.
+        assert_eq!(atrous_levels(0.5), 1);
+        assert_eq!(atrous_levels(1.0), 1);
+        assert_eq!(atrous_levels(2.0), 2);
+        assert_eq!(atrous_levels(4.0), 3);
+        assert_eq!(atrous_levels(9.0), 4);
+        assert_eq!(atrous_levels(20.0), 5);
     }
 }

@@ -206,6 +206,9 @@ struct ChunkScratch {
     streams: Vec<SampleStream>,
 }
 
+/// Per pixel: (mean radiance, mean l_fog, mean first-segment opacity).
+type PixelMeans = (Vec3, Vec3, f32);
+
 /// Path-traces one view; pixels are independent, so any thread count gives
 /// the same film. Also returns the first-scatter part of its radiance (the
 /// fog filter's input) and the rays traced.
@@ -221,8 +224,7 @@ fn render_view<A: Accel>(
 ) -> (Film, FogLayer, u64) {
     let (w, h) = (cam.intrinsics.width, cam.intrinsics.height);
     let o = cam.center_f32();
-    // Per pixel: (mean radiance, mean l_fog, mean first-segment opacity).
-    let rows: Vec<(Vec<(Vec3, Vec3, f32)>, u64)> = (0..h)
+    let rows: Vec<(Vec<PixelMeans>, u64)> = (0..h)
         .into_par_iter()
         .with_max_len(1) // rows differ in cost (sky vs street): balance per row
         .map_init(ChunkScratch::default, |scratch, j| {
