@@ -1,20 +1,12 @@
-//! Image-space filtering of fog in-scattering (issue 4): each camera
-//! sample's radiance is split into `l_fog`, the part whose first event is a
-//! medium scatter before the first surface or the sky, and the rest
-//! (`integrator::path::LiSample`). E[l_fog] = (1 − Tr)·S with S the mean
-//! radiance scattered toward the camera along the ray: smooth in direction
-//! and in optical depth, free of texture. So the filter estimates S per pixel
-//! as a ratio of two cross-bilateral sums (Σ w·l_fog / Σ w·opacity, the same
-//! weights on both), multiplies back by the pixel's own opacity and puts it in
-//! place of the pixel's noisy l_fog: pixel = (L − l_fog) + opacity·S̃.
-//! Kernel: an edge-avoiding à-trous cascade (Dammertz et al. 2010; dilated
-//! B3 splines, each level a row then a column pass) whose range weights come
-//! only from the guide — the pixel-centre opacity and relative depth_z of
-//! the ground-truth pass, zero between sky and surface (a cross/joint
-//! bilateral, Petschnigg et al. 2004) — so it is linear in the data and the
-//! ratio stays a ratio of two sums filtered alike.
-//! Pixels are row-major (`Film`); every output pixel is a fixed-order sum,
-//! so any thread count gives the same bytes.
+//! Image-space filter of fog in-scattering (issue 4). `l_fog`, the part of
+//! a camera sample whose first event is a medium scatter, has mean
+//! opacity·S, S the mean radiance scattered toward the camera along the ray:
+//! smooth, textureless. Per pixel S̃ = Σw·l_fog / Σw·opacity, and pixel =
+//! (L − l_fog) + opacity·S̃. Kernel: edge-avoiding à-trous (Dammertz et al.
+//! 2010, dilated B3 rows then columns) with range weights from the guide
+//! only (pixel-centre opacity, relative depth_z, sky vs surface: a joint
+//! bilateral, Petschnigg et al. 2004), so both sums are filtered alike.
+//! Row-major pixels (`Film`); fixed-order sums: same bytes on any thread count.
 
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;

@@ -25,6 +25,9 @@
 //! lobe's at `LOBE_DIMS` + 2·bounce), apart from the surface dimensions, so
 //! surface vertices see the streams they see without a medium. Rain is not
 //! traced here: its streaks are composited per pixel (`rain.rs`).
+//! The result is split by the camera ray's first event (`LiSample`): what
+//! the first segment's in-scattering and a collision on it bring is `l_fog`,
+//! filtered in image space (`film::filter_fog`).
 
 use glam::{Vec2, Vec3};
 use shaders_cpu::medium::{Equiangular, Medium};
