@@ -2,9 +2,9 @@
 //! filter_inscatter`) through the whole renderer: it keeps the image mean,
 //! cuts per-pixel variance in an analytic furnace (conservative fog under a
 //! constant sky: every pixel's expected value is exactly 1), keeps a near/far
-//! depth step a step, is bit-for-bit the plain estimate when off and a pure
-//! function of the samples when on (any thread count), and never touches
-//! the ground truth.
+//! depth step a step, is bit-for-bit the plain estimate when off and the
+//! filtered per-sample estimate when on (any thread count), and never
+//! touches the ground truth.
 
 mod common;
 
@@ -87,7 +87,8 @@ fn filtered_mean_equals_unfiltered_mean_in_fog() {
         let (m_on, _) = mean_stderr(&on);
         let (m_off, se_off) = mean_stderr(&off);
         eprintln!("{name}: mean on {m_on:.5}, off {m_off:.5} ± {se_off:.1e}");
-        // Same samples: the filter only moves fog radiance between pixels.
+        // Same streams (on also splits the first segment: a different
+        // estimator of the same mean).
         assert!(
             (m_on - m_off).abs() < 0.01 * m_off,
             "{name}: {m_on} vs {m_off}"
@@ -100,10 +101,10 @@ fn filtered_mean_equals_unfiltered_mean_in_fog() {
 }
 
 #[test]
-fn per_pixel_variance_drops_by_2_5_in_the_fog_furnace() {
+fn per_pixel_variance_drops_threefold_in_the_fog_furnace() {
     // Expected value exactly 1 everywhere; mean squared error over pixels
     // and two seeds at 16 spp. At 48 px across the kernel is the smallest
-    // (one à-trous level, σ = 1 px): about 3.3× when written.
+    // (one à-trous level, σ = 1 px): about 4.1× when written.
     let mse = |filter: bool| {
         let mut s = 0.0;
         let mut n = 0;
@@ -126,16 +127,15 @@ fn per_pixel_variance_drops_by_2_5_in_the_fog_furnace() {
         "furnace MSE: filtered {on:.3e}, plain {off:.3e}, ratio {:.1}",
         off / on
     );
-    assert!(off > 0.0 && on * 2.5 < off, "{on} vs {off}");
+    assert!(off > 0.0 && on * 3.0 < off, "{on} vs {off}");
 }
 
 #[test]
 fn depth_step_stays_a_step() {
-    // The filter only moves first-scatter light, so filtered minus plain
-    // (same samples, 64 spp) is its error there: a halo would carry the far
-    // wall's thick fog onto the near wall's rows or back. Every row mean
-    // within 4 rows of the step moves by under 3 % (256 spp reference for
-    // the step's size).
+    // A halo would carry the far wall's thick fog onto the near wall's rows
+    // or back: every row mean within 4 rows of the step, filtered at 64 spp,
+    // within 3 % of the plain image at 256 spp (the plain image at 64 spp
+    // is printed beside it for scale).
     let on = render_body(STEP, 64, 1, true, Backend::default_backend());
     let off = render_body(STEP, 64, 1, false, Backend::default_backend());
     let reference = render_body(STEP, 256, 2, false, Backend::default_backend());
@@ -156,29 +156,22 @@ fn depth_step_stays_a_step() {
         "the scene has a step: {near} vs {far}"
     );
     for j in edge.saturating_sub(4)..(edge + 5).min(H as usize) {
-        let (got, plain) = (row(&on, j), row(&off, j));
+        let (got, want) = (row(&on, j), row(&reference, j));
         eprintln!(
-            "row {j}: filtered {got:.3}, plain {plain:.3}, reference {:.3}",
-            row(&reference, j)
+            "row {j}: filtered {got:.3}, plain {:.3}, reference {want:.3}",
+            row(&off, j)
         );
-        assert!(
-            (got - plain).abs() < 0.03 * plain,
-            "row {j}: {got} vs {plain}"
-        );
+        assert!((got - want).abs() < 0.03 * want, "row {j}: {got} vs {want}");
     }
 }
 
-#[test]
-fn filter_off_and_on_are_functions_of_the_same_samples() {
-    // The plain estimate rebuilt from `PathContext::li` with the frame's
-    // streams: off must equal it bit for bit, on must equal its filtered
-    // version (BVH backend: its packet query is the single-ray one).
-    let off = render_body(STEP, 4, 9, false, Backend::Bvh);
-    let on = render_body(STEP, 4, 9, true, Backend::Bvh);
-    let scene = &on.scene;
+/// The left view of `r` rebuilt sample by sample from `PathContext::li`
+/// with the frame's streams (4 spp, seed 9): the plain film and its fog layer.
+fn rebuild_left(r: &Rendered) -> (Film, FogLayer) {
+    let scene = &r.scene;
     let lights = LightSet::build(scene);
     let surfaces = SurfaceTable::build(scene);
-    let shading = ShadingAccel(&on.accel);
+    let shading = ShadingAccel(&r.accel);
     let ctx = PathContext {
         scene,
         accel: &shading,
@@ -187,7 +180,7 @@ fn filter_off_and_on_are_functions_of_the_same_samples() {
         max_depth: 8,
         sun_lobe: SunLobe::find(scene, &lights),
     };
-    let cam = RenderCamera::new(&on.rig.left, scene.origin_world);
+    let cam = RenderCamera::new(&r.rig.left, scene.origin_world);
     let key = StreamKey {
         seed: 9,
         frame: 0,
@@ -219,13 +212,26 @@ fn filter_off_and_on_are_functions_of_the_same_samples() {
             (film.rgb[k], fog.l_fog[k], fog.opacity[k]) = (l / 4.0, l_fog / 4.0, opacity / 4.0);
         }
     }
-    assert!(!fog.is_empty(), "the fog carries first-scatter light");
-    assert_eq!(off.out.images[0], film, "filter off is the plain estimate");
-    filter_view_inscatter(scene, &cam, &on.out.left.depth_z_f32(), &mut film, &fog);
+    (film, fog)
+}
+
+#[test]
+fn filter_off_and_on_are_functions_of_the_samples() {
+    // Off must equal the per-sample estimate bit for bit; on must equal the
+    // filtered per-sample estimate (BVH backend: its packet query is the
+    // single-ray one).
+    let off = render_body(STEP, 4, 9, false, Backend::Bvh);
+    let on = render_body(STEP, 4, 9, true, Backend::Bvh);
+    let (film_off, _) = rebuild_left(&off);
     assert_eq!(
-        on.out.images[0], film,
-        "filter on is the filtered plain estimate"
+        off.out.images[0], film_off,
+        "filter off is the plain estimate"
     );
+    let (mut film, fog) = rebuild_left(&on);
+    assert!(!fog.is_empty(), "the fog carries first-scatter light");
+    let cam = RenderCamera::new(&on.rig.left, on.scene.origin_world);
+    filter_view_inscatter(&on.scene, &cam, &on.out.left.depth_z_f32(), &mut film, &fog);
+    assert_eq!(on.out.images[0], film, "filter on is the filtered estimate");
     assert_ne!(on.out.images[0], off.out.images[0]);
 }
 
