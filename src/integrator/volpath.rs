@@ -27,7 +27,8 @@
 //! traced here: its streaks are composited per pixel (`rain.rs`).
 //! The result is split by the camera ray's first event (`LiSample`): what
 //! the first segment's in-scattering and a collision on it bring is `l_fog`,
-//! filtered in image space (`film::filter_fog`).
+//! filtered in image space (`film::filter_fog`); renders that filter also
+//! split that first segment (`Strategies::split_first`).
 
 use glam::{Vec2, Vec3};
 use shaders_cpu::medium::{Equiangular, Medium};

@@ -47,9 +47,10 @@ pub struct MediumDesc {
     pub z_max_m: Option<f64>,
     /// Whether the in-scattered light on each camera ray (the radiance whose
     /// first event is a medium scatter) is filtered in image space, guided
-    /// by the ground truth's depth (default true: far less grain at equal
-    /// samples; false gives the plain path-traced image). Ground truth is
-    /// never filtered.
+    /// by the ground truth's depth, and the surface behind each camera
+    /// ray's fog is traced at weight Tr rather than by a collide-or-pass
+    /// choice (default true: far less grain at equal time; false gives the
+    /// plain path-traced image bit for bit). Ground truth is never filtered.
     #[serde(default = "default_true", skip_serializing_if = "is_true")]
     pub filter_inscatter: bool,
 }
