@@ -3,6 +3,8 @@
 //! pixel-centre convention as `gt.rs`: u = i + 0.5, v = j + 0.5, camera
 //! z = depth_z), so the filter groups pixels by how much fog they look through.
 
+use rayon::prelude::*;
+
 use crate::film::{filter_fog, Film, FogFilter, FogGuide, FogLayer};
 use crate::integrator::RenderCamera;
 use crate::scene::Scene;
@@ -25,7 +27,7 @@ pub fn centre_opacity(scene: &Scene, cam: &RenderCamera, depth_z: &[f32]) -> Vec
     };
     let o = cam.center_f32();
     depth_z
-        .iter()
+        .par_iter()
         .enumerate()
         .map(|(k, &z)| {
             let (i, j) = (k % w, k / w);
