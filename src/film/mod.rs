@@ -1,5 +1,5 @@
 //! Film: the per-view linear HDR radiance buffer, the frame's shared exposure,
-//! optional sensor noise, the fixed tone curve to 8-bit sRGB, and the AOV
+//! the fog in-scattering filter, optional sensor noise, the fixed tone curve to 8-bit sRGB, and the AOV
 //! vocabulary.
 //!
 //! Conventions: pixels are row-major, pixel (column i, row j) at `j * width + i`,
@@ -11,6 +11,7 @@
 mod adaptation;
 mod aov;
 mod exposure;
+mod fog_filter;
 mod noise;
 mod tone;
 
@@ -22,6 +23,7 @@ pub use exposure::{
     auto_exposure, exposure_ev, log_average_luminance, luminance_rec709, EXPOSURE_EV_MAX,
     EXPOSURE_FLOOR_FRACTION, MIDDLE_GREY,
 };
+pub use fog_filter::{filter_fog, FogFilter, FogGuide, FogLayer};
 pub use noise::{apply_sensor_noise, NoiseKey, SensorNoise, BASE_ISO};
 pub use tone::{quantize_u8, srgb_oetf, tone_curve_aces, tonemap_to_srgb8};
 

@@ -120,6 +120,8 @@ pub struct PathStart {
     pending: PendingShadows,
     /// The continuation ray; None once the path has ended.
     next: Option<Ray>,
+    /// The whole volumetric path's result, in scenes with a medium.
+    volume: Option<LiSample>,
 }
 
 impl PathStart {
@@ -251,9 +253,25 @@ impl PathState {
     }
 }
 
+/// The radiance of one camera ray, split by the first event on it: `l_fog`
+/// is the part whose first event is a medium scatter before the first
+/// surface or the sky (smooth over the image, filtered by
+/// `film::filter_fog`); `l - l_fog` is what the surface or sky sends.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LiSample {
+    /// Total radiance (W·sr⁻¹·m⁻², linear RGB).
+    pub l: Vec3,
+    /// Its first-medium-scatter part (zero without a scattering medium).
+    pub l_fog: Vec3,
+    /// Opacity 1 − Tr of the camera ray's first segment, in [0, 1] (zero
+    /// without a scattering medium): `l_fog / opacity` is the mean radiance
+    /// scattered toward the camera along that segment.
+    pub opacity: f32,
+}
+
 impl<A: Accel> PathContext<'_, A> {
     /// Radiance arriving along `ray` (unit direction); adds traced rays to `rays`.
-    pub fn li(&self, ray: Ray, stream: &mut SampleStream, rays: &mut u64) -> Vec3 {
+    pub fn li(&self, ray: Ray, stream: &mut SampleStream, rays: &mut u64) -> LiSample {
         let hit = self.accel.intersect(&ray);
         self.li_from_hit(ray, hit, stream, rays)
     }
@@ -266,7 +284,7 @@ impl<A: Accel> PathContext<'_, A> {
         first_hit: Option<Hit>,
         stream: &mut SampleStream,
         rays: &mut u64,
-    ) -> Vec3 {
+    ) -> LiSample {
         let start = self.start_path(ray, first_hit, stream, rays);
         self.finish_path(start, stream, rays)
     }
@@ -284,8 +302,8 @@ impl<A: Accel> PathContext<'_, A> {
         let mut st = PathState::new(ray.o);
         let mut pending = PendingShadows::new();
         if self.scene.medium.is_some() {
-            st.l = self.li_volume(ray, first_hit, stream, rays);
             return PathStart {
+                volume: Some(self.li_volume(ray, first_hit, stream, rays)),
                 st,
                 pending,
                 next: None,
@@ -301,6 +319,7 @@ impl<A: Accel> PathContext<'_, A> {
                 st,
                 pending,
                 next: None,
+                volume: None,
             };
         };
         self.surfaces.prefetch(self.scene, &hit);
@@ -310,19 +329,36 @@ impl<A: Accel> PathContext<'_, A> {
             BounceSamples::default()
         };
         let next = self.surface_vertex_deferred(&ray, &hit, &mut st, &u, rays, &mut pending);
-        PathStart { st, pending, next }
+        PathStart {
+            st,
+            pending,
+            next,
+            volume: None,
+        }
     }
 
     /// The rest of a path begun by [`PathContext::start_path`]: its radiance.
-    pub fn finish_path(&self, start: PathStart, stream: &mut SampleStream, rays: &mut u64) -> Vec3 {
+    pub fn finish_path(
+        &self,
+        start: PathStart,
+        stream: &mut SampleStream,
+        rays: &mut u64,
+    ) -> LiSample {
         let PathStart {
             mut st,
             mut pending,
             next,
+            volume,
         } = start;
+        if let Some(sample) = volume {
+            return sample;
+        }
         let Some(mut ray) = next else {
             pending.resolve(self.accel, &mut st.l);
-            return st.l;
+            return LiSample {
+                l: st.l,
+                ..LiSample::default()
+            };
         };
         loop {
             *rays += 1;
@@ -352,7 +388,10 @@ impl<A: Accel> PathContext<'_, A> {
                 }
             }
         }
-        st.l
+        LiSample {
+            l: st.l,
+            ..LiSample::default()
+        }
     }
 
     /// One surface vertex: emission (MIS-weighted), NEE, BSDF sampling and

@@ -25,12 +25,16 @@
 //! lobe's at `LOBE_DIMS` + 2·bounce), apart from the surface dimensions, so
 //! surface vertices see the streams they see without a medium. Rain is not
 //! traced here: its streaks are composited per pixel (`rain.rs`).
+//! The result is split by the camera ray's first event (`LiSample`): what
+//! the first segment's in-scattering and a collision on it bring is `l_fog`,
+//! filtered in image space (`film::filter_fog`); renders that filter also
+//! split that first segment (`Strategies::split_first`).
 
 use glam::{Vec2, Vec3};
 use shaders_cpu::medium::{Equiangular, Medium};
 use shaders_cpu::sampling::power_heuristic;
 
-use super::path::{PathContext, PathState};
+use super::path::{LiSample, PathContext, PathState};
 use crate::accel::{Accel, Hit, Ray};
 use crate::light::LightSample;
 use crate::sampler::SampleStream;
@@ -40,8 +44,11 @@ const VOL_DIMS: u32 = 1 << 20;
 /// 4D sets per segment (five used; the spacing keeps the streams as they were).
 const VOL_DIMS_PER_BOUNCE: u32 = 16;
 
+mod guide;
 #[cfg(test)]
 mod tests;
+
+pub use guide::{centre_opacity, filter_view_inscatter};
 
 /// First 4D set of the sun-lobe dimensions (two sets per bounce, above
 /// every segment's volume dimensions).
@@ -64,8 +71,12 @@ impl<A: Accel> PathContext<'_, A> {
         first_hit: Option<Hit>,
         stream: &mut SampleStream,
         rays: &mut u64,
-    ) -> Vec3 {
-        self.li_volume_with(ray, first_hit, stream, rays, Strategies::default())
+    ) -> LiSample {
+        let strategies = Strategies {
+            split_first: self.scene.filter_inscatter,
+            ..Strategies::default()
+        };
+        self.li_volume_with(ray, first_hit, stream, rays, strategies)
     }
 
     /// [`PathContext::li_volume`] with the medium-vertex strategies chosen
@@ -77,10 +88,30 @@ impl<A: Accel> PathContext<'_, A> {
         stream: &mut SampleStream,
         rays: &mut u64,
         strategies: Strategies,
-    ) -> Vec3 {
+    ) -> LiSample {
+        self.trace(ray, first_hit, stream, rays, strategies, None)
+    }
+
+    /// The volumetric path loop. With `surface_beta` it is the surface part
+    /// of a split camera ray (`Strategies::split_first`): the first segment's
+    /// medium is skipped and the path starts at that throughput.
+    fn trace(
+        &self,
+        ray: Ray,
+        first_hit: Option<Hit>,
+        stream: &mut SampleStream,
+        rays: &mut u64,
+        strategies: Strategies,
+        surface_beta: Option<Vec3>,
+    ) -> LiSample {
         let mut ray = ray;
         let mut known_hit = Some(first_hit);
         let mut st = PathState::new(ray.o);
+        if let Some(beta) = surface_beta {
+            st.beta = beta;
+        }
+        // The split camera ray's surface part, traced apart after a collision.
+        let mut l_split = Vec3::ZERO;
         let scene = self.scene;
         let medium = scene.medium.as_ref();
         let sun_lobe = medium
@@ -89,7 +120,13 @@ impl<A: Accel> PathContext<'_, A> {
         // The last medium vertex's wo when it also drew a sun-lobe direction:
         // this segment's sun NEE is then MIS-weighted against that strategy.
         let mut lobe_wo: Option<Vec3> = None;
+        // The split of `LiSample`: radiance gathered when the camera ray's
+        // first segment passes its medium to the surface or sky (None while
+        // on it, and for good once it collides: then all is fog).
+        let mut l_fog_passed: Option<Vec3> = None;
+        let mut opacity = 0.0;
         loop {
+            let first_segment = st.bounces == 0;
             *rays += 1;
             let hit = match known_hit.take() {
                 Some(hit) => hit,
@@ -115,8 +152,9 @@ impl<A: Accel> PathContext<'_, A> {
             ];
 
             let t_end = t_surf;
+            let skip_medium = first_segment && surface_beta.is_some();
 
-            if let Some(m) = medium {
+            if let Some(m) = medium.filter(|_| !skip_medium) {
                 if !m.scatters() {
                     st.beta *= m.tr(ray.o, ray.d, t_end);
                 } else if let Some(seg) = InScatter::sample(m, &ray, t_end, u_ff) {
@@ -125,6 +163,9 @@ impl<A: Accel> PathContext<'_, A> {
                     // ∝ σ_t·Tr on the segment, weighted by (1 − Tr)·albedo.
                     let p = ray.at(seg.t);
                     let wo = -ray.d;
+                    if first_segment {
+                        opacity = 1.0 - seg.tr_seg;
+                    }
                     if st.bounces < self.max_depth {
                         let c = self.equiangular(
                             m,
@@ -155,6 +196,17 @@ impl<A: Accel> PathContext<'_, A> {
                         );
                         st.l += st.beta * m.albedo * (nee * (1.0 - seg.tr_seg));
                     }
+                    let split = first_segment && strategies.split_first;
+                    if split && seg.collided {
+                        // Both continuations: the surface's with its
+                        // expected weight Tr, the fog's as drawn.
+                        let beta_surf = st.beta * seg.tr_seg;
+                        l_split = self
+                            .trace(ray, hit, stream, rays, strategies, Some(beta_surf))
+                            .l;
+                    } else if split {
+                        st.beta *= seg.tr_seg;
+                    }
                     if seg.collided {
                         if st.bounces == self.max_depth {
                             break;
@@ -181,6 +233,9 @@ impl<A: Accel> PathContext<'_, A> {
                     }
                 }
             }
+            if first_segment {
+                l_fog_passed = Some(st.l);
+            }
             let Some(hit) = hit else {
                 st.l += st.beta
                     * self
@@ -194,7 +249,11 @@ impl<A: Accel> PathContext<'_, A> {
                 None => break,
             }
         }
-        st.l
+        LiSample {
+            l: st.l + l_split,
+            l_fog: l_fog_passed.unwrap_or(st.l),
+            opacity,
+        }
     }
 
     /// NEE from an in-scattering point `p` (ray parameter `t`, drawn with
@@ -326,6 +385,12 @@ struct Strategies {
     /// Roulette by the albedo (`PathState::survives_albedo_roulette`); off
     /// is the surface loop's throughput roulette.
     albedo_roulette: bool,
+    /// Split the camera ray's first segment: the surface (or sky) behind it
+    /// always traced with weight Tr, the collision's continuation as drawn,
+    /// so the binary collide-or-pass choice leaves no noise on surfaces
+    /// (renders with the fog filter on; about a quarter of the variance
+    /// the filter leaves in the foggy street).
+    split_first: bool,
 }
 
 impl Default for Strategies {
@@ -333,6 +398,7 @@ impl Default for Strategies {
         Strategies {
             sun_lobe: true,
             albedo_roulette: true,
+            split_first: false,
         }
     }
 }

@@ -13,7 +13,7 @@ use rayon::prelude::*;
 
 use crate::accel::{Accel, ShadingAccel};
 use crate::camera::StereoRig;
-use crate::film::Film;
+use crate::film::{Film, FogLayer};
 use crate::geometry::SurfaceTable;
 use crate::integrator::gt::{occlusion_mask, view_gt, ViewGt};
 use crate::integrator::path::{PathContext, PathStart};
@@ -158,7 +158,18 @@ pub fn render_frame(
                 frame: settings.frame,
                 view: view as u32,
             };
-            let (film, rays) = render_view(&ctx, cam, key, settings.spp);
+            let (mut film, fog, rays) = render_view(&ctx, cam, key, settings.spp);
+            // Fog in-scattering filtered per view, guided by this view's
+            // exact pixel-centre depth (left, or baseline b's right view).
+            if scene.filter_inscatter {
+                let depth_z = match view {
+                    0 => left.depth_z_f32(),
+                    v => baselines[v - 1].depth_right.clone(),
+                };
+                crate::integrator::volpath::filter_view_inscatter(
+                    scene, cam, &depth_z, &mut film, &fog,
+                );
+            }
             stats.path_rays += rays;
             stats.samples +=
                 cam.intrinsics.width as u64 * cam.intrinsics.height as u64 * settings.spp as u64;
@@ -205,7 +216,12 @@ struct ChunkScratch {
     occluded: Vec<bool>,
 }
 
-/// Path-traces one view; pixels are independent, so any thread count gives the same film.
+/// Per pixel: (mean radiance, mean l_fog, mean first-segment opacity).
+type PixelMeans = (Vec3, Vec3, f32);
+
+/// Path-traces one view; pixels are independent, so any thread count gives
+/// the same film. Also returns the first-scatter part of its radiance (the
+/// fog filter's input) and the rays traced.
 ///
 /// Work is split into `TILE_PX`² tiles, assembled in raster order after.
 /// The camera rays of a few neighbouring pixels of one tile row go through
@@ -217,11 +233,11 @@ fn render_view<A: Accel>(
     cam: &RenderCamera,
     key: StreamKey,
     spp: u32,
-) -> (Film, u64) {
+) -> (Film, FogLayer, u64) {
     let (w, h) = (cam.intrinsics.width, cam.intrinsics.height);
     let tiles_x = w.div_ceil(TILE_PX);
     let n_tiles = tiles_x * h.div_ceil(TILE_PX);
-    let tiles: Vec<(Vec<Vec3>, u64)> = (0..n_tiles)
+    let tiles: Vec<(Vec<PixelMeans>, u64)> = (0..n_tiles)
         .into_par_iter()
         .with_max_len(1) // tiles differ in cost (sky vs street): balance per tile
         .map_init(ChunkScratch::default, |scratch, t| {
@@ -248,28 +264,24 @@ fn render_view<A: Accel>(
         })
         .collect();
     let rays = tiles.iter().map(|t| t.1).sum();
-    let mut rgb = vec![Vec3::ZERO; w as usize * h as usize];
+    let mut film = Film::new(w as usize, h as usize);
+    let mut fog = FogLayer::new(w as usize, h as usize);
     for (t, (tile, _)) in tiles.iter().enumerate() {
         let t = t as u32;
         let (x0, y0) = ((t % tiles_x) * TILE_PX, (t / tiles_x) * TILE_PX);
         let tw = ((x0 + TILE_PX).min(w) - x0) as usize;
         for (row, px) in tile.chunks(tw).enumerate() {
             let start = (y0 as usize + row) * w as usize + x0 as usize;
-            rgb[start..start + tw].copy_from_slice(px);
+            for (k, &(l, l_fog, opacity)) in (start..start + tw).zip(px) {
+                (film.rgb[k], fog.l_fog[k], fog.opacity[k]) = (l, l_fog, opacity);
+            }
         }
     }
-    (
-        Film {
-            width: w as usize,
-            height: h as usize,
-            rgb,
-        },
-        rays,
-    )
+    (film, fog, rays)
 }
 
 /// Path-traces pixels `i` of row `j` (spp samples each, camera rays as one
-/// batch) and appends their mean radiance to `out`; adds traced rays to `rays`.
+/// batch) and appends their means to `out`; adds traced rays to `rays`.
 #[allow(clippy::too_many_arguments)]
 fn render_chunk<A: Accel>(
     ctx: &PathContext<'_, A>,
@@ -278,7 +290,7 @@ fn render_chunk<A: Accel>(
     spp: u32,
     (i, j): (std::ops::Range<u32>, u32),
     scratch: &mut ChunkScratch,
-    out: &mut Vec<Vec3>,
+    out: &mut Vec<PixelMeans>,
     rays: &mut u64,
 ) {
     let o = cam.center_f32();
@@ -330,15 +342,18 @@ fn render_chunk<A: Accel>(
     }
     let mut starts = scratch.starts.drain(..);
     for stream_px in scratch.streams.chunks_mut(spp as usize) {
-        let mut sum = Vec3::ZERO;
+        let (mut sum, mut fog, mut opacity) = (Vec3::ZERO, Vec3::ZERO, 0.0f32);
         // The pixel's streams lead the zip: it must not pull a start too many.
         for (stream, start) in stream_px.iter_mut().zip(starts.by_ref()) {
             let li = ctx.finish_path(start, stream, rays);
             // A non-finite sample would poison the pixel: drop it.
-            if li.is_finite() {
-                sum += li;
+            if li.l.is_finite() {
+                sum += li.l;
+                fog += li.l_fog;
+                opacity += li.opacity;
             }
         }
-        out.push(sum / spp as f32);
+        let n = spp as f32;
+        out.push((sum / n, fog / n, opacity / n));
     }
 }

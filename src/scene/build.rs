@@ -153,6 +153,10 @@ pub fn build_scene(scene: &LoadedScene, origin_world: DVec3) -> Result<Scene, Sc
             .medium
             .as_ref()
             .map(|m| super::desc::build_medium(m, origin_world)),
+        filter_inscatter: desc
+            .medium
+            .as_ref()
+            .is_some_and(|m| m.filter_inscatter && m.albedo.iter().any(|&a| a > 0.0)),
         rain: desc
             .rain
             .as_ref()

@@ -115,6 +115,9 @@ pub struct Scene {
     pub sky: Sky,
     /// Participating medium in render space (None: clear air).
     pub medium: Option<shaders_cpu::medium::Medium>,
+    /// Whether renders filter the camera rays' in-scattered radiance
+    /// (`MediumDesc::filter_inscatter`; false without a scattering medium).
+    pub filter_inscatter: bool,
     /// Rain field centred on the rig; its `seed` is set per frame by the
     /// renderer (`Rain { seed, ..rain }`). None: no rain.
     pub rain: Option<shaders_cpu::medium::Rain>,

@@ -324,6 +324,7 @@ fn haze(w: Weather, visibility_m: f64) -> MediumDesc {
         height_scale_m: Some(if w == Weather::Foggy { 30.0 } else { 200.0 }),
         z_min_m: None,
         z_max_m: None,
+        filter_inscatter: true,
     }
 }
 

@@ -99,7 +99,9 @@ pub fn render_left(
                     .dir(i as f64 + jitter.x as f64, j as f64 + jitter.y as f64)
                     .as_vec3()
                     .normalize();
-                let li = ctx.li(parallax::accel::Ray::new(o, d), &mut stream, &mut rays);
+                let li = ctx
+                    .li(parallax::accel::Ray::new(o, d), &mut stream, &mut rays)
+                    .l;
                 let y = if li.is_finite() {
                     li.dot(Vec3::new(0.2126, 0.7152, 0.0722)) as f64
                 } else {

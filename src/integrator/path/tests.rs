@@ -60,6 +60,7 @@ fn batched_first_shadows_give_the_same_bits_as_path_by_path() {
         .map(|px| {
             let ray = camera_ray(px);
             ctx.li_from_hit(ray, shading.intersect(&ray), &mut stream(px), &mut 0)
+                .l
         })
         .collect();
 
@@ -93,7 +94,7 @@ fn batched_first_shadows_give_the_same_bits_as_path_by_path() {
     let batched: Vec<Vec3> = starts
         .into_iter()
         .zip(&mut streams)
-        .map(|(start, st)| ctx.finish_path(start, st, &mut 0))
+        .map(|(start, st)| ctx.finish_path(start, st, &mut 0).l)
         .collect();
     for (k, (a, b)) in one_by_one.iter().zip(&batched).enumerate() {
         assert_eq!(

@@ -76,7 +76,9 @@ fn estimate(strategies: Strategies, dirs: &[Vec3], n: u32) -> Vec<(f64, f64)> {
                 let mut stream = SampleStream::new(key, i as u32, k / 256, k % 256);
                 let ray = Ray::new(o, d.normalize());
                 let hit = accel.intersect(&ray);
-                let l = ctx.li_volume_with(ray, hit, &mut stream, &mut rays, strategies);
+                let l = ctx
+                    .li_volume_with(ray, hit, &mut stream, &mut rays, strategies)
+                    .l;
                 s1 += l.y as f64;
                 s2 += (l.y as f64).powi(2);
             }

@@ -45,6 +45,14 @@ pub struct MediumDesc {
     /// for `homogeneous`, whose unbounded column would block sun and sky).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub z_max_m: Option<f64>,
+    /// Whether the in-scattered light on each camera ray (the radiance whose
+    /// first event is a medium scatter) is filtered in image space, guided
+    /// by the ground truth's depth, and the surface behind each camera
+    /// ray's fog is traced at weight Tr rather than by a collide-or-pass
+    /// choice (default true: far less grain at equal time; false gives the
+    /// plain path-traced image bit for bit). Ground truth is never filtered.
+    #[serde(default = "default_true", skip_serializing_if = "is_true")]
+    pub filter_inscatter: bool,
 }
 
 /// `[rain]`: falling drops seen as motion-blurred streaks, placed in world
@@ -84,6 +92,12 @@ pub struct RainDesc {
 
 fn default_albedo() -> [f64; 3] {
     [0.99; 3]
+}
+fn default_true() -> bool {
+    true
+}
+fn is_true(b: &bool) -> bool {
+    *b
 }
 fn default_g() -> f64 {
     0.85

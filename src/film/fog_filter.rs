@@ -1,0 +1,337 @@
+//! Image-space filter of fog in-scattering (issue 4). `l_fog`, the part of
+//! a camera sample whose first event is a medium scatter, has mean
+//! opacity·S, S the mean radiance scattered toward the camera along the ray:
+//! smooth, textureless. Per pixel S̃ = Σw·l_fog / Σw·opacity, and pixel =
+//! (L − l_fog) + opacity·S̃. Kernel: edge-avoiding à-trous (Dammertz et al.
+//! 2010, dilated B3 rows then columns) with range weights from the guide
+//! only (pixel-centre opacity, relative depth_z, sky vs surface: a joint
+//! bilateral, Petschnigg et al. 2004), so both sums are filtered alike.
+//! Row-major pixels (`Film`); fixed-order sums: same bytes on any thread count.
+
+use glam::{Vec3, Vec4};
+use rayon::prelude::*;
+
+use super::Film;
+
+/// One view's first-scatter radiance, per pixel the mean over its samples.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FogLayer {
+    /// Width in pixels.
+    pub width: usize,
+    /// Height in pixels.
+    pub height: usize,
+    /// Mean first-medium-scatter radiance per pixel (part of the film's radiance).
+    pub l_fog: Vec<Vec3>,
+    /// Mean opacity 1 − Tr of the samples' first segments per pixel, in [0, 1].
+    pub opacity: Vec<f32>,
+}
+
+impl FogLayer {
+    /// A layer of `width × height` pixels with no fog.
+    pub fn new(width: usize, height: usize) -> FogLayer {
+        FogLayer {
+            width,
+            height,
+            l_fog: vec![Vec3::ZERO; width * height],
+            opacity: vec![0.0; width * height],
+        }
+    }
+
+    /// Whether any pixel carries first-scatter radiance or opacity.
+    pub fn is_empty(&self) -> bool {
+        self.opacity.iter().all(|&o| o == 0.0) && self.l_fog.iter().all(|&l| l == Vec3::ZERO)
+    }
+}
+
+/// The view's ground truth that steers the filter, per pixel (row-major).
+#[derive(Clone, Copy, Debug)]
+pub struct FogGuide<'a> {
+    /// Pixel-centre depth_z in metres (+inf or NaN: sky).
+    pub depth_z: &'a [f32],
+    /// Opacity 1 − Tr of the pixel-centre ray up to that depth, in [0, 1].
+    pub opacity: &'a [f32],
+}
+
+/// Filter widths.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FogFilter {
+    /// Spatial σ in pixels (> 0): the à-trous cascade gets as many levels
+    /// as its σ needs to reach this.
+    pub sigma_px: f32,
+    /// Range σ on the pixel-centre opacity difference (> 0).
+    pub sigma_opacity: f32,
+    /// Range σ on |Δ ln depth_z| (the relative depth step) between two surface pixels (> 0).
+    pub sigma_depth_rel: f32,
+}
+
+impl FogFilter {
+    /// The default widths for a view `width` pixels wide: the spatial σ
+    /// scales with resolution (a fixed angular footprint) and is at least
+    /// one pixel, so tiny test images still filter.
+    pub fn for_width(width: usize) -> FogFilter {
+        FogFilter {
+            sigma_px: (width as f32 / 160.0 * SIGMA_PX_AT_160).max(1.0),
+            sigma_opacity: 0.1,
+            sigma_depth_rel: 0.3,
+        }
+    }
+}
+
+/// Spatial σ at 160 pixels across (the tuning images' width): in the foggy
+/// street at 16 spp relative RMSE 0.28 at σ ≈ 1, 0.25 at 2.2, 0.246 at 4.6;
+/// the rest of the error is the surfaces' own noise.
+const SIGMA_PX_AT_160: f32 = 2.0;
+
+/// Replaces the first-scatter part of every pixel of `film` by its
+/// filtered estimate: `film = film − fog.l_fog + fog.opacity · S̃`. Pixels
+/// whose neighbourhood has no opacity keep their radiance. Preconditions:
+/// `fog` and `guide` match `film`'s size.
+pub fn filter_fog(film: &mut Film, fog: &FogLayer, guide: &FogGuide<'_>, filter: &FogFilter) {
+    let (w, h) = (film.width, film.height);
+    let n = w * h;
+    assert!(
+        fog.width == w && fog.height == h && fog.l_fog.len() == n && fog.opacity.len() == n,
+        "fog layer size does not match the film"
+    );
+    assert!(
+        guide.depth_z.len() == n && guide.opacity.len() == n,
+        "guide size does not match the film"
+    );
+    let keys: Vec<Key> = guide
+        .depth_z
+        .iter()
+        .zip(guide.opacity)
+        .map(|(&z, &o)| Key::new(z, o))
+        .collect();
+    let data: Vec<Vec4> = fog
+        .l_fog
+        .iter()
+        .zip(&fog.opacity)
+        .map(|(l, &o)| l.extend(o))
+        .collect();
+    let range = RangeWeight::new(filter);
+    let mut cur = data;
+    let mut tmp = vec![Vec4::ZERO; n];
+    for level in 0..atrous_levels(filter.sigma_px) {
+        let step = 1usize << level;
+        // Rows, then columns, of the dilated B3 kernel.
+        atrous_pass(&cur, &mut tmp, &keys, w, h, step, &range, Axis::Row);
+        atrous_pass(&tmp, &mut cur, &keys, w, h, step, &range, Axis::Column);
+    }
+    for (k, px) in film.rgb.iter_mut().enumerate() {
+        let s = cur[k];
+        // Below this mean opacity the ratio is noise over nothing.
+        if s.w > 1e-7 {
+            *px = *px - fog.l_fog[k] + s.truncate() * (fog.opacity[k] / s.w);
+        }
+    }
+}
+
+/// The B3-spline taps of one à-trous level at offsets −2..=2 (Dammertz et al.
+/// 2010, "Edge-avoiding À-Trous wavelet transform"); its variance is one
+/// pixel², so L levels (dilations 1, 2, …, 2^(L−1)) make a kernel of
+/// σ² = (4^L − 1)/3.
+const B3: [f32; 5] = [1.0 / 16.0, 0.25, 0.375, 0.25, 1.0 / 16.0];
+
+/// The à-trous level count whose kernel's σ is nearest `sigma_px` by
+/// ratio, in 1..=10.
+fn atrous_levels(sigma_px: f32) -> u32 {
+    let ln_err = |l: u32| {
+        let sigma_l = ((4f32.powi(l as i32) - 1.0) / 3.0).sqrt();
+        (sigma_l / sigma_px.max(1e-3)).ln().abs()
+    };
+    (1..=10)
+        .min_by(|&a, &b| ln_err(a).total_cmp(&ln_err(b)))
+        .unwrap_or(1)
+}
+
+/// Which neighbours a pass visits.
+#[derive(Clone, Copy, Debug)]
+enum Axis {
+    Row,
+    Column,
+}
+
+/// One edge-avoiding à-trous pass along `axis` with dilation `step`: each
+/// pixel of `out` is the normalised sum of B3 tap × range weight × `data`
+/// over its five neighbours (those inside the image).
+#[allow(clippy::too_many_arguments)]
+fn atrous_pass(
+    data: &[Vec4],
+    out: &mut [Vec4],
+    keys: &[Key],
+    w: usize,
+    h: usize,
+    step: usize,
+    range: &RangeWeight,
+    axis: Axis,
+) {
+    out.par_chunks_mut(w).enumerate().for_each(|(j, row)| {
+        for (i, o) in row.iter_mut().enumerate() {
+            let c = j * w + i;
+            let kc = keys[c];
+            let (pos, len, stride) = match axis {
+                Axis::Row => (i as isize, w as isize, 1isize),
+                Axis::Column => (j as isize, h as isize, w as isize),
+            };
+            let mut s = Vec4::ZERO;
+            let mut wsum = 0.0;
+            for (t, &b3) in B3.iter().enumerate() {
+                let d = (t as isize - 2) * step as isize;
+                let q = pos + d;
+                if q < 0 || q >= len {
+                    continue;
+                }
+                let k = (c as isize + d * stride) as usize;
+                let wt = b3 * range.weight(kc, keys[k]);
+                s += data[k] * wt;
+                wsum += wt;
+            }
+            // The centre tap always counts, so wsum ≥ 3/8.
+            *o = s / wsum;
+        }
+    });
+}
+
+/// A pixel's guide values.
+#[derive(Clone, Copy, Debug)]
+struct Key {
+    /// ln depth_z (a difference is the relative depth step), +inf for sky.
+    ln_z: f32,
+    /// Pixel-centre opacity.
+    opacity: f32,
+}
+
+impl Key {
+    fn new(z: f32, opacity: f32) -> Key {
+        Key {
+            ln_z: if z.is_finite() && z > 0.0 {
+                z.ln()
+            } else {
+                f32::INFINITY
+            },
+            opacity: if opacity.is_finite() { opacity } else { 0.0 },
+        }
+    }
+}
+
+/// The range part of the kernel.
+#[derive(Clone, Copy, Debug)]
+struct RangeWeight {
+    inv_opacity2: f32,
+    inv_rel2: f32,
+}
+
+impl RangeWeight {
+    fn new(f: &FogFilter) -> Self {
+        RangeWeight {
+            inv_opacity2: 1.0 / f.sigma_opacity.max(1e-6).powi(2),
+            inv_rel2: 1.0 / f.sigma_depth_rel.max(1e-6).powi(2),
+        }
+    }
+
+    /// Weight of neighbour `b` for centre `a`, in [0, 1]: zero between sky
+    /// and surface, Gaussian in opacity and (surfaces) relative depth.
+    #[inline]
+    fn weight(&self, a: Key, b: Key) -> f32 {
+        let sky_a = a.ln_z.is_infinite();
+        if sky_a != b.ln_z.is_infinite() {
+            return 0.0;
+        }
+        let d_o = a.opacity - b.opacity;
+        let mut e = d_o * d_o * self.inv_opacity2;
+        if !sky_a {
+            let rel = a.ln_z - b.ln_z;
+            e += rel * rel * self.inv_rel2;
+        }
+        // A rational stand-in for exp(−e/2) (equal to second order, a
+        // heavier tail cut at 3σ): no transcendental call per tap.
+        if e > 9.0 {
+            0.0
+        } else {
+            1.0 / (1.0 + e * (0.5 + e * 0.125))
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn flat_guide(n: usize, z: f32, o: f32) -> (Vec<f32>, Vec<f32>) {
+        (vec![z; n], vec![o; n])
+    }
+
+    #[test]
+    fn constant_fog_is_a_fixed_point() {
+        let (w, h) = (9, 7);
+        let mut film = Film::uniform(w, h, Vec3::new(2.0, 3.0, 4.0));
+        let mut fog = FogLayer::new(w, h);
+        fog.l_fog.fill(Vec3::new(1.0, 1.5, 2.0));
+        fog.opacity.fill(0.5);
+        let (z, o) = flat_guide(w * h, 10.0, 0.5);
+        let guide = FogGuide {
+            depth_z: &z,
+            opacity: &o,
+        };
+        filter_fog(&mut film, &fog, &guide, &FogFilter::for_width(w));
+        for px in &film.rgb {
+            assert!(
+                (*px - Vec3::new(2.0, 3.0, 4.0)).abs().max_element() < 1e-5,
+                "{px}"
+            );
+        }
+    }
+
+    #[test]
+    fn sky_and_surface_never_mix() {
+        let (w, h) = (8, 4);
+        // Left half sky with fog radiance 1, right half a wall with 5.
+        let mut fog = FogLayer::new(w, h);
+        let mut z = vec![0.0f32; w * h];
+        for j in 0..h {
+            for i in 0..w {
+                let k = j * w + i;
+                let sky = i < w / 2;
+                z[k] = if sky { f32::INFINITY } else { 20.0 };
+                fog.opacity[k] = 0.5;
+                fog.l_fog[k] =
+                    Vec3::splat(if sky { 1.0 } else { 5.0 }) * if i % 2 == 0 { 1.5 } else { 0.5 };
+            }
+        }
+        let mut film = Film {
+            width: w,
+            height: h,
+            rgb: fog.l_fog.clone(),
+        };
+        let o = vec![0.5; w * h];
+        let guide = FogGuide {
+            depth_z: &z,
+            opacity: &o,
+        };
+        let f = FogFilter {
+            sigma_px: 4.0,
+            ..FogFilter::for_width(w)
+        };
+        filter_fog(&mut film, &fog, &guide, &f);
+        for j in 0..h {
+            for i in 0..w {
+                let want = if i < w / 2 { 1.0 } else { 5.0 };
+                // Smoothed toward the side's mean, never toward the other side.
+                let got = film.get(i, j).x;
+                assert!((got - want).abs() < 0.5 * want, "({i},{j}) {got} vs {want}");
+            }
+        }
+    }
+
+    #[test]
+    fn atrous_levels_reach_the_asked_sigma() {
+        // σ² = (4^L − 1)/3: 1, √5, √21, √85 for L = 1..4.
+        assert_eq!(atrous_levels(0.5), 1);
+        assert_eq!(atrous_levels(1.0), 1);
+        assert_eq!(atrous_levels(2.0), 2);
+        assert_eq!(atrous_levels(4.0), 3);
+        assert_eq!(atrous_levels(9.0), 4);
+        assert_eq!(atrous_levels(20.0), 5);
+    }
+}
