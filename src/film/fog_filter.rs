@@ -8,10 +8,14 @@
 //! bilateral, Petschnigg et al. 2004), so both sums are filtered alike.
 //! Row-major pixels (`Film`); fixed-order sums: same bytes on any thread count.
 
+use std::ops::{Add, Div, Mul};
+
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;
 
 use super::Film;
+
+mod surface;
 
 /// One view's first-scatter radiance, per pixel the mean over its samples.
 #[derive(Clone, Debug, PartialEq)]
@@ -24,6 +28,11 @@ pub struct FogLayer {
     pub l_fog: Vec<Vec3>,
     /// Mean opacity 1 − Tr of the samples' first segments per pixel, in [0, 1].
     pub opacity: Vec<f32>,
+    /// Mean fog light on the first (Lambertian) surface per pixel
+    /// (`LiSample::l_surf_fog`, part of the film's radiance).
+    pub l_surf_fog: Vec<Vec3>,
+    /// Mean throughput × albedo at the first surface per pixel (`LiSample::rho`).
+    pub rho: Vec<Vec3>,
 }
 
 impl FogLayer {
@@ -34,12 +43,17 @@ impl FogLayer {
             height,
             l_fog: vec![Vec3::ZERO; width * height],
             opacity: vec![0.0; width * height],
+            l_surf_fog: vec![Vec3::ZERO; width * height],
+            rho: vec![Vec3::ZERO; width * height],
         }
     }
 
     /// Whether any pixel carries first-scatter radiance or opacity.
     pub fn is_empty(&self) -> bool {
-        self.opacity.iter().all(|&o| o == 0.0) && self.l_fog.iter().all(|&l| l == Vec3::ZERO)
+        self.opacity.iter().all(|&o| o == 0.0)
+            && self.l_fog.iter().all(|&l| l == Vec3::ZERO)
+            && self.l_surf_fog.iter().all(|&l| l == Vec3::ZERO)
+            && self.rho.iter().all(|&r| r == Vec3::ZERO)
     }
 }
 
@@ -50,6 +64,9 @@ pub struct FogGuide<'a> {
     pub depth_z: &'a [f32],
     /// Opacity 1 − Tr of the pixel-centre ray up to that depth, in [0, 1].
     pub opacity: &'a [f32],
+    /// Unit pixel-centre normals in any one frame (zero: unknown or sky),
+    /// for the surface component; empty: depth alone steers it.
+    pub normal: &'a [Vec3],
 }
 
 /// Filter widths.
@@ -84,8 +101,10 @@ const SIGMA_PX_AT_160: f32 = 2.0;
 
 /// Replaces the first-scatter part of every pixel of `film` by its
 /// filtered estimate: `film = film − fog.l_fog + fog.opacity · S̃`. Pixels
-/// whose neighbourhood has no opacity keep their radiance. Preconditions:
-/// `fog` and `guide` match `film`'s size.
+/// whose neighbourhood has no opacity keep their radiance. Then the same
+/// for the fog light on the first surface (`surface.rs`):
+/// `film −= l_surf_fog − rho · Ẽ`. Preconditions: `fog` and `guide` match
+/// `film`'s size (`guide.normal` may be empty).
 pub fn filter_fog(film: &mut Film, fog: &FogLayer, guide: &FogGuide<'_>, filter: &FogFilter) {
     let (w, h) = (film.width, film.height);
     let n = w * h;
@@ -112,11 +131,12 @@ pub fn filter_fog(film: &mut Film, fog: &FogLayer, guide: &FogGuide<'_>, filter:
     let range = RangeWeight::new(filter);
     let mut cur = data;
     let mut tmp = vec![Vec4::ZERO; n];
+    let weight = |a: Key, b: Key| range.weight(a, b);
     for level in 0..atrous_levels(filter.sigma_px) {
         let step = 1usize << level;
         // Rows, then columns, of the dilated B3 kernel.
-        atrous_pass(&cur, &mut tmp, &keys, w, h, step, &range, Axis::Row);
-        atrous_pass(&tmp, &mut cur, &keys, w, h, step, &range, Axis::Column);
+        atrous_pass(&cur, &mut tmp, &keys, (w, h), step, &weight, Axis::Row);
+        atrous_pass(&tmp, &mut cur, &keys, (w, h), step, &weight, Axis::Column);
     }
     for (k, px) in film.rgb.iter_mut().enumerate() {
         let s = cur[k];
@@ -125,6 +145,7 @@ pub fn filter_fog(film: &mut Film, fog: &FogLayer, guide: &FogGuide<'_>, filter:
             *px = *px - fog.l_fog[k] + s.truncate() * (fog.opacity[k] / s.w);
         }
     }
+    surface::filter_surface_fog(film, fog, guide, filter);
 }
 
 /// The B3-spline taps of one à-trous level at offsets −2..=2 (Dammertz et al.
@@ -155,17 +176,18 @@ enum Axis {
 /// One edge-avoiding à-trous pass along `axis` with dilation `step`: each
 /// pixel of `out` is the normalised sum of B3 tap × range weight × `data`
 /// over its five neighbours (those inside the image).
-#[allow(clippy::too_many_arguments)]
-fn atrous_pass(
-    data: &[Vec4],
-    out: &mut [Vec4],
-    keys: &[Key],
-    w: usize,
-    h: usize,
+fn atrous_pass<T, K>(
+    data: &[T],
+    out: &mut [T],
+    keys: &[K],
+    (w, h): (usize, usize),
     step: usize,
-    range: &RangeWeight,
+    weight: &(impl Fn(K, K) -> f32 + Sync),
     axis: Axis,
-) {
+) where
+    T: Copy + Send + Sync + Default + Add<Output = T> + Mul<f32, Output = T> + Div<f32, Output = T>,
+    K: Copy + Sync,
+{
     out.par_chunks_mut(w).enumerate().for_each(|(j, row)| {
         for (i, o) in row.iter_mut().enumerate() {
             let c = j * w + i;
@@ -174,7 +196,7 @@ fn atrous_pass(
                 Axis::Row => (i as isize, w as isize, 1isize),
                 Axis::Column => (j as isize, h as isize, w as isize),
             };
-            let mut s = Vec4::ZERO;
+            let mut s = T::default();
             let mut wsum = 0.0;
             for (t, &b3) in B3.iter().enumerate() {
                 let d = (t as isize - 2) * step as isize;
@@ -183,8 +205,8 @@ fn atrous_pass(
                     continue;
                 }
                 let k = (c as isize + d * stride) as usize;
-                let wt = b3 * range.weight(kc, keys[k]);
-                s += data[k] * wt;
+                let wt = b3 * weight(kc, keys[k]);
+                s = s + data[k] * wt;
                 wsum += wt;
             }
             // The centre tap always counts, so wsum ≥ 3/8.
@@ -273,6 +295,7 @@ mod tests {
         let guide = FogGuide {
             depth_z: &z,
             opacity: &o,
+            normal: &[],
         };
         filter_fog(&mut film, &fog, &guide, &FogFilter::for_width(w));
         for px in &film.rgb {
@@ -308,6 +331,7 @@ mod tests {
         let guide = FogGuide {
             depth_z: &z,
             opacity: &o,
+            normal: &[],
         };
         let f = FogFilter {
             sigma_px: 4.0,

@@ -267,6 +267,13 @@ pub struct LiSample {
     /// without a scattering medium): `l_fog / opacity` is the mean radiance
     /// scattered toward the camera along that segment.
     pub opacity: f32,
+    /// The part whose first event is a Lambertian surface vertex x1 and
+    /// whose next event after x1 is a medium scatter: fog light on the
+    /// first surface (zero unless the fog filter splits the camera ray).
+    pub l_surf_fog: Vec3,
+    /// Throughput at x1 times x1's albedo (zero when x1 is missing or not
+    /// Lambertian): `l_surf_fog / rho` is the fog-scattered irradiance / π.
+    pub rho: Vec3,
 }
 
 impl<A: Accel> PathContext<'_, A> {

@@ -45,10 +45,11 @@ const VOL_DIMS: u32 = 1 << 20;
 const VOL_DIMS_PER_BOUNCE: u32 = 16;
 
 mod guide;
+mod surf_fog;
 #[cfg(test)]
 mod tests;
 
-pub use guide::{centre_opacity, filter_view_inscatter};
+pub use guide::{centre_normals, centre_opacity, filter_view_inscatter};
 
 /// First 4D set of the sun-lobe dimensions (two sets per bounce, above
 /// every segment's volume dimensions).
@@ -125,8 +126,12 @@ impl<A: Accel> PathContext<'_, A> {
         // on it, and for good once it collides: then all is fog).
         let mut l_fog_passed: Option<Vec3> = None;
         let mut opacity = 0.0;
+        let mut surf_fog = surf_fog::SurfFog::default();
+        let mut rho_split = Vec3::ZERO;
+        let mut l_surf_fog_split = Vec3::ZERO;
         loop {
             let first_segment = st.bounces == 0;
+            let after_x1 = surf_fog.segment_start(st.l);
             *rays += 1;
             let hit = match known_hit.take() {
                 Some(hit) => hit,
@@ -201,9 +206,8 @@ impl<A: Accel> PathContext<'_, A> {
                         // Both continuations: the surface's with its
                         // expected weight Tr, the fog's as drawn.
                         let beta_surf = st.beta * seg.tr_seg;
-                        l_split = self
-                            .trace(ray, hit, stream, rays, strategies, Some(beta_surf))
-                            .l;
+                        let li = self.trace(ray, hit, stream, rays, strategies, Some(beta_surf));
+                        (l_split, rho_split, l_surf_fog_split) = (li.l, li.rho, li.l_surf_fog);
                     } else if split {
                         st.beta *= seg.tr_seg;
                     }
@@ -236,6 +240,9 @@ impl<A: Accel> PathContext<'_, A> {
             if first_segment {
                 l_fog_passed = Some(st.l);
             }
+            if after_x1 {
+                surf_fog.segment_passed(st.l);
+            }
             let Some(hit) = hit else {
                 st.l += st.beta
                     * self
@@ -244,6 +251,10 @@ impl<A: Accel> PathContext<'_, A> {
                 break;
             };
             lobe_wo = None;
+            if st.bounces == 0 && strategies.split_first && st.bounces < self.max_depth {
+                let rho = self.first_lambert_albedo(&ray, &hit).map(|a| a * st.beta);
+                surf_fog.at_first_vertex(rho);
+            }
             match self.surface_vertex(&ray, &hit, &mut st, stream, rays) {
                 Some(next) => ray = next,
                 None => break,
@@ -253,6 +264,8 @@ impl<A: Accel> PathContext<'_, A> {
             l: st.l + l_split,
             l_fog: l_fog_passed.unwrap_or(st.l),
             opacity,
+            l_surf_fog: surf_fog.l_surf_fog(st.l) + l_surf_fog_split,
+            rho: surf_fog.rho + rho_split,
         }
     }
 

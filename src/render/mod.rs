@@ -216,8 +216,9 @@ struct ChunkScratch {
     occluded: Vec<bool>,
 }
 
-/// Per pixel: (mean radiance, mean l_fog, mean first-segment opacity).
-type PixelMeans = (Vec3, Vec3, f32);
+/// Per pixel: (mean radiance, mean l_fog, mean first-segment opacity,
+/// mean l_surf_fog, mean rho).
+type PixelMeans = (Vec3, Vec3, f32, Vec3, Vec3);
 
 /// Path-traces one view; pixels are independent, so any thread count gives
 /// the same film. Also returns the first-scatter part of its radiance (the
@@ -272,8 +273,9 @@ fn render_view<A: Accel>(
         let tw = ((x0 + TILE_PX).min(w) - x0) as usize;
         for (row, px) in tile.chunks(tw).enumerate() {
             let start = (y0 as usize + row) * w as usize + x0 as usize;
-            for (k, &(l, l_fog, opacity)) in (start..start + tw).zip(px) {
+            for (k, &(l, l_fog, opacity, l_sf, rho)) in (start..start + tw).zip(px) {
                 (film.rgb[k], fog.l_fog[k], fog.opacity[k]) = (l, l_fog, opacity);
+                (fog.l_surf_fog[k], fog.rho[k]) = (l_sf, rho);
             }
         }
     }
@@ -343,6 +345,7 @@ fn render_chunk<A: Accel>(
     let mut starts = scratch.starts.drain(..);
     for stream_px in scratch.streams.chunks_mut(spp as usize) {
         let (mut sum, mut fog, mut opacity) = (Vec3::ZERO, Vec3::ZERO, 0.0f32);
+        let (mut surf_fog, mut rho) = (Vec3::ZERO, Vec3::ZERO);
         // The pixel's streams lead the zip: it must not pull a start too many.
         for (stream, start) in stream_px.iter_mut().zip(starts.by_ref()) {
             let li = ctx.finish_path(start, stream, rays);
@@ -351,9 +354,11 @@ fn render_chunk<A: Accel>(
                 sum += li.l;
                 fog += li.l_fog;
                 opacity += li.opacity;
+                surf_fog += li.l_surf_fog;
+                rho += li.rho;
             }
         }
         let n = spp as f32;
-        out.push((sum / n, fog / n, opacity / n));
+        out.push((sum / n, fog / n, opacity / n, surf_fog / n, rho / n));
     }
 }

@@ -3,6 +3,7 @@
 //! pixel-centre convention as `gt.rs`: u = i + 0.5, v = j + 0.5, camera
 //! z = depth_z), so the filter groups pixels by how much fog they look through.
 
+use glam::Vec3;
 use rayon::prelude::*;
 
 use crate::film::{filter_fog, Film, FogFilter, FogGuide, FogLayer};
@@ -54,9 +55,69 @@ pub fn filter_view_inscatter(
     fog: &FogLayer,
 ) {
     let opacity = centre_opacity(scene, cam, depth_z);
+    let normal = if std::env::var_os("PARALLAX_NO_SURF_FOG").is_some() {
+        Vec::new()
+    } else {
+        centre_normals(cam, depth_z)
+    };
     let guide = FogGuide {
         depth_z,
         opacity: &opacity,
+        normal: &normal,
     };
+    if normal.is_empty() {
+        let mut fog = fog.clone();
+        fog.rho.fill(glam::Vec3::ZERO);
+        return filter_fog(film, &fog, &guide, &FogFilter::for_width(film.width));
+    }
     filter_fog(film, fog, &guide, &FogFilter::for_width(film.width));
+}
+
+/// Unit camera-space normals of the pixel-centre surfaces from `depth_z`
+/// alone (row-major; zero for sky): the cross product of the position steps
+/// to the horizontal and vertical neighbours, each taken on the side whose
+/// depth is nearer (so a depth edge does not tilt it). Works for every view
+/// (right views have depth but no normal map).
+pub fn centre_normals(cam: &RenderCamera, depth_z: &[f32]) -> Vec<Vec3> {
+    let (w, h) = (
+        cam.intrinsics.width as usize,
+        cam.intrinsics.height as usize,
+    );
+    assert_eq!(
+        depth_z.len(),
+        w * h,
+        "depth map size does not match the camera"
+    );
+    let pos = |i: usize, j: usize| -> Option<Vec3> {
+        let z = depth_z[j * w + i];
+        z.is_finite()
+            .then(|| (cam.intrinsics.dir_cam(i as f64 + 0.5, j as f64 + 0.5) * z as f64).as_vec3())
+    };
+    // The step from p toward the nearer-in-depth of two neighbours, signed
+    // as the increasing index.
+    let step = |p: Vec3, lo: Option<Vec3>, hi: Option<Vec3>| -> Option<Vec3> {
+        match (lo, hi) {
+            (Some(a), Some(b)) if (a.z - p.z).abs() <= (b.z - p.z).abs() => Some(p - a),
+            (_, Some(b)) => Some(b - p),
+            (Some(a), None) => Some(p - a),
+            (None, None) => None,
+        }
+    };
+    (0..w * h)
+        .into_par_iter()
+        .map(|k| {
+            let (i, j) = (k % w, k / w);
+            let Some(p) = pos(i, j) else {
+                return Vec3::ZERO;
+            };
+            let left = (i > 0).then(|| pos(i - 1, j)).flatten();
+            let right = (i + 1 < w).then(|| pos(i + 1, j)).flatten();
+            let up = (j > 0).then(|| pos(i, j - 1)).flatten();
+            let down = (j + 1 < h).then(|| pos(i, j + 1)).flatten();
+            match (step(p, left, right), step(p, up, down)) {
+                (Some(dx), Some(dy)) => dx.cross(dy).normalize_or_zero(),
+                _ => Vec3::ZERO,
+            }
+        })
+        .collect()
 }

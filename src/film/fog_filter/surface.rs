@@ -1,0 +1,150 @@
+//! The second component of the fog filter: fog light on the first surface
+//! (`FogLayer::l_surf_fog`, paths camera → Lambertian x1 → medium scatter).
+//! Its mean is rho·E with rho = throughput × albedo at x1 (texture included)
+//! and E the fog-scattered irradiance / π, smooth over a surface; per pixel
+//! Ẽ = Σw·l_surf_fog / Σw·rho per channel and pixel = L − l_surf_fog + rho·Ẽ,
+//! so texture and the first segment's Tr stay exact per pixel. Range
+//! weights: relative depth_z, the pixel-centre normal, never sky.
+
+use std::ops::{Add, Div, Mul};
+
+use glam::Vec3;
+
+use super::{atrous_levels, atrous_pass, Axis, FogFilter, FogGuide, FogLayer};
+use crate::film::Film;
+
+/// Range σ on |Δn| between unit pixel-centre normals (about 17° at 1σ).
+const SIGMA_NORMAL: f32 = 0.3;
+
+/// Replaces `l_surf_fog` in `film` by its filtered estimate; pixels with no
+/// rho in their neighbourhood (per channel) keep their radiance.
+pub(super) fn filter_surface_fog(
+    film: &mut Film,
+    fog: &FogLayer,
+    guide: &FogGuide<'_>,
+    filter: &FogFilter,
+) {
+    let (w, h) = (film.width, film.height);
+    let n = w * h;
+    assert!(
+        fog.l_surf_fog.len() == n && fog.rho.len() == n,
+        "surface fog layer size does not match the film"
+    );
+    if fog.rho.iter().all(|&r| r == Vec3::ZERO) {
+        return;
+    }
+    let normal = |k: usize| guide.normal.get(k).copied().unwrap_or(Vec3::ZERO);
+    let keys: Vec<SurfKey> = (0..n)
+        .map(|k| SurfKey::new(guide.depth_z[k], normal(k)))
+        .collect();
+    let mut cur: Vec<Pair> = fog
+        .l_surf_fog
+        .iter()
+        .zip(&fog.rho)
+        .map(|(&l, &rho)| Pair { l, rho })
+        .collect();
+    let mut tmp = vec![Pair::default(); n];
+    let inv_rel2 = 1.0 / filter.sigma_depth_rel.max(1e-6).powi(2);
+    let inv_n2 = 1.0 / (SIGMA_NORMAL * SIGMA_NORMAL);
+    let weight = |a: SurfKey, b: SurfKey| a.weight(b, inv_rel2, inv_n2);
+    for level in 0..atrous_levels(filter.sigma_px) {
+        let step = 1usize << level;
+        atrous_pass(&cur, &mut tmp, &keys, (w, h), step, &weight, Axis::Row);
+        atrous_pass(&tmp, &mut cur, &keys, (w, h), step, &weight, Axis::Column);
+    }
+    for (k, px) in film.rgb.iter_mut().enumerate() {
+        let (s, rho) = (cur[k], fog.rho[k]);
+        if rho == Vec3::ZERO {
+            continue;
+        }
+        for c in 0..3 {
+            // Below this the ratio is noise over nothing.
+            if s.rho[c] > 1e-7 {
+                px[c] += rho[c] * (s.l[c] / s.rho[c]) - fog.l_surf_fog[k][c];
+            }
+        }
+    }
+}
+
+/// The filtered pair: fog light on the surface and its rho.
+#[derive(Clone, Copy, Debug, Default)]
+struct Pair {
+    l: Vec3,
+    rho: Vec3,
+}
+
+impl Add for Pair {
+    type Output = Pair;
+    fn add(self, o: Pair) -> Pair {
+        Pair {
+            l: self.l + o.l,
+            rho: self.rho + o.rho,
+        }
+    }
+}
+
+impl Mul<f32> for Pair {
+    type Output = Pair;
+    fn mul(self, s: f32) -> Pair {
+        Pair {
+            l: self.l * s,
+            rho: self.rho * s,
+        }
+    }
+}
+
+impl Div<f32> for Pair {
+    type Output = Pair;
+    fn div(self, s: f32) -> Pair {
+        Pair {
+            l: self.l / s,
+            rho: self.rho / s,
+        }
+    }
+}
+
+/// A pixel's guide values for the surface component.
+#[derive(Clone, Copy, Debug)]
+struct SurfKey {
+    /// ln depth_z, +inf for sky.
+    ln_z: f32,
+    /// Unit normal, zero when unknown.
+    n: Vec3,
+}
+
+impl SurfKey {
+    fn new(z: f32, n: Vec3) -> SurfKey {
+        SurfKey {
+            ln_z: if z.is_finite() && z > 0.0 {
+                z.ln()
+            } else {
+                f32::INFINITY
+            },
+            n: if n.is_finite() { n } else { Vec3::ZERO },
+        }
+    }
+
+    /// Weight of neighbour `b`, in [0, 1]: zero between sky and surface,
+    /// Gaussian-like in relative depth and (both known) the normal step.
+    #[inline]
+    fn weight(self, b: SurfKey, inv_rel2: f32, inv_n2: f32) -> f32 {
+        let sky = self.ln_z.is_infinite();
+        if sky != b.ln_z.is_infinite() {
+            return 0.0;
+        }
+        if sky {
+            return 1.0;
+        }
+        let rel = self.ln_z - b.ln_z;
+        let mut e = rel * rel * inv_rel2;
+        if self.n != Vec3::ZERO && b.n != Vec3::ZERO {
+            e += (self.n - b.n).length_squared() * inv_n2;
+        }
+        // The same rational stand-in for exp(−e/2) as the fog part.
+        if e > 9.0 {
+            0.0
+        } else {
+            1.0 / (1.0 + e * (0.5 + e * 0.125))
+        }
+    }
+}

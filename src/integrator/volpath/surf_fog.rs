@@ -1,0 +1,72 @@
+//! Bookkeeping of `LiSample::l_surf_fog` (issue 4): the part of a split
+//! camera sample whose first event is a Lambertian surface vertex x1 and
+//! whose next event is a medium scatter. Its mean is β(x1)·ρ(x1)·E_fog/π
+//! with E_fog the fog-scattered irradiance at x1, smooth over surfaces, so
+//! `film::filter_surface_fog` filters the ratio l_surf_fog / (β·ρ).
+
+use glam::Vec3;
+
+use crate::accel::{Accel, Hit, Ray};
+use crate::integrator::path::PathContext;
+use shaders_cpu::bsdf::Bsdf;
+
+/// The split's state along one path.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct SurfFog {
+    /// β(x1)·ρ(x1) once x1 is a Lambertian first vertex.
+    pub rho: Vec3,
+    /// The next segment after x1 is the one to watch.
+    armed: bool,
+    /// Path radiance when that segment began.
+    from: Option<Vec3>,
+    /// Path radiance when it ended without a collision.
+    to: Option<Vec3>,
+}
+
+impl SurfFog {
+    /// Records the first surface vertex: `rho` is β·albedo when x1 is
+    /// Lambertian (None: not tracked). Call before the vertex is shaded.
+    pub fn at_first_vertex(&mut self, rho: Option<Vec3>) {
+        if let Some(r) = rho {
+            self.rho = r;
+            self.armed = true;
+        }
+    }
+
+    /// At the start of a segment with the path radiance `l`; whether this
+    /// is the segment right after x1.
+    pub fn segment_start(&mut self, l: Vec3) -> bool {
+        let after_x1 = std::mem::take(&mut self.armed);
+        if after_x1 {
+            self.from = Some(l);
+        }
+        after_x1
+    }
+
+    /// The segment after x1 reached its surface or the sky without a
+    /// collision: what follows is not fog light on x1.
+    pub fn segment_passed(&mut self, l: Vec3) {
+        self.to = Some(l);
+    }
+
+    /// The fog light on x1 given the path's final radiance `l`.
+    pub fn l_surf_fog(&self, l: Vec3) -> Vec3 {
+        self.from.map_or(Vec3::ZERO, |a| self.to.unwrap_or(l) - a)
+    }
+}
+
+impl<A: Accel> PathContext<'_, A> {
+    /// The albedo at the first surface vertex of `ray` (texture included,
+    /// as the camera sees it, after wetting) when its BSDF is Lambertian;
+    /// None for every other BSDF (mirror, glass, water film, metal).
+    pub(super) fn first_lambert_albedo(&self, ray: &Ray, hit: &Hit) -> Option<Vec3> {
+        let scene = self.scene;
+        let si = self.surfaces.interaction(scene, ray, hit);
+        let mat = &scene.materials[si.material as usize];
+        let textured = super::super::texture::textured_bsdf(scene, mat, si.p, si.n_geo, true);
+        match super::super::wet::wet_bsdf(scene, &si, -ray.d, textured) {
+            Bsdf::Lambert { albedo } => Some(albedo),
+            _ => None,
+        }
+    }
+}
