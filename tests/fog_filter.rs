@@ -166,8 +166,8 @@ fn depth_step_stays_a_step() {
 }
 
 /// The left view of `r` rebuilt sample by sample from `PathContext::li`
-/// with the frame's streams (4 spp, seed 9): the plain film and its fog layer.
-fn rebuild_left(r: &Rendered) -> (Film, FogLayer) {
+/// with the frame's streams (`spp`, `seed`): the plain film and its fog layer.
+fn rebuild_left(r: &Rendered, spp: u32, seed: u64) -> (Film, FogLayer) {
     let scene = &r.scene;
     let lights = LightSet::build(scene);
     let surfaces = SurfaceTable::build(scene);
@@ -182,7 +182,7 @@ fn rebuild_left(r: &Rendered) -> (Film, FogLayer) {
     };
     let cam = RenderCamera::new(&r.rig.left, scene.origin_world);
     let key = StreamKey {
-        seed: 9,
+        seed,
         frame: 0,
         view: 0,
     };
@@ -192,8 +192,9 @@ fn rebuild_left(r: &Rendered) -> (Film, FogLayer) {
     for j in 0..H {
         for i in 0..W {
             let (mut l, mut l_fog, mut opacity) = (Vec3::ZERO, Vec3::ZERO, 0.0f32);
+            let (mut l_sf, mut rho) = (Vec3::ZERO, Vec3::ZERO);
             let mut rays = 0;
-            for s in 0..4 {
+            for s in 0..spp {
                 let mut stream = SampleStream::new(key, i, j, s);
                 let jitter = stream.next_2d();
                 let d = cam
@@ -206,10 +207,14 @@ fn rebuild_left(r: &Rendered) -> (Film, FogLayer) {
                     l += li.l;
                     l_fog += li.l_fog;
                     opacity += li.opacity;
+                    l_sf += li.l_surf_fog;
+                    rho += li.rho;
                 }
             }
             let k = j as usize * w + i as usize;
-            (film.rgb[k], fog.l_fog[k], fog.opacity[k]) = (l / 4.0, l_fog / 4.0, opacity / 4.0);
+            let n = spp as f32;
+            (film.rgb[k], fog.l_fog[k], fog.opacity[k]) = (l / n, l_fog / n, opacity / n);
+            (fog.l_surf_fog[k], fog.rho[k]) = (l_sf / n, rho / n);
         }
     }
     (film, fog)
@@ -222,13 +227,17 @@ fn filter_off_and_on_are_functions_of_the_samples() {
     // single-ray one).
     let off = render_body(STEP, 4, 9, false, Backend::Bvh);
     let on = render_body(STEP, 4, 9, true, Backend::Bvh);
-    let (film_off, _) = rebuild_left(&off);
+    let (film_off, _) = rebuild_left(&off, 4, 9);
     assert_eq!(
         off.out.images[0], film_off,
         "filter off is the plain estimate"
     );
-    let (mut film, fog) = rebuild_left(&on);
+    let (mut film, fog) = rebuild_left(&on, 4, 9);
     assert!(!fog.is_empty(), "the fog carries first-scatter light");
+    assert!(
+        fog.l_surf_fog.iter().any(|l| l.y > 0.0),
+        "the fog lights the walls"
+    );
     let cam = RenderCamera::new(&on.rig.left, on.scene.origin_world);
     filter_view_inscatter(&on.scene, &cam, &on.out.left.depth_z_f32(), &mut film, &fog);
     assert_eq!(on.out.images[0], film, "filter on is the filtered estimate");
@@ -242,9 +251,15 @@ fn filtered_frame_is_bitwise_identical_for_1_and_2_threads() {
             .num_threads(threads)
             .build()
             .unwrap();
-        pool.install(|| render_body(STEP, 4, 5, true, Backend::default_backend()))
+        let ground = ground_body([0.5, 0.1]);
+        pool.install(|| {
+            [STEP, ground.as_str()].map(|b| render_body(b, 4, 5, true, Backend::default_backend()))
+        })
     };
     let (a, b) = (on(1), on(2));
+    let [a, ground_a] = a;
+    let [b, ground_b] = b;
+    assert_eq!(ground_a.out.images, ground_b.out.images);
     assert_eq!(a.out.images.len(), 2);
     for (x, y) in a.out.images.iter().zip(&b.out.images) {
         let bits = |f: &Film| {
@@ -268,4 +283,158 @@ fn ground_truth_is_the_same_with_the_filter_on_and_off() {
     }
     // The right view is filtered too (guided by its own depth).
     assert_ne!(on.out.images[1], off.out.images[1]);
+}
+
+/// Fog over a ground of 4 m tiles in a checker of albedos `albedo` (equal:
+/// a plain diffuse ground), lit by a low sun and a gradient sky; the fog
+/// scatters a good part of the light the ground receives.
+fn ground_body(albedo: [f32; 2]) -> String {
+    let mut s = String::from(
+        "[sky]\nkind = \"gradient\"\nzenith = [0.3, 0.4, 0.8]\nhorizon = [0.8, 0.8, 0.9]\nground = [0.1, 0.1, 0.1]\n\
+         [[light]]\nkind = \"sun\"\nelevation_deg = 20.0\nazimuth_deg = 150.0\nirradiance = [300.0, 290.0, 280.0]\n\
+         [medium]\nkind = \"homogeneous\"\nsigma_t = 0.06\nalbedo = [0.95, 0.95, 0.95]\ng = 0.7\nz_max_m = 25.0\n",
+    );
+    for (k, a) in albedo.iter().enumerate() {
+        s += &format!(
+            "[[material]]\nname = \"m{k}\"\nkind = \"diffuse\"\nalbedo = [{a:?}, {a:?}, {a:?}]\n"
+        );
+    }
+    for ix in 0..10 {
+        for iy in -4..4 {
+            let m = (ix + iy as i32).rem_euclid(2);
+            let (x, y) = (2.0 + 4.0 * ix as f64 + 2.0, 4.0 * iy as f64 + 2.0);
+            s += &format!(
+                "[[object]]\nkind = \"box\"\nsize = [4.0, 4.0, 0.2]\nmaterial = \"m{m}\"\ntransform = {{ translate = [{x:?}, {y:?}, -0.1] }}\n"
+            );
+        }
+    }
+    s
+}
+
+/// The left view of `r` rebuilt at `spp` with seed `seed`, filtered with
+/// the fog component only (`rho` zeroed) and with both components.
+fn fog_only_and_both(r: &Rendered, spp: u32, seed: u64) -> (Film, Film, FogLayer) {
+    let (film, fog) = rebuild_left(r, spp, seed);
+    let cam = RenderCamera::new(&r.rig.left, r.scene.origin_world);
+    let depth = r.out.left.depth_z_f32();
+    let mut fog_only = fog.clone();
+    fog_only.rho.fill(Vec3::ZERO);
+    let (mut a, mut b) = (film.clone(), film);
+    filter_view_inscatter(&r.scene, &cam, &depth, &mut a, &fog_only);
+    filter_view_inscatter(&r.scene, &cam, &depth, &mut b, &fog);
+    (a, b, fog)
+}
+
+/// Ground pixels of the left view (depth < 60 m) as (index, tile parity),
+/// those whose 4 neighbours lie on the same tile only.
+fn ground_pixels(r: &Rendered) -> Vec<(usize, i64)> {
+    let cam = RenderCamera::new(&r.rig.left, r.scene.origin_world);
+    let (w, h) = (W as usize, H as usize);
+    let z = &r.out.left.depth_z;
+    let parity = |i: usize, j: usize| -> Option<i64> {
+        let zz = z[j * w + i];
+        if !zz.is_finite() || zz > 60.0 {
+            return None;
+        }
+        let p = r.scene.origin_world + cam.center + cam.dir(i as f64 + 0.5, j as f64 + 0.5) * zz;
+        (p.z.abs() < 0.05 && (2.0..42.0).contains(&p.x) && p.y.abs() < 16.0).then(|| {
+            (((p.x - 2.0) / 4.0).floor() as i64 + ((p.y + 16.0) / 4.0).floor() as i64).rem_euclid(2)
+        })
+    };
+    let mut out = Vec::new();
+    for j in 1..h - 1 {
+        for i in 1..w - 1 {
+            let Some(c) = parity(i, j) else { continue };
+            let same = [(i - 1, j), (i + 1, j), (i, j - 1), (i, j + 1)]
+                .iter()
+                .all(|&(a, b)| parity(a, b) == Some(c));
+            if same {
+                out.push((j * w + i, c));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn surface_fog_filtered_mean_equals_unfiltered_mean() {
+    let r = render_body(&ground_body([0.5, 0.5]), 0, 1, true, Backend::Bvh);
+    let (mut m_a, mut m_b, mut share) = (0.0, 0.0, 0.0);
+    let mut px_a = Vec::new();
+    for seed in 1..=3 {
+        let (a, b, fog) = fog_only_and_both(&r, 8, seed);
+        m_a += a.rgb.iter().map(|c| c.y as f64).sum::<f64>();
+        m_b += b.rgb.iter().map(|c| c.y as f64).sum::<f64>();
+        share += fog.l_surf_fog.iter().map(|c| c.y as f64).sum::<f64>();
+        px_a.extend(a.rgb.iter().map(|c| c.y as f64));
+    }
+    let (_, se) = mean_stderr(&px_a);
+    let n = px_a.len() as f64;
+    let (m_a, m_b, share) = (m_a / n, m_b / n, share / n / (m_a / n));
+    eprintln!("mean fog-only {m_a:.5}, both {m_b:.5} ± {se:.1e}; fog light on the ground {:.1} % of the image", share * 100.0);
+    assert!(share > 0.05, "the component matters: {share}");
+    assert!((m_a - m_b).abs() < 0.01 * m_a, "{m_a} vs {m_b}");
+    assert!((m_a - m_b).abs() < 3.0 * se, "{m_a} vs {m_b} ± {se}");
+}
+
+#[test]
+fn surface_fog_filter_cuts_per_pixel_variance_on_a_diffuse_ground() {
+    // Per-pixel variance over four seeds at 8 spp, over ground pixels.
+    let r = render_body(&ground_body([0.5, 0.5]), 0, 1, true, Backend::Bvh);
+    let ground = ground_pixels(&r);
+    let runs: Vec<(Film, Film)> = (1..=4)
+        .map(|seed| {
+            let (a, b, _) = fog_only_and_both(&r, 8, seed);
+            (a, b)
+        })
+        .collect();
+    let var = |pick: &dyn Fn(&(Film, Film)) -> &Film| {
+        let mut s = 0.0;
+        for &(k, _) in &ground {
+            let v: Vec<f64> = runs.iter().map(|x| pick(x).rgb[k].y as f64).collect();
+            let m = v.iter().sum::<f64>() / v.len() as f64;
+            s += v.iter().map(|x| (x - m).powi(2)).sum::<f64>() / (v.len() - 1) as f64;
+        }
+        s / ground.len() as f64
+    };
+    let (v_a, v_b) = (var(&|x| &x.0), var(&|x| &x.1));
+    eprintln!(
+        "{} ground pixels: variance fog-only {v_a:.3e}, both {v_b:.3e}, ratio {:.2}",
+        ground.len(),
+        v_a / v_b
+    );
+    assert!(ground.len() > 100);
+    // About 5.8× when written.
+    assert!(v_b * 3.0 < v_a, "{v_b} vs {v_a}");
+}
+
+#[test]
+fn checker_ground_keeps_its_contrast_under_the_surface_fog_filter() {
+    // Bright/dark tile mean ratio, filtered at 16 spp against the plain image
+    // at 64 spp: the ratio estimate carries the albedo per pixel, so the
+    // contrast stays (a filter of the radiance itself would halve it).
+    let body = ground_body([0.8, 0.1]);
+    let r = render_body(&body, 0, 1, true, Backend::Bvh);
+    let ground = ground_pixels(&r);
+    let (_, both, _) = fog_only_and_both(&r, 16, 2);
+    let (plain, _) = rebuild_left(&r, 64, 3);
+    let contrast = |f: &Film| {
+        let mean = |p: i64| {
+            let v: Vec<f64> = ground
+                .iter()
+                .filter(|g| g.1 == p)
+                .map(|g| f.rgb[g.0].y as f64)
+                .collect();
+            v.iter().sum::<f64>() / v.len() as f64
+        };
+        let (m0, m1) = (mean(0), mean(1));
+        m0.max(m1) / m0.min(m1)
+    };
+    let (c_f, c_ref) = (contrast(&both), contrast(&plain));
+    eprintln!(
+        "{} ground pixels: contrast filtered {c_f:.3}, reference {c_ref:.3}",
+        ground.len()
+    );
+    assert!(c_ref > 3.0, "the checker has contrast: {c_ref}");
+    assert!((c_f / c_ref - 1.0).abs() < 0.05, "{c_f} vs {c_ref}");
 }
