@@ -299,9 +299,9 @@ fn ground_body(albedo: [f32; 2]) -> String {
             "[[material]]\nname = \"m{k}\"\nkind = \"diffuse\"\nalbedo = [{a:?}, {a:?}, {a:?}]\n"
         );
     }
-    for ix in 0..10 {
+    for ix in 0..10i32 {
         for iy in -4..4 {
-            let m = (ix + iy as i32).rem_euclid(2);
+            let m = (ix + iy).rem_euclid(2);
             let (x, y) = (2.0 + 4.0 * ix as f64 + 2.0, 4.0 * iy as f64 + 2.0);
             s += &format!(
                 "[[object]]\nkind = \"box\"\nsize = [4.0, 4.0, 0.2]\nmaterial = \"m{m}\"\ntransform = {{ translate = [{x:?}, {y:?}, -0.1] }}\n"

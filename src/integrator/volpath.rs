@@ -28,7 +28,9 @@
 //! The result is split by the camera ray's first event (`LiSample`): what
 //! the first segment's in-scattering and a collision on it bring is `l_fog`,
 //! filtered in image space (`film::filter_fog`); renders that filter also
-//! split that first segment (`Strategies::split_first`).
+//! split that first segment (`Strategies::split_first`) and mark the fog
+//! light on the first surface: what the segment after a Lambertian first
+//! vertex x1 brings by in-scattering or a collision (`surf_fog.rs`).
 
 use glam::{Vec2, Vec3};
 use shaders_cpu::medium::{Equiangular, Medium};

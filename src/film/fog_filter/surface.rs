@@ -47,11 +47,7 @@ pub(super) fn filter_surface_fog(
     let inv_rel2 = 1.0 / filter.sigma_depth_rel.max(1e-6).powi(2);
     let inv_n2 = 1.0 / (SIGMA_NORMAL * SIGMA_NORMAL);
     let weight = |a: SurfKey, b: SurfKey| a.weight(b, inv_rel2, inv_n2);
-    let sig: f32 = std::env::var("PARALLAX_SF_SIGMA")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(1.0);
-    for level in 0..atrous_levels(filter.sigma_px * sig) {
+    for level in 0..atrous_levels(filter.sigma_px) {
         let step = 1usize << level;
         atrous_pass(&cur, &mut tmp, &keys, (w, h), step, &weight, Axis::Row);
         atrous_pass(&tmp, &mut cur, &keys, (w, h), step, &weight, Axis::Column);

@@ -1,7 +1,9 @@
 //! The fog filter's per-pixel guide from the ground-truth pass: opacity
 //! 1 − Tr of each pixel-centre ray up to its exact depth (the same ray and
 //! pixel-centre convention as `gt.rs`: u = i + 0.5, v = j + 0.5, camera
-//! z = depth_z), so the filter groups pixels by how much fog they look through.
+//! z = depth_z), so the filter groups pixels by how much fog they look through;
+//! and pixel-centre normals from that depth, which keep the fog light on the
+//! first surface (`LiSample::l_surf_fog`) from mixing across creases.
 
 use glam::Vec3;
 use rayon::prelude::*;
@@ -45,8 +47,9 @@ pub fn centre_opacity(scene: &Scene, cam: &RenderCamera, depth_z: &[f32]) -> Vec
 }
 
 /// Filters the fog in-scattering of one rendered view in place
-/// (`film::filter_fog` with the default widths for its size), guided by the
-/// view's exact pixel-centre `depth_z` and the opacity along those rays.
+/// (`film::filter_fog` with the default widths for its size, both
+/// components), guided by the view's exact pixel-centre `depth_z`, the
+/// opacity along those rays and the normals the depth implies.
 pub fn filter_view_inscatter(
     scene: &Scene,
     cam: &RenderCamera,
@@ -55,21 +58,12 @@ pub fn filter_view_inscatter(
     fog: &FogLayer,
 ) {
     let opacity = centre_opacity(scene, cam, depth_z);
-    let normal = if std::env::var_os("PARALLAX_NO_SURF_FOG").is_some() {
-        Vec::new()
-    } else {
-        centre_normals(cam, depth_z)
-    };
+    let normal = centre_normals(cam, depth_z);
     let guide = FogGuide {
         depth_z,
         opacity: &opacity,
         normal: &normal,
     };
-    if normal.is_empty() {
-        let mut fog = fog.clone();
-        fog.rho.fill(glam::Vec3::ZERO);
-        return filter_fog(film, &fog, &guide, &FogFilter::for_width(film.width));
-    }
     filter_fog(film, fog, &guide, &FogFilter::for_width(film.width));
 }
 

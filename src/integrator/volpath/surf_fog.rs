@@ -46,10 +46,6 @@ impl SurfFog {
     /// The segment after x1 reached its surface or the sky without a
     /// collision: what follows is not fog light on x1.
     pub fn segment_passed(&mut self, l: Vec3) {
-        static ALL: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
-        if *ALL.get_or_init(|| std::env::var_os("PARALLAX_SF_ALL").is_some()) {
-            return;
-        }
         self.to = Some(l);
     }
 
