@@ -115,3 +115,46 @@ pub fn centre_normals(cam: &RenderCamera, depth_z: &[f32]) -> Vec<Vec3> {
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::camera::Intrinsics;
+    use glam::{DMat3, DVec3};
+
+    #[test]
+    fn depth_normals_match_each_plane_up_to_a_depth_edge() {
+        let (w, h) = (16usize, 12usize);
+        let cam = RenderCamera {
+            intrinsics: Intrinsics::from_hfov(w as u32, h as u32, 1.0),
+            render_from_camera: DMat3::IDENTITY,
+            center: DVec3::ZERO,
+        };
+        // Camera space: left half a near tilted wall (≈ 5 m), right half a
+        // far one tilted the other way (≈ 20 m); depth_z where each
+        // pixel-centre ray meets its plane n·x = c.
+        let near = (DVec3::new(-0.6, 0.0, -0.8), -4.0);
+        let far = (DVec3::new(0.2, 0.5, 1.0).normalize(), 20.0);
+        let plane = |i: usize| if i < w / 2 { near } else { far };
+        let depth: Vec<f32> = (0..w * h)
+            .map(|k| {
+                let (i, j) = (k % w, k / w);
+                let r = cam.intrinsics.dir_cam(i as f64 + 0.5, j as f64 + 0.5);
+                let (n, c) = plane(i);
+                (c / n.dot(r)) as f32
+            })
+            .collect();
+        assert!(depth.iter().all(|&z| z > 0.0 && z.is_finite()));
+        let normals = centre_normals(&cam, &depth);
+        for (k, got) in normals.iter().enumerate() {
+            let want = plane(k % w).0.as_vec3();
+            // Either orientation: the filter compares neighbours only, and
+            // the cross product's sign is the same over the image.
+            assert!(got.dot(want).abs() > 0.999, "pixel {k}: {got} vs {want}");
+        }
+        // Sky has no normal.
+        let mut sky = depth.clone();
+        sky[5] = f32::INFINITY;
+        assert_eq!(centre_normals(&cam, &sky)[5], Vec3::ZERO);
+    }
+}
