@@ -4,7 +4,10 @@
 //! constant sky: every pixel's expected value is exactly 1), keeps a near/far
 //! depth step a step, is bit-for-bit the plain estimate when off and the
 //! filtered per-sample estimate when on (any thread count), and never
-//! touches the ground truth.
+//! touches the ground truth. Its second component, fog light on the first
+//! surface (`l_surf_fog`, filtered as a ratio to rho): keeps the mean, cuts
+//! a fogged diffuse ground's per-pixel variance and keeps a checker
+//! ground's contrast.
 
 mod common;
 

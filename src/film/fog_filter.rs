@@ -6,6 +6,8 @@
 //! 2010, dilated B3 rows then columns) with range weights from the guide
 //! only (pixel-centre opacity, relative depth_z, sky vs surface: a joint
 //! bilateral, Petschnigg et al. 2004), so both sums are filtered alike.
+//! The fog light on the first surface is filtered the same way as a ratio
+//! to the surface's albedo (`surface.rs`).
 //! Row-major pixels (`Film`); fixed-order sums: same bytes on any thread count.
 
 use std::ops::{Add, Div, Mul};
