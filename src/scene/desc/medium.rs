@@ -45,12 +45,14 @@ pub struct MediumDesc {
     /// for `homogeneous`, whose unbounded column would block sun and sky).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub z_max_m: Option<f64>,
-    /// Whether the in-scattered light on each camera ray (the radiance whose
-    /// first event is a medium scatter) is filtered in image space, guided
-    /// by the ground truth's depth, and the surface behind each camera
-    /// ray's fog is traced at weight Tr rather than by a collide-or-pass
-    /// choice (default true: far less grain at equal time; false gives the
-    /// plain path-traced image bit for bit). Ground truth is never filtered.
+    /// Whether fog light is filtered in image space, guided by the ground
+    /// truth's depth: the in-scattered light on each camera ray (the
+    /// radiance whose first event is a medium scatter) and the fog light
+    /// falling on the first surface when it is diffuse (its albedo kept
+    /// per pixel); the surface behind each camera ray's fog is then traced
+    /// at weight Tr rather than by a collide-or-pass choice (default true:
+    /// far less grain at equal time; false gives the plain path-traced
+    /// image bit for bit). Ground truth is never filtered.
     #[serde(default = "default_true", skip_serializing_if = "is_true")]
     pub filter_inscatter: bool,
 }
