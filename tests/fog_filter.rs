@@ -199,12 +199,7 @@ fn rebuild_left(r: &Rendered, spp: u32, seed: u64) -> (Film, FogLayer) {
             let mut rays = 0;
             for s in 0..spp {
                 let mut stream = SampleStream::new(key, i, j, s);
-                let jitter = stream.next_2d();
-                let d = cam
-                    .dir(i as f64 + jitter.x as f64, j as f64 + jitter.y as f64)
-                    .as_vec3()
-                    .normalize();
-                let ray = parallax::accel::Ray::new(cam.center_f32(), d);
+                let ray = cam.jittered_ray(i, j, &mut stream);
                 let li = ctx.li_from_hit(ray, shading.intersect(&ray), &mut stream, &mut rays);
                 if li.l.is_finite() {
                     l += li.l;

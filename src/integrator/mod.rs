@@ -13,7 +13,9 @@ pub mod wet;
 
 use glam::{DMat3, DVec3, Vec3};
 
+use crate::accel::Ray;
 use crate::camera::{Camera, Intrinsics};
+use crate::sampler::SampleStream;
 
 /// A camera placed in render space (world minus the scene's render origin).
 #[derive(Clone, Copy, Debug)]
@@ -44,6 +46,17 @@ impl RenderCamera {
     /// The camera centre rounded to f32, as ray origin for traversal.
     pub fn center_f32(&self) -> Vec3 {
         self.center.as_vec3()
+    }
+
+    /// The path pass's camera ray through pixel (i, j), jittered inside the
+    /// pixel by the stream's next 2D sample (its first, for a new stream).
+    pub fn jittered_ray(&self, i: u32, j: u32, stream: &mut SampleStream) -> Ray {
+        let jitter = stream.next_2d();
+        let d = self
+            .dir(i as f64 + jitter.x as f64, j as f64 + jitter.y as f64)
+            .as_vec3()
+            .normalize();
+        Ray::new(self.center_f32(), d)
     }
 }
 

@@ -295,18 +295,12 @@ fn render_chunk<A: Accel>(
     out: &mut Vec<PixelMeans>,
     rays: &mut u64,
 ) {
-    let o = cam.center_f32();
     scratch.rays.clear();
     scratch.streams.clear();
     for i in i {
         for s in 0..spp {
             let mut stream = SampleStream::new(key, i, j, s);
-            let jitter = stream.next_2d();
-            let d = cam
-                .dir(i as f64 + jitter.x as f64, j as f64 + jitter.y as f64)
-                .as_vec3()
-                .normalize();
-            scratch.rays.push(crate::accel::Ray::new(o, d));
+            scratch.rays.push(cam.jittered_ray(i, j, &mut stream));
             scratch.streams.push(stream);
         }
     }

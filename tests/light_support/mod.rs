@@ -80,7 +80,6 @@ pub fn render_left(
     };
     let cam = RenderCamera::new(&b.rig.left, scene.origin_world);
     let (w, h) = (cam.intrinsics.width, cam.intrinsics.height);
-    let o = cam.center_f32();
     let key = StreamKey {
         seed,
         frame: 0,
@@ -94,13 +93,8 @@ pub fn render_left(
             let mut rays = 0;
             for s in 0..spp {
                 let mut stream = SampleStream::new(key, i, j, s);
-                let jitter = stream.next_2d();
-                let d = cam
-                    .dir(i as f64 + jitter.x as f64, j as f64 + jitter.y as f64)
-                    .as_vec3()
-                    .normalize();
                 let li = ctx
-                    .li(parallax::accel::Ray::new(o, d), &mut stream, &mut rays)
+                    .li(cam.jittered_ray(i, j, &mut stream), &mut stream, &mut rays)
                     .l;
                 let y = if li.is_finite() {
                     li.dot(Vec3::new(0.2126, 0.7152, 0.0722)) as f64
