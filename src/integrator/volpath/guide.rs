@@ -16,15 +16,7 @@ use crate::scene::Scene;
 /// pixel's `depth_z` (metres, row-major, +inf or NaN: the sky, Tr to
 /// infinity). All zero without a medium.
 pub fn centre_opacity(scene: &Scene, cam: &RenderCamera, depth_z: &[f32]) -> Vec<f32> {
-    let (w, h) = (
-        cam.intrinsics.width as usize,
-        cam.intrinsics.height as usize,
-    );
-    assert_eq!(
-        depth_z.len(),
-        w * h,
-        "depth map size does not match the camera"
-    );
+    let (w, h) = view_size(cam, depth_z);
     let Some(m) = scene.medium.as_ref() else {
         return vec![0.0; w * h];
     };
@@ -73,15 +65,7 @@ pub fn filter_view_inscatter(
 /// depth is nearer (so a depth edge does not tilt it). Works for every view
 /// (right views have depth but no normal map).
 pub fn centre_normals(cam: &RenderCamera, depth_z: &[f32]) -> Vec<Vec3> {
-    let (w, h) = (
-        cam.intrinsics.width as usize,
-        cam.intrinsics.height as usize,
-    );
-    assert_eq!(
-        depth_z.len(),
-        w * h,
-        "depth map size does not match the camera"
-    );
+    let (w, h) = view_size(cam, depth_z);
     let pos = |i: usize, j: usize| -> Option<Vec3> {
         let z = depth_z[j * w + i];
         z.is_finite()
@@ -114,6 +98,20 @@ pub fn centre_normals(cam: &RenderCamera, depth_z: &[f32]) -> Vec<Vec3> {
             }
         })
         .collect()
+}
+
+/// `cam`'s image size (width, height), checked against its depth map.
+fn view_size(cam: &RenderCamera, depth_z: &[f32]) -> (usize, usize) {
+    let (w, h) = (
+        cam.intrinsics.width as usize,
+        cam.intrinsics.height as usize,
+    );
+    assert_eq!(
+        depth_z.len(),
+        w * h,
+        "depth map size does not match the camera"
+    );
+    (w, h)
 }
 
 #[cfg(test)]
