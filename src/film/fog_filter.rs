@@ -229,13 +229,30 @@ struct Key {
 impl Key {
     fn new(z: f32, opacity: f32) -> Key {
         Key {
-            ln_z: if z.is_finite() && z > 0.0 {
-                z.ln()
-            } else {
-                f32::INFINITY
-            },
+            ln_z: ln_depth(z),
             opacity: if opacity.is_finite() { opacity } else { 0.0 },
         }
+    }
+}
+
+/// ln depth_z, so that a difference is the relative depth step; +inf for
+/// sky (and any depth that is not a positive finite number).
+fn ln_depth(z: f32) -> f32 {
+    if z.is_finite() && z > 0.0 {
+        z.ln()
+    } else {
+        f32::INFINITY
+    }
+}
+
+/// A rational stand-in for exp(−e/2) (equal to second order, a heavier
+/// tail cut at 3σ): no transcendental call per tap.
+#[inline]
+fn soft_gaussian(e: f32) -> f32 {
+    if e > 9.0 {
+        0.0
+    } else {
+        1.0 / (1.0 + e * (0.5 + e * 0.125))
     }
 }
 
@@ -268,13 +285,7 @@ impl RangeWeight {
             let rel = a.ln_z - b.ln_z;
             e += rel * rel * self.inv_rel2;
         }
-        // A rational stand-in for exp(−e/2) (equal to second order, a
-        // heavier tail cut at 3σ): no transcendental call per tap.
-        if e > 9.0 {
-            0.0
-        } else {
-            1.0 / (1.0 + e * (0.5 + e * 0.125))
-        }
+        soft_gaussian(e)
     }
 }
 

@@ -10,7 +10,9 @@ use std::ops::{Add, Div, Mul};
 
 use glam::Vec3;
 
-use super::{atrous_levels, atrous_pass, Axis, FogFilter, FogGuide, FogLayer};
+use super::{
+    atrous_levels, atrous_pass, ln_depth, soft_gaussian, Axis, FogFilter, FogGuide, FogLayer,
+};
 use crate::film::Film;
 
 /// Range σ on |Δn| between unit pixel-centre normals (about 17° at 1σ).
@@ -115,11 +117,7 @@ struct SurfKey {
 impl SurfKey {
     fn new(z: f32, n: Vec3) -> SurfKey {
         SurfKey {
-            ln_z: if z.is_finite() && z > 0.0 {
-                z.ln()
-            } else {
-                f32::INFINITY
-            },
+            ln_z: ln_depth(z),
             n: if n.is_finite() { n } else { Vec3::ZERO },
         }
     }
@@ -140,11 +138,6 @@ impl SurfKey {
         if self.n != Vec3::ZERO && b.n != Vec3::ZERO {
             e += (self.n - b.n).length_squared() * inv_n2;
         }
-        // The same rational stand-in for exp(−e/2) as the fog part.
-        if e > 9.0 {
-            0.0
-        } else {
-            1.0 / (1.0 + e * (0.5 + e * 0.125))
-        }
+        soft_gaussian(e)
     }
 }
