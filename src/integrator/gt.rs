@@ -11,7 +11,7 @@
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 
-use super::RenderCamera;
+use super::{CentreDirs, RenderCamera};
 use crate::accel::{Accel, Hit, Ray};
 use crate::geometry::{ray_plane_t, ray_sphere_t, surface_interaction};
 use crate::scene::{mask_bits, Scene};
@@ -39,15 +39,17 @@ pub struct ViewGt {
 }
 
 impl ViewGt {
-    /// depth_z rounded to f32 (+inf stays +inf).
+    /// depth_z rounded to f32 (+inf stays +inf), on the thread pool.
     pub fn depth_z_f32(&self) -> Vec<f32> {
-        self.depth_z.iter().map(|&z| z as f32).collect()
+        self.depth_z.par_iter().map(|&z| z as f32).collect()
     }
 
     /// Disparity f·B/Z in pixels, f64 arithmetic rounded once; 0 for sky.
+    /// On the thread pool: a frame converts 3 maps per baseline, and done on
+    /// one thread they left the other idle.
     pub fn disparity(&self, f_px: f64, baseline_m: f64) -> Vec<f32> {
         self.depth_z
-            .iter()
+            .par_iter()
             .map(|&z| disparity_px(f_px, baseline_m, z))
             .collect()
     }
@@ -126,6 +128,7 @@ impl BandScratch {
         scene: &Scene,
         accel: &impl Accel,
         cam: &RenderCamera,
+        centre: &CentreDirs,
         j0: usize,
         depth_band: &mut [f64],
     ) {
@@ -134,10 +137,11 @@ impl BandScratch {
         let o = cam.center_f32();
         tile_order(w, rows, &mut self.pixel);
         self.dirs.clear();
-        self.dirs.extend(self.pixel.iter().map(|&k| {
-            let (i, j) = (k % w, j0 + k / w);
-            cam.dir(i as f64 + 0.5, j as f64 + 0.5)
-        }));
+        self.dirs.extend(
+            self.pixel
+                .iter()
+                .map(|&k| centre.dir(k % w, j0 + k / w)),
+        );
         self.rays.clear();
         self.rays
             .extend(self.dirs.iter().map(|d| Ray::new(o, d.as_vec3())));
@@ -158,6 +162,7 @@ impl BandScratch {
 /// task per band.
 pub fn view_gt(scene: &Scene, accel: &impl Accel, cam: &RenderCamera, labels: bool) -> ViewGt {
     let (w, h) = (cam.intrinsics.width, cam.intrinsics.height);
+    let centre = cam.centre_dirs();
     let (n, n_labels) = (
         w as usize * h as usize,
         if labels { w as usize * h as usize } else { 0 },
@@ -194,7 +199,7 @@ pub fn view_gt(scene: &Scene, accel: &impl Accel, cam: &RenderCamera, labels: bo
     bands.into_par_iter().with_max_len(1).for_each_init(
         BandScratch::default,
         |scratch, (b, (depth_band, label_band))| {
-            scratch.trace_band(scene, accel, cam, b * BAND_ROWS, depth_band);
+            scratch.trace_band(scene, accel, cam, &centre, b * BAND_ROWS, depth_band);
             let Some((((normal, sem), inst), mask)) = label_band else {
                 return;
             };
@@ -234,6 +239,7 @@ pub fn occlusion_mask(
     let (w, h) = (left.intrinsics.width as usize, left.intrinsics.height);
     let f = left.intrinsics.f_px;
     let c_r = right.center;
+    let centre = left.centre_dirs();
     let mut occ = vec![0u8; w * h as usize];
     // Bands of rows, tile-ordered like the depth pass: the segments of one
     // packet start at the right camera centre and end on nearby surface points.
@@ -259,7 +265,7 @@ pub fn occlusion_mask(
                     occ[k] = 255;
                     continue;
                 }
-                let p = left.center + left.dir(x, j as f64 + 0.5) * z;
+                let p = left.center + centre.dir(i, j) * z;
                 let seg = p - c_r;
                 rays.push(Ray::segment(
                     c_r.as_vec3(),

@@ -43,6 +43,17 @@ impl RenderCamera {
         self.render_from_camera * self.intrinsics.dir_cam(u, v)
     }
 
+    /// The direction through every pixel centre, tabulated (see [`CentreDirs`]).
+    pub fn centre_dirs(&self) -> CentreDirs {
+        let k = &self.intrinsics;
+        let axis = |n: u32, c: f64| (0..n).map(|i| (i as f64 + 0.5 - c) / k.f_px).collect();
+        CentreDirs {
+            render_from_camera: self.render_from_camera,
+            x: axis(k.width, k.cx_px),
+            y: axis(k.height, k.cy_px),
+        }
+    }
+
     /// The camera centre rounded to f32, as ray origin for traversal.
     pub fn center_f32(&self) -> Vec3 {
         self.center.as_vec3()
@@ -57,6 +68,25 @@ impl RenderCamera {
             .as_vec3()
             .normalize();
         Ray::new(self.center_f32(), d)
+    }
+}
+
+/// A camera's pixel-centre directions: the camera-frame coordinates
+/// (u − cx)/f of every column and (v − cy)/f of every row, divided once per
+/// column and row instead of twice per pixel. [`CentreDirs::dir`] gives the
+/// bits of `RenderCamera::dir(i + 0.5, j + 0.5)`.
+#[derive(Clone, Debug)]
+pub struct CentreDirs {
+    render_from_camera: DMat3,
+    x: Vec<f64>,
+    y: Vec<f64>,
+}
+
+impl CentreDirs {
+    /// Render-space direction (camera z = 1) through the centre of pixel (i, j).
+    #[inline]
+    pub fn dir(&self, i: usize, j: usize) -> DVec3 {
+        self.render_from_camera * DVec3::new(self.x[i], self.y[j], 1.0)
     }
 }
 
