@@ -49,6 +49,45 @@ impl SurfaceInteraction {
         let o = self.spawn_origin(target - self.p);
         Ray::segment(o, target - o, 1.0 - 1e-4)
     }
+
+    /// The origin of every ray leaving the side `n_geo` points to: `w` enters
+    /// [`offset_ray_origin`] only through the sign of w·n_geo, so this is
+    /// `spawn_origin(w)` for every w with w·n_geo ≥ 0. A vertex that spawns
+    /// several rays computes it once ([`FrontOrigin`]).
+    pub fn front_origin(&self) -> FrontOrigin {
+        FrontOrigin(self.spawn_origin(self.n_geo))
+    }
+}
+
+/// A surface point's front-side ray origin ([`SurfaceInteraction::front_origin`]):
+/// its spawn methods give the bits of the `SurfaceInteraction` ones, with
+/// the offset computed once for every ray that leaves the front side.
+#[derive(Clone, Copy, Debug)]
+pub struct FrontOrigin(Vec3);
+
+impl FrontOrigin {
+    /// [`SurfaceInteraction::spawn_origin`] of `si` (whose front origin this is).
+    #[inline]
+    pub fn spawn_origin(self, si: &SurfaceInteraction, w: Vec3) -> Vec3 {
+        if w.dot(si.n_geo) < 0.0 {
+            si.spawn_origin(w)
+        } else {
+            self.0
+        }
+    }
+
+    /// [`SurfaceInteraction::spawn_ray`] of `si`.
+    #[inline]
+    pub fn spawn_ray(self, si: &SurfaceInteraction, w: Vec3) -> Ray {
+        Ray::new(self.spawn_origin(si, w), w)
+    }
+
+    /// [`SurfaceInteraction::spawn_ray_to`] of `si`.
+    #[inline]
+    pub fn spawn_ray_to(self, si: &SurfaceInteraction, target: Vec3) -> Ray {
+        let o = self.spawn_origin(si, target - si.p);
+        Ray::segment(o, target - o, 1.0 - 1e-4)
+    }
 }
 
 /// Builds the interaction for `hit` of `ray` in `scene`.

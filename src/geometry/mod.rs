@@ -11,7 +11,7 @@ mod offset;
 mod table;
 
 pub use exact::{ray_plane_t, ray_sphere_t};
-pub use interaction::{surface_interaction, SurfaceInteraction};
+pub use interaction::{surface_interaction, FrontOrigin, SurfaceInteraction};
 pub use offset::{gamma, offset_ray_origin, position_error};
 pub use table::SurfaceTable;
 

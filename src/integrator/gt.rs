@@ -137,11 +137,8 @@ impl BandScratch {
         let o = cam.center_f32();
         tile_order(w, rows, &mut self.pixel);
         self.dirs.clear();
-        self.dirs.extend(
-            self.pixel
-                .iter()
-                .map(|&k| centre.dir(k % w, j0 + k / w)),
-        );
+        self.dirs
+            .extend(self.pixel.iter().map(|&k| centre.dir(k % w, j0 + k / w)));
         self.rays.clear();
         self.rays
             .extend(self.dirs.iter().map(|d| Ray::new(o, d.as_vec3())));

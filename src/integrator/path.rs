@@ -18,7 +18,7 @@ use shaders_cpu::bsdf::Bsdf;
 use shaders_cpu::sampling::{power_heuristic, Frame};
 
 use crate::accel::{Accel, Hit, Ray};
-use crate::geometry::SurfaceTable;
+use crate::geometry::{FrontOrigin, SurfaceInteraction, SurfaceTable};
 use crate::light::LightSet;
 use crate::sampler::SampleStream;
 use crate::scene::Scene;
@@ -204,6 +204,19 @@ pub struct PathContext<'a, A: Accel> {
     /// The sun as the medium's second in-scattering strategy
     /// ([`super::volpath::SunLobe::find`], once per frame), if there is one.
     pub sun_lobe: Option<super::volpath::SunLobe>,
+}
+
+/// What next-event estimation needs of a surface vertex: the interaction,
+/// its BSDF and shading frame, `wo` in that frame, and the origin its
+/// front-side rays share (every ray a reflecting vertex spawns leaves the
+/// front side, so one offset serves its shadow rays and continuation).
+#[derive(Clone, Copy)]
+struct Vertex<'a> {
+    si: &'a SurfaceInteraction,
+    bsdf: &'a Bsdf,
+    frame: &'a Frame,
+    wo_local: Vec3,
+    front: FrontOrigin,
 }
 
 /// Reflection-only BSDFs see both faces of a surface the same way.
@@ -461,28 +474,27 @@ impl<A: Accel> PathContext<'_, A> {
             si.n_shading = -si.n_shading;
         }
         let frame = Frame::from_z(si.n_shading);
-        let wo_local = frame.to_local(wo);
+        let vertex = Vertex {
+            wo_local: frame.to_local(wo),
+            front: si.front_origin(),
+            si: &si,
+            bsdf: &bsdf,
+            frame: &frame,
+        };
         if !bsdf.is_delta() {
             let lights = self.lights;
             for (k, &u_light) in u.u_distant.iter().enumerate().take(lights.distant_count()) {
                 // The radiance (sky, cloud deck) only for samples kept.
                 let ls = lights.sample_distant_dir(scene, k, si.p, u_light);
-                let nee = (&si, &bsdf, &frame, wo_local, Some(k));
-                self.direct(nee, ls, st.beta, pending, rays);
+                self.direct(&vertex, Some(k), ls, st.beta, pending, rays);
             }
             if !lights.is_empty() {
                 let (u_select, u_light) = u.u_local;
                 let ls = lights.sample(scene, si.p, u_select, u_light);
-                self.direct(
-                    (&si, &bsdf, &frame, wo_local, None),
-                    ls,
-                    st.beta,
-                    pending,
-                    rays,
-                );
+                self.direct(&vertex, None, ls, st.beta, pending, rays);
             }
         }
-        let bs = bsdf.sample(wo_local, u.u_lobe, u.u_bsdf)?;
+        let bs = bsdf.sample(vertex.wo_local, u.u_lobe, u.u_bsdf)?;
         if bs.pdf <= 0.0 {
             return None;
         }
@@ -502,30 +514,30 @@ impl<A: Accel> PathContext<'_, A> {
         if !st.survives_roulette(u.u_rr) {
             return None;
         }
-        Some(si.spawn_ray(wi))
+        Some(vertex.front.spawn_ray(&si, wi))
     }
 
     /// Next-event estimation for one light sample: MIS-weighted, its
     /// shadow ray and contribution `beta · f · li · w / pdf` left in `pending`.
-    /// `vertex` is the shading point, its BSDF, frame and local `wo`, and
-    /// for distant light k `Some(k)`: then `ls` carries no radiance
-    /// ([`LightSet::sample_distant_dir`]) and it is evaluated here, after the
-    /// checks that may reject the sample.
+    /// For distant light k, `distant` is `Some(k)`: then `ls` carries no
+    /// radiance ([`LightSet::sample_distant_dir`]) and it is evaluated here,
+    /// after the checks that may reject the sample.
     fn direct(
         &self,
-        vertex: (
-            &crate::geometry::SurfaceInteraction,
-            &Bsdf,
-            &Frame,
-            Vec3,
-            Option<usize>,
-        ),
+        vertex: &Vertex,
+        distant: Option<usize>,
         ls: Option<crate::light::LightSample>,
         beta: Vec3,
         pending: &mut PendingShadows,
         rays: &mut u64,
     ) {
-        let (si, bsdf, frame, wo_local, distant) = vertex;
+        let Vertex {
+            si,
+            bsdf,
+            frame,
+            wo_local,
+            front,
+        } = *vertex;
         let Some(mut ls) = ls else {
             return;
         };
@@ -548,9 +560,9 @@ impl<A: Accel> PathContext<'_, A> {
         }
         let coherent = distant.is_some_and(|k| self.lights.distant_is_directional(k));
         let shadow = if ls.dist.is_finite() {
-            si.spawn_ray_to(si.p + ls.wi * ls.dist)
+            front.spawn_ray_to(si, si.p + ls.wi * ls.dist)
         } else {
-            si.spawn_ray(ls.wi)
+            front.spawn_ray(si, ls.wi)
         };
         *rays += 1;
         let w = if ls.delta {

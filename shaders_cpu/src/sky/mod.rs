@@ -153,8 +153,10 @@ impl Sky {
         if let Some(t) = self.table() {
             return t.sample(u);
         }
-        let dir = sampling::sample_dir(self.cosine_lobe_prob(), u);
-        (dir, self.pdf(dir))
+        // `pdf` without its second table check and mixture weight.
+        let p_cos = self.cosine_lobe_prob();
+        let dir = sampling::sample_dir(p_cos, u);
+        (dir, sampling::dir_pdf(p_cos, dir))
     }
     /// Pdf per solid angle of `sample` producing `dir`.
     pub fn pdf(&self, dir: Vec3) -> f32 {
