@@ -168,3 +168,68 @@ pub(super) fn sphere_interaction(scene: &Scene, ray: &Ray, hit: &Hit) -> Surface
         instance: s.instance,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A point far from the origin on a tilted triangle, so the offset is
+    /// large enough that every rounding of it shows.
+    fn interaction() -> SurfaceInteraction {
+        let p = [
+            Vec3::new(812.25, -40.5, 3.0),
+            Vec3::new(813.0, -39.75, 3.5),
+            Vec3::new(812.5, -40.0, 4.25),
+        ];
+        let b = [0.2f32, 0.3, 0.5];
+        let n = (p[1] - p[0]).cross(p[2] - p[0]).normalize();
+        SurfaceInteraction {
+            p: p[0] * b[0] + p[1] * b[1] + p[2] * b[2],
+            p_error: position_error(b, p),
+            n_geo: n,
+            n_shading: n,
+            uv: Vec2::ZERO,
+            material: 0,
+            semantic: 0,
+            instance: 0,
+        }
+    }
+
+    #[test]
+    fn front_origin_gives_the_bits_of_every_spawn_method_on_both_sides() {
+        let si = interaction();
+        let front = si.front_origin();
+        // Directions on both sides, grazing ones and one exactly in the plane.
+        let tangent = si.n_geo.any_orthonormal_vector();
+        let mut dirs = vec![si.n_geo, -si.n_geo, tangent, -tangent];
+        for k in 0..64 {
+            let a = k as f32 * 0.7;
+            let w = Vec3::new(a.cos(), a.sin(), (a * 1.3).sin() - 0.2).normalize();
+            dirs.push(w);
+            dirs.push(tangent + si.n_geo * (1e-6 * (k as f32 - 32.0)));
+        }
+        let (mut front_side, mut back_side) = (0, 0);
+        for w in dirs {
+            if w.dot(si.n_geo) < 0.0 {
+                back_side += 1;
+            } else {
+                front_side += 1;
+            }
+            let o = si.spawn_origin(w);
+            assert_eq!(
+                front.spawn_origin(&si, w).to_array().map(f32::to_bits),
+                o.to_array().map(f32::to_bits),
+                "w {w}"
+            );
+            assert_eq!(front.spawn_ray(&si, w), si.spawn_ray(w));
+            let target = si.p + w * 7.5;
+            assert_eq!(front.spawn_ray_to(&si, target), si.spawn_ray_to(target));
+        }
+        assert!(
+            front_side > 10 && back_side > 10,
+            "{front_side} / {back_side}"
+        );
+        // The two sides' origins differ: the cache must not serve the back side.
+        assert_ne!(si.spawn_origin(si.n_geo), si.spawn_origin(-si.n_geo));
+    }
+}
