@@ -46,8 +46,7 @@ impl SurfaceInteraction {
 
     /// A shadow ray from this point to `target` (exclusive, by a relative margin).
     pub fn spawn_ray_to(&self, target: Vec3) -> Ray {
-        let o = self.spawn_origin(target - self.p);
-        Ray::segment(o, target - o, 1.0 - 1e-4)
+        segment_to(self.spawn_origin(target - self.p), target)
     }
 
     /// The origin of every ray leaving the side `n_geo` points to: `w` enters
@@ -85,9 +84,14 @@ impl FrontOrigin {
     /// [`SurfaceInteraction::spawn_ray_to`] of `si`.
     #[inline]
     pub fn spawn_ray_to(self, si: &SurfaceInteraction, target: Vec3) -> Ray {
-        let o = self.spawn_origin(si, target - si.p);
-        Ray::segment(o, target - o, 1.0 - 1e-4)
+        segment_to(self.spawn_origin(si, target - si.p), target)
     }
+}
+
+/// The shadow segment from `o` to `target`, stopping a relative 1e-4 short
+/// so the target's own surface does not count as a blocker.
+fn segment_to(o: Vec3, target: Vec3) -> Ray {
+    Ray::segment(o, target - o, 1.0 - 1e-4)
 }
 
 /// Builds the interaction for `hit` of `ray` in `scene`.
@@ -199,7 +203,7 @@ mod tests {
     fn front_origin_gives_the_bits_of_every_spawn_method_on_both_sides() {
         let si = interaction();
         let front = si.front_origin();
-        // Directions on both sides, grazing ones and one exactly in the plane.
+        // Directions on both sides, grazing ones and the plane's own tangent.
         let tangent = si.n_geo.any_orthonormal_vector();
         let mut dirs = vec![si.n_geo, -si.n_geo, tangent, -tangent];
         for k in 0..64 {

@@ -102,3 +102,35 @@ pub fn frame_rain(
     let seed = crate::sampler::hash_words(&[seed, frame as u64, 0x7261_696e]);
     scene.rain.map(|r| r.for_frame(seed, 1.0 / f_px))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::camera::Intrinsics;
+
+    #[test]
+    fn centre_dirs_give_the_bits_of_dir_through_every_pixel_centre() {
+        // An odd size (principal point on a pixel centre) and a yawed,
+        // pitched, rolled camera, so every matrix entry takes part.
+        let (yaw, pitch, roll) = (0.3f64, -0.2f64, 0.1f64);
+        let camera = Camera {
+            intrinsics: Intrinsics::from_hfov(37, 21, 1.1),
+            world_from_camera: DMat3::from_rotation_z(yaw)
+                * DMat3::from_rotation_y(pitch)
+                * DMat3::from_rotation_x(roll),
+            center_world: DVec3::new(1.0e5, -2.0e5, 12.0),
+        };
+        let cam = RenderCamera::new(&camera, DVec3::new(1.0e5, -2.0e5, 0.0));
+        let table = cam.centre_dirs();
+        for j in 0..21 {
+            for i in 0..37 {
+                let expect = cam.dir(i as f64 + 0.5, j as f64 + 0.5);
+                assert_eq!(
+                    table.dir(i, j).to_array().map(f64::to_bits),
+                    expect.to_array().map(f64::to_bits),
+                    "pixel ({i}, {j})"
+                );
+            }
+        }
+    }
+}
