@@ -34,7 +34,15 @@ pub struct BenchReport {
     pub embree_commit_s: Option<[f64; 2]>,
     /// Backend measured.
     pub backend: &'static str,
-    /// Ground-truth pass: rays and seconds.
+    /// Every round's figures, in the order measured.
+    pub rounds: Vec<BenchRound>,
+}
+
+/// One round: every throughput figure, measured back to back, so a round's
+/// ratios compare figures taken under the same machine load.
+#[derive(Clone, Debug)]
+pub struct BenchRound {
+    /// Ground-truth pass: rays.
     pub gt_rays: u64,
     /// Wall and CPU seconds of the ground-truth pass.
     pub gt: Span,
@@ -60,6 +68,8 @@ pub struct BenchSettings {
     /// Embree: build the non-robust shading twin for the path pass (off: the
     /// path pass traces the watertight scene, as ground truth does).
     pub shading_twin: bool,
+    /// Rounds of measurements (at least 1) on the one scene and BVH.
+    pub rounds: u32,
 }
 
 /// Seconds of GT-pass time the GT figure is measured over, at least.
@@ -82,7 +92,28 @@ pub fn run_bench(loaded: &LoadedScene, s: &BenchSettings) -> Result<BenchReport,
     };
     #[cfg(not(feature = "embree"))]
     let embree_commit_s = None;
-    let raw = raw_throughput(&accel, &scene, &rig);
+    let rounds = (0..s.rounds.max(1))
+        .map(|_| measure_round(&scene, &accel, &rig, s))
+        .collect();
+    use crate::accel::Accel;
+    Ok(BenchReport {
+        triangles: scene.triangle_count(),
+        scene_build_s,
+        accel_build_s,
+        embree_commit_s,
+        backend: accel.backend_name(),
+        rounds,
+    })
+}
+
+/// One round of raw traversal, the ground-truth pass and the path pass.
+fn measure_round(
+    scene: &crate::scene::Scene,
+    accel: &crate::accel::AnyAccel,
+    rig: &StereoRig,
+    s: &BenchSettings,
+) -> BenchRound {
+    let raw = raw_throughput(accel, scene, rig);
     // GT: every view and baseline of the rig, no path pass.
     let gt_settings = RenderSettings {
         spp: 0,
@@ -90,16 +121,17 @@ pub fn run_bench(loaded: &LoadedScene, s: &BenchSettings) -> Result<BenchReport,
         seed: 1,
         frame: 0,
     };
-    // One GT pass takes ~0.25 s: repeat it, as the raw figures repeat theirs,
-    // so one slow moment of a noisy machine does not decide the figure.
+    // One GT pass takes a fraction of a second: repeat it, as the raw figures
+    // repeat theirs, so one slow moment of a noisy machine does not decide
+    // the figure.
     let (mut gt_rays, mut gt_s) = (0, 0.0);
     let t = Stopwatch::start();
     while gt_s < MIN_GT_S {
-        let gt = render_frame(&scene, &accel, &rig, &gt_settings, &|_, _| {});
+        let gt = render_frame(scene, accel, rig, &gt_settings, &|_, _| {});
         gt_rays += gt.stats.gt_rays;
         gt_s += gt.stats.gt_seconds;
     }
-    let gt_span = phase_span(t.stop(), gt_s);
+    let gt = phase_span(t.stop(), gt_s);
     // Path: the left view only.
     let left_only = StereoRig {
         left: rig.left,
@@ -110,22 +142,15 @@ pub fn run_bench(loaded: &LoadedScene, s: &BenchSettings) -> Result<BenchReport,
         ..gt_settings
     };
     let t = Stopwatch::start();
-    let path = render_frame(&scene, &accel, &left_only, &path_settings, &|_, _| {});
-    let path_span = phase_span(t.stop(), path.stats.path_seconds);
-    use crate::accel::Accel;
-    Ok(BenchReport {
-        triangles: scene.triangle_count(),
-        scene_build_s,
-        accel_build_s,
-        embree_commit_s,
-        backend: accel.backend_name(),
+    let path = render_frame(scene, accel, &left_only, &path_settings, &|_, _| {});
+    BenchRound {
         gt_rays,
-        gt: gt_span,
+        gt,
         path_rays: path.stats.path_rays,
         path_samples: path.stats.samples,
-        path: path_span,
+        path: phase_span(t.stop(), path.stats.path_seconds),
         raw,
-    })
+    }
 }
 
 /// The backend's accelerator, Embree without its twin if so asked.
@@ -154,20 +179,30 @@ impl BenchReport {
     /// The human-readable report, one figure per line, with ratios. Every rate
     /// is given per wall second and "cpu": per CPU second the phase got, spread
     /// over `threads` (what they would do alone on the machine); ratios use the
-    /// CPU-scaled figures.
+    /// CPU-scaled figures. With several rounds each figure is the median over
+    /// rounds, its CPU-scaled range follows in brackets, and each ratio is the
+    /// median of the rounds' own ratios.
     pub fn render_text(&self, threads: usize) -> String {
-        let gt = Rate::of(self.gt_rays, self.gt);
-        let path = Rate::of(self.path_rays, self.path);
-        let samples = Rate::of(self.path_samples, self.path);
-        let r = &self.raw;
-        let line = |name: &str, x: Rate| {
-            format!("{name:<20} {:8.2} Mrays/s wall {:8.2} cpu", x.wall, x.cpu)
+        let n = self.rounds.len();
+        let gt = |r: &BenchRound| Rate::of(r.gt_rays, r.gt, threads);
+        let path = |r: &BenchRound| Rate::of(r.path_rays, r.path, threads);
+        let samples = |r: &BenchRound| Rate::of(r.path_samples, r.path, threads);
+        let figure = |f: &dyn Fn(&BenchRound) -> Rate| Figure::of(&self.rounds, f);
+        let line = |name: &str, x: Figure| format!("{name:<20} {}", x.text("Mrays/s", 2));
+        let ratio = |a: &dyn Fn(&BenchRound) -> Rate, b: &dyn Fn(&BenchRound) -> Rate| {
+            median(self.rounds.iter().map(|r| a(r).cpu / b(r).cpu.max(1e-9)))
         };
-        let ratio = |a: Rate, b: Rate| a.cpu / b.cpu.max(1e-9);
-        [
+        let first = &self.rounds[0];
+        let mut lines = vec![
             format!(
-                "scene: {} triangles, {threads} threads, backend {}",
-                self.triangles, self.backend
+                "scene: {} triangles, {threads} threads, backend {}{}",
+                self.triangles,
+                self.backend,
+                if n > 1 {
+                    format!(", medians of {n} rounds")
+                } else {
+                    String::new()
+                }
             ),
             format!("scene build          {:8.3} s", self.scene_build_s),
             format!(
@@ -179,37 +214,179 @@ impl BenchReport {
             ),
             format!(
                 "{} ({} rays in {:.3} s)",
-                line("GT pass", gt),
-                self.gt_rays,
-                self.gt.wall_s
+                line("GT pass", figure(&gt)),
+                first.gt_rays,
+                first.gt.wall_s
             ),
             format!(
                 "{} ({:.2} rays/sample)",
-                line("path tracing", path),
-                self.path_rays as f64 / self.path_samples.max(1) as f64
+                line("path tracing", figure(&path)),
+                first.path_rays as f64 / first.path_samples.max(1) as f64
             ),
             format!(
-                "path samples         {:8.3} Msamples/s wall {:8.3} cpu",
-                samples.wall, samples.cpu
+                "path samples         {}",
+                figure(&samples).text("Msamples/s", 3)
             ),
-            line("raw primary single", r.primary_single_mrays),
-            line("raw primary packet8", r.primary_packet_mrays),
-            line("raw primary tile4x2", r.primary_tile_mrays),
-            line("raw incoherent hit", r.incoherent_closest_mrays),
-            line("raw incoherent any", r.incoherent_any_mrays),
-            line("raw shading packet8", r.shading_packet_mrays),
-            line("raw shading hit", r.shading_closest_mrays),
-            line("raw shading any", r.shading_any_mrays),
-            format!(
-                "ratio GT / raw tile4x2        {:.2}",
-                ratio(gt, r.primary_tile_mrays)
-            ),
-            format!(
-                "ratio path / raw incoherent   {:.2} (watertight), {:.2} (shading queries path uses)",
-                ratio(path, r.incoherent_closest_mrays),
-                ratio(path, r.shading_closest_mrays)
-            ),
-        ]
-        .join("\n")
+        ];
+        let raw: [(&str, RawField); 8] = [
+            ("raw primary single", |r| r.primary_single_mrays),
+            ("raw primary packet8", |r| r.primary_packet_mrays),
+            ("raw primary tile4x2", |r| r.primary_tile_mrays),
+            ("raw incoherent hit", |r| r.incoherent_closest_mrays),
+            ("raw incoherent any", |r| r.incoherent_any_mrays),
+            ("raw shading packet8", |r| r.shading_packet_mrays),
+            ("raw shading hit", |r| r.shading_closest_mrays),
+            ("raw shading any", |r| r.shading_any_mrays),
+        ];
+        lines.extend(
+            raw.iter()
+                .map(|(name, f)| line(name, figure(&|r: &BenchRound| f(&r.raw)))),
+        );
+        lines.push(format!(
+            "ratio GT / raw tile4x2        {:.2}",
+            ratio(&gt, &|r| r.raw.primary_tile_mrays)
+        ));
+        lines.push(format!(
+            "ratio path / raw incoherent   {:.2} (watertight), {:.2} (shading queries path uses)",
+            ratio(&path, &|r| r.raw.incoherent_closest_mrays),
+            ratio(&path, &|r| r.raw.shading_closest_mrays)
+        ));
+        lines.join("\n")
+    }
+}
+
+/// Reads one raw figure.
+type RawField = fn(&RawThroughput) -> Rate;
+
+/// One figure over the rounds: medians of the wall and CPU-scaled rates and
+/// the CPU-scaled range.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Figure {
+    wall: f64,
+    cpu: f64,
+    cpu_min: f64,
+    cpu_max: f64,
+    rounds: usize,
+}
+
+impl Figure {
+    fn of(rounds: &[BenchRound], f: impl Fn(&BenchRound) -> Rate) -> Figure {
+        let rates: Vec<Rate> = rounds.iter().map(f).collect();
+        let cpu = || rates.iter().map(|r| r.cpu);
+        Figure {
+            wall: median(rates.iter().map(|r| r.wall)),
+            cpu: median(cpu()),
+            cpu_min: cpu().fold(f64::INFINITY, f64::min),
+            cpu_max: cpu().fold(f64::NEG_INFINITY, f64::max),
+            rounds: rates.len(),
+        }
+    }
+
+    /// "W unit wall C cpu", with "[min–max]" of the CPU figure over several rounds.
+    fn text(&self, unit: &str, decimals: usize) -> String {
+        let d = decimals;
+        let mut s = format!("{:8.d$} {unit} wall {:8.d$} cpu", self.wall, self.cpu);
+        if self.rounds > 1 {
+            s += &format!("  [{:.d$}–{:.d$}]", self.cpu_min, self.cpu_max);
+        }
+        s
+    }
+}
+
+/// The median (the mean of the middle two for an even count; NaN for none).
+fn median(xs: impl Iterator<Item = f64>) -> f64 {
+    let mut v: Vec<f64> = xs.collect();
+    v.sort_by(f64::total_cmp);
+    match v.len() {
+        0 => f64::NAN,
+        n if n % 2 == 1 => v[n / 2],
+        n => 0.5 * (v[n / 2 - 1] + v[n / 2]),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A round whose every figure is `rays` over `span`.
+    fn round(rays: u64, span: Span) -> BenchRound {
+        let r = Rate::of(rays, span, 1);
+        BenchRound {
+            gt_rays: rays,
+            gt: span,
+            path_rays: rays,
+            path_samples: rays / 4,
+            path: span,
+            raw: RawThroughput {
+                primary_tile_mrays: Rate {
+                    wall: r.wall * 2.0,
+                    cpu: r.cpu * 2.0,
+                },
+                incoherent_closest_mrays: r,
+                shading_closest_mrays: r,
+                ..RawThroughput::default()
+            },
+        }
+    }
+
+    fn report(rounds: Vec<BenchRound>) -> BenchReport {
+        BenchReport {
+            triangles: 12,
+            scene_build_s: 0.0,
+            accel_build_s: 0.0,
+            embree_commit_s: None,
+            backend: "test",
+            rounds,
+        }
+    }
+
+    fn line<'a>(text: &'a str, start: &str) -> &'a str {
+        text.lines().find(|l| l.starts_with(start)).unwrap()
+    }
+
+    #[test]
+    fn cpu_figures_scale_by_the_threads_the_run_used() {
+        // One thread busy for all of 2 wall seconds: 4M rays is 2 Mrays/s
+        // both ways. (Scaling by the global pool, as the report once did,
+        // doubled the CPU figure on a two-core machine.)
+        let span = Span {
+            wall_s: 2.0,
+            cpu_s: 2.0,
+        };
+        let text = report(vec![round(4_000_000, span)]).render_text(1);
+        assert!(
+            line(&text, "GT pass").contains("2.00 Mrays/s wall     2.00 cpu"),
+            "{text}"
+        );
+        assert!(!text.contains("rounds"), "{text}");
+        assert!(line(&text, "ratio GT").ends_with("0.50"), "{text}");
+    }
+
+    #[test]
+    fn several_rounds_give_medians_ranges_and_median_ratios() {
+        let span = |wall_s| Span {
+            wall_s,
+            cpu_s: wall_s,
+        };
+        // 4M rays in 1, 4 and 2 s: 4, 1 and 2 Mrays/s; median 2.
+        let rounds = vec![
+            round(4_000_000, span(1.0)),
+            round(4_000_000, span(4.0)),
+            round(4_000_000, span(2.0)),
+        ];
+        let text = report(rounds).render_text(1);
+        assert!(text.contains("medians of 3 rounds"), "{text}");
+        let gt = line(&text, "GT pass");
+        assert!(
+            gt.contains("2.00 Mrays/s wall     2.00 cpu  [1.00–4.00]"),
+            "{gt}"
+        );
+        let samples = line(&text, "path samples");
+        assert!(samples.contains("0.500 Msamples/s"), "{samples}");
+        assert!(samples.contains("[0.250–1.000]"), "{samples}");
+        // Every round's GT ran at half its tile rate.
+        assert!(line(&text, "ratio GT").ends_with("0.50"), "{text}");
+        assert_eq!(median([3.0, 1.0, 2.0, 10.0].into_iter()), 2.5);
+        assert!(median(std::iter::empty()).is_nan());
     }
 }

@@ -47,11 +47,12 @@ pub struct Rate {
 }
 
 impl Rate {
-    /// The rate of `n` rays over `span` on the current pool.
-    pub fn of(n: u64, span: Span) -> Rate {
+    /// The rate of `n` rays over `span` on a pool of `threads` threads (the
+    /// pool that ran the phase: outside it rayon reports the global pool).
+    pub fn of(n: u64, span: Span, threads: usize) -> Rate {
         Rate {
             wall: span.wall_rate(n),
-            cpu: span.cpu_rate(n, rayon::current_num_threads()),
+            cpu: span.cpu_rate(n, threads),
         }
     }
 }
@@ -74,7 +75,7 @@ fn rate(rays: usize, mut f: impl FnMut()) -> Rate {
         passes += 1;
         let span = t.stop();
         if span.wall_s >= MIN_RAW_S {
-            return Rate::of(rays as u64 * passes, span);
+            return Rate::of(rays as u64 * passes, span, rayon::current_num_threads());
         }
     }
 }

@@ -38,6 +38,10 @@ pub struct BenchArgs {
     /// Embree: trace the path pass on the watertight scene too (no non-robust twin).
     #[arg(long)]
     pub no_shading_twin: bool,
+    /// Rounds of every measurement on the one scene and BVH: figures are the
+    /// medians over rounds, with their range (noisy machines).
+    #[arg(long, default_value_t = 1)]
+    pub rounds: u32,
 }
 
 /// Runs `parallax bench`.
@@ -68,9 +72,9 @@ pub fn run(a: BenchArgs) -> Result<(), CliError> {
     if let Some(h) = a.height {
         loaded.desc.camera.height = h;
     }
-    if a.spp == 0 || a.max_depth == 0 || a.threads == 0 {
+    if a.spp == 0 || a.max_depth == 0 || a.threads == 0 || a.rounds == 0 {
         return Err(CliError::input(
-            "--spp, --max-depth and --threads must be at least 1",
+            "--spp, --max-depth, --threads and --rounds must be at least 1",
         ));
     }
     let settings = BenchSettings {
@@ -78,6 +82,7 @@ pub fn run(a: BenchArgs) -> Result<(), CliError> {
         max_depth: a.max_depth,
         backend: a.backend,
         shading_twin: !a.no_shading_twin,
+        rounds: a.rounds,
     };
     let pool = thread_pool(a.threads)?;
     let report = pool
