@@ -79,25 +79,14 @@ impl<A: Accel> PathContext<'_, A> {
             split_first: self.scene.filter_inscatter,
             ..Strategies::default()
         };
-        self.li_volume_with(ray, first_hit, stream, rays, strategies)
-    }
-
-    /// [`PathContext::li_volume`] with the medium-vertex strategies chosen
-    /// by `strategies` (the default is what renders use).
-    fn li_volume_with(
-        &self,
-        ray: Ray,
-        first_hit: Option<Hit>,
-        stream: &mut SampleStream,
-        rays: &mut u64,
-        strategies: Strategies,
-    ) -> LiSample {
         self.trace(ray, first_hit, stream, rays, strategies, None)
     }
 
-    /// The volumetric path loop. With `surface_beta` it is the surface part
-    /// of a split camera ray (`Strategies::split_first`): the first segment's
-    /// medium is skipped and the path starts at that throughput.
+    /// The volumetric path loop with the medium-vertex strategies chosen by
+    /// `strategies` (renders use [`PathContext::li_volume`]'s). With
+    /// `surface_beta` it is the surface part of a split camera ray
+    /// (`Strategies::split_first`): the first segment's medium is skipped and
+    /// the path starts at that throughput.
     fn trace(
         &self,
         ray: Ray,

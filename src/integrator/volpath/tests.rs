@@ -77,7 +77,7 @@ fn estimate(strategies: Strategies, dirs: &[Vec3], n: u32) -> Vec<(f64, f64)> {
                 let ray = Ray::new(o, d.normalize());
                 let hit = accel.intersect(&ray);
                 let l = ctx
-                    .li_volume_with(ray, hit, &mut stream, &mut rays, strategies)
+                    .trace(ray, hit, &mut stream, &mut rays, strategies, None)
                     .l;
                 s1 += l.y as f64;
                 s2 += (l.y as f64).powi(2);
