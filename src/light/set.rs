@@ -1,14 +1,22 @@
-//! The lights next-event estimation samples. Distant lights (the sky and up to
-//! `MAX_DISTANT − 1` suns) are sampled at every vertex: outdoors they are the
-//! only light in every shadow, and one-sample selection would give the sky a
-//! small share next to the sun. Local lights (point, spot, emissive triangles)
-//! are selected one per vertex by a light BVH (`bvh.rs`, Conty Estevez &
-//! Kulla 2018) from the shading point; suns beyond `MAX_DISTANT` take a
-//! uniform share beside the tree (pbrt-v4's `BVHLightSampler`). The older
-//! point-independent selection (half by power, half uniform) and uniform
-//! selection stay available as [`LightSelection`] kinds. Probabilities returned
-//! include the selection pmf (1 for distant lights), so callers combine them
-//! directly in MIS weights.
+//! The lights next-event estimation samples. Distant lights (up to
+//! `MAX_DISTANT` suns and the sky) are sampled at every vertex: outdoors they
+//! are the only direct light, and one-sample selection would give the sky a
+//! small share next to the sun. The sky joins them only where it pays for its
+//! shadow ray. Under a sun and without a medium its NEE draws nearly the
+//! cosine lobe BSDF sampling already draws: without it (escaped rays then
+//! get full weight) the street's path time fell by 30–45 % for 2–20 % more
+//! variance (60 % under broken cloud): 25–70 % more efficient (1 / variance
+//! × time) in clear, sunset and night weather, about equal under broken
+//! cloud. Without a sun (overcast) the sky is the whole light and keeps NEE;
+//! with a medium, medium vertices need it (a phase function does not favour
+//! the sky) and its tables carry the fog's transmittance. Local lights
+//! (point, spot, emissive triangles) are selected one per vertex by a light
+//! BVH (`bvh.rs`, Conty Estevez & Kulla 2018) from the shading point; suns
+//! beyond `MAX_DISTANT` take a uniform share beside the tree (pbrt-v4's
+//! `BVHLightSampler`). The older point-independent selection (half by power,
+//! half uniform) and uniform selection stay available as [`LightSelection`]
+//! kinds. Probabilities returned include the selection pmf (1 for distant
+//! lights), so callers combine them directly in MIS weights.
 
 use glam::{Vec2, Vec3};
 use shaders_cpu::sampling::{luminance, power_heuristic, uniform_cone_pdf};
@@ -54,7 +62,7 @@ pub struct LightSet {
     local_suns: Vec<u32>,
     /// Probability of picking one of `local_suns` rather than the tree.
     p_suns: f32,
-    /// pmf of the sky (1 when it emits, else 0).
+    /// pmf of the sky (1 when NEE samples it, else 0).
     sky_pmf: f32,
     /// Sky tables weighted by the fog's transmittance (scenes with a medium).
     fog_sky: Option<FogSky>,
@@ -98,7 +106,10 @@ impl LightSet {
         let mut bounds = Vec::new();
         let mut suns = Vec::new();
         let sky_emits = scene.sky.luminance_avg() > 0.0;
-        let room_for_suns = MAX_DISTANT - sky_emits as usize;
+        let has_sun = scene.lights.iter().any(|l| matches!(l, Light::Sun { .. }));
+        // Where NEE of the sky pays for its shadow ray (module docs).
+        let sky_sampled = sky_emits && (scene.medium.is_some() || !has_sun);
+        let room_for_suns = MAX_DISTANT - sky_sampled as usize;
         for light in &scene.lights {
             if let Light::Sun {
                 dir_to_sun,
@@ -129,7 +140,7 @@ impl LightSet {
             bounds.push(explicit_bounds(light));
             entries.push(Entry::Explicit(*light));
         }
-        if sky_emits {
+        if sky_sampled {
             distant.push(Entry::Sky);
         }
         let mut tri_entry = vec![Vec::new(); scene.meshes.len()];
@@ -208,10 +219,10 @@ impl LightSet {
             bvh,
             local_suns,
             p_suns,
-            sky_pmf: if sky_emits { 1.0 } else { 0.0 },
+            sky_pmf: if sky_sampled { 1.0 } else { 0.0 },
             fog_sky: scene
                 .medium
-                .filter(|_| sky_emits)
+                .filter(|_| sky_sampled)
                 .map(|m| FogSky::new(m, |d| scene.sky.le(d))),
             suns,
             tri_entry,

@@ -1,6 +1,7 @@
 //! Drawing a distant light's direction first and its radiance later
 //! (`sample_distant_dir` + `distant_li`) must give the bits `sample_distant`
 //! gives, for the sun seen through a cloud deck and for the sky, clear and
+//! under fog; and the sky joins next-event estimation only without a sun or
 //! under fog.
 
 use std::path::Path;
@@ -13,13 +14,20 @@ use crate::scene::{build_scene, parse_scene_str};
 const BODY: &str = "[camera]\nposition = [0.0, 0.0, 1.5]\n[[material]]\nname = \"grey\"\nkind = \"diffuse\"\nalbedo = [0.5, 0.5, 0.5]\n[[object]]\nkind = \"quad\"\nsize = [10.0, 10.0]\nmaterial = \"grey\"\n";
 const CLOUDY: &str = "[sky]\nkind = \"physical\"\nsun_elevation_deg = 35.0\nsun_azimuth_deg = 20.0\ncloud_cover = 0.6\n";
 const FOG: &str = "[medium]\nkind = \"homogeneous\"\nsigma_t = 0.02\nalbedo = [0.9, 0.9, 0.9]\ng = 0.5\nz_max_m = 40.0\n";
+const OVERCAST: &str = "[sky]\nkind = \"overcast\"\nirradiance = [120.0, 120.0, 130.0]\n";
 const GRADIENT: &str = "[sky]\nkind = \"gradient\"\nzenith = [0.3, 0.5, 1.0]\nhorizon = [1.0, 1.0, 1.0]\nground = [0.2, 0.2, 0.2]\n[[light]]\nkind = \"sun\"\nelevation_deg = 30.0\nazimuth_deg = 0.0\nirradiance = [900.0, 900.0, 900.0]\n";
 
-fn check(extra: &str) -> usize {
+fn scene_with(extra: &str) -> crate::scene::Scene {
     let text = format!("{BODY}{extra}");
     let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/inline.toml");
     let loaded = parse_scene_str(&text, &file).expect("scene parses");
-    let scene = build_scene(&loaded, DVec3::ZERO).expect("scene builds");
+    build_scene(&loaded, DVec3::ZERO).expect("scene builds")
+}
+
+/// Checks every distant light of the scene with `extra`; returns how many
+/// samples carried radiance.
+fn check(extra: &str) -> usize {
+    let scene = scene_with(extra);
     let lights = LightSet::build(&scene);
     let mut nonzero = 0;
     for k in 0..lights.distant_count() {
@@ -49,13 +57,59 @@ fn check(extra: &str) -> usize {
 
 #[test]
 fn split_distant_sampling_gives_the_same_bits() {
-    // Sun and sky each time: 2 × 64 draws, most with radiance.
-    for extra in [
-        CLOUDY.to_string(),
-        format!("{CLOUDY}{FOG}"),
-        GRADIENT.to_string(),
+    // 64 draws per distant light, most with radiance: the sun (through a
+    // cloud deck or not), the sky under fog, the sky alone when overcast.
+    for (extra, n_distant) in [
+        (CLOUDY.to_string(), 1),
+        (format!("{CLOUDY}{FOG}"), 2),
+        (GRADIENT.to_string(), 1),
+        (OVERCAST.to_string(), 1),
     ] {
         let n = check(&extra);
-        assert!(n >= 64, "{n} samples with radiance for\n{extra}");
+        assert!(
+            n >= 32 * n_distant,
+            "{n} samples with radiance for\n{extra}"
+        );
+    }
+}
+
+#[test]
+fn the_sky_joins_nee_only_without_a_sun_or_under_fog() {
+    // Escaping along a direction away from the sun after a BSDF sample of
+    // pdf 1/π: the sky's full radiance when NEE does not sample it, less
+    // (the BSDF share of the power heuristic) when it does.
+    let dir = Vec3::new(0.0, -0.6, 0.8);
+    let p = Vec3::new(0.0, 0.0, 0.5);
+    for (extra, sampled) in [
+        (GRADIENT.to_string(), false),
+        (CLOUDY.to_string(), false),
+        (OVERCAST.to_string(), true),
+        (format!("{GRADIENT}{FOG}"), true),
+        (format!("{CLOUDY}{FOG}"), true),
+    ] {
+        let scene = scene_with(&extra);
+        let lights = LightSet::build(&scene);
+        let suns = scene
+            .lights
+            .iter()
+            .filter(|l| matches!(l, crate::light::Light::Sun { .. }))
+            .count();
+        assert_eq!(
+            lights.distant_count(),
+            suns + sampled as usize,
+            "distant lights for\n{extra}"
+        );
+        let le = scene.sky.le(dir);
+        assert!(le.min_element() > 0.0, "the sky shines along dir");
+        let l = lights.escaped_at(&scene, p, dir, std::f32::consts::FRAC_1_PI, false);
+        if sampled {
+            let w = l / le;
+            assert!(
+                w.max_element() < 0.99 && w.min_element() > 0.01,
+                "MIS weight {w} for\n{extra}"
+            );
+        } else {
+            assert_eq!(l, le, "full weight for\n{extra}");
+        }
     }
 }
