@@ -121,8 +121,11 @@ struct BandScratch {
 
 impl BandScratch {
     /// Traces the band of rows starting at `j0` (`depth_band.len() / w`
-    /// rows) of `cam` in 8-wide 4×2 tile packets and writes each pixel's
-    /// exact depth_z into `depth_band`; the rays and hits stay in `self`.
+    /// rows) of `cam` in 8-wide 4×2 tile packets, writes each pixel's exact
+    /// depth_z into `depth_band` and hands every hit to `on_hit` (band
+    /// index, ray, hit) right after its re-intersection, while the
+    /// triangle's data is still in cache.
+    #[allow(clippy::too_many_arguments)]
     fn trace_band(
         &mut self,
         scene: &Scene,
@@ -131,23 +134,30 @@ impl BandScratch {
         centre: &CentreDirs,
         j0: usize,
         depth_band: &mut [f64],
+        mut on_hit: impl FnMut(usize, &Ray, &Hit),
     ) {
         let w = cam.intrinsics.width as usize;
         let rows = depth_band.len() / w;
         let o = cam.center_f32();
         tile_order(w, rows, &mut self.pixel);
         self.dirs.clear();
-        self.dirs
-            .extend(self.pixel.iter().map(|&k| centre.dir(k % w, j0 + k / w)));
         self.rays.clear();
-        self.rays
-            .extend(self.dirs.iter().map(|d| Ray::new(o, d.as_vec3())));
+        for &k in &self.pixel {
+            let d = centre.dir(k % w, j0 + k / w);
+            self.dirs.push(d);
+            self.rays.push(Ray::new(o, d.as_vec3()));
+        }
         self.hits.clear();
         self.hits.resize(self.rays.len(), None);
         accel.intersect_batch(&self.rays, &mut self.hits);
-        for ((&k, h), &d) in self.pixel.iter().zip(&self.hits).zip(&self.dirs) {
+        let traced = self.pixel.iter().zip(&self.rays).zip(&self.hits);
+        for (((&k, ray), h), &d) in traced.zip(&self.dirs) {
             depth_band[k] = match h {
-                Some(h) => exact_t(scene, cam.center, d, h),
+                Some(h) => {
+                    let t = exact_t(scene, cam.center, d, h);
+                    on_hit(k, ray, h);
+                    t
+                }
                 None => f64::INFINITY,
             };
         }
@@ -196,12 +206,12 @@ pub fn view_gt(scene: &Scene, accel: &impl Accel, cam: &RenderCamera, labels: bo
     bands.into_par_iter().with_max_len(1).for_each_init(
         BandScratch::default,
         |scratch, (b, (depth_band, label_band))| {
-            scratch.trace_band(scene, accel, cam, &centre, b * BAND_ROWS, depth_band);
+            let j0 = b * BAND_ROWS;
             let Some((((normal, sem), inst), mask)) = label_band else {
+                scratch.trace_band(scene, accel, cam, &centre, j0, depth_band, |_, _, _| {});
                 return;
             };
-            for ((&k, ray), hit) in scratch.pixel.iter().zip(&scratch.rays).zip(&scratch.hits) {
-                let Some(hit) = hit else { continue };
+            scratch.trace_band(scene, accel, cam, &centre, j0, depth_band, |k, ray, hit| {
                 let si = surface_interaction(scene, ray, hit);
                 let facing = if si.n_shading.dot(ray.d) > 0.0 {
                     -1.0
@@ -212,7 +222,7 @@ pub fn view_gt(scene: &Scene, accel: &impl Accel, cam: &RenderCamera, labels: bo
                 sem[k] = si.semantic;
                 inst[k] = si.instance;
                 mask[k] = super::wet::mask_at(scene, &si, ray.d);
-            }
+            });
         },
     );
     gt
