@@ -409,7 +409,8 @@ impl LightSet {
             }
         };
         let mut l = scene.sky.le(dir);
-        if !prev_delta && l != Vec3::ZERO {
+        // MIS only where NEE samples the sky too (else full weight).
+        if !prev_delta && self.sky_pmf > 0.0 && l != Vec3::ZERO {
             l *= weight(self.sky_pdf(scene, p, dir));
         }
         for sun in &self.suns {
