@@ -213,10 +213,11 @@ impl BenchReport {
                 ))
             ),
             format!(
-                "{} ({} rays in {:.3} s)",
+                "{} ({} rays in {:.3} s{})",
                 line("GT pass", figure(&gt)),
-                first.gt_rays,
-                first.gt.wall_s
+                self.rounds.iter().map(|r| r.gt_rays).sum::<u64>(),
+                self.rounds.iter().map(|r| r.gt.wall_s).sum::<f64>(),
+                if n > 1 { ", all rounds" } else { "" }
             ),
             format!(
                 "{} ({:.2} rays/sample)",
@@ -359,6 +360,10 @@ mod tests {
             "{text}"
         );
         assert!(!text.contains("rounds"), "{text}");
+        assert!(
+            line(&text, "GT pass").ends_with("(4000000 rays in 2.000 s)"),
+            "{text}"
+        );
         assert!(line(&text, "ratio GT").ends_with("0.50"), "{text}");
     }
 
@@ -379,6 +384,11 @@ mod tests {
         let gt = line(&text, "GT pass");
         assert!(
             gt.contains("2.00 Mrays/s wall     2.00 cpu  [1.00–4.00]"),
+            "{gt}"
+        );
+        // The counts after it are every round's, not the first's.
+        assert!(
+            gt.ends_with("(12000000 rays in 7.000 s, all rounds)"),
             "{gt}"
         );
         let samples = line(&text, "path samples");
