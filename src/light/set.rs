@@ -4,10 +4,11 @@
 //! small share next to the sun. The sky joins them only where it pays for its
 //! shadow ray. Under a sun and without a medium its NEE draws nearly the
 //! cosine lobe BSDF sampling already draws: without it (escaped rays then
-//! get full weight) the street's path time fell by 30–45 % for 2–20 % more
-//! variance (60 % under broken cloud): 25–70 % more efficient (1 / variance
-//! × time) in clear, sunset and night weather, about equal under broken
-//! cloud. Without a sun (overcast) the sky is the whole light and keeps NEE;
+//! get full weight) the street's path time fell by 28–44 % for 2–18 % more
+//! variance (60 % under broken cloud): 20–70 % more efficient (1 / variance
+//! × time) in clear, sunset and night weather, within the noise (±14 %)
+//! under broken cloud. Without a sun (overcast) the sky is the whole light
+//! and keeps NEE;
 //! with a medium, medium vertices need it (a phase function does not favour
 //! the sky) and its tables carry the fog's transmittance. Local lights
 //! (point, spot, emissive triangles) are selected one per vertex by a light
