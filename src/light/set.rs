@@ -1,23 +1,23 @@
-//! The lights next-event estimation samples. Distant lights (up to
-//! `MAX_DISTANT` suns and the sky) are sampled at every vertex: outdoors they
-//! are the only direct light, and one-sample selection would give the sky a
-//! small share next to the sun. The sky joins them only where it pays for its
-//! shadow ray. Under a sun and without a medium its NEE draws nearly the
-//! cosine lobe BSDF sampling already draws: without it (escaped rays then
-//! get full weight) the street's path time fell by 28–44 % for 2–18 % more
-//! variance (60 % under broken cloud): 20–70 % more efficient (1 / variance
-//! × time) in clear, sunset and night weather, within the noise (±14 %)
-//! under broken cloud. Without a sun (overcast) the sky is the whole light
-//! and keeps NEE; with a medium, medium vertices need it (a phase function
-//! does not favour the sky) and its tables carry the fog's transmittance.
-//! Local lights (point, spot, emissive triangles) are selected one per
-//! vertex by a light BVH (`bvh.rs`, Conty Estevez & Kulla 2018) from the
-//! shading point; suns beyond `MAX_DISTANT` take a uniform share beside the
-//! tree (pbrt-v4's `BVHLightSampler`). The older point-independent selection
-//! (half by power, half uniform) and uniform selection stay available as
-//! [`LightSelection`] kinds. Probabilities returned include the selection
-//! pmf (1 for distant lights), so callers combine them directly in MIS
-//! weights.
+//! The lights next-event estimation samples. Distant lights (suns and, where
+//! it pays, the sky: `MAX_DISTANT` in all) are sampled at every vertex:
+//! outdoors they are the only direct light, and one-sample selection would
+//! give the sky a small share next to the sun. The sky joins them only where
+//! it pays for its shadow ray. Under a sun and without a medium its NEE draws
+//! nearly the cosine lobe BSDF sampling already draws: without it (escaped
+//! rays then get full weight) the street's path time fell by 28–44 % for
+//! 2–18 % more variance (60 % under broken cloud): 20–70 % more efficient
+//! (1 / variance × time) in clear, sunset and night weather, within the noise
+//! (±14 %) under broken cloud. Without a sun (overcast) the sky is the whole
+//! light and keeps NEE; with a medium, medium vertices need it (a phase
+//! function does not favour the sky) and its tables carry the fog's
+//! transmittance. Local lights (point, spot, emissive triangles) are selected
+//! one per vertex by a light BVH (`bvh.rs`, Conty Estevez & Kulla 2018) from
+//! the shading point; suns beyond `MAX_DISTANT` take a uniform share beside
+//! the tree (pbrt-v4's `BVHLightSampler`). The older point-independent
+//! selection (half by power, half uniform) and uniform selection stay
+//! available as [`LightSelection`] kinds. Probabilities returned include the
+//! selection pmf (1 for distant lights), so callers combine them directly in
+//! MIS weights.
 
 use glam::{Vec2, Vec3};
 use shaders_cpu::sampling::{luminance, power_heuristic, uniform_cone_pdf};
