@@ -161,7 +161,7 @@ pub fn render_frame(
             let (mut film, fog, rays) = render_view(&ctx, cam, key, settings.spp);
             // Fog in-scattering filtered per view, guided by this view's
             // exact pixel-centre depth (left, or baseline b's right view).
-            if scene.filter_inscatter {
+            if let Some(fog) = fog {
                 let depth_z = match view {
                     0 => left.depth_z_f32(),
                     v => baselines[v - 1].depth_right.clone(),
@@ -216,13 +216,23 @@ struct ChunkScratch {
     occluded: Vec<bool>,
 }
 
-/// Per pixel: (mean radiance, mean l_fog, mean first-segment opacity,
-/// mean l_surf_fog, mean rho).
-type PixelMeans = (Vec3, Vec3, f32, Vec3, Vec3);
+/// Per pixel, the fog filter's inputs: (mean l_fog, mean first-segment
+/// opacity, mean l_surf_fog, mean rho).
+type FogMeans = (Vec3, f32, Vec3, Vec3);
+
+/// One tile's pixel means in raster order: the radiance, and the fog
+/// filter's inputs only where the scene filters fog (they are four fifths
+/// of the bytes, about 60 MB a view at 1600×900, and zero without fog).
+#[derive(Default)]
+struct TileMeans {
+    rgb: Vec<Vec3>,
+    fog: Vec<FogMeans>,
+}
 
 /// Path-traces one view; pixels are independent, so any thread count gives
 /// the same film. Also returns the first-scatter part of its radiance (the
-/// fog filter's input) and the rays traced.
+/// fog filter's input; `None` where the scene filters no fog) and the rays
+/// traced.
 ///
 /// Work is split into `TILE_PX`² tiles, assembled in raster order after.
 /// The camera rays of a few neighbouring pixels of one tile row go through
@@ -234,18 +244,23 @@ fn render_view<A: Accel>(
     cam: &RenderCamera,
     key: StreamKey,
     spp: u32,
-) -> (Film, FogLayer, u64) {
+) -> (Film, Option<FogLayer>, u64) {
     let (w, h) = (cam.intrinsics.width, cam.intrinsics.height);
     let tiles_x = w.div_ceil(TILE_PX);
     let n_tiles = tiles_x * h.div_ceil(TILE_PX);
-    let tiles: Vec<(Vec<PixelMeans>, u64)> = (0..n_tiles)
+    let keep_fog = ctx.scene.filter_inscatter;
+    let tiles: Vec<(TileMeans, u64)> = (0..n_tiles)
         .into_par_iter()
         .with_max_len(1) // tiles differ in cost (sky vs street): balance per tile
         .map_init(ChunkScratch::default, |scratch, t| {
             let (x0, y0) = ((t % tiles_x) * TILE_PX, (t / tiles_x) * TILE_PX);
             let (x1, y1) = ((x0 + TILE_PX).min(w), (y0 + TILE_PX).min(h));
             let mut rays = 0u64;
-            let mut tile = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
+            let n = ((x1 - x0) * (y1 - y0)) as usize;
+            let mut tile = TileMeans {
+                rgb: Vec::with_capacity(n),
+                fog: Vec::with_capacity(if keep_fog { n } else { 0 }),
+            };
             for j in y0..y1 {
                 for i0 in (x0..x1).step_by(PACKET_PIXELS as usize) {
                     let i1 = (i0 + PACKET_PIXELS).min(x1);
@@ -266,15 +281,20 @@ fn render_view<A: Accel>(
         .collect();
     let rays = tiles.iter().map(|t| t.1).sum();
     let mut film = Film::new(w as usize, h as usize);
-    let mut fog = FogLayer::new(w as usize, h as usize);
+    let mut fog = keep_fog.then(|| FogLayer::new(w as usize, h as usize));
     for (t, (tile, _)) in tiles.iter().enumerate() {
         let t = t as u32;
         let (x0, y0) = ((t % tiles_x) * TILE_PX, (t / tiles_x) * TILE_PX);
         let tw = ((x0 + TILE_PX).min(w) - x0) as usize;
-        for (row, px) in tile.chunks(tw).enumerate() {
+        for (row, px) in tile.rgb.chunks(tw).enumerate() {
             let start = (y0 as usize + row) * w as usize + x0 as usize;
-            for (k, &(l, l_fog, opacity, l_sf, rho)) in (start..start + tw).zip(px) {
-                (film.rgb[k], fog.l_fog[k], fog.opacity[k]) = (l, l_fog, opacity);
+            film.rgb[start..start + tw].copy_from_slice(px);
+        }
+        let Some(fog) = fog.as_mut() else { continue };
+        for (row, px) in tile.fog.chunks(tw).enumerate() {
+            let start = (y0 as usize + row) * w as usize + x0 as usize;
+            for (k, &(l_fog, opacity, l_sf, rho)) in (start..start + tw).zip(px) {
+                (fog.l_fog[k], fog.opacity[k]) = (l_fog, opacity);
                 (fog.l_surf_fog[k], fog.rho[k]) = (l_sf, rho);
             }
         }
@@ -292,7 +312,7 @@ fn render_chunk<A: Accel>(
     spp: u32,
     (i, j): (std::ops::Range<u32>, u32),
     scratch: &mut ChunkScratch,
-    out: &mut Vec<PixelMeans>,
+    out: &mut TileMeans,
     rays: &mut u64,
 ) {
     scratch.rays.clear();
@@ -353,6 +373,9 @@ fn render_chunk<A: Accel>(
             }
         }
         let n = spp as f32;
-        out.push((sum / n, fog / n, opacity / n, surf_fog / n, rho / n));
+        out.rgb.push(sum / n);
+        if ctx.scene.filter_inscatter {
+            out.fog.push((fog / n, opacity / n, surf_fog / n, rho / n));
+        }
     }
 }
