@@ -221,8 +221,9 @@ struct ChunkScratch {
 type FogMeans = (Vec3, f32, Vec3, Vec3);
 
 /// One tile's pixel means in raster order: the radiance, and the fog
-/// filter's inputs only where the scene filters fog (they are four fifths
-/// of the bytes, about 60 MB a view at 1600×900, and zero without fog).
+/// filter's inputs only where the scene filters fog. Those are 40 of a
+/// pixel's 52 bytes (58 MB a view at 1600×900, and as much again in the
+/// view's `FogLayer`), all zero without fog.
 #[derive(Default)]
 struct TileMeans {
     rgb: Vec<Vec3>,
