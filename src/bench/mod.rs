@@ -192,7 +192,6 @@ impl BenchReport {
         let ratio = |a: &dyn Fn(&BenchRound) -> Rate, b: &dyn Fn(&BenchRound) -> Rate| {
             median(self.rounds.iter().map(|r| a(r).cpu / b(r).cpu.max(1e-9)))
         };
-        let first = &self.rounds[0];
         let mut lines = vec![
             format!(
                 "scene: {} triangles, {threads} threads, backend {}{}",
@@ -222,7 +221,13 @@ impl BenchReport {
             format!(
                 "{} ({:.2} rays/sample)",
                 line("path tracing", figure(&path)),
-                first.path_rays as f64 / first.path_samples.max(1) as f64
+                self.rounds.iter().map(|r| r.path_rays).sum::<u64>() as f64
+                    / self
+                        .rounds
+                        .iter()
+                        .map(|r| r.path_samples)
+                        .sum::<u64>()
+                        .max(1) as f64
             ),
             format!(
                 "path samples         {}",

@@ -221,13 +221,12 @@ struct ChunkScratch {
 type FogMeans = (Vec3, f32, Vec3, Vec3);
 
 /// One tile's pixel means in raster order: the radiance, and the fog
-/// filter's inputs only where the scene filters fog. Those are 40 of a
-/// pixel's 52 bytes (58 MB a view at 1600×900, and as much again in the
-/// view's `FogLayer`), all zero without fog.
-#[derive(Default)]
+/// filter's inputs (`Some` only where the scene filters fog). Those are 40
+/// of a pixel's 52 bytes (58 MB a view at 1600×900, and as much again in
+/// the view's `FogLayer`), all zero without fog.
 struct TileMeans {
     rgb: Vec<Vec3>,
-    fog: Vec<FogMeans>,
+    fog: Option<Vec<FogMeans>>,
 }
 
 /// Path-traces one view; pixels are independent, so any thread count gives
@@ -260,7 +259,7 @@ fn render_view<A: Accel>(
             let n = ((x1 - x0) * (y1 - y0)) as usize;
             let mut tile = TileMeans {
                 rgb: Vec::with_capacity(n),
-                fog: Vec::with_capacity(if keep_fog { n } else { 0 }),
+                fog: keep_fog.then(|| Vec::with_capacity(n)),
             };
             for j in y0..y1 {
                 for i0 in (x0..x1).step_by(PACKET_PIXELS as usize) {
@@ -290,11 +289,11 @@ fn render_view<A: Accel>(
         for (row, px) in tile.rgb.chunks(tw).enumerate() {
             let start = (y0 as usize + row) * w as usize + x0 as usize;
             film.rgb[start..start + tw].copy_from_slice(px);
-        }
-        let Some(fog) = fog.as_mut() else { continue };
-        for (row, px) in tile.fog.chunks(tw).enumerate() {
-            let start = (y0 as usize + row) * w as usize + x0 as usize;
-            for (k, &(l_fog, opacity, l_sf, rho)) in (start..start + tw).zip(px) {
+            let (Some(fog), Some(means)) = (fog.as_mut(), &tile.fog) else {
+                continue;
+            };
+            let means = &means[row * tw..(row + 1) * tw];
+            for (k, &(l_fog, opacity, l_sf, rho)) in (start..start + tw).zip(means) {
                 (fog.l_fog[k], fog.opacity[k]) = (l_fog, opacity);
                 (fog.l_surf_fog[k], fog.rho[k]) = (l_sf, rho);
             }
@@ -375,8 +374,8 @@ fn render_chunk<A: Accel>(
         }
         let n = spp as f32;
         out.rgb.push(sum / n);
-        if ctx.scene.filter_inscatter {
-            out.fog.push((fog / n, opacity / n, surf_fog / n, rho / n));
+        if let Some(means) = out.fog.as_mut() {
+            means.push((fog / n, opacity / n, surf_fog / n, rho / n));
         }
     }
 }
