@@ -83,8 +83,21 @@ fn bad_town_arguments_exit_2_with_a_reason() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");
     let out = out.to_str().unwrap();
-    let cases: [(&[&str], &str); 5] = [
+    let cases: [(&[&str], &str); 6] = [
         (&["render", "--town", "town99", "-o", out], "town99.toml"),
+        // A bare name not found says which directory it was looked up in.
+        (
+            &[
+                "render",
+                "--town",
+                "town99",
+                "--scenes",
+                "no_such_dir",
+                "-o",
+                out,
+            ],
+            "looked up in the --scenes directory ('no_such_dir')",
+        ),
         (
             &[
                 "render", "--town", "town02", "--config", "pitch45", "-o", out,

@@ -139,8 +139,8 @@ fn progress_bar(total: u64) -> ProgressBar {
 pub fn run(a: RenderArgs) -> Result<(), CliError> {
     let (mut loaded, frame) = match (&a.town, &a.scene) {
         (Some(name), _) => {
-            let path = crate::town::town_path(name, &a.scenes);
-            let desc = crate::town::load_town(&path).map_err(CliError::input)?;
+            let (desc, path) =
+                crate::town::load_named_town(name, &a.scenes).map_err(CliError::input)?;
             let seed = a.seed.unwrap_or_else(draw_seed);
             let loaded = crate::town::load_town_frame(&desc, seed, a.frame as u64, a.config, &path)
                 .map_err(|e| CliError::input(e.to_string()))?;

@@ -11,7 +11,7 @@ use super::{show, thread_pool, CliError};
 use crate::accel::{build_accel, Accel, Backend};
 use crate::camera::StereoRig;
 use crate::scene::build_scene;
-use crate::town::{load_town, load_town_frame, town_path, CameraConfig};
+use crate::town::{load_named_town, load_town_frame, CameraConfig};
 
 /// Arguments of `parallax town`.
 #[derive(Args, Debug)]
@@ -43,8 +43,7 @@ pub struct TownArgs {
 
 /// Runs `parallax town`.
 pub fn run(a: TownArgs) -> Result<(), CliError> {
-    let path = town_path(&a.name, &a.scenes);
-    let desc = load_town(&path).map_err(CliError::input)?;
+    let (desc, path) = load_named_town(&a.name, &a.scenes).map_err(CliError::input)?;
     let pool = thread_pool(a.threads)?;
     pool.install(|| {
         let t0 = Instant::now();

@@ -18,7 +18,7 @@ use crate::output::frame::{camera_file, write_native_frame, CameraFile, WriteOpt
 use crate::output::FileRecord;
 use crate::render::{render_frame, FrameOutput, RenderSettings};
 use crate::scene::build_scene;
-use crate::town::{load_town, load_town_frame, town_path, TownDesc};
+use crate::town::{load_named_town, load_town_frame, TownDesc};
 
 /// The town descriptions a configuration names, loaded once.
 pub struct Towns {
@@ -30,9 +30,7 @@ impl Towns {
     pub fn load(config: &DatasetConfig, scenes_dir: &Path) -> Result<Towns, String> {
         let mut by_name = BTreeMap::new();
         for name in &config.towns {
-            let path = town_path(name, scenes_dir);
-            let desc = load_town(&path)?;
-            by_name.insert(name.clone(), (desc, path));
+            by_name.insert(name.clone(), load_named_town(name, scenes_dir)?);
         }
         Ok(Towns { by_name })
     }

@@ -272,6 +272,25 @@ pub fn town_path(name: &str, scenes_dir: &Path) -> PathBuf {
     }
 }
 
+/// Reads and validates the town `name` ([`town_path`]), with the path it
+/// came from. A bare name that is not there says where it was looked for:
+/// the default `--scenes` is relative to the working directory.
+pub fn load_named_town(name: &str, scenes_dir: &Path) -> Result<(TownDesc, PathBuf), String> {
+    let path = town_path(name, scenes_dir);
+    let desc = load_town(&path).map_err(|e| {
+        if name.ends_with(".toml") || path.exists() {
+            e
+        } else {
+            format!(
+                "{e}; town '{name}' is looked up in the --scenes directory ('{}'): \
+                 run from the repository root or pass --scenes DIR",
+                scenes_dir.display()
+            )
+        }
+    })?;
+    Ok((desc, path))
+}
+
 /// A hash of a built scene's geometry: every f64 position (world), triangle,
 /// semantic class and instance id, in order (FNV-1a over the bits).
 pub fn geometry_hash(scene: &Scene) -> u64 {
