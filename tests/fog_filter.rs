@@ -201,13 +201,15 @@ fn rebuild_left(r: &Rendered, spp: u32, seed: u64) -> (Film, FogLayer) {
                 let mut stream = SampleStream::new(key, i, j, s);
                 let ray = cam.jittered_ray(i, j, &mut stream);
                 let li = ctx.li_from_hit(ray, shading.intersect(&ray), &mut stream, &mut rays);
-                if li.l.is_finite() {
-                    l += li.l;
-                    l_fog += li.l_fog;
-                    opacity += li.opacity;
-                    l_sf += li.l_surf_fog;
-                    rho += li.rho;
-                }
+                assert!(
+                    li.l.is_finite(),
+                    "non-finite sample {s} at pixel ({i}, {j})"
+                );
+                l += li.l;
+                l_fog += li.l_fog;
+                opacity += li.opacity;
+                l_sf += li.l_surf_fog;
+                rho += li.rho;
             }
             let k = j as usize * w + i as usize;
             let n = spp as f32;

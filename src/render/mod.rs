@@ -75,6 +75,9 @@ pub struct RenderStats {
     pub path_rays: u64,
     /// Camera samples taken by the path pass.
     pub samples: u64,
+    /// Camera samples whose radiance came out NaN or infinite and were
+    /// dropped from their pixel's mean (a renderer bug if ever non-zero).
+    pub non_finite_samples: u64,
     /// Seconds in the ground-truth pass.
     pub gt_seconds: f64,
     /// Seconds in the path pass.
@@ -158,7 +161,12 @@ pub fn render_frame(
                 frame: settings.frame,
                 view: view as u32,
             };
-            let (mut film, fog, rays) = render_view(&ctx, cam, key, settings.spp);
+            let ViewRender {
+                mut film,
+                fog,
+                rays,
+                non_finite,
+            } = render_view(&ctx, cam, key, settings.spp);
             // Fog in-scattering filtered per view, guided by this view's
             // exact pixel-centre depth (left, or baseline b's right view).
             if let Some(fog) = fog {
@@ -171,6 +179,7 @@ pub fn render_frame(
                 );
             }
             stats.path_rays += rays;
+            stats.non_finite_samples += non_finite;
             stats.samples +=
                 cam.intrinsics.width as u64 * cam.intrinsics.height as u64 * settings.spp as u64;
             images.push(film);
@@ -227,12 +236,24 @@ type FogMeans = (Vec3, f32, Vec3, Vec3);
 struct TileMeans {
     rgb: Vec<Vec3>,
     fog: Option<Vec<FogMeans>>,
+    /// Samples dropped as non-finite.
+    non_finite: u64,
+}
+
+/// One path-traced view.
+struct ViewRender {
+    film: Film,
+    /// The first-scatter part of its radiance (the fog filter's input;
+    /// `None` where the scene filters no fog).
+    fog: Option<FogLayer>,
+    /// Rays traced.
+    rays: u64,
+    /// Samples dropped as non-finite.
+    non_finite: u64,
 }
 
 /// Path-traces one view; pixels are independent, so any thread count gives
-/// the same film. Also returns the first-scatter part of its radiance (the
-/// fog filter's input; `None` where the scene filters no fog) and the rays
-/// traced.
+/// the same film.
 ///
 /// Work is split into `TILE_PX`² tiles, assembled in raster order after.
 /// The camera rays of a few neighbouring pixels of one tile row go through
@@ -244,7 +265,7 @@ fn render_view<A: Accel>(
     cam: &RenderCamera,
     key: StreamKey,
     spp: u32,
-) -> (Film, Option<FogLayer>, u64) {
+) -> ViewRender {
     let (w, h) = (cam.intrinsics.width, cam.intrinsics.height);
     let tiles_x = w.div_ceil(TILE_PX);
     let n_tiles = tiles_x * h.div_ceil(TILE_PX);
@@ -260,6 +281,7 @@ fn render_view<A: Accel>(
             let mut tile = TileMeans {
                 rgb: Vec::with_capacity(n),
                 fog: keep_fog.then(|| Vec::with_capacity(n)),
+                non_finite: 0,
             };
             for j in y0..y1 {
                 for i0 in (x0..x1).step_by(PACKET_PIXELS as usize) {
@@ -280,6 +302,7 @@ fn render_view<A: Accel>(
         })
         .collect();
     let rays = tiles.iter().map(|t| t.1).sum();
+    let non_finite = tiles.iter().map(|t| t.0.non_finite).sum();
     let mut film = Film::new(w as usize, h as usize);
     let mut fog = keep_fog.then(|| FogLayer::new(w as usize, h as usize));
     for (t, (tile, _)) in tiles.iter().enumerate() {
@@ -299,7 +322,12 @@ fn render_view<A: Accel>(
             }
         }
     }
-    (film, fog, rays)
+    ViewRender {
+        film,
+        fog,
+        rays,
+        non_finite,
+    }
 }
 
 /// Path-traces pixels `i` of row `j` (spp samples each, camera rays as one
@@ -363,13 +391,15 @@ fn render_chunk<A: Accel>(
         // The pixel's streams lead the zip: it must not pull a start too many.
         for (stream, start) in stream_px.iter_mut().zip(starts.by_ref()) {
             let li = ctx.finish_path(start, stream, rays);
-            // A non-finite sample would poison the pixel: drop it.
+            // A non-finite sample would poison the pixel: drop it, counted.
             if li.l.is_finite() {
                 sum += li.l;
                 fog += li.l_fog;
                 opacity += li.opacity;
                 surf_fog += li.l_surf_fog;
                 rho += li.rho;
+            } else {
+                out.non_finite += 1;
             }
         }
         let n = spp as f32;

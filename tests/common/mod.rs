@@ -37,6 +37,9 @@ pub fn render(loaded: &LoadedScene, backend: Backend, spp: u32) -> Rendered {
         frame: 0,
     };
     let out = render_frame(&scene, &accel, &rig, &settings, &|_, _| {});
+    // Every test scene must render without a NaN or infinite sample (the
+    // renderer drops them from the pixel means, which would hide the bug).
+    assert_eq!(out.stats.non_finite_samples, 0, "non-finite samples");
     Rendered {
         rig,
         scene,

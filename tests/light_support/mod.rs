@@ -96,11 +96,8 @@ pub fn render_left(
                 let li = ctx
                     .li(cam.jittered_ray(i, j, &mut stream), &mut stream, &mut rays)
                     .l;
-                let y = if li.is_finite() {
-                    li.dot(Vec3::new(0.2126, 0.7152, 0.0722)) as f64
-                } else {
-                    0.0
-                };
+                assert!(li.is_finite(), "non-finite sample {s} at pixel ({i}, {j})");
+                let y = li.dot(Vec3::new(0.2126, 0.7152, 0.0722)) as f64;
                 s1 += y;
                 s2 += y * y;
             }
