@@ -4,7 +4,7 @@
 
 use glam::Vec3;
 use shaders_cpu::medium::{Density, Equiangular, HenyeyGreenstein, Medium};
-use shaders_cpu::stats::{chi2_test, sidak_threshold, Pcg32};
+use shaders_cpu::stats::{chi2_sf, chi2_test, sidak_threshold, Pcg32};
 
 fn height_fog(z_min: f64, z_max: f64) -> Medium {
     Medium {
@@ -80,24 +80,42 @@ fn height_fog_transmittance_matches_quadrature() {
     }
 }
 
-#[test]
-fn free_flight_histogram_matches_pdf() {
-    // Collision distances of a downward-slanting ray in bounded height fog:
-    // histogram vs ∫pdf per bin (exact), plus the pass-through probability.
-    let m = height_fog(-2.0, 30.0);
-    let o = Vec3::new(0.0, 0.0, 8.0);
-    let d = Vec3::new(0.9, 0.0, -0.3).normalize();
-    let t_max = 40.0f32;
-    let bins = 40;
-    let n = 400_000;
+/// Outcome of a free-flight Pearson test (all fields are reported through
+/// `Debug` in failure messages).
+#[derive(Debug)]
+#[allow(dead_code)]
+struct FreeFlightChi2 {
+    statistic: f64,
+    /// Categories used − 1.
+    dof: usize,
+    p_value: f64,
+    /// Fraction of rays that passed without a collision.
+    passed: f64,
+}
+
+/// Pearson chi-square of `n` collision distances sampled from `sampled` along
+/// (o, d, t_max) against the exact probabilities of `model`: one category per
+/// distance bin, ∫pdf = Tr(a) − Tr(b), plus the pass-through category Tr(t_max).
+/// Bins `model` cannot reach (expected count 0, below the slab) must stay
+/// empty and are not categories; the degrees of freedom are the categories
+/// actually used minus one, and the p-value is the χ² survival function.
+fn free_flight_chi2(
+    sampled: &Medium,
+    model: &Medium,
+    o: Vec3,
+    d: Vec3,
+    t_max: f32,
+    bins: usize,
+    n: usize,
+) -> FreeFlightChi2 {
     let mut hist = vec![0u64; bins];
     let mut passed = 0u64;
     let mut rng = Pcg32::new(11, 3);
     for _ in 0..n {
-        let s = m.sample_distance(o, d, t_max, rng.next_f32());
+        let s = sampled.sample_distance(o, d, t_max, rng.next_f32());
         if s.scattered {
             assert!(s.t >= 0.0 && s.t <= t_max);
-            let pdf = m.distance_pdf(o, d, s.t);
+            let pdf = sampled.distance_pdf(o, d, s.t);
             assert!((s.pdf - pdf).abs() <= 1e-4 * pdf, "{} vs {pdf}", s.pdf);
             hist[((s.t / t_max * bins as f32) as usize).min(bins - 1)] += 1;
         } else {
@@ -105,22 +123,95 @@ fn free_flight_histogram_matches_pdf() {
         }
     }
     let width = t_max / bins as f32;
-    let cdf = |t: f32| 1.0 - m.tr(o, d, t) as f64;
-    let mut chi2 = 0.0;
+    let cdf = |t: f32| 1.0 - model.tr(o, d, t) as f64;
+    let mut categories = vec![(passed, n as f64 * model.tr(o, d, t_max) as f64)];
     for (k, &h) in hist.iter().enumerate() {
         let e = n as f64 * (cdf((k + 1) as f32 * width) - cdf(k as f32 * width));
         if e < 1e-9 {
-            // Below the slab: no collision may land here.
-            assert_eq!(h, 0, "bin {k}");
+            assert_eq!(h, 0, "bin {k} cannot be reached but holds {h} samples");
             continue;
         }
-        chi2 += (h as f64 - e).powi(2) / e;
+        categories.push((h, e));
     }
-    // 40 bins: the 0.999 quantile of χ²(40) is 73.4.
-    assert!(chi2 < 73.4, "chi2 {chi2}");
+    // Pearson's χ² approximation needs ≥ 5 expected per category.
+    assert!(categories.iter().all(|&(_, e)| e >= 5.0), "{categories:?}");
+    let statistic: f64 = categories
+        .iter()
+        .map(|&(h, e)| (h as f64 - e).powi(2) / e)
+        .sum();
+    let dof = categories.len() - 1;
+    FreeFlightChi2 {
+        statistic,
+        dof,
+        p_value: chi2_sf(statistic, dof),
+        passed: passed as f64 / n as f64,
+    }
+}
+
+/// The free-flight test's ray: from z = 8 down through bounded height fog,
+/// leaving the slab (z_min = −2) at t = 10/|d_z| ≈ 31.6 < t_max = 40.
+fn free_flight_setup() -> (Medium, Vec3, Vec3, f32) {
+    let m = height_fog(-2.0, 30.0);
+    let o = Vec3::new(0.0, 0.0, 8.0);
+    let d = Vec3::new(0.9, 0.0, -0.3).normalize();
+    (m, o, d, 40.0)
+}
+
+const FREE_FLIGHT_BINS: usize = 40;
+const FREE_FLIGHT_SAMPLES: usize = 400_000;
+
+#[test]
+fn free_flight_histogram_matches_pdf() {
+    // Collision distances of a downward-slanting ray in bounded height fog:
+    // histogram vs ∫pdf per bin (exact), plus the pass-through probability.
+    let (m, o, d, t_max) = free_flight_setup();
+    let r = free_flight_chi2(&m, &m, o, d, t_max, FREE_FLIGHT_BINS, FREE_FLIGHT_SAMPLES);
+    // Bins of width 1 reach the slab exit at t ≈ 31.6: bins 0..=31 plus the
+    // pass-through category are 33 categories, 32 degrees of freedom.
+    assert_eq!(r.dof, 32, "{r:?}");
+    assert!(r.p_value >= 1e-3, "{r:?}");
     let p_pass = m.tr(o, d, t_max) as f64;
-    let se = (p_pass * (1.0 - p_pass) / n as f64).sqrt();
-    assert!((passed as f64 / n as f64 - p_pass).abs() < 4.0 * se);
+    let se = (p_pass * (1.0 - p_pass) / FREE_FLIGHT_SAMPLES as f64).sqrt();
+    assert!((r.passed - p_pass).abs() < 4.0 * se, "{r:?} vs {p_pass}");
+}
+
+#[test]
+fn free_flight_chi2_rejects_wrong_density() {
+    // Self-test: the same samples checked against a medium whose extinction
+    // is 5% too high, or whose scale height is 5% too large, must fail.
+    let (m, o, d, t_max) = free_flight_setup();
+    let mut denser = m;
+    let mut taller = m;
+    let Density::HeightExp {
+        sigma0,
+        z0,
+        height_scale,
+    } = m.density
+    else {
+        unreachable!()
+    };
+    denser.density = Density::HeightExp {
+        sigma0: sigma0 * 1.05,
+        z0,
+        height_scale,
+    };
+    taller.density = Density::HeightExp {
+        sigma0,
+        z0,
+        height_scale: height_scale * 1.05,
+    };
+    for wrong in [denser, taller] {
+        let r = free_flight_chi2(
+            &m,
+            &wrong,
+            o,
+            d,
+            t_max,
+            FREE_FLIGHT_BINS,
+            FREE_FLIGHT_SAMPLES,
+        );
+        assert!(r.p_value < 1e-6, "{:?}: {r:?}", wrong.density);
+    }
 }
 
 #[test]
