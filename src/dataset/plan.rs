@@ -176,33 +176,99 @@ pub fn frame_count(config: &DatasetConfig) -> u64 {
 mod tests {
     use super::*;
 
+    fn job(town: &str, config: CameraConfig, weather: Weather, sequence: u32, frame: u32) -> Job {
+        Job {
+            town: town.into(),
+            config,
+            weather,
+            sequence,
+            frame,
+        }
+    }
+
     #[test]
     fn plan_is_stable_ordered_and_counted() {
         let c = super::super::presets::demo();
         let a = plan(&c);
         assert_eq!(a, plan(&c));
         assert_eq!(a.len() as u64, frame_count(&c));
+        // 1 town × 6 configurations × 2 weathers × 1 sequence × 2 frames.
         assert_eq!(a.len(), 6 * 2 * 2);
         assert_eq!(a[0].id(), "town01/normal_clear/0000/000000");
         assert_eq!(a[1].id(), "town01/normal_clear/0000/000001");
         assert_eq!(a[2].id(), "town01/normal_sunset/0000/000000");
-        let mut sorted = a.clone();
-        sorted.dedup();
-        assert_eq!(sorted.len(), a.len());
+        // The promised order (town, configuration, weather, sequence, frame):
+        // strictly increasing over the whole plan, hence also no duplicates.
+        assert!(a.windows(2).all(|w| w[0] < w[1]));
+        // A plan with every axis longer than one: nested in that order,
+        // frame fastest, then sequence, weather, configuration, town.
+        let mut c = super::super::presets::demo();
+        c.towns = vec!["town01".into(), "town02".into()];
+        c.sequences = 3;
+        c.frames_per_sequence = 2;
+        let b = plan(&c);
+        assert_eq!(b.len() as u64, frame_count(&c));
+        assert_eq!(b.len(), 2 * 6 * 2 * 3 * 2);
+        assert!(b.windows(2).all(|w| w[0] < w[1]));
+        let configs = c.camera_configs();
+        for (k, j) in b.iter().enumerate() {
+            let (frame, r) = (k % 2, k / 2);
+            let (sequence, r) = (r % 3, r / 3);
+            let (weather, r) = (r % 2, r / 2);
+            let (config, town) = (r % 6, r / 6);
+            let want = job(
+                ["town01", "town02"][town],
+                configs[config],
+                [Weather::Clear, Weather::Sunset][weather],
+                sequence as u32,
+                frame as u32,
+            );
+            assert_eq!(*j, want, "job {k}");
+        }
     }
 
     #[test]
     fn seeds_differ_per_axis_and_repeat_per_key() {
-        let c = super::super::presets::demo();
+        let base = job("town01", CameraConfig::Normal, Weather::Clear, 1, 3);
+        let other_config = crate::town::CONFIGS
+            .iter()
+            .copied()
+            .find(|&x| x != CameraConfig::Normal)
+            .expect("a second configuration");
+        // Jobs differing from `base` in exactly one field.
+        let variants = [
+            job("town02", CameraConfig::Normal, Weather::Clear, 1, 3),
+            job("town01", other_config, Weather::Clear, 1, 3),
+            job("town01", CameraConfig::Normal, Weather::Sunset, 1, 3),
+            job("town01", CameraConfig::Normal, Weather::Clear, 2, 3),
+            job("town01", CameraConfig::Normal, Weather::Clear, 1, 4),
+        ];
+        for v in &variants {
+            assert_ne!(frame_seed(7, &base), frame_seed(7, v), "{v:?}");
+        }
+        assert_ne!(frame_seed(7, &base), frame_seed(8, &base));
+        // Every job of a plan with two towns, configurations, weathers,
+        // sequences and frames gets its own frame seed.
+        let mut c = super::super::presets::demo();
+        c.towns = vec!["town01".into(), "town02".into()];
+        c.sequences = 3;
         let jobs = plan(&c);
         let seeds: std::collections::BTreeSet<u64> =
             jobs.iter().map(|j| frame_seed(c.seed, j)).collect();
         assert_eq!(seeds.len(), jobs.len());
-        assert_eq!(frame_seed(7, &jobs[3]), frame_seed(7, &jobs[3].clone()));
-        assert_ne!(frame_seed(7, &jobs[3]), frame_seed(8, &jobs[3]));
+        // Town seeds: per town and master seed.
         assert_ne!(town_seed(7, "town01"), town_seed(7, "town02"));
+        assert_ne!(town_seed(7, "town01"), town_seed(8, "town01"));
+        // Sequence seeds: per town, weather, sequence and master seed.
+        let s = sequence_seed(7, "town01", Weather::Clear, 0);
+        assert_ne!(s, sequence_seed(7, "town02", Weather::Clear, 0));
+        assert_ne!(s, sequence_seed(7, "town01", Weather::Sunset, 0));
+        assert_ne!(s, sequence_seed(7, "town01", Weather::Clear, 1));
+        assert_ne!(s, sequence_seed(8, "town01", Weather::Clear, 0));
+        // The streams are tagged apart: a town's seed is no sequence's or frame's.
+        assert_ne!(town_seed(7, "town01"), s);
         assert_ne!(
-            sequence_seed(7, "town01", Weather::Clear, 0),
+            frame_seed(7, &base),
             sequence_seed(7, "town01", Weather::Clear, 1)
         );
     }

@@ -46,10 +46,29 @@ mod tests {
 
     #[test]
     fn daylight_frames_keep_middle_grey() {
+        // Grey films at and above daylight (10 units = 1000 cd/m²): the
+        // log-average luminance is the level itself, and it must land on 0.18.
         for level in [10.0, 50.0, 1e3] {
             let film = Film::uniform(4, 4, Vec3::splat(level));
             assert_eq!(frame_exposure(&film), auto_exposure(&film));
+            let grey = frame_exposure(&film) as f64 * level as f64;
+            assert!((grey - 0.18).abs() < 1e-6, "level {level}: {grey}");
         }
+        // Half the pixels at 20, half at 80 (grey, and a coloured pixel of
+        // the same Rec.709 luminance): log-average √(20·80) = 40.
+        let mut film = Film::uniform(4, 4, Vec3::splat(20.0));
+        for (k, px) in film.rgb.iter_mut().enumerate() {
+            if k % 2 == 1 {
+                *px = if k == 1 {
+                    // 0.2126·r + 0.7152·g + 0.0722·b = 80 with g = b = 60.
+                    Vec3::new((80.0 - (0.7152 + 0.0722) * 60.0) / 0.2126, 60.0, 60.0)
+                } else {
+                    Vec3::splat(80.0)
+                };
+            }
+        }
+        let grey = frame_exposure(&film) as f64 * 40.0;
+        assert!((grey - 0.18).abs() < 1e-6, "mixed daylight film: {grey}");
     }
 
     #[test]

@@ -90,7 +90,16 @@ mod tests {
 
     #[test]
     fn mask_bits_are_distinct() {
-        let bits = [MASK_SKY, MASK_RAIN, MASK_TRANSPARENT, MASK_MIRROR];
-        assert_eq!(bits.iter().fold(0, |a, b| a | b), 0b1111);
+        // GROUND_TRUTH.md: bit 0 sky, bit 1 rain, bit 2 transparent, bit 3 mirror.
+        assert_eq!(MASK_SKY, 0b0001);
+        assert_eq!(MASK_RAIN, 0b0010);
+        assert_eq!(MASK_TRANSPARENT, 0b0100);
+        assert_eq!(MASK_MIRROR, 0b1000);
+        // The scene's material bits are the same bits.
+        use crate::scene::mask_bits;
+        assert_eq!(mask_bits::SKY, MASK_SKY);
+        assert_eq!(mask_bits::RAIN, MASK_RAIN);
+        assert_eq!(mask_bits::TRANSPARENT, MASK_TRANSPARENT);
+        assert_eq!(mask_bits::MIRROR, MASK_MIRROR);
     }
 }

@@ -83,6 +83,10 @@ mod tests {
     #[test]
     fn rec709_luminance_weights_sum_to_one() {
         assert!((luminance_rec709(Vec3::ONE) - 1.0).abs() < 1e-6);
+        // ITU-R BT.709 luma coefficients.
+        assert!((luminance_rec709(Vec3::X) - 0.2126).abs() < 1e-7);
+        assert!((luminance_rec709(Vec3::Y) - 0.7152).abs() < 1e-7);
+        assert!((luminance_rec709(Vec3::Z) - 0.0722).abs() < 1e-7);
     }
 
     #[test]

@@ -319,10 +319,12 @@ mod tests {
         }
     }
 
-    #[test]
-    fn sky_and_surface_never_mix() {
+    /// Filters an 8 × 4 view, left half sky and right half a wall at 20 m,
+    /// opacity 0.5 everywhere, the film all fog light; `varying_sky` picks
+    /// which side alternates ×1.5/×0.5 by column around its level (sky 1,
+    /// wall 5), the other side is constant. Returns the filtered film.
+    fn sky_wall_split(varying_sky: bool) -> Film {
         let (w, h) = (8, 4);
-        // Left half sky with fog radiance 1, right half a wall with 5.
         let mut fog = FogLayer::new(w, h);
         let mut z = vec![0.0f32; w * h];
         for j in 0..h {
@@ -331,8 +333,17 @@ mod tests {
                 let sky = i < w / 2;
                 z[k] = if sky { f32::INFINITY } else { 20.0 };
                 fog.opacity[k] = 0.5;
-                fog.l_fog[k] =
-                    Vec3::splat(if sky { 1.0 } else { 5.0 }) * if i % 2 == 0 { 1.5 } else { 0.5 };
+                let level = if sky { 1.0 } else { 5.0 };
+                let wiggle = if sky == varying_sky {
+                    if i % 2 == 0 {
+                        1.5
+                    } else {
+                        0.5
+                    }
+                } else {
+                    1.0
+                };
+                fog.l_fog[k] = Vec3::splat(level * wiggle);
             }
         }
         let mut film = Film {
@@ -351,13 +362,44 @@ mod tests {
             ..FogFilter::for_width(w)
         };
         filter_fog(&mut film, &fog, &guide, &f);
-        for j in 0..h {
-            for i in 0..w {
-                let want = if i < w / 2 { 1.0 } else { 5.0 };
-                // Smoothed toward the side's mean, never toward the other side.
-                let got = film.get(i, j).x;
-                assert!((got - want).abs() < 0.5 * want, "({i},{j}) {got} vs {want}");
+        film
+    }
+
+    #[test]
+    fn sky_and_surface_never_mix() {
+        let (w, h) = (8, 4);
+        for varying_sky in [true, false] {
+            let film = sky_wall_split(varying_sky);
+            let (mut lo, mut hi) = (f32::MAX, f32::MIN);
+            for j in 0..h {
+                for i in 0..w {
+                    let sky = i < w / 2;
+                    let want = if sky { 1.0 } else { 5.0 };
+                    let got = film.get(i, j);
+                    if sky != varying_sky {
+                        // The constant side: a zero range weight across the
+                        // edge leaves it exactly as it was.
+                        assert!(
+                            (got - Vec3::splat(want)).abs().max_element() <= 1e-6 * want,
+                            "varying sky {varying_sky}: ({i},{j}) {got} vs {want}"
+                        );
+                    } else {
+                        // The varying side: smoothed toward its own level.
+                        assert!(
+                            (got.x - want).abs() < 0.5 * want,
+                            "varying sky {varying_sky}: ({i},{j}) {got} vs {want}"
+                        );
+                        lo = lo.min(got.x);
+                        hi = hi.max(got.x);
+                    }
+                }
             }
+            // The ×1.5/×0.5 columns spanned one level; filtered, much less.
+            let want = if varying_sky { 1.0 } else { 5.0 };
+            assert!(
+                hi - lo < 0.5 * want,
+                "varying sky {varying_sky}: spread {lo}..{hi}"
+            );
         }
     }
 

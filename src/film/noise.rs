@@ -174,6 +174,27 @@ mod tests {
     }
 
     #[test]
+    fn large_mean_poisson_has_mean_and_variance_mu() {
+        // μ ≥ 30 takes the normal branch: still mean μ and variance μ. Bounds
+        // are 5 standard errors: √(μ/n) on the mean, √(2/n) relative on the
+        // variance (plus the Poisson excess kurtosis 1/μ).
+        let n = 200_000;
+        for mu in [30.0, 1000.0] {
+            let mut rng = Stream(7 + mu as u64);
+            let xs: Vec<f64> = (0..n).map(|_| poisson(mu, &mut rng)).collect();
+            let mean = xs.iter().sum::<f64>() / n as f64;
+            let var = xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
+            let se_mean = (mu / n as f64).sqrt();
+            let se_var = ((2.0 + 1.0 / mu) / n as f64).sqrt();
+            assert!((mean - mu).abs() < 5.0 * se_mean, "μ {mu}: mean {mean}");
+            assert!(
+                (var / mu - 1.0).abs() < 5.0 * se_var,
+                "μ {mu}: variance {var}"
+            );
+        }
+    }
+
+    #[test]
     fn iso_halves_electrons_per_doubling() {
         let n = |iso| SensorNoise {
             iso,

@@ -352,6 +352,9 @@ mod tests {
     fn corner_lots_stay_inside_the_curves_inner_shoulder() {
         let l = looped(120.0);
         let clear = l.loop_radius_m - l.road_w_m / 2.0 - l.sidewalk_m - 1.0;
+        // All four outer corners of the 3 × 2 grid curve, in the documented order.
+        let ij: Vec<_> = l.loop_corners().iter().map(|c| c.ij).collect();
+        assert_eq!(ij, vec![(0, 0), (3, 0), (0, 2), (3, 2)]);
         for c in l.loop_corners() {
             let (i, j) = (c.ij.0.min(l.nx - 1), c.ij.1.min(l.ny - 1));
             let a = l.block_interior(i, j);

@@ -191,8 +191,62 @@ mod tests {
     #[test]
     fn arcs_leave_four_equal_openings() {
         let a = 0.3;
-        let total: f64 = arcs(Some(a)).iter().map(|(t0, t1)| t1 - t0).sum();
+        let arcs4 = arcs(Some(a));
+        assert_eq!(arcs4.len(), 4);
+        // Arc q runs counter-clockwise from a past the axis direction q·90°
+        // to a before the next one.
+        for (q, &(t0, t1)) in arcs4.iter().enumerate() {
+            let axis = q as f64 * PI / 2.0;
+            assert!((t0 - (axis + a)).abs() < 1e-12, "arc {q} starts at {t0}");
+            assert!(
+                (t1 - (axis + PI / 2.0 - a)).abs() < 1e-12,
+                "arc {q} ends at {t1}"
+            );
+        }
+        // Each opening, from the previous arc's end to this arc's start, is
+        // 2a wide and centred on its axis direction (0°, 90°, 180°, 270°).
+        for q in 0..4 {
+            let prev_end = arcs4[(q + 3) % 4].1 - if q == 0 { 2.0 * PI } else { 0.0 };
+            let start = arcs4[q].0;
+            assert!((start - prev_end - 2.0 * a).abs() < 1e-12, "opening {q}");
+            let centre = (start + prev_end) / 2.0;
+            assert!(
+                (centre - q as f64 * PI / 2.0).abs() < 1e-12,
+                "opening {q} at {centre}"
+            );
+        }
+        let total: f64 = arcs4.iter().map(|(t0, t1)| t1 - t0).sum();
         assert!((total - (2.0 * PI - 8.0 * a)).abs() < 1e-12);
         assert_eq!(arcs(None), vec![(0.0, 2.0 * PI)]);
+    }
+
+    #[test]
+    fn openings_meet_the_arm_kerbs_on_the_outer_kerb() {
+        // With the half-angle roundabout_objects uses, asin(hw / r_out), the
+        // east opening's edges on the outer kerb lie on the arm's kerb lines
+        // y = ±hw, at x = arm_start_m.
+        let l = Layout {
+            nx: 2,
+            ny: 2,
+            pitch_m: 100.0,
+            road_w_m: 14.0,
+            lane_w_m: 3.5,
+            lanes: 2,
+            sidewalk_m: 2.0,
+            sidewalks: true,
+            river_row: None,
+            roundabout: Some((1, 1)),
+            loop_radius_m: 0.0,
+        };
+        // r_out = 10 + 2 · (3.5 + 1) = 19 m, hw = 7 m.
+        let (r_out, hw): (f64, f64) = (19.0, 7.0);
+        let a = (hw / r_out).asin();
+        let arcs4 = arcs(Some(a));
+        let (start, end) = (arcs4[0].0, arcs4[3].1);
+        assert!((r_out * start.sin() - hw).abs() < 1e-12);
+        assert!((r_out * end.sin() + hw).abs() < 1e-12);
+        let x = (19.0f64 * 19.0 - 7.0 * 7.0).sqrt();
+        assert!((arm_start_m(&l) - x).abs() < 1e-12);
+        assert!((r_out * start.cos() - x).abs() < 1e-12);
     }
 }

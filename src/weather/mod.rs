@@ -369,13 +369,26 @@ mod tests {
             let p = draw_params(Weather::Night, seed);
             let m = p.moon.expect("night has a moon");
             assert!((12.0..=65.0).contains(&m.elevation_deg));
-            let again = MoonParams::new(
-                m.elevation_deg,
-                m.azimuth_deg,
-                p.sun_elevation_deg,
-                p.sun_azimuth_deg,
+            // Phase = 180° − elongation, the elongation from the spherical
+            // law of cosines on (elevation, azimuth) of sun and moon.
+            let (em, es) = (
+                m.elevation_deg.to_radians(),
+                p.sun_elevation_deg.to_radians(),
             );
-            assert_eq!(again, m);
+            let daz = (m.azimuth_deg - p.sun_azimuth_deg).to_radians();
+            let cos_psi = em.sin() * es.sin() + em.cos() * es.cos() * daz.cos();
+            let phase = 180.0 - cos_psi.clamp(-1.0, 1.0).acos().to_degrees();
+            assert!(
+                (m.phase_deg - phase).abs() < 1e-9,
+                "{} vs {phase}",
+                m.phase_deg
+            );
+            // The stored direction: azimuth counter-clockwise from +x, z up.
+            let am = m.azimuth_deg.to_radians();
+            let d = m.direction_world;
+            assert!((d[0] - em.cos() * am.cos()).abs() < 1e-12, "{d:?}");
+            assert!((d[1] - em.cos() * am.sin()).abs() < 1e-12, "{d:?}");
+            assert!((d[2] - em.sin()).abs() < 1e-12, "{d:?}");
             phases.push(m.phase_deg);
             let mut desc: SceneDesc =
                 toml::from_str("[camera]\nposition = [0.0, 0.0, 1.5]\n").unwrap();

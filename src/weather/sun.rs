@@ -68,6 +68,23 @@ mod tests {
     }
 
     #[test]
+    fn air_mass_is_kasten_young() {
+        // Kasten & Young 1989: AM = 1 / (cos z + a (96.07995° − z)^−b), z the
+        // zenith angle in degrees, a = 0.50572, b = 1.6364.
+        let ky = |z_deg: f64| {
+            1.0 / (z_deg.to_radians().cos() + 0.50572 * (96.07995 - z_deg).powf(-1.6364))
+        };
+        for z in [0.0, 30.0, 60.0, 80.0, 85.0, 90.0] {
+            let m = air_mass(90.0 - z);
+            assert!((m - ky(z)).abs() < 1e-9 * ky(z), "z {z}°: {m} vs {}", ky(z));
+        }
+        // Published values: ≈ 1 at the zenith, ≈ 2 at 60°, ≈ 37.9 at the horizon.
+        assert!((air_mass(90.0) - 1.0).abs() < 1e-3);
+        assert!((air_mass(30.0) - 1.994).abs() < 1e-3, "{}", air_mass(30.0));
+        assert!((air_mass(0.0) - 37.92).abs() < 0.01, "{}", air_mass(0.0));
+    }
+
+    #[test]
     fn overcast_darkens_with_cover_and_storm() {
         let thin = overcast_irradiance(45.0, 0.6, false);
         let full = overcast_irradiance(45.0, 1.0, false);
