@@ -149,15 +149,38 @@ fn different_configuration_in_a_used_directory_is_refused_unless_forced() {
     );
 
     let foreign = dir.path().join("foreign");
-    std::fs::create_dir_all(&foreign).unwrap();
+    std::fs::create_dir_all(foreign.join("sub")).unwrap();
     std::fs::write(foreign.join("notes.txt"), b"mine").unwrap();
+    std::fs::write(foreign.join("sub/data.bin"), [0u8, 1, 2, 3]).unwrap();
+    let before = tree(&foreign);
     let refused = dataset(&a, &foreign, &[]);
     assert_eq!(refused.status.code(), Some(2));
     assert!(
-        text(&refused).contains("no dataset.json"),
+        text(&refused).contains("no dataset.json") && text(&refused).contains("foreign"),
         "{}",
         text(&refused)
     );
+    assert_eq!(tree(&foreign), before, "the refused directory was touched");
+}
+
+/// Every entry below `root` (directories with `None`, files with their bytes),
+/// manifests and hidden files included: a refused run must leave it as it was.
+fn tree(root: &std::path::Path) -> std::collections::BTreeMap<String, Option<Vec<u8>>> {
+    let mut out = std::collections::BTreeMap::new();
+    let mut stack = vec![root.to_path_buf()];
+    while let Some(dir) = stack.pop() {
+        for e in std::fs::read_dir(&dir).unwrap() {
+            let p = e.unwrap().path();
+            let rel = p.strip_prefix(root).unwrap().to_string_lossy().into_owned();
+            if p.is_dir() {
+                out.insert(rel, None);
+                stack.push(p);
+            } else {
+                out.insert(rel, Some(std::fs::read(&p).unwrap()));
+            }
+        }
+    }
+    out
 }
 
 #[test]
@@ -178,10 +201,26 @@ fn config_errors_name_the_file_and_key() {
         "typo.toml",
         &format!("{}sppp = 2\n", tiny_config(&["normal"], 1)),
     );
-    let t = text(&dataset(&cfg, &dir.path().join("out"), &[]));
+    let o = dataset(&cfg, &dir.path().join("out"), &[]);
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{t}");
     assert!(t.contains("typo.toml") && t.contains("'sppp'"), "{t}");
-    let t = text(&dataset(&cfg, &dir.path().join("out"), &["--shard", "0/3"]));
-    assert!(t.contains("1-based"), "{t}");
+    assert!(!dir.path().join("out").exists(), "typo.toml wrote output");
+    // A valid configuration: the shard argument is what is refused.
+    let good = write_config(dir.path(), "good.toml", &tiny_config(&["normal"], 1));
+    for shard in ["0/3", "4/3"] {
+        let o = dataset(&good, &dir.path().join("out"), &["--shard", shard]);
+        let t = text(&o);
+        assert_eq!(o.status.code(), Some(2), "--shard {shard}: {t}");
+        assert!(
+            t.contains("--shard") && t.contains(shard) && t.contains("1-based"),
+            "{t}"
+        );
+        assert!(
+            !dir.path().join("out").exists(),
+            "--shard {shard} wrote output"
+        );
+    }
 }
 
 #[test]

@@ -188,31 +188,38 @@ fn run_eval(args: &[&str]) -> (i32, String) {
 fn eval_cli_bad_inputs_exit_2_naming_the_path() {
     let gt = tempfile::tempdir().unwrap();
     let pred = tempfile::tempdir().unwrap();
+    let sink = tempfile::tempdir().unwrap();
     gt_image(gt.path(), "", "baseline_010", &[1.0; 4], &[0; 4]);
     let (g, p) = (gt.path().to_str().unwrap(), pred.path().to_str().unwrap());
-    let (code, err) = run_eval(&["--gt", "/no/such/gt", "--pred", p]);
-    assert_eq!(code, 2);
-    assert!(err.contains("/no/such/gt"), "{err}");
+    let report = sink.path().join("report.json");
+    let r = report.to_str().unwrap();
+    // Every failing run asks for a report: none may be written.
+    let fails = |args: &[&str], needles: &[&str]| {
+        let (code, err) = run_eval(args);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        for n in needles {
+            assert!(err.contains(n), "stderr does not name `{n}`: {err}");
+        }
+        assert!(!report.exists(), "{args:?}: a failed run wrote the report");
+    };
+    fails(
+        &["--gt", "/no/such/gt", "--pred", p, "--json", r],
+        &["/no/such/gt"],
+    );
     // Wrong size.
     let bad = pred.path().join("baseline_010/disp/000000.pfm");
     write_pfm_gray(&bad, 3, 1, &[1.0; 3]).unwrap();
-    let (code, err) = run_eval(&["--gt", g, "--pred", p]);
-    assert_eq!(code, 2);
-    assert!(
-        err.contains(bad.to_str().unwrap()) && err.contains("3×1"),
-        "{err}"
-    );
+    let b = bad.to_str().unwrap();
+    fails(&["--gt", g, "--pred", p, "--json", r], &[b, "3×1"]);
     // Unreadable (garbage bytes).
     write_atomic(&bad, b"not a pfm").unwrap();
-    let (code, err) = run_eval(&["--gt", g, "--pred", p]);
-    assert_eq!(code, 2);
-    assert!(err.contains(bad.to_str().unwrap()), "{err}");
+    fails(&["--gt", g, "--pred", p, "--json", r], &[b]);
+    assert_eq!(std::fs::read_dir(sink.path()).unwrap().count(), 0);
     // A good prediction: exit 0 and a JSON report.
     write_pfm_gray(&bad, 2, 2, &[1.0; 4]).unwrap();
-    let json = pred.path().join("report.json");
-    let (code, err) = run_eval(&["--gt", g, "--pred", p, "--json", json.to_str().unwrap()]);
+    let (code, err) = run_eval(&["--gt", g, "--pred", p, "--json", r]);
     assert_eq!(code, 0, "{err}");
-    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(json).unwrap()).unwrap();
+    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&report).unwrap()).unwrap();
     assert_eq!(v["overall"]["all"]["pooled"]["epe"].as_f64(), Some(0.0));
     assert_eq!(v["per_town"]["-"]["images"].as_u64(), Some(1));
 }

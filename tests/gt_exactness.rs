@@ -28,10 +28,50 @@ fn dir(i: u32, j: u32) -> DVec3 {
     )
 }
 
+/// The default baselines in metres (GROUND_TRUTH.md "Stereo rig"; the scenes
+/// here set no `baselines_cm`, so every one of them is rendered).
+const BASELINES_M: [f64; 5] = [0.10, 0.54, 1.0, 2.0, 3.0];
+
+/// Right camera centre of baseline `b` m for a level rig looking along +x:
+/// C_R = C_L + B·x_L with the image x axis x_L = world −y (image right is the
+/// world's −y when looking along +x with z up).
+fn right_centre(c_left: DVec3, b: f64) -> DVec3 {
+    c_left + DVec3::new(0.0, -b, 0.0)
+}
+
+/// Checks the rig against the independent convention and returns the right
+/// centres derived here (not read from the renderer).
+fn right_centres(r: &Rendered, c_left: DVec3) -> Vec<DVec3> {
+    assert_eq!(
+        r.rig.left.center_world, c_left,
+        "left centre is the scene's position"
+    );
+    assert_eq!(r.out.baselines.len(), BASELINES_M.len(), "baseline count");
+    assert_eq!(r.rig.baselines_m.len(), BASELINES_M.len(), "rig baselines");
+    BASELINES_M
+        .iter()
+        .enumerate()
+        .map(|(bi, &b)| {
+            assert!(
+                (r.out.baselines[bi].baseline_m - b).abs() < 1e-12,
+                "baseline {bi}: {} m, expected {b} m",
+                r.out.baselines[bi].baseline_m
+            );
+            let c = right_centre(c_left, b);
+            let got = r.rig.right(bi).center_world;
+            assert!(
+                (got - c).length() <= 1e-9,
+                "right centre {bi}: {got} vs {c} (C_L + B·x_L)"
+            );
+            c
+        })
+        .collect()
+}
+
 /// Checks every pixel of the left view and of every right view against
-/// `z_true(camera_centre, i, j)` (None = sky).
-fn check_all(r: &Rendered, z_true: impl Fn(DVec3, u32, u32) -> Option<f64>) {
-    check_all_with_ties(r, z_true, |_, _, _| false)
+/// `z_true(camera_centre, i, j)` (None = sky); `c_left` is the scene's camera position.
+fn check_all(r: &Rendered, c_left: DVec3, z_true: impl Fn(DVec3, u32, u32) -> Option<f64>) {
+    check_all_with_ties(r, c_left, z_true, |_, _, _| false)
 }
 
 /// As `check_all`, but a pixel whose ray `grazes(camera_centre, i, j)` an edge
@@ -39,21 +79,20 @@ fn check_all(r: &Rendered, z_true: impl Fn(DVec3, u32, u32) -> Option<f64>) {
 /// must stay rare.
 fn check_all_with_ties(
     r: &Rendered,
+    c_left: DVec3,
     z_true: impl Fn(DVec3, u32, u32) -> Option<f64>,
     grazes: impl Fn(DVec3, u32, u32) -> bool,
 ) {
     let mut ties = 0usize;
     let f = f_px();
-    let c_left = r.rig.left.center_world;
+    let c_rights = right_centres(r, c_left);
     let mut worst = 0.0f64;
     let left32 = r.out.left.depth_z_f32();
     for j in 0..H {
         for i in 0..W {
             let k = (j * W + i) as usize;
             let z = r.out.left.depth_z[k];
-            if grazes(c_left, i, j)
-                || (0..r.out.baselines.len()).any(|b| grazes(r.rig.right(b).center_world, i, j))
-            {
+            if grazes(c_left, i, j) || c_rights.iter().any(|&c| grazes(c, i, j)) {
                 ties += 1;
                 continue;
             }
@@ -73,8 +112,8 @@ fn check_all_with_ties(
                     assert!(rel <= 1e-5, "pixel ({i},{j}): Z {z} vs {zt}");
                     let z32 = left32[k] as f64;
                     assert!((z32 - zt).abs() <= 1e-5 * zt);
-                    for b in &r.out.baselines {
-                        let dt = f * b.baseline_m / zt;
+                    for (b, bm) in r.out.baselines.iter().zip(BASELINES_M) {
+                        let dt = f * bm / zt;
                         let d = b.disparity_left[k] as f64;
                         assert!(
                             (d - dt).abs() <= 1e-5 * dt + 1e-6,
@@ -85,7 +124,7 @@ fn check_all_with_ties(
                 }
             }
             for (bi, b) in r.out.baselines.iter().enumerate() {
-                let c_right = r.rig.right(bi).center_world;
+                let c_right = c_rights[bi];
                 match z_true(c_right, i, j) {
                     None => assert!(
                         b.depth_right[k].is_infinite() && b.disparity_right[k] == 0.0,
@@ -100,7 +139,7 @@ fn check_all_with_ties(
                             "right ({i},{j}) B={}: {zr} vs {zt}",
                             b.baseline_m
                         );
-                        let dt = f * b.baseline_m / zt;
+                        let dt = f * BASELINES_M[bi] / zt;
                         let d = b.disparity_right[k] as f64;
                         assert!((d - dt).abs() <= 1e-5 * dt + 1e-6);
                     }
@@ -112,7 +151,9 @@ fn check_all_with_ties(
     assert!(ties <= (W * H) as usize / 10_000, "{ties} edge ties");
 }
 
-fn fronto_plane(offset: DVec3) -> Rendered {
+/// Renders a plane 10 m ahead of a rig at (0, 0, 1.65) + `offset`; returns the
+/// frame and the rig position.
+fn fronto_plane(offset: DVec3) -> (Rendered, DVec3) {
     let c = DVec3::new(0.0, 0.0, 1.65) + offset;
     let text = format!(
         "{}{GREY_UNDER_SKY}\n[[object]]\nkind = \"quad\"\nsize = [400.0, 400.0]\nmaterial = \"grey\"\ntransform = {{ translate = [{:?}, {:?}, {:?}], rotate_deg = [0.0, -90.0, 0.0] }}\n",
@@ -121,20 +162,23 @@ fn fronto_plane(offset: DVec3) -> Rendered {
         c.y,
         c.z
     );
-    render(&scene_from_toml(&text), Backend::default_backend(), 0)
+    (
+        render(&scene_from_toml(&text), Backend::default_backend(), 0),
+        c,
+    )
 }
 
 #[test]
 fn depth_and_disparity_exact_on_fronto_parallel_plane() {
-    let r = fronto_plane(DVec3::ZERO);
-    // The plane x = 10 m ahead: Z = 10 − (C.x − 0) for every camera (right cameras share x).
-    check_all(&r, |c, _, _| Some(10.0 - (c.x - r.rig.left.center_world.x)));
+    let (r, c_left) = fronto_plane(DVec3::ZERO);
+    // The plane x = C_L.x + 10: Z = C_L.x + 10 − C.x for every camera (right cameras share x).
+    check_all(&r, c_left, |c, _, _| Some(c_left.x + 10.0 - c.x));
 }
 
 #[test]
 fn depth_and_disparity_exact_far_from_the_origin() {
-    let r = fronto_plane(FAR);
-    check_all(&r, |c, _, _| Some(10.0 - (c.x - r.rig.left.center_world.x)));
+    let (r, c_left) = fronto_plane(FAR);
+    check_all(&r, c_left, |c, _, _| Some(c_left.x + 10.0 - c.x));
 }
 
 /// A scene far from the world origin: ~2e5 m, where f32 world coordinates
@@ -155,12 +199,13 @@ fn tilted_plane(offset: DVec3) {
     // Plane through P0 = (12, 0, 1.65) + offset with normal n (tilted 35° about z and 20° up).
     let n = DVec3::new(-(35f64.to_radians().cos()), 35f64.to_radians().sin(), 0.3).normalize();
     let p0 = DVec3::new(12.0, 0.0, 1.65) + offset;
+    let c_left = DVec3::new(0.0, 0.0, 1.65) + offset;
     // quad normal +z rotated: rotate about y then z to match n.
     let elev = n.z.asin();
     let az = n.y.atan2(n.x);
     let text = format!(
         "{}{GREY_UNDER_SKY}\n[[object]]\nkind = \"quad\"\nsize = [600.0, 600.0]\nmaterial = \"grey\"\ntransform = {{ translate = [{:?}, {:?}, {:?}], rotate_deg = [0.0, {:?}, {:?}] }}\n",
-        camera_block(W, H, (DVec3::new(0.0, 0.0, 1.65) + offset).to_array()),
+        camera_block(W, H, c_left.to_array()),
         p0.x,
         p0.y,
         p0.z,
@@ -168,7 +213,7 @@ fn tilted_plane(offset: DVec3) {
         az.to_degrees()
     );
     let r = render(&scene_from_toml(&text), Backend::default_backend(), 0);
-    check_all(&r, |c, i, j| {
+    check_all(&r, c_left, |c, i, j| {
         let d = dir(i, j);
         let t = n.dot(p0 - c) / n.dot(d);
         (t > 0.0).then_some(t)
@@ -188,15 +233,16 @@ fn depth_and_disparity_exact_on_analytic_sphere_far_from_the_origin() {
 fn analytic_sphere(offset: DVec3) {
     let center = DVec3::new(15.0, 1.0, 2.0) + offset;
     let radius = 4.0;
+    let c_left = DVec3::new(0.0, 0.0, 1.65) + offset;
     let text = format!(
         "{}{GREY_UNDER_SKY}\n[[object]]\nkind = \"sphere\"\nradius = {radius:?}\nmaterial = \"grey\"\ntransform = {{ translate = [{:?}, {:?}, {:?}] }}\n",
-        camera_block(W, H, (DVec3::new(0.0, 0.0, 1.65) + offset).to_array()),
+        camera_block(W, H, c_left.to_array()),
         center.x,
         center.y,
         center.z
     );
     let r = render(&scene_from_toml(&text), Backend::default_backend(), 0);
-    check_all(&r, |c, i, j| {
+    check_all(&r, c_left, |c, i, j| {
         // Textbook quadratic a t² + b t + c = 0 (independent of the renderer's form).
         let d = dir(i, j);
         let oc = c - center;
@@ -217,6 +263,7 @@ fn depth_and_disparity_exact_on_boxes() {
     );
     check_all_with_ties(
         &r,
+        DVec3::new(0.0, 0.0, 1.65),
         |c, i, j| {
             let d = dir(i, j);
             let ground = (d.z < 0.0).then(|| c.z / -d.z);
@@ -240,7 +287,8 @@ fn road_plane_to_the_horizon_is_exact_and_sky_is_infinite() {
         camera_block(W, H, [0.0, 0.0, 1.65])
     );
     let r = render(&scene_from_toml(&text), Backend::default_backend(), 0);
-    check_all(&r, |c, i, j| {
+    let c_left = DVec3::new(0.0, 0.0, 1.65);
+    check_all(&r, c_left, |c, i, j| {
         let d = dir(i, j);
         (d.z < 0.0).then(|| c.z / -d.z)
     });

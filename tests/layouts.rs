@@ -219,8 +219,11 @@ fn native_layout_and_frames_without_images_are_refused() {
         &r.rig,
         &r.out,
         &meta,
-    );
-    assert!(e.is_err());
+    )
+    .expect_err("the native layout is not a layout_frame");
+    assert_eq!(e.kind(), std::io::ErrorKind::InvalidInput, "{e}");
+    assert!(e.to_string().contains("native"), "{e}");
+    assert_eq!(fs::read_dir(dir.path()).unwrap().count(), 0, "wrote files");
     r.out.images.clear();
     let e = write_layout_frame(
         LayoutKind::Kitti,
@@ -229,8 +232,17 @@ fn native_layout_and_frames_without_images_are_refused() {
         &r.rig,
         &r.out,
         &meta,
+    )
+    .expect_err("a frame without images");
+    let msg = e.to_string();
+    assert_eq!(e.kind(), std::io::ErrorKind::InvalidInput, "{msg}");
+    // 3 baselines: the left view and 3 right views, none rendered.
+    assert!(
+        msg.contains("kitti") && msg.contains("0 images") && msg.contains("expected 4"),
+        "{msg}"
     );
-    assert!(e.unwrap_err().to_string().contains("spp"));
+    assert!(msg.contains("spp"), "{msg}");
+    assert_eq!(fs::read_dir(dir.path()).unwrap().count(), 0, "wrote files");
 }
 
 /// The render settings recorded in a test frame's camera file.

@@ -20,6 +20,19 @@ fn enters(p: DVec3, d: DVec3, lo: DVec3, hi: DVec3, tmax: f64) -> bool {
     t0 <= t1
 }
 
+/// The default baselines in metres (GROUND_TRUTH.md "Stereo rig"): the boxes
+/// scene sets no `baselines_cm`.
+const BASELINES_M: [f64; 5] = [0.10, 0.54, 1.0, 2.0, 3.0];
+
+/// The boxes scene's left camera: level at (0, 0, 1.65) looking along +x.
+const C_LEFT: DVec3 = DVec3::new(0.0, 0.0, 1.65);
+
+/// Right camera centre C_R = C_L + B·x_L; for a level rig looking along +x the
+/// image x axis x_L is world −y.
+fn right_centre(b: f64) -> DVec3 {
+    C_LEFT + DVec3::new(0.0, -b, 0.0)
+}
+
 #[test]
 fn occlusion_mask_matches_brute_force() {
     let (w, h) = (640u32, 360u32);
@@ -28,7 +41,17 @@ fn occlusion_mask_matches_brute_force() {
         Backend::default_backend(),
         0,
     );
-    let f = r.rig.left.intrinsics.f_px;
+    // 60° horizontal field of view over 640 px; the level ray through (u, v)
+    // has camera-z component 1: (1, −(u − cx)/f, −(v − cy)/f) in the world.
+    let f = 320.0 / 30f64.to_radians().tan();
+    assert!((r.rig.left.intrinsics.f_px - f).abs() <= 1e-9 * f);
+    let dir = |i: u32, j: u32| {
+        DVec3::new(
+            1.0,
+            -((i as f64 + 0.5) - 320.0) / f,
+            -((j as f64 + 0.5) - 180.0) / f,
+        )
+    };
     let boxes: Vec<(DVec3, DVec3)> = common::boxes::BOXES
         .iter()
         .map(|(c, s)| {
@@ -36,23 +59,35 @@ fn occlusion_mask_matches_brute_force() {
             (c - hs, c + hs)
         })
         .collect();
-    for (b, gt) in r.out.baselines.iter().enumerate() {
-        let c_r = r.rig.right(b).center_world;
+    assert_eq!(r.rig.left.center_world, C_LEFT);
+    assert_eq!(r.out.baselines.len(), BASELINES_M.len(), "baseline count");
+    for (b, (gt, bm)) in r.out.baselines.iter().zip(BASELINES_M).enumerate() {
+        assert!(
+            (gt.baseline_m - bm).abs() < 1e-12,
+            "baseline {b}: {} m, expected {bm} m",
+            gt.baseline_m
+        );
+        let c_r = right_centre(bm);
+        let got = r.rig.right(b).center_world;
+        assert!(
+            (got - c_r).length() <= 1e-12,
+            "right centre {b}: {got} vs C_L + B·x_L = {c_r}"
+        );
         let (mut mismatches, mut occluded) = (0usize, 0usize);
         for j in 0..h {
             for i in 0..w {
                 let k = (j * w + i) as usize;
                 let z = r.out.left.depth_z[k];
-                let d_left = r.rig.left.pixel_center_dir_world(i, j);
-                if common::boxes::grazes_box_edge(r.rig.left.center_world, d_left) {
+                let d_left = dir(i, j);
+                if common::boxes::grazes_box_edge(C_LEFT, d_left) {
                     continue;
                 }
                 let expect = if !z.is_finite() {
                     false
                 } else {
                     let x = i as f64 + 0.5;
-                    let p = r.rig.left.center_world + r.rig.left.pixel_center_dir_world(i, j) * z;
-                    x - f * gt.baseline_m / z < 0.0
+                    let p = C_LEFT + d_left * z;
+                    x - f * bm / z < 0.0
                         || boxes
                             .iter()
                             .any(|(lo, hi)| enters(c_r, p - c_r, *lo, *hi, 1.0 - 1e-4))

@@ -8,7 +8,9 @@ mod common;
 
 use common::boxes::boxes_scene;
 use common::{render, scene_from_toml, Rendered};
+use glam::DVec3;
 use parallax::accel::Backend;
+use parallax::integrator::rain::{rain_opacity, MASK_MIN_OPACITY};
 use parallax::integrator::{frame_rain, RenderCamera};
 use parallax::scene::{mask_bits, parse_scene_str, SceneDesc};
 
@@ -60,40 +62,131 @@ fn rain_streak_seen_left_is_found_from_the_right_camera() {
     let r = gt_only(RAIN);
     let rain = frame_rain(&r.scene, 9, 0, r.rig.left.intrinsics.f_px).expect("rain");
     let min_coverage = rain.min_opacity_coverage();
-    let left = RenderCamera::new(&r.rig.left, r.scene.origin_world);
-    let right_cam = r.rig.right(1);
-    let w = left.intrinsics.width as usize;
-    let mut checked = 0;
+    let origin = r.scene.origin_world;
+    let left = RenderCamera::new(&r.rig.left, origin);
+    // Baseline 1 of `gt_only` is 2 m: the right camera at C_L + 2·x_L (x_L =
+    // world −y for this level rig looking along +x).
+    let b = 1;
+    assert_eq!(r.out.baselines[b].baseline_m, 2.0);
+    let right_cam = r.rig.right(b);
+    assert!(
+        (right_cam.center_world - (r.rig.left.center_world + DVec3::new(0.0, -2.0, 0.0))).length()
+            < 1e-12
+    );
+    // The renderer's own right-view rain pass, bounded by the right depth.
+    let right = RenderCamera::new(&right_cam, origin);
+    let depth_right: Vec<f64> = r.out.baselines[b]
+        .depth_right
+        .iter()
+        .map(|&z| z as f64)
+        .collect();
+    let alpha_right = rain_opacity(&r.scene, &rain, &right, &depth_right);
+    let (w, h) = (
+        left.intrinsics.width as usize,
+        left.intrinsics.height as usize,
+    );
+    let o_r = right_cam.center_world;
+    // Streaks the centre ray of right pixel (pi, pj) meets before the right
+    // surface, and the opacity they make: 1 − Π(1 − a).
+    let right_streaks = |pi: usize, pj: usize| {
+        let dir = right.dir(pi as f64 + 0.5, pj as f64 + 0.5);
+        let t_surface = depth_right[pj * w + pi] * dir.length();
+        let mut along = [Default::default(); 64];
+        let n = rain.streaks_along(
+            o_r,
+            dir.normalize(),
+            (0.0, t_surface),
+            min_coverage,
+            &mut along,
+        );
+        assert!(n < along.len(), "more streaks than the buffer holds");
+        let alpha = 1.0
+            - along[..n]
+                .iter()
+                .map(|h| 1.0 - rain.streak_opacity(h))
+                .product::<f64>();
+        (along[..n].to_vec(), alpha)
+    };
+    let (mut pairs, mut found, mut found_unshifted) = (0usize, 0usize, 0usize);
     for (k, &m) in r.out.left.mask.iter().enumerate() {
         if m & mask_bits::RAIN == 0 {
             continue;
         }
         let (i, j) = ((k % w) as f64 + 0.5, (k / w) as f64 + 0.5);
-        let d = left.dir(i, j).normalize();
-        let o = r.scene.origin_world + left.center;
+        let dir = left.dir(i, j);
+        let d = dir.normalize();
+        // Rain counts only in front of the surface: t < Z·|dir| (dir has camera z 1).
+        let t_surface = r.out.left.depth_z[k] * dir.length();
+        let o = origin + left.center;
         let hit = rain
-            .first_streak(o, d, 0.0, f64::INFINITY, min_coverage)
-            .expect("masked pixel sees a streak");
-        let x = o + d * (0.5 * (hit.t + hit.t_far));
-        // Reproject X into the right image and trace that pixel position.
-        let uv = right_cam.project_world(x);
-        if uv.x < 0.0 || uv.y < 0.0 || uv.x >= w as f64 || uv.y >= left.intrinsics.height as f64 {
+            .first_streak(o, d, 0.0, t_surface, min_coverage)
+            .expect("a masked pixel sees a streak in front of its surface");
+        assert!(hit.t_axis > 0.0 && hit.t_axis < t_surface);
+        // The mask bit means the streaks before the surface reach 1 % opacity.
+        let mut along = [Default::default(); 64];
+        let n = rain.streaks_along(o, d, (0.0, t_surface), min_coverage, &mut along);
+        assert!(n < along.len(), "more streaks than the buffer holds");
+        let alpha_left = 1.0
+            - along[..n]
+                .iter()
+                .map(|h| 1.0 - rain.streak_opacity(h))
+                .product::<f64>();
+        assert!(
+            alpha_left >= MASK_MIN_OPACITY as f64 * (1.0 - 1e-5),
+            "masked left pixel {k}: opacity {alpha_left}"
+        );
+        // The drop's axis at the height where the left ray meets it,
+        // reprojected into the right image.
+        let x = o + d * hit.t_axis;
+        let a = DVec3::new(hit.axis_top.x, hit.axis_top.y, x.z);
+        let uv = right_cam.project_world(a);
+        if uv.x < 0.0 || uv.y < 0.0 || uv.x >= w as f64 || uv.y >= h as f64 {
             continue;
         }
-        let o_r = right_cam.center_world;
-        let d_r = right_cam.dir_world(uv.x, uv.y).normalize();
-        let dist = (x - o_r).length();
-        // The right ray passes X inside the capsule; its closest approach to
-        // the axis lies within a few capsule radii of X along the ray.
-        let mut along = [Default::default(); 8];
-        let n = rain.streaks_along(o_r, d_r, (dist - 0.2, dist + 0.2), min_coverage, &mut along);
+        let (pi, pj) = (uv.x as usize, uv.y as usize);
+        let kr = pj * w + pi;
+        // The drop must be in front of the right view's surface there.
+        if depth_right[kr] <= right_cam.cam_from_world(a).z {
+            continue;
+        }
+        pairs += 1;
+        // The renderer's right-view opacity at that pixel is the streaks its
+        // centre ray meets, and among them is the drop seen from the left.
+        let (streaks, alpha) = right_streaks(pi, pj);
         assert!(
-            along[..n].iter().any(|h| h.axis_top == hit.axis_top),
-            "the right camera sees the streak at the reprojected point"
+            (alpha_right[kr] as f64 - alpha).abs() <= 1e-6 + 1e-5 * alpha,
+            "right pixel ({pi}, {pj}): rain opacity {} vs {alpha} from its streaks",
+            alpha_right[kr]
         );
-        checked += 1;
+        if let Some(s) = streaks.iter().find(|s| s.axis_top == hit.axis_top) {
+            assert!(alpha_right[kr] as f64 >= rain.streak_opacity(s) * (1.0 - 1e-5));
+            found += 1;
+        }
+        // Control: the same pixel position without the disparity shift.
+        if right_streaks(k % w, k / w)
+            .0
+            .iter()
+            .any(|s| s.axis_top == hit.axis_top)
+        {
+            found_unshifted += 1;
+        }
     }
-    assert!(checked > 20, "only {checked} rain pixels");
+    eprintln!(
+        "{found}/{pairs} reprojected right pixels carry the left streak, \
+         {found_unshifted} at the unshifted position"
+    );
+    assert!(
+        pairs > 20,
+        "only {pairs} rain pixels reproject into the right view"
+    );
+    assert!(
+        found as f64 >= 0.9 * pairs as f64,
+        "only {found}/{pairs} reprojected right pixels carry the left streak"
+    );
+    assert!(
+        found_unshifted as f64 <= 0.1 * pairs as f64,
+        "{found_unshifted}/{pairs} unshifted pixels carry the streak: the test cannot tell"
+    );
 }
 
 #[test]

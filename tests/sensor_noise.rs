@@ -34,23 +34,52 @@ fn moments(film: &Film, c: usize) -> (f64, f64) {
     (mean, var)
 }
 
+/// Electrons per unit of exposed linear value, from the documented scale
+/// (src/film/noise.rs): an exposed value 1.0 fills the full well at ISO 100,
+/// and ISO divides the electrons: k = full_well · 100 / iso.
+fn electrons_per_unit(full_well_e: f64, iso: f64) -> f64 {
+    full_well_e * 100.0 / iso
+}
+
 #[test]
 fn flat_field_variance_matches_shot_plus_read_model() {
     // 40 000 photosites per channel: the sample variance's relative standard
     // error is √(2/n) ≈ 0.7%, so 4% is a > 5σ bound.
+    let (full_well, read) = (20_000.0f64, 3.0f64);
     let cases = [
-        // (radiance, exposure, iso): Gaussian regime, Poisson regime, read-noise dominated.
-        (0.05f32, 2.0f32, 1600.0f32), // μ = 125 e⁻
-        (0.01, 1.0, 6400.0),          // μ = 3.1 e⁻ (exact Poisson)
-        (0.0005, 1.0, 3200.0),        // μ = 0.3 e⁻, read noise σ² = 9 dominates
+        // (radiance, exposure, iso, μ of channel 0 in e⁻): Gaussian regime,
+        // Poisson regime, read-noise dominated.
+        (0.05f32, 2.0f32, 1600.0f32, 125.0f64), // k = 1250 e⁻/unit
+        (0.01, 1.0, 6400.0, 3.125),             // k = 312.5 (exact Poisson)
+        (0.0005, 1.0, 3200.0, 0.3125),          // k = 625, read σ² = 9 dominates
     ];
-    for (l, scale, iso) in cases {
+    for (l, scale, iso, mu0) in cases {
         let noise = sensor(iso, 0.0);
+        let k = electrons_per_unit(full_well, iso as f64);
+        assert!(
+            (noise.electrons_per_unit() as f64 / k - 1.0).abs() < 1e-6,
+            "iso {iso}: {} e⁻/unit, documented {k}",
+            noise.electrons_per_unit()
+        );
+        let ks = k * scale as f64;
+        // The documented electron count of channel 0.
+        assert!(
+            (l as f64 * ks / mu0 - 1.0).abs() < 1e-6,
+            "iso {iso}: μ {} e⁻ vs {mu0}",
+            l as f64 * ks
+        );
         let mut film = Film::uniform(200, 200, Vec3::new(l, 2.0 * l, 0.5 * l));
         noise.apply(&mut film, scale, KEY);
         for (c, lc) in [l, 2.0 * l, 0.5 * l].into_iter().enumerate() {
             let (mean, var) = moments(&film, c);
-            let model = noise.variance(lc, scale);
+            // EMVA 1288 in electrons: σ²_e = μ + σ_read²; in film units / (k·s)².
+            let mu = lc as f64 * ks;
+            let model = (mu + read * read) / (ks * ks);
+            assert!(
+                (noise.variance(lc, scale) / model - 1.0).abs() < 1e-5,
+                "iso {iso}: variance() {} vs {model}",
+                noise.variance(lc, scale)
+            );
             let se_mean = (model / 40_000.0).sqrt();
             assert!(
                 (mean - lc as f64).abs() < 5.0 * se_mean,
@@ -59,6 +88,14 @@ fn flat_field_variance_matches_shot_plus_read_model() {
             assert!(
                 (var / model - 1.0).abs() < 0.04,
                 "L {lc} iso {iso}: variance {var} vs model {model}"
+            );
+            // The same in electrons: the measured variance of the electron
+            // count is μ + 9 e⁻², with μ the documented charge.
+            let var_e = var * ks * ks;
+            assert!(
+                (var_e / (mu + read * read) - 1.0).abs() < 0.04,
+                "L {lc} iso {iso}: {var_e} e⁻² vs μ {mu} + σ_read² {}",
+                read * read
             );
         }
     }

@@ -17,6 +17,10 @@ fn expect_invalid(sky: &str, key: &str) {
             let msg = e.to_string();
             eprintln!("{msg}");
             assert_eq!(e.kind, SceneErrorKind::Invalid, "{msg}");
+            assert!(
+                msg.starts_with(FILE),
+                "message does not name the file: {msg}"
+            );
             assert!(msg.contains(key), "message does not name `{key}`: {msg}");
         }
     }
@@ -73,4 +77,5 @@ fn physical_sky_defaults_validate_and_a_sky_past_twilight_is_no_light() {
     let dark = "[sky]\nkind = \"physical\"\nsun_elevation_deg = -30.0\nsun_azimuth_deg = 0.0\n";
     let e = parse_scene_str(&format!("{BODY}{dark}"), Path::new(FILE)).unwrap_err();
     assert_eq!(e.kind, SceneErrorKind::NoLight, "{e}");
+    assert!(e.to_string().starts_with(FILE), "{e}");
 }

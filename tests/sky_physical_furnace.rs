@@ -110,9 +110,7 @@ fn weather_presets_choose_their_sky_and_source() {
             }
             Weather::Sunset => {
                 assert!(matches!(scene.sky, Sky::Physical(_)));
-                if let Some(s) = suns.first() {
-                    assert!(s.x > 2.0 * s.z, "sunset sun not red: {s}");
-                }
+                check_sunset_sun(p.sun_elevation_deg, &suns);
             }
             Weather::Cloudy if p.cloud_cover < parallax::weather::OVERCAST_COVER => {
                 // Broken cloud: the physical sky with its drawn deck and the sun.
@@ -135,6 +133,53 @@ fn weather_presets_choose_their_sky_and_source() {
             }
         }
     }
+}
+
+/// The sun's disk has an angular radius of about 0.27°: while its centre is
+/// above the horizon there is exactly one sun, red (the long air mass takes
+/// the blue); once the whole disk is below (centre ≤ −0.27°) there is none.
+/// In between (a partly set disk) either is allowed.
+fn check_sunset_sun(elevation_deg: f64, suns: &[Vec3]) {
+    if elevation_deg > 0.0 {
+        assert_eq!(suns.len(), 1, "sunset at {elevation_deg:.2}°: {suns:?}");
+        let s = suns[0];
+        assert!(s.x > 0.0, "sunset sun at {elevation_deg:.2}° is black: {s}");
+        assert!(
+            s.x > 2.0 * s.z,
+            "sunset sun at {elevation_deg:.2}° not red: {s}"
+        );
+    } else if elevation_deg <= -0.27 {
+        assert!(suns.is_empty(), "set sun at {elevation_deg:.2}°: {suns:?}");
+    }
+}
+
+#[test]
+fn sunset_has_one_red_sun_until_the_disk_sets() {
+    // Sunset draws the elevation in [−2°, 6°]: over these seeds both a sun
+    // above the horizon and a set one must occur.
+    let (mut up, mut set) = (0, 0);
+    for seed in 0..24 {
+        let p = draw_params(Weather::Sunset, seed);
+        let mut loaded = scene_from_toml(&plane_scene(
+            "[sky]\nkind = \"constant\"\nle = [1.0, 1.0, 1.0]\n",
+            0.5,
+        ));
+        apply(&mut loaded.desc, &p);
+        let scene = build_scene(&loaded, DVec3::ZERO).expect("sunset scene builds");
+        assert!(matches!(scene.sky, Sky::Physical(_)), "seed {seed}");
+        let suns: Vec<Vec3> = scene
+            .lights
+            .iter()
+            .filter_map(|l| match l {
+                Light::Sun { irradiance, .. } => Some(*irradiance),
+                _ => None,
+            })
+            .collect();
+        check_sunset_sun(p.sun_elevation_deg, &suns);
+        up += (p.sun_elevation_deg > 0.0) as u32;
+        set += (p.sun_elevation_deg <= -0.27) as u32;
+    }
+    assert!(up > 0 && set > 0, "{up} suns up, {set} set over 24 seeds");
 }
 
 #[test]

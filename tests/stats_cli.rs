@@ -112,23 +112,52 @@ fn stats_match_numpy_style_hand_values_and_count_frames() {
     assert_eq!(total, 10);
 }
 
+/// `stats ROOT --json FILE --plot DIR` with the outputs in `sink`; checks exit
+/// 2, that stderr names `needle`, and that neither output was created.
+fn fails_without_output(root: &str, sink: &Path, needles: &[&str]) {
+    let (json, plots) = (sink.join("stats.json"), sink.join("plots"));
+    let (code, out, err) = stats(&[
+        root,
+        "--json",
+        json.to_str().unwrap(),
+        "--plot",
+        plots.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{root}: stdout {out}\nstderr {err}");
+    for n in needles {
+        assert!(err.contains(n), "stderr does not name `{n}`: {err}");
+    }
+    assert!(
+        !json.exists(),
+        "{root}: a failed run wrote {}",
+        json.display()
+    );
+    assert!(
+        !plots.exists(),
+        "{root}: a failed run created {}",
+        plots.display()
+    );
+}
+
 #[test]
 fn stats_bad_inputs_exit_2_naming_the_path() {
-    let (code, _, err) = stats(&["/no/such/dataset"]);
-    assert_eq!(code, 2);
-    assert!(err.contains("/no/such/dataset"), "{err}");
+    let sink = tempfile::tempdir().unwrap();
+    fails_without_output("/no/such/dataset", sink.path(), &["/no/such/dataset"]);
     let d = tempfile::tempdir().unwrap();
-    let (code, _, err) = stats(&[d.path().to_str().unwrap()]);
-    assert_eq!(code, 2);
-    assert!(
-        err.contains(d.path().to_str().unwrap()) && err.contains("no native disparity"),
-        "{err}"
+    let root = d.path().to_str().unwrap();
+    fails_without_output(root, sink.path(), &[root, "no native disparity"]);
+    // A corrupt disparity names the file (a good one beside it is not enough).
+    pfm(
+        d.path(),
+        "baseline_010/disp/000001.pfm",
+        [1.0, 2.0, 3.0, 4.0],
     );
-    // A corrupt disparity names the file.
     let bad = d.path().join("baseline_010/disp/000000.pfm");
-    fs::create_dir_all(bad.parent().unwrap()).unwrap();
     fs::write(&bad, b"Pf\n2 2\n-1.0\nxx").unwrap();
-    let (code, _, err) = stats(&[d.path().to_str().unwrap()]);
-    assert_eq!(code, 2);
-    assert!(err.contains(bad.to_str().unwrap()), "{err}");
+    fails_without_output(root, sink.path(), &[bad.to_str().unwrap()]);
+    assert_eq!(
+        fs::read_dir(sink.path()).unwrap().count(),
+        0,
+        "failed runs left files behind"
+    );
 }
