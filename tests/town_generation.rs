@@ -1,5 +1,8 @@
 //! Town generation: determinism (same seed → same geometry hash, different
-//! seed → different town), frame K alone equals frame K inside a sequence,
+//! seed → different town; frame K computed alone or within a sequence is
+//! the same), the per-description traffic plan cache keys on the whole
+//! description (one changed parameter → another plan and frame, the
+//! original still gives its own),
 //! every object carries a semantic class, every town file loads and builds,
 //! and bad town files are rejected with the field named.
 
@@ -37,9 +40,44 @@ fn same_seed_gives_identical_geometry_and_another_seed_another_town() {
 }
 
 #[test]
-fn frame_alone_equals_the_same_frame_inside_a_sequence() {
+fn frames_are_deterministic_and_the_plan_cache_keys_on_the_whole_description() {
     let desc = town("town05");
+    // Determinism only: a pure function of (desc, seed, frame) gives the
+    // same frame alone as within a sequence.
     let sequence: Vec<_> = (0..40).map(|k| frame_at(&desc, 3, k)).collect();
+    for k in [0u64, 17, 39] {
+        assert_eq!(frame_at(&desc, 3, k), sequence[k as usize]);
+    }
+    // The plan is cached per description (`Plan::new`): now that town05's is
+    // cached, town05 at 25 km/h (same name, one parameter changed) must get
+    // its own plan and frames, and town05 must still get its own.
+    assert!(
+        (desc.speed_kmh - 40.0).abs() < 1e-12,
+        "town05 drives at 40 km/h"
+    );
+    let text = std::fs::read_to_string(town_file("town05")).unwrap();
+    let slow_text = text.replace("speed_kmh = 40.0", "speed_kmh = 25.0");
+    assert_ne!(slow_text, text);
+    let slow = parse_town_str(&slow_text, Path::new("town05.toml")).unwrap();
+    assert_eq!(slow.name, desc.name);
+    let plan = |d: &TownDesc| parallax::town::traffic::Plan::new(d).schedule.speed_mps;
+    assert_eq!(plan(&desc), 40.0 / 3.6);
+    assert_eq!(plan(&slow), 25.0 / 3.6);
+    let slow_seq: Vec<_> = (0..40).map(|k| frame_at(&slow, 3, k)).collect();
+    assert!(
+        (1..40).any(|k| slow_seq[k] != sequence[k]),
+        "a slower town moves like the cached one"
+    );
+    // The slow town's ego never outruns 25 km/h.
+    for w in slow_seq.windows(2) {
+        let (a, b) = (&w[0].ego.position, &w[1].ego.position);
+        let step = (b[0] - a[0]).hypot(b[1] - a[1]);
+        assert!(
+            step <= 25.0 / 3.6 / slow.fps + 1e-9,
+            "slow ego moved {step} m"
+        );
+    }
+    assert_eq!(plan(&desc), 40.0 / 3.6);
     for k in [0u64, 17, 39] {
         assert_eq!(frame_at(&desc, 3, k), sequence[k as usize]);
     }
@@ -234,10 +272,18 @@ fn town03_roundabout_has_ring_road_island_and_sidewalk_and_traffic_keeps_to_the_
         }
     }
     // Traffic circulates the ring but never touches the island or the
-    // ring's sidewalk; nobody walks there, for 300 frames.
+    // ring's sidewalk; nobody walks there, for 300 frames. Guard: vehicles
+    // do come onto the ring (all four corners between island and kerb).
+    let mut on_ring = std::collections::BTreeSet::new();
     for k in (0..300).step_by(3) {
         let f = frame_at(&desc, 11, k);
         for v in std::iter::once(&f.ego).chain(&f.vehicles) {
+            if v.corners().iter().all(|q| {
+                let d = (q[0] - c[0]).hypot(q[1] - c[1]);
+                d > r_in && d < r_out
+            }) {
+                on_ring.insert(v.id);
+            }
             for q in v.corners() {
                 let d = (q[0] - c[0]).hypot(q[1] - c[1]);
                 let on_arm = (q[0] - c[0]).abs().min((q[1] - c[1]).abs()) < layout.road_w_m / 2.0;
@@ -254,6 +300,11 @@ fn town03_roundabout_has_ring_road_island_and_sidewalk_and_traffic_keeps_to_the_
             assert!(d > r_out + 0.5, "pedestrian {} {d} m from the centre", p.id);
         }
     }
+    assert!(
+        on_ring.len() >= 2,
+        "only {} vehicles drove on the ring: {on_ring:?}",
+        on_ring.len()
+    );
     // Too small a town for a roundabout is rejected naming the field.
     let base = std::fs::read_to_string(town_file("town03")).unwrap();
     let small = base.replace("extent_m = [540.0, 450.0]", "extent_m = [180.0, 180.0]");

@@ -1,8 +1,9 @@
 //! Highway ramps (`ramps = true`): present in town06 only; the ramp surface
 //! joins the highway edge without gaps (rays straight down through taper,
 //! gore and ramp hit road or paint at z = 0); ramp sites keep clear of lots,
-//! buildings and furniture; hills stay flat under them; a bad `ramps` key
-//! is rejected naming it.
+//! and no vertex of a built building, pole, tree, bush, sign or traffic
+//! light lies in a ramp's clear zone; hills stay flat under them; a bad
+//! `ramps` key is rejected naming it.
 
 use std::path::Path;
 
@@ -11,7 +12,7 @@ use parallax::accel::{build_accel, Accel, Backend, Ray};
 use parallax::scene::build_scene;
 use parallax::scene::desc::ShapeDesc;
 use parallax::scene::semantic::class_id;
-use parallax::town::layout::Layout;
+use parallax::town::layout::{Layout, Rect};
 use parallax::town::ramps::{ramp_sites, RAMP_MESHES, TAPER_M};
 use parallax::town::terrain::Terrain;
 use parallax::town::town_scene;
@@ -47,9 +48,29 @@ fn ramps_are_built_in_town06_and_nowhere_else() {
         assert!(triangles.len() > 1000, "{name}");
         assert_eq!(object.semantic.as_deref(), Some(class));
     }
-    // The validated frame is the generated description, meshes included.
+    // Loading validates the generated description without altering it
+    // (generation is deterministic: this only guards that).
     let plain = town_scene(&desc, 3, 0, CameraConfig::Normal);
     assert_eq!(plain, loaded.desc);
+    // One changed parameter changes the scene: town06 without ramps (and
+    // the overpass that needs them) has none of the ramp meshes, and town06
+    // still has them afterwards.
+    let text = std::fs::read_to_string(town_file("town06")).unwrap();
+    let off = text
+        .replace("ramps = true", "ramps = false")
+        .replace("overpass = true", "");
+    let off = parse_town_str(&off, Path::new("t.toml")).unwrap();
+    let plain_off = town_scene(&off, 3, 0, CameraConfig::Normal);
+    for (name, _, _) in RAMP_MESHES {
+        assert!(
+            !plain_off
+                .objects
+                .iter()
+                .any(|o| o.name.as_deref() == Some(name)),
+            "{name} without ramps"
+        );
+    }
+    assert_eq!(town_scene(&desc, 3, 0, CameraConfig::Normal), plain);
 }
 
 #[test]
@@ -152,6 +173,124 @@ fn ramps_keep_clear_of_lots_buildings_and_furniture() {
         }
         assert!(standing > 100, "{standing}");
     }
+    // The built frame, every vertex of every building, pole, tree, bush,
+    // sign and traffic light (repeat copies and whole footprints included,
+    // wherever the object's anchor is):
+    // - nothing stands in a clear zone: no vertex within 0.5 m of the
+    //   (level) ground lies strictly inside one;
+    // - nothing reaches over the site itself (the zone without its 3 m
+    //   margin beyond the site's ends and outer shoulder): no triangle
+    //   overlaps it in plan view at any height. Tree crowns may overhang
+    //   the margin (seed 7: a crown 1.1 m into it).
+    // The overpass structure (walls, pier line) spans the slip road by
+    // design and is left out.
+    let mut loaded =
+        load_town_frame(&desc, 7, 0, CameraConfig::Normal, Path::new("t.toml")).unwrap();
+    let n = loaded.desc.objects.len();
+    loaded
+        .desc
+        .objects
+        .retain(|o| o.name.as_deref() != Some("overpass_structure"));
+    assert_eq!(loaded.desc.objects.len(), n - 1, "one overpass structure");
+    let scene = build_scene(&loaded, DVec3::ZERO).unwrap();
+    let standing: Vec<u8> = [
+        "building",
+        "pole",
+        "vegetation",
+        "traffic_sign",
+        "traffic_light",
+    ]
+    .iter()
+    .map(|c| class_id(c).unwrap())
+    .collect();
+    let sites: Vec<(Rect, Rect)> = ramp_sites(&desc, &l)
+        .iter()
+        .map(|s| {
+            let z = s.clear_zone();
+            let mut site = Rect {
+                min: [z.min[0] + 3.0, z.min[1]],
+                max: [z.max[0] - 3.0, z.max[1]],
+            };
+            // The outer shoulder's side carries the margin.
+            if s.side > 0.0 {
+                site.max[1] -= 3.0;
+            } else {
+                site.min[1] += 3.0;
+            }
+            (z, site)
+        })
+        .collect();
+    let eps = 1e-6;
+    let inside = |z: &Rect, p: DVec3| {
+        p.x > z.min[0] + eps && p.x < z.max[0] - eps && p.y > z.min[1] + eps && p.y < z.max[1] - eps
+    };
+    let (mut low, mut near, mut triangles) = (0usize, 0usize, 0usize);
+    for m in scene
+        .meshes
+        .iter()
+        .filter(|m| standing.contains(&m.semantic))
+    {
+        let world: Vec<DVec3> = m.p_render.iter().map(|&p| p + scene.origin_world).collect();
+        for &p in world.iter().filter(|p| p.z < 0.5) {
+            low += 1;
+            for (z, _) in &sites {
+                assert!(
+                    !inside(z, p),
+                    "class {} instance {}: ground vertex {p} in a ramp zone {z:?}",
+                    m.semantic,
+                    m.instance
+                );
+                // Within 50 m of a zone: the check sees the sites' surroundings.
+                let dx = (z.min[0] - p.x).max(p.x - z.max[0]).max(0.0);
+                let dy = (z.min[1] - p.y).max(p.y - z.max[1]).max(0.0);
+                near += usize::from(dx.hypot(dy) < 50.0);
+            }
+        }
+        // Plan-view overlap of each triangle with each site (separating
+        // axes: the site's two axes, then the triangle's edge normals; a
+        // vertical face's plan view is a segment, its normal still separates).
+        for t in &m.triangles {
+            let q = t.map(|i| world[i as usize]);
+            triangles += 1;
+            for (_, z) in &sites {
+                let lo = |a: f64, b: f64, c: f64| a.min(b).min(c);
+                let hi = |a: f64, b: f64, c: f64| a.max(b).max(c);
+                if hi(q[0].x, q[1].x, q[2].x) <= z.min[0] + eps
+                    || lo(q[0].x, q[1].x, q[2].x) >= z.max[0] - eps
+                    || hi(q[0].y, q[1].y, q[2].y) <= z.min[1] + eps
+                    || lo(q[0].y, q[1].y, q[2].y) >= z.max[1] - eps
+                {
+                    continue;
+                }
+                let corners = [
+                    [z.min[0] + eps, z.min[1] + eps],
+                    [z.max[0] - eps, z.min[1] + eps],
+                    [z.max[0] - eps, z.max[1] - eps],
+                    [z.min[0] + eps, z.max[1] - eps],
+                ];
+                let separated = (0..3).any(|e| {
+                    let (a, b) = (q[e], q[(e + 1) % 3]);
+                    let n = [b.y - a.y, a.x - b.x];
+                    if n == [0.0, 0.0] {
+                        return false;
+                    }
+                    let proj = |x: f64, y: f64| x * n[0] + y * n[1];
+                    let tri = q.map(|p| proj(p.x, p.y));
+                    let rect = corners.map(|k| proj(k[0], k[1]));
+                    let r0 = rect.iter().copied().fold(f64::INFINITY, f64::min);
+                    let r1 = rect.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                    hi(tri[0], tri[1], tri[2]) <= r0 || r1 <= lo(tri[0], tri[1], tri[2])
+                });
+                assert!(
+                    separated,
+                    "class {} instance {}: triangle {q:?} over a ramp site {z:?}",
+                    m.semantic, m.instance
+                );
+            }
+        }
+    }
+    assert!(low > 10_000 && triangles > 10_000, "{low} {triangles}");
+    assert!(near > 100, "only {near} ground vertices near the ramps");
 }
 
 #[test]

@@ -3,7 +3,9 @@
 //! picks up; the lit colour is the clock's phase (read from the clock rate
 //! G′(t), not from the signal code); under red no vehicle of a clock route
 //! moves or stands past its stop line; approaches the ring drives never show
-//! red; the same frame always gives the same lamps.
+//! red; lamps are deterministic per frame, and a town with another speed
+//! (another clock, not the cached plan) shows its own phases while the
+//! original keeps its own.
 
 use std::path::Path;
 
@@ -212,22 +214,29 @@ fn lit_colour_is_the_clock_phase() {
     for name in SIGNAL_TOWNS {
         let desc = town(name);
         let plan = Plan::new(&desc);
+        // Checks per phase (red, amber, green): each must occur.
+        let mut checked = [0usize; 3];
         for k in 0..cycle_frames(&desc) {
             let t = k as f64 / desc.fps;
             let (rate, falling) = clock_rate(&plan.schedule, t);
-            let want = if rate < 1e-9 {
-                Lamp::Red
+            let (want, phase) = if rate < 1e-9 {
+                (Lamp::Red, 0)
             } else if falling {
-                Lamp::Amber
+                (Lamp::Amber, 1)
             } else {
-                Lamp::Green
+                (Lamp::Green, 2)
             };
             for g in signals::signals_at(&desc, k) {
                 if g.approach != Approach::Free {
                     assert_eq!(g.lamp, want, "{name} frame {k}: rate {rate}");
+                    checked[phase] += 1;
                 }
             }
         }
+        assert!(
+            checked.iter().all(|&n| n > 0),
+            "{name}: clock signals checked under red, amber, green: {checked:?}"
+        );
     }
 }
 
@@ -341,14 +350,50 @@ fn ring_approaches_never_show_red() {
 }
 
 #[test]
-fn same_frame_gives_the_same_lamps() {
+fn lamps_are_deterministic_and_another_speed_gets_its_own_clock() {
     let desc = town("town03");
+    // Determinism: frame 5000 alone and within a sequence agree.
     let alone = signals::signals_at(&desc, 5000);
     let seq: Vec<_> = (4990..=5000)
         .map(|k| signals::signals_at(&desc, k))
         .collect();
     assert_eq!(seq[10], alone);
     assert_eq!(signals::signals_at(&desc, 5000), alone);
+    // The clock comes from the plan cached per description. With town03's
+    // cached, town03 at 20 km/h (same name) must run its own clock: its
+    // lamps follow its own phases (clock rate of its own schedule, whose
+    // speed is 20/3.6 m/s), differ from town03's in some frame, and
+    // town03's lamps stay as they were.
+    let original: Vec<Vec<Signal>> = (0..cycle_frames(&desc))
+        .map(|k| signals::signals_at(&desc, k))
+        .collect();
+    let text = std::fs::read_to_string(common::towns::town_file("town03")).unwrap();
+    let slow = text.replace("speed_kmh = 40.0", "speed_kmh = 20.0");
+    assert_ne!(slow, text);
+    let slow = parallax::town::parse_town_str(&slow, Path::new("town03.toml")).unwrap();
+    let slow_plan = Plan::new(&slow);
+    assert_eq!(slow_plan.schedule.speed_mps, 20.0 / 3.6);
+    let mut differ = 0;
+    for (k, orig) in original.iter().enumerate() {
+        let t = k as f64 / slow.fps;
+        let (rate, falling) = clock_rate(&slow_plan.schedule, t);
+        let want = if rate < 1e-9 {
+            Lamp::Red
+        } else if falling {
+            Lamp::Amber
+        } else {
+            Lamp::Green
+        };
+        let sigs = signals::signals_at(&slow, k as u64);
+        for g in sigs.iter().filter(|g| g.approach == Approach::Clock) {
+            assert_eq!(g.lamp, want, "slow town03 frame {k}: rate {rate}");
+        }
+        differ += usize::from(sigs != *orig);
+    }
+    assert!(differ > 0, "a slower town03 shows town03's cached lamps");
+    for (k, orig) in original.iter().enumerate() {
+        assert_eq!(&signals::signals_at(&desc, k as u64), orig, "frame {k}");
+    }
     let mut a = traffic_lights(&desc);
     let mut b = a.clone();
     signals::set_lamps(&desc, 4321, &mut a);

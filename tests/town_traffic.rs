@@ -1,8 +1,9 @@
 //! Traffic over a 300-frame sequence in every town: no two vehicles (ego
 //! included) on the same level ever overlap (exact rectangle test; a car on
 //! the overpass deck and one on the highway below are on two levels), every vehicle stays on the
-//! road surface, nothing teleports (the ego moves at most v_max / fps per
-//! frame), vehicles turn by 90° at junctions and stand still near stop
+//! road surface, nothing teleports (every vehicle, ego included, seen in
+//! two consecutive frames moved at most the town's speed_kmh / 3.6 / fps),
+//! vehicles turn by 90° at junctions and stand still near stop
 //! lines, pedestrians stay off the roads except on crosswalks, where some
 //! of them are at some frames, and never touch a vehicle.
 
@@ -107,8 +108,10 @@ fn vehicles_never_overlap_stay_on_the_road_turn_and_stop_for_300_frames() {
         let layout = Layout::new(&desc);
         let roads = layout.road_rects();
         let over = Overpass::new(&desc, &layout);
-        let sched = Plan::new(&desc).schedule.clone();
-        let v_max = sched.speed_mps / desc.fps;
+        // Independently of the plan: the town file's speed limit, per frame.
+        let v_max = desc.speed_kmh / 3.6 / desc.fps;
+        assert!((Plan::new(&desc).schedule.speed_mps - desc.speed_kmh / 3.6).abs() < 1e-12);
+        let mut steps = 0usize;
         let frames: Vec<_> = (0..300u64).map(|k| frame_at(&desc, 11, k)).collect();
         let (mut min_count, mut crossing, mut stopped_at_line) = (usize::MAX, 0, 0);
         let mut turned = std::collections::BTreeSet::new();
@@ -171,6 +174,24 @@ fn vehicles_never_overlap_stay_on_the_road_turn_and_stop_for_300_frames() {
                     step <= v_max + 1e-9,
                     "{name} frame {k}: ego jumped {step} m"
                 );
+                // Every vehicle id present in both frames, matched by id.
+                let before: std::collections::BTreeMap<u32, &VehiclePose> = prev
+                    .vehicles
+                    .iter()
+                    .chain(std::iter::once(&prev.ego))
+                    .map(|v| (v.id, v))
+                    .collect();
+                for v in &all {
+                    if let Some(w) = before.get(&v.id) {
+                        let step = moved(v, w);
+                        assert!(
+                            step <= v_max + 1e-9,
+                            "{name} frame {k}: vehicle {} jumped {step} m (at most {v_max})",
+                            v.id
+                        );
+                        steps += 1;
+                    }
+                }
                 // Standing vehicles whose front is at a stop line: 3.8–4.4 m
                 // before a junction edge along their heading.
                 for (v, w) in f.vehicles.iter().zip(&prev.vehicles) {
@@ -209,6 +230,10 @@ fn vehicles_never_overlap_stay_on_the_road_turn_and_stop_for_300_frames() {
         }) {
             ego_turned += 1;
         }
+        assert!(
+            steps >= 299 * min_count,
+            "{name}: only {steps} vehicle steps matched by id"
+        );
         assert!(
             turned.len() >= 3,
             "{name}: only {} vehicles turned",

@@ -1,15 +1,19 @@
 //! How traffic moves, over 300 frames: vehicles circulate the town03
 //! roundabout counter-clockwise, slow down in turns, some stand while
-//! others drive, and any frame computed alone equals the same frame
-//! computed in sequence (a shard can start anywhere).
+//! others drive; frames are deterministic (alone = in sequence), and the
+//! per-description plan cache gives a town with one changed parameter its
+//! own plan and frames while the original keeps its own.
 
 use std::collections::BTreeMap;
 
+use std::path::Path;
+
 use parallax::town::layout::Layout;
-use parallax::town::{frame_at, TownDesc, TownFrame};
+use parallax::town::traffic::Plan;
+use parallax::town::{frame_at, parse_town_str, TownDesc, TownFrame};
 
 mod common;
-use common::towns::town;
+use common::towns::{town, town_file};
 
 fn frames(desc: &TownDesc, n: u64) -> Vec<TownFrame> {
     (0..n).map(|k| frame_at(desc, 11, k)).collect()
@@ -23,6 +27,8 @@ fn vehicles_circulate_the_roundabout_counter_clockwise() {
     let (r_in, r_out) = l.roundabout_radii();
     // Per vehicle: the polar angles (unwrapped) at frames on the ring.
     let mut swept: BTreeMap<u32, (f64, f64, f64)> = BTreeMap::new();
+    let mut last_d: BTreeMap<u32, f64> = BTreeMap::new();
+    let mut circling = 0usize;
     for f in frames(&desc, 300) {
         for v in &f.vehicles {
             let (dx, dy) = (v.position[0] - c[0], v.position[1] - c[1]);
@@ -39,11 +45,33 @@ fn vehicles_circulate_the_roundabout_counter_clockwise() {
                 "vehicle {} turns clockwise on the ring",
                 v.id
             );
-            // Heading is the counter-clockwise tangent, a + 90°, on the ring.
+            // Heading has a counter-clockwise component everywhere on the
+            // ring (|off| < 90° from the ccw tangent a + 90°; entering and
+            // leaving it turns towards the arms), and while the vehicle keeps
+            // its distance from the centre (driving a circle) it is exactly
+            // that tangent.
+            let off = (v.heading_deg - (a.to_degrees() + 90.0) + 180.0).rem_euclid(360.0) - 180.0;
+            assert!(
+                off.abs() < 90.0,
+                "vehicle {} heads {off}° off the counter-clockwise tangent",
+                v.id
+            );
+            if last_d
+                .insert(v.id, d)
+                .is_some_and(|d0| (d - d0).abs() < 1e-6)
+            {
+                assert!(
+                    off.abs() < 1e-6,
+                    "vehicle {} circles at {d} m heading {off}° off the ccw tangent",
+                    v.id
+                );
+                circling += 1;
+            }
             e.1 = a;
             e.2 += step;
         }
     }
+    assert!(circling >= 20, "only {circling} samples circling the ring");
     let circulated = swept.values().filter(|s| s.2 > 0.6).count();
     assert!(
         circulated >= 2,
@@ -114,15 +142,36 @@ fn some_vehicles_stand_while_others_drive() {
 }
 
 #[test]
-fn frame_alone_equals_frame_in_sequence() {
-    for name in ["town03", "town06"] {
+fn frames_are_deterministic_and_a_changed_description_gets_its_own_plan() {
+    for (name, lane_w) in [("town03", "3.5"), ("town06", "3.75")] {
         let desc = town(name);
+        // Determinism: frame 5000 alone and within a sequence agree.
         let alone = frame_at(&desc, 7, 5000);
         let seq: Vec<TownFrame> = (4990..=5000).map(|k| frame_at(&desc, 7, k)).collect();
         assert_eq!(alone, seq[10], "{name}");
         assert_ne!(seq[9], seq[10], "{name}: nothing moved");
-        // And the other way round, after the plan is cached.
         assert_eq!(frame_at(&desc, 7, 4995), seq[5]);
+        // The plan cache (`Plan::new`, per description): with this town's
+        // plan cached, the same town with 3.3 m lanes (same name) gets
+        // another plan (lane centrelines move) and other frames; then the
+        // original still gets its own.
+        let text = std::fs::read_to_string(town_file(name)).unwrap();
+        let from = format!("lane_width_m = {lane_w}");
+        assert!(text.contains(&from), "{name}");
+        let narrow = text.replace(&from, "lane_width_m = 3.3");
+        let narrow = parse_town_str(&narrow, Path::new("t.toml")).unwrap();
+        assert_eq!((narrow.name.as_str(), narrow.lane_width_m), (name, 3.3));
+        let original = Plan::new(&desc);
+        let other = Plan::new(&narrow);
+        assert_ne!(
+            *original, *other,
+            "{name}: narrow lanes got the cached plan"
+        );
+        assert_eq!(other.routes.len(), original.routes.len(), "{name}");
+        let moved = frame_at(&narrow, 7, 5000);
+        assert_ne!(moved.vehicles, alone.vehicles, "{name}");
+        assert_eq!(*Plan::new(&desc), *original, "{name}");
+        assert_eq!(frame_at(&desc, 7, 5000), alone, "{name}");
     }
 }
 
