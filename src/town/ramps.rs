@@ -199,7 +199,9 @@ impl RampSite {
     }
 
     /// Plan rectangle that holds the whole site with its shoulders plus
-    /// 3 m: kept free of furniture, vegetation, buildings and hills.
+    /// 3 m: kept free of furniture, vegetation, buildings and hills (by their
+    /// anchors: a roadside tree's crown may overhang the 3 m margin, well
+    /// above the ground, never the site itself).
     pub fn clear_zone(&self) -> Rect {
         let o_far = self.hw + self.width_m + GAP_M + self.shoulder_m + 3.0;
         let (y0, y1) = (
