@@ -261,10 +261,7 @@ fn summary(dir: &Path, s: &crate::render::RenderStats, seconds: f64, build_s: f6
         rays as f64 / traced_s / 1e6,
         backend
     );
-    if s.non_finite_samples > 0 {
-        eprintln!(
-            "warning: {} of {} samples were NaN or infinite and left out of their pixels (a renderer bug: please report the scene)",
-            s.non_finite_samples, s.samples
-        );
+    if let Some(warning) = s.non_finite_warning() {
+        eprintln!("{warning}");
     }
 }

@@ -311,6 +311,9 @@ pub fn run_dataset(
                     s.frame_seconds += line.render.seconds;
                     s.trace_seconds += r.out.stats.gt_seconds + r.out.stats.path_seconds;
                     progress.frame(k as u64 + 1, job, "written", &s);
+                    if let Some(warning) = r.out.stats.non_finite_warning() {
+                        progress.note(&format!("{}: {warning}", job.id()));
+                    }
                     last_err = None;
                     break;
                 }

@@ -84,6 +84,19 @@ pub struct RenderStats {
     pub path_seconds: f64,
 }
 
+impl RenderStats {
+    /// A warning when samples were dropped as non-finite (None otherwise).
+    pub fn non_finite_warning(&self) -> Option<String> {
+        (self.non_finite_samples > 0).then(|| {
+            format!(
+                "warning: {} of {} samples were NaN or infinite and left out of their pixels \
+                 (a renderer bug: please report the scene)",
+                self.non_finite_samples, self.samples
+            )
+        })
+    }
+}
+
 /// Renders one frame of `scene` (built around the rig's left camera) from every view.
 pub fn render_frame(
     scene: &Scene,
