@@ -196,78 +196,52 @@ fn obj_scene(c: &Case, obj: &str) -> PathBuf {
     )
 }
 
+/// A scene of one OBJ object with contents `obj` fails naming the scene,
+/// the OBJ file and each of `reason`.
+fn obj_fails(obj: &str, reason: &[&str]) {
+    let c = Case::new();
+    let s = obj_scene(&c, obj);
+    let needles: Vec<&str> = ["obj.toml", "mesh.obj"]
+        .iter()
+        .chain(reason)
+        .copied()
+        .collect();
+    c.fails(&s, &[], &needles);
+}
+
 #[test]
 fn obj_with_non_finite_coordinates_is_refused() {
-    let c = Case::new();
-    let s = obj_scene(&c, "v 0 0 0\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n");
-    c.fails(
-        &s,
-        &[],
-        &[
-            "obj.toml",
-            "object[0].file",
-            "mesh.obj",
-            "vertex 1 is not finite",
-        ],
+    obj_fails(
+        "v 0 0 0\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n",
+        &["object[0].file", "vertex 1 is not finite"],
     );
 }
 
 #[test]
 fn obj_with_absurd_coordinates_is_refused() {
-    let c = Case::new();
-    let s = obj_scene(&c, "v 0 0 0\nv 1e12 0 0\nv 0 1 0\nf 1 2 3\n");
-    c.fails(
-        &s,
-        &[],
-        &[
-            "obj.toml",
-            "object[0].file",
-            "mesh.obj",
-            "vertex 1 = ",
-            "is beyond ±",
-        ],
+    obj_fails(
+        "v 0 0 0\nv 1e12 0 0\nv 0 1 0\nf 1 2 3\n",
+        &["object[0].file", "vertex 1 = ", "is beyond ±"],
     );
 }
 
 #[test]
 fn obj_with_bad_indices_is_refused() {
-    let c = Case::new();
-    let s = obj_scene(&c, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
-    c.fails(
-        &s,
-        &[],
-        &[
-            "obj.toml",
-            "object[0].file",
-            "mesh.obj",
-            "index out of bounds",
-        ],
+    obj_fails(
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n",
+        &["object[0].file", "index out of bounds"],
     );
 }
 
 #[test]
 fn degenerate_or_empty_obj_is_refused() {
-    let c = Case::new();
-    let s = obj_scene(&c, "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
-    c.fails(
-        &s,
-        &[],
-        &[
-            "obj.toml",
-            "mesh.obj",
-            "no usable triangles (1 faces, 1 degenerate dropped)",
-        ],
+    obj_fails(
+        "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n",
+        &["no usable triangles (1 faces, 1 degenerate dropped)"],
     );
-    let c = Case::new();
-    let s = obj_scene(&c, "# nothing here\n");
-    c.fails(
-        &s,
-        &[],
-        &[
-            "obj.toml",
-            "mesh.obj",
-            "no usable triangles (0 faces, 0 degenerate dropped)",
-        ],
+    obj_fails(
+        "# nothing here\n",
+        &["no usable triangles (0 faces, 0 degenerate dropped)"],
     );
 }
 

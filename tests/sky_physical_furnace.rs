@@ -75,6 +75,18 @@ fn lambert_plane_under_tabulated_sky_and_sun_matches_table_irradiance() {
     );
 }
 
+/// The irradiance of every sun (or moon) of `scene`.
+fn sun_irradiances(scene: &parallax::scene::Scene) -> Vec<Vec3> {
+    scene
+        .lights
+        .iter()
+        .filter_map(|l| match l {
+            Light::Sun { irradiance, .. } => Some(*irradiance),
+            _ => None,
+        })
+        .collect()
+}
+
 fn weather_scene(w: Weather, origin: DVec3) -> parallax::scene::Scene {
     let mut loaded = scene_from_toml(&plane_scene(
         "[sky]\nkind = \"constant\"\nle = [1.0, 1.0, 1.0]\n[[light]]\nkind = \"sun\"\nelevation_deg = 40.0\nazimuth_deg = 0.0\nirradiance = [1.0, 1.0, 1.0]\n",
@@ -89,14 +101,7 @@ fn weather_presets_choose_their_sky_and_source() {
     for w in Weather::ALL {
         let p = draw_params(w, 17);
         let scene = weather_scene(w, DVec3::ZERO);
-        let suns: Vec<Vec3> = scene
-            .lights
-            .iter()
-            .filter_map(|l| match l {
-                Light::Sun { irradiance, .. } => Some(*irradiance),
-                _ => None,
-            })
-            .collect();
+        let suns = sun_irradiances(&scene);
         eprintln!(
             "{w}: elevation {:.1}°, sources {suns:?}",
             p.sun_elevation_deg
@@ -167,14 +172,7 @@ fn sunset_has_one_red_sun_until_the_disk_sets() {
         apply(&mut loaded.desc, &p);
         let scene = build_scene(&loaded, DVec3::ZERO).expect("sunset scene builds");
         assert!(matches!(scene.sky, Sky::Physical(_)), "seed {seed}");
-        let suns: Vec<Vec3> = scene
-            .lights
-            .iter()
-            .filter_map(|l| match l {
-                Light::Sun { irradiance, .. } => Some(*irradiance),
-                _ => None,
-            })
-            .collect();
+        let suns = sun_irradiances(&scene);
         check_sunset_sun(p.sun_elevation_deg, &suns);
         up += (p.sun_elevation_deg > 0.0) as u32;
         set += (p.sun_elevation_deg <= -0.27) as u32;

@@ -113,7 +113,8 @@ fn stats_match_numpy_style_hand_values_and_count_frames() {
 }
 
 /// `stats ROOT --json FILE --plot DIR` with the outputs in `sink`; checks exit
-/// 2, that stderr names `needle`, and that neither output was created.
+/// 2, that stderr names every one of `needles`, and that neither output was
+/// created.
 fn fails_without_output(root: &str, sink: &Path, needles: &[&str]) {
     let (json, plots) = (sink.join("stats.json"), sink.join("plots"));
     let (code, out, err) = stats(&[

@@ -8,8 +8,10 @@
 //! - road pixels: on a level town depth_z equals the analytic intersection
 //!   of that independent ray with the road plane z = 0 (1e-6 relative), so
 //!   rolled and pitched rigs are posed exactly; on a graded town
-//!   (`road_grade_m`) the world point C + d·depth_z lies on the road surface
-//!   z = h(x, y) of the town's grade field within the drape's chord error;
+//!   (`road_grade_m`) depth_z equals that ray's f64 intersection with the
+//!   plane of the draped triangle it hits (1e-6 relative), and the world
+//!   point C + d·depth_z lies on the road surface z = h(x, y) of the town's
+//!   grade field within the drape's chord error;
 //! - reprojection: every non-occluded left pixel's right-camera ray through
 //!   (x − d, y) hits the same 3D point within 1e-4·Z, except on triangle
 //!   edges (ties between two surfaces), which must stay rare, and surfaces
@@ -79,6 +81,18 @@ fn expected_dir(world_from_camera: DMat3, (w, h): (u32, u32), i: u32, j: u32) ->
 /// A·k²/2 · R²/2 = 1.5 mm for town04 (A = 8 m, λ = 800 m); 3 mm (as in
 /// tests/town_loop.rs) leaves room for f32 depth at ~100 m.
 const GRADED_ROAD_TOL_M: f64 = 3e-3;
+
+/// Ray parameter along `d` from `o` (render space) of the plane of the
+/// triangle the accelerator hits, in f64 from the mesh's vertices.
+fn plane_t(scene: &Scene, accel: &impl Accel, o: DVec3, d: DVec3) -> f64 {
+    let hit = accel
+        .intersect(&Ray::new(o.as_vec3(), d.as_vec3()))
+        .expect("a road pixel hits");
+    let m = &scene.meshes[hit.geom_id as usize];
+    let [a, b, c] = m.triangles[hit.prim_id as usize].map(|i| m.p_render[i as usize]);
+    let n = (b - a).cross(c - a);
+    (a - o).dot(n) / d.dot(n)
+}
 
 /// Distance from the hit point to the nearest edge of its triangle (metres).
 fn distance_to_edge(scene: &Scene, o: DVec3, d: DVec3, hit: &Hit) -> f64 {
@@ -178,6 +192,13 @@ fn town_ground_truth_is_exact_in_every_camera_configuration() {
                         let d = expected_dir(rot, (w, h), i, j);
                         match &grade {
                             Some(g) => {
+                                // Exact on the draped triangle the ray hits ...
+                                let s = plane_t(&scene, &accel, centre - scene.origin_world, d);
+                                assert!(
+                                    (z - s).abs() <= 1e-6 * s,
+                                    "{name} {config} ({i},{j}): road z {z} vs {s}"
+                                );
+                                // ... and that triangle lies on the grade.
                                 let p = centre + d * z;
                                 let dz = p.z - g.height_m(p.x, p.y);
                                 assert!(

@@ -169,12 +169,8 @@ fn vehicles_never_overlap_stay_on_the_road_turn_and_stop_for_300_frames() {
                 let moved = |a: &VehiclePose, b: &VehiclePose| {
                     (a.position[0] - b.position[0]).hypot(a.position[1] - b.position[1])
                 };
-                let step = moved(&f.ego, &prev.ego);
-                assert!(
-                    step <= v_max + 1e-9,
-                    "{name} frame {k}: ego jumped {step} m"
-                );
-                // Every vehicle id present in both frames, matched by id.
+                // Every vehicle id present in both frames (the ego included),
+                // matched by id.
                 let before: std::collections::BTreeMap<u32, &VehiclePose> = prev
                     .vehicles
                     .iter()

@@ -231,7 +231,8 @@ fn code_albedo(bsdf: &Bsdf, wo: DVec3, ch: usize) -> (f64, f64) {
 /// f |cosθi| dωi = D(ωm) |ωo·ωm| / |cosθo| · (F G, or (1−F) G / η'²) dωm,
 /// from the reflection Jacobian dωi = 4|ωo·ωm| dωm and the refraction one
 /// dωi = (η_o ωo·ωm + η_i ωi·ωm)² / (η_i² |ωi·ωm|) dωm (Walter 2007 eqs. 14, 17).
-/// `fresnel(cos, n1, n2)` lets the conductor and the dielectric share it.
+/// `fresnel(cos θ between ωo and ωm)` lets the conductor and the dielectric
+/// share it.
 fn reference_albedo_wm(
     alpha: f64,
     wo: DVec3,
@@ -462,7 +463,7 @@ fn rough_conductor_eval_matches_textbook_reference() {
                 big += (r > 0.01) as usize;
             }
         }
-        // Most pairs must test the lobe, not two zeros.
+        // Over 2000 of the 9000 values must test the lobe, not two zeros.
         assert!(big > 2000, "{bsdf:?}: only {big} significant values");
         eprintln!("{bsdf:?}: worst rel err {worst:.2e}");
     }

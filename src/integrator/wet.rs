@@ -255,7 +255,7 @@ mod tests {
     fn puddle_cover_fraction_is_close_to_requested() {
         // 400 × 400 points over ~284 m × 276 m (~70 × 70 features of 4 m),
         // away from the lattice the quantile was estimated on: the covered
-        // fraction must match the request to 15 % of itself.
+        // fraction must match the request to 15 % of itself (and 0.08).
         for cover in [0.1, 0.3, 0.6] {
             let w = wetness(cover);
             let n = 400;
@@ -266,7 +266,10 @@ mod tests {
                 })
                 .count();
             let frac = hits as f64 / (n * n) as f64;
-            assert!((frac / cover - 1.0).abs() < 0.15, "cover {cover}: {frac}");
+            assert!(
+                (frac - cover).abs() < (0.15 * cover).min(0.08),
+                "cover {cover}: {frac}"
+            );
         }
         assert!(!wetness(0.0).is_puddle_world(3.0, 4.0));
     }

@@ -24,6 +24,13 @@ pub fn arm_start_m(l: &Layout) -> f64 {
     (r_out * r_out - hw * hw).sqrt()
 }
 
+/// Half-angle (radians) of each arm's opening in the ring's outer kerb:
+/// the arm's kerb lines y = ±hw meet that circle there.
+fn opening_half_angle(l: &Layout) -> f64 {
+    let (_, r_out) = l.roundabout_radii();
+    (l.road_w_m / 2.0 / r_out).asin()
+}
+
 /// Angular intervals [θ0, θ1] (radians) of a circle: the whole circle, or
 /// the four arcs between the arm openings of half-angle `open`.
 fn arcs(open: Option<f64>) -> Vec<(f64, f64)> {
@@ -78,8 +85,7 @@ pub fn roundabout_objects(l: &Layout) -> Vec<ObjectDesc> {
         return out;
     };
     let (r_in, r_out) = l.roundabout_radii();
-    let hw = l.road_w_m / 2.0;
-    let open = Some((hw / r_out).asin());
+    let open = Some(opening_half_angle(l));
     // Ring asphalt: radial quads at z = 0 from under the island to under
     // the outer curb.
     let n = 96;
@@ -222,9 +228,9 @@ mod tests {
 
     #[test]
     fn openings_meet_the_arm_kerbs_on_the_outer_kerb() {
-        // With the half-angle roundabout_objects uses, asin(hw / r_out), the
-        // east opening's edges on the outer kerb lie on the arm's kerb lines
-        // y = ±hw, at x = arm_start_m.
+        // With the half-angle roundabout_objects uses, the east opening's
+        // edges on the outer kerb lie on the arm's kerb lines y = ±hw, at
+        // x = arm_start_m.
         let l = Layout {
             nx: 2,
             ny: 2,
@@ -240,8 +246,8 @@ mod tests {
         };
         // r_out = 10 + 2 · (3.5 + 1) = 19 m, hw = 7 m.
         let (r_out, hw): (f64, f64) = (19.0, 7.0);
-        let a = (hw / r_out).asin();
-        let arcs4 = arcs(Some(a));
+        assert_eq!(l.roundabout_radii().1, r_out);
+        let arcs4 = arcs(Some(opening_half_angle(&l)));
         let (start, end) = (arcs4[0].0, arcs4[3].1);
         assert!((r_out * start.sin() - hw).abs() < 1e-12);
         assert!((r_out * end.sin() + hw).abs() < 1e-12);
