@@ -166,21 +166,10 @@ fn different_configuration_in_a_used_directory_is_refused_unless_forced() {
 /// Every entry below `root` (directories with `None`, files with their bytes),
 /// manifests and hidden files included: a refused run must leave it as it was.
 fn tree(root: &std::path::Path) -> std::collections::BTreeMap<String, Option<Vec<u8>>> {
-    let mut out = std::collections::BTreeMap::new();
-    let mut stack = vec![root.to_path_buf()];
-    while let Some(dir) = stack.pop() {
-        for e in std::fs::read_dir(&dir).unwrap() {
-            let p = e.unwrap().path();
-            let rel = p.strip_prefix(root).unwrap().to_string_lossy().into_owned();
-            if p.is_dir() {
-                out.insert(rel, None);
-                stack.push(p);
-            } else {
-                out.insert(rel, Some(std::fs::read(&p).unwrap()));
-            }
-        }
-    }
-    out
+    walk(root)
+        .into_iter()
+        .map(|(rel, p, is_dir)| (rel, (!is_dir).then(|| std::fs::read(&p).unwrap())))
+        .collect()
 }
 
 #[test]

@@ -46,19 +46,11 @@ fn wait_for_first_line(out: &Path, child: &mut Child) {
 }
 
 fn temp_files(root: &Path) -> Vec<String> {
-    let mut v = Vec::new();
-    let mut stack = vec![root.to_path_buf()];
-    while let Some(d) = stack.pop() {
-        for e in std::fs::read_dir(&d).unwrap() {
-            let p = e.unwrap().path();
-            if p.is_dir() {
-                stack.push(p);
-            } else if p.to_string_lossy().contains(".tmp-") {
-                v.push(p.display().to_string());
-            }
-        }
-    }
-    v
+    walk(root)
+        .into_iter()
+        .filter(|(_, p, is_dir)| !is_dir && p.to_string_lossy().contains(".tmp-"))
+        .map(|(_, p, _)| p.display().to_string())
+        .collect()
 }
 
 #[test]

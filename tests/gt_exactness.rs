@@ -7,7 +7,10 @@
 mod common;
 
 use common::boxes::{boxes_scene, grazes_box_edge, slab, BOXES};
-use common::{camera_block, render, scene_from_toml, Rendered, GREY_UNDER_SKY};
+use common::{
+    camera_block, level_right_centre, render, scene_from_toml, Rendered, DEFAULT_BASELINES_M,
+    GREY_UNDER_SKY,
+};
 use glam::DVec3;
 use parallax::accel::Backend;
 
@@ -28,16 +31,8 @@ fn dir(i: u32, j: u32) -> DVec3 {
     )
 }
 
-/// The default baselines in metres (GROUND_TRUTH.md "Stereo rig"; the scenes
-/// here set no `baselines_cm`, so every one of them is rendered).
-const BASELINES_M: [f64; 5] = [0.10, 0.54, 1.0, 2.0, 3.0];
-
-/// Right camera centre of baseline `b` m for a level rig looking along +x:
-/// C_R = C_L + B·x_L with the image x axis x_L = world −y (image right is the
-/// world's −y when looking along +x with z up).
-fn right_centre(c_left: DVec3, b: f64) -> DVec3 {
-    c_left + DVec3::new(0.0, -b, 0.0)
-}
+/// The scenes here set no `baselines_cm`: every default one is rendered.
+const BASELINES_M: [f64; 5] = DEFAULT_BASELINES_M;
 
 /// Checks the rig against the independent convention and returns the right
 /// centres derived here (not read from the renderer).
@@ -57,7 +52,7 @@ fn right_centres(r: &Rendered, c_left: DVec3) -> Vec<DVec3> {
                 "baseline {bi}: {} m, expected {b} m",
                 r.out.baselines[bi].baseline_m
             );
-            let c = right_centre(c_left, b);
+            let c = level_right_centre(c_left, b);
             let got = r.rig.right(bi).center_world;
             assert!(
                 (got - c).length() <= 1e-9,

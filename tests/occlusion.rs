@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{render, scene_from_toml};
+use common::{level_right_centre, render, scene_from_toml, DEFAULT_BASELINES_M};
 use glam::DVec3;
 use parallax::accel::Backend;
 
@@ -20,18 +20,11 @@ fn enters(p: DVec3, d: DVec3, lo: DVec3, hi: DVec3, tmax: f64) -> bool {
     t0 <= t1
 }
 
-/// The default baselines in metres (GROUND_TRUTH.md "Stereo rig"): the boxes
-/// scene sets no `baselines_cm`.
-const BASELINES_M: [f64; 5] = [0.10, 0.54, 1.0, 2.0, 3.0];
+/// The boxes scene sets no `baselines_cm`: every default one is rendered.
+const BASELINES_M: [f64; 5] = DEFAULT_BASELINES_M;
 
 /// The boxes scene's left camera: level at (0, 0, 1.65) looking along +x.
 const C_LEFT: DVec3 = DVec3::new(0.0, 0.0, 1.65);
-
-/// Right camera centre C_R = C_L + B·x_L; for a level rig looking along +x the
-/// image x axis x_L is world −y.
-fn right_centre(b: f64) -> DVec3 {
-    C_LEFT + DVec3::new(0.0, -b, 0.0)
-}
 
 #[test]
 fn occlusion_mask_matches_brute_force() {
@@ -67,7 +60,7 @@ fn occlusion_mask_matches_brute_force() {
             "baseline {b}: {} m, expected {bm} m",
             gt.baseline_m
         );
-        let c_r = right_centre(bm);
+        let c_r = level_right_centre(C_LEFT, bm);
         let got = r.rig.right(b).center_world;
         assert!(
             (got - c_r).length() <= 1e-12,

@@ -25,6 +25,17 @@ pub struct Rendered {
     pub out: FrameOutput,
 }
 
+/// The default baselines in metres (GROUND_TRUTH.md "Stereo rig"), rendered
+/// by every scene that sets no `baselines_cm`.
+pub const DEFAULT_BASELINES_M: [f64; 5] = [0.10, 0.54, 1.0, 2.0, 3.0];
+
+/// Right camera centre of baseline `b` metres for a level rig looking along
+/// +x: C_R = C_L + B·x_L, with the image x axis x_L = world −y (image right
+/// is the world's −y when looking along +x with z up).
+pub fn level_right_centre(c_left: glam::DVec3, b: f64) -> glam::DVec3 {
+    c_left + glam::DVec3::new(0.0, -b, 0.0)
+}
+
 /// Builds and renders `loaded` with `spp` samples (0 = ground truth only).
 pub fn render(loaded: &LoadedScene, backend: Backend, spp: u32) -> Rendered {
     let rig = StereoRig::from_desc(&loaded.desc.camera);

@@ -82,25 +82,33 @@ pub fn text(o: &Output) -> String {
     )
 }
 
-/// SHA-256 of every data file below `root` (manifests and failure lists left out).
-pub fn data_files(root: &Path) -> BTreeMap<String, String> {
-    let mut out = BTreeMap::new();
+/// Every entry below `root`: (path relative to it, full path, is a directory).
+pub fn walk(root: &Path) -> Vec<(String, PathBuf, bool)> {
+    let mut out = Vec::new();
     let mut stack = vec![root.to_path_buf()];
     while let Some(dir) = stack.pop() {
         for e in std::fs::read_dir(&dir).unwrap() {
             let p = e.unwrap().path();
             let rel = p.strip_prefix(root).unwrap().to_string_lossy().into_owned();
-            if rel.starts_with("manifest") || rel.starts_with("failures") {
-                continue;
+            let is_dir = p.is_dir();
+            if is_dir {
+                stack.push(p.clone());
             }
-            if p.is_dir() {
-                stack.push(p);
-            } else {
-                out.insert(rel, parallax::output::sha256_file(&p).unwrap());
-            }
+            out.push((rel, p, is_dir));
         }
     }
     out
+}
+
+/// SHA-256 of every data file below `root` (manifests and failure lists left out).
+pub fn data_files(root: &Path) -> BTreeMap<String, String> {
+    walk(root)
+        .into_iter()
+        .filter(|(rel, _, is_dir)| {
+            !is_dir && !rel.starts_with("manifest") && !rel.starts_with("failures")
+        })
+        .map(|(rel, p, _)| (rel, parallax::output::sha256_file(&p).unwrap()))
+        .collect()
 }
 
 /// Manifest lines of every shard below `root`.
