@@ -86,19 +86,11 @@ fn rain_streak_seen_left_is_found_from_the_right_camera() {
         left.intrinsics.height as usize,
     );
     let o_r = right_cam.center_world;
-    // Streaks the centre ray of right pixel (pi, pj) meets before the right
-    // surface, and the opacity they make: 1 − Π(1 − a).
-    let right_streaks = |pi: usize, pj: usize| {
-        let dir = right.dir(pi as f64 + 0.5, pj as f64 + 0.5);
-        let t_surface = depth_right[pj * w + pi] * dir.length();
+    // Streaks the unit ray o + t·d meets before t_surface, and the opacity
+    // they make: 1 − Π(1 − a).
+    let streaks_before = |o: DVec3, d: DVec3, t_surface: f64| {
         let mut along = [Default::default(); 64];
-        let n = rain.streaks_along(
-            o_r,
-            dir.normalize(),
-            (0.0, t_surface),
-            min_coverage,
-            &mut along,
-        );
+        let n = rain.streaks_along(o, d, (0.0, t_surface), min_coverage, &mut along);
         assert!(n < along.len(), "more streaks than the buffer holds");
         let alpha = 1.0
             - along[..n]
@@ -106,6 +98,15 @@ fn rain_streak_seen_left_is_found_from_the_right_camera() {
                 .map(|h| 1.0 - rain.streak_opacity(h))
                 .product::<f64>();
         (along[..n].to_vec(), alpha)
+    };
+    // The same for the centre ray of right pixel (pi, pj), up to the right surface.
+    let right_streaks = |pi: usize, pj: usize| {
+        let dir = right.dir(pi as f64 + 0.5, pj as f64 + 0.5);
+        streaks_before(
+            o_r,
+            dir.normalize(),
+            depth_right[pj * w + pi] * dir.length(),
+        )
     };
     let (mut pairs, mut found, mut found_unshifted) = (0usize, 0usize, 0usize);
     for (k, &m) in r.out.left.mask.iter().enumerate() {
@@ -123,14 +124,7 @@ fn rain_streak_seen_left_is_found_from_the_right_camera() {
             .expect("a masked pixel sees a streak in front of its surface");
         assert!(hit.t_axis > 0.0 && hit.t_axis < t_surface);
         // The mask bit means the streaks before the surface reach 1 % opacity.
-        let mut along = [Default::default(); 64];
-        let n = rain.streaks_along(o, d, (0.0, t_surface), min_coverage, &mut along);
-        assert!(n < along.len(), "more streaks than the buffer holds");
-        let alpha_left = 1.0
-            - along[..n]
-                .iter()
-                .map(|h| 1.0 - rain.streak_opacity(h))
-                .product::<f64>();
+        let (_, alpha_left) = streaks_before(o, d, t_surface);
         assert!(
             alpha_left >= MASK_MIN_OPACITY as f64 * (1.0 - 1e-5),
             "masked left pixel {k}: opacity {alpha_left}"

@@ -378,6 +378,14 @@ fn rel_err(code: f64, reference: f64) -> f64 {
     (code - reference).abs() / reference.abs().max(1e-4)
 }
 
+/// Asserts `code` matches `reference` to 1e-3 relative (`what` names the
+/// case in the message) and keeps the worst error seen in `worst`.
+fn assert_eval_close(code: f32, reference: f64, worst: &mut f64, what: impl Fn() -> String) {
+    let e = rel_err(code as f64, reference);
+    assert!(e < 1e-3, "{}: {code} vs ref {reference}", what());
+    *worst = worst.max(e);
+}
+
 // ---------------------------------------------------------------------------
 // Self-tests of the reference and the quadrature.
 // ---------------------------------------------------------------------------
@@ -453,13 +461,9 @@ fn rough_conductor_eval_matches_textbook_reference() {
                     wo.as_dvec3(),
                     wi.as_dvec3(),
                 );
-                let e = rel_err(f[ch] as f64, r);
-                assert!(
-                    e < 1e-3,
-                    "{bsdf:?} wo={wo} wi={wi} ch{ch}: {} vs ref {r}",
-                    f[ch]
-                );
-                worst = worst.max(e);
+                assert_eval_close(f[ch], r, &mut worst, || {
+                    format!("{bsdf:?} wo={wo} wi={wi} ch{ch}")
+                });
                 big += (r > 0.01) as usize;
             }
         }
@@ -481,13 +485,9 @@ fn rough_dielectric_eval_matches_textbook_reference() {
             let (r, t) = ref_dielectric(eta as f64, alpha as f64, wo.as_dvec3(), wi.as_dvec3());
             for ch in 0..3 {
                 let reference = r + t * tint[ch] as f64;
-                let e = rel_err(f[ch] as f64, reference);
-                assert!(
-                    e < 1e-3,
-                    "{bsdf:?} wo={wo} wi={wi} ch{ch}: {} vs ref {reference} (R {r}, T {t})",
-                    f[ch]
-                );
-                worst = worst.max(e);
+                assert_eval_close(f[ch], reference, &mut worst, || {
+                    format!("{bsdf:?} wo={wo} wi={wi} ch{ch} (R {r}, T {t})")
+                });
             }
             n_r += (r > 0.05) as usize;
             n_t += (t > 0.05) as usize;
