@@ -265,12 +265,17 @@ mod tests {
         assert_ne!(s, sequence_seed(7, "town01", Weather::Sunset, 0));
         assert_ne!(s, sequence_seed(7, "town01", Weather::Clear, 1));
         assert_ne!(s, sequence_seed(8, "town01", Weather::Clear, 0));
-        // The streams are tagged apart: a town's seed is no sequence's or frame's.
-        assert_ne!(town_seed(7, "town01"), s);
-        assert_ne!(
-            frame_seed(7, &base),
-            sequence_seed(7, "town01", Weather::Clear, 1)
-        );
+        // The streams are tagged apart: over the plan above no town seed is
+        // a sequence seed or a frame seed, and no sequence seed a frame seed.
+        let towns: std::collections::BTreeSet<u64> =
+            jobs.iter().map(|j| town_seed(c.seed, &j.town)).collect();
+        let sequences: std::collections::BTreeSet<u64> = jobs
+            .iter()
+            .map(|j| sequence_seed(c.seed, &j.town, j.weather, j.sequence))
+            .collect();
+        assert_eq!((towns.len(), sequences.len()), (2, 2 * 2 * 3));
+        assert!(towns.is_disjoint(&sequences) && towns.is_disjoint(&seeds));
+        assert!(sequences.is_disjoint(&seeds));
     }
 
     #[test]
