@@ -162,7 +162,7 @@ fn overcast_zenith_to_horizon_ratio_is_three() {
 }
 
 #[test]
-fn cloud_shadow_depends_on_world_position_only() {
+fn cloud_shadow_survives_render_space_rounding() {
     let layer = CloudLayer::new(0.5, 42);
     let sun = Vec3::new(0.3, 0.2, 0.93).normalize();
     let e = sun_at(60.0);
@@ -170,8 +170,11 @@ fn cloud_shadow_depends_on_world_position_only() {
         clouds: Some(layer),
         ..*e.params()
     })));
-    // The same world point shaded from two camera positions (render origins
-    // 0.54 m and 1 km apart): p_world = origin + p_render.
+    // The same world point rebuilt from two f32 render-space positions
+    // (render origins 1 km apart), as the renderer rebuilds it: rounding in
+    // render space must not move the shadow. (That the renderer passes world
+    // positions at all is checked through its light set in
+    // `tests/sky_physical_furnace.rs`.)
     let mut shadowed = 0;
     for k in 0..2000 {
         let p_world = DVec3::new(37.0 * k as f64, -11.0 * k as f64, 0.1 * (k % 7) as f64);
