@@ -189,6 +189,8 @@ impl BenchReport {
         let samples = |r: &BenchRound| Rate::of(r.path_samples, r.path, threads);
         let figure = |f: &dyn Fn(&BenchRound) -> Rate| Figure::of(&self.rounds, f);
         let line = |name: &str, x: Figure| format!("{name:<20} {}", x.text("Mrays/s", 2));
+        // A count summed over every round (beside median figures).
+        let total = |f: fn(&BenchRound) -> u64| self.rounds.iter().map(f).sum::<u64>();
         let ratio = |a: &dyn Fn(&BenchRound) -> Rate, b: &dyn Fn(&BenchRound) -> Rate| {
             median(self.rounds.iter().map(|r| a(r).cpu / b(r).cpu.max(1e-9)))
         };
@@ -214,20 +216,14 @@ impl BenchReport {
             format!(
                 "{} ({} rays in {:.3} s{})",
                 line("GT pass", figure(&gt)),
-                self.rounds.iter().map(|r| r.gt_rays).sum::<u64>(),
+                total(|r| r.gt_rays),
                 self.rounds.iter().map(|r| r.gt.wall_s).sum::<f64>(),
                 if n > 1 { ", all rounds" } else { "" }
             ),
             format!(
                 "{} ({:.2} rays/sample)",
                 line("path tracing", figure(&path)),
-                self.rounds.iter().map(|r| r.path_rays).sum::<u64>() as f64
-                    / self
-                        .rounds
-                        .iter()
-                        .map(|r| r.path_samples)
-                        .sum::<u64>()
-                        .max(1) as f64
+                total(|r| r.path_rays) as f64 / total(|r| r.path_samples).max(1) as f64
             ),
             format!(
                 "path samples         {}",

@@ -249,6 +249,8 @@ type FogMeans = (Vec3, f32, Vec3, Vec3);
 struct TileMeans {
     rgb: Vec<Vec3>,
     fog: Option<Vec<FogMeans>>,
+    /// Rays traced.
+    rays: u64,
     /// Samples dropped as non-finite.
     non_finite: u64,
 }
@@ -283,42 +285,33 @@ fn render_view<A: Accel>(
     let tiles_x = w.div_ceil(TILE_PX);
     let n_tiles = tiles_x * h.div_ceil(TILE_PX);
     let keep_fog = ctx.scene.filter_inscatter;
-    let tiles: Vec<(TileMeans, u64)> = (0..n_tiles)
+    let tiles: Vec<TileMeans> = (0..n_tiles)
         .into_par_iter()
         .with_max_len(1) // tiles differ in cost (sky vs street): balance per tile
         .map_init(ChunkScratch::default, |scratch, t| {
             let (x0, y0) = ((t % tiles_x) * TILE_PX, (t / tiles_x) * TILE_PX);
             let (x1, y1) = ((x0 + TILE_PX).min(w), (y0 + TILE_PX).min(h));
-            let mut rays = 0u64;
             let n = ((x1 - x0) * (y1 - y0)) as usize;
             let mut tile = TileMeans {
                 rgb: Vec::with_capacity(n),
                 fog: keep_fog.then(|| Vec::with_capacity(n)),
+                rays: 0,
                 non_finite: 0,
             };
             for j in y0..y1 {
                 for i0 in (x0..x1).step_by(PACKET_PIXELS as usize) {
                     let i1 = (i0 + PACKET_PIXELS).min(x1);
-                    render_chunk(
-                        ctx,
-                        cam,
-                        key,
-                        spp,
-                        (i0..i1, j),
-                        scratch,
-                        &mut tile,
-                        &mut rays,
-                    );
+                    render_chunk(ctx, cam, key, spp, (i0..i1, j), scratch, &mut tile);
                 }
             }
-            (tile, rays)
+            tile
         })
         .collect();
-    let rays = tiles.iter().map(|t| t.1).sum();
-    let non_finite = tiles.iter().map(|t| t.0.non_finite).sum();
+    let rays = tiles.iter().map(|t| t.rays).sum();
+    let non_finite = tiles.iter().map(|t| t.non_finite).sum();
     let mut film = Film::new(w as usize, h as usize);
     let mut fog = keep_fog.then(|| FogLayer::new(w as usize, h as usize));
-    for (t, (tile, _)) in tiles.iter().enumerate() {
+    for (t, tile) in tiles.iter().enumerate() {
         let t = t as u32;
         let (x0, y0) = ((t % tiles_x) * TILE_PX, (t / tiles_x) * TILE_PX);
         let tw = ((x0 + TILE_PX).min(w) - x0) as usize;
@@ -344,8 +337,7 @@ fn render_view<A: Accel>(
 }
 
 /// Path-traces pixels `i` of row `j` (spp samples each, camera rays as one
-/// batch) and appends their means to `out`; adds traced rays to `rays`.
-#[allow(clippy::too_many_arguments)]
+/// batch) and appends their means to `out`, with the rays traced.
 fn render_chunk<A: Accel>(
     ctx: &PathContext<'_, A>,
     cam: &RenderCamera,
@@ -354,7 +346,6 @@ fn render_chunk<A: Accel>(
     (i, j): (std::ops::Range<u32>, u32),
     scratch: &mut ChunkScratch,
     out: &mut TileMeans,
-    rays: &mut u64,
 ) {
     scratch.rays.clear();
     scratch.streams.clear();
@@ -383,7 +374,7 @@ fn render_chunk<A: Accel>(
     {
         scratch
             .starts
-            .push(ctx.start_path(*ray, *hit, stream, rays));
+            .push(ctx.start_path(*ray, *hit, stream, &mut out.rays));
     }
     scratch.shadow_rays.clear();
     scratch.shadow_slots.clear();
@@ -403,7 +394,7 @@ fn render_chunk<A: Accel>(
         let (mut surf_fog, mut rho) = (Vec3::ZERO, Vec3::ZERO);
         // The pixel's streams lead the zip: it must not pull a start too many.
         for (stream, start) in stream_px.iter_mut().zip(starts.by_ref()) {
-            let li = ctx.finish_path(start, stream, rays);
+            let li = ctx.finish_path(start, stream, &mut out.rays);
             // A non-finite sample would poison the pixel: drop it, counted.
             if li.l.is_finite() {
                 sum += li.l;
