@@ -5,22 +5,18 @@
 //! depth step a step, is bit-for-bit the plain estimate when off and the
 //! filtered per-sample estimate when on (any thread count), and never
 //! touches the ground truth. Its second component, fog light on the first
-//! surface (`l_surf_fog`, filtered as a ratio to rho): keeps the mean, cuts
+//! surface (`l_surf`, filtered as a ratio to rho): keeps the mean, cuts
 //! a fogged diffuse ground's per-pixel variance and keeps a checker
 //! ground's contrast.
 
 mod common;
 
-use common::{camera_block, mean_stderr, render, scene_from_toml, Rendered};
+use common::{camera_block, mean_stderr, rebuild_left, render, scene_from_toml, Rendered};
 use glam::Vec3;
-use parallax::accel::{Accel, Backend, ShadingAccel};
+use parallax::accel::Backend;
 use parallax::film::{Film, FogLayer};
-use parallax::geometry::SurfaceTable;
-use parallax::integrator::path::PathContext;
-use parallax::integrator::volpath::{filter_view_inscatter, SunLobe};
+use parallax::integrator::volpath::filter_view;
 use parallax::integrator::RenderCamera;
-use parallax::light::LightSet;
-use parallax::sampler::{SampleStream, StreamKey};
 
 /// Conservative fog slab under a white sky: L = 1 in every direction.
 const FURNACE: &str = "[sky]\nkind = \"constant\"\nle = [1.0, 1.0, 1.0]\n[medium]\nkind = \"homogeneous\"\nsigma_t = 0.15\nalbedo = [1.0, 1.0, 1.0]\ng = 0.85\nz_min_m = -3.0\nz_max_m = 3.0\n";
@@ -164,58 +160,6 @@ fn depth_step_stays_a_step() {
     }
 }
 
-/// The left view of `r` rebuilt sample by sample from `PathContext::li`
-/// with the frame's streams (`spp`, `seed`): the plain film and its fog layer.
-fn rebuild_left(r: &Rendered, spp: u32, seed: u64) -> (Film, FogLayer) {
-    let scene = &r.scene;
-    let lights = LightSet::build(scene);
-    let surfaces = SurfaceTable::build(scene);
-    let shading = ShadingAccel(&r.accel);
-    let ctx = PathContext {
-        scene,
-        accel: &shading,
-        lights: &lights,
-        surfaces: &surfaces,
-        max_depth: 8,
-        sun_lobe: SunLobe::find(scene, &lights),
-    };
-    let cam = RenderCamera::new(&r.rig.left, scene.origin_world);
-    let key = StreamKey {
-        seed,
-        frame: 0,
-        view: 0,
-    };
-    let (w, h) = (W as usize, H as usize);
-    let mut film = Film::new(w, h);
-    let mut fog = FogLayer::new(w, h);
-    for j in 0..H {
-        for i in 0..W {
-            let (mut l, mut l_fog, mut opacity) = (Vec3::ZERO, Vec3::ZERO, 0.0f32);
-            let (mut l_sf, mut rho) = (Vec3::ZERO, Vec3::ZERO);
-            let mut rays = 0;
-            for s in 0..spp {
-                let mut stream = SampleStream::new(key, i, j, s);
-                let ray = cam.jittered_ray(i, j, &mut stream);
-                let li = ctx.li_from_hit(ray, shading.intersect(&ray), &mut stream, &mut rays);
-                assert!(
-                    li.l.is_finite(),
-                    "non-finite sample {s} at pixel ({i}, {j})"
-                );
-                l += li.l;
-                l_fog += li.l_fog;
-                opacity += li.opacity;
-                l_sf += li.l_surf_fog;
-                rho += li.rho;
-            }
-            let k = j as usize * w + i as usize;
-            let n = spp as f32;
-            (film.rgb[k], fog.l_fog[k], fog.opacity[k]) = (l / n, l_fog / n, opacity / n);
-            (fog.l_surf_fog[k], fog.rho[k]) = (l_sf / n, rho / n);
-        }
-    }
-    (film, fog)
-}
-
 #[test]
 fn filter_off_and_on_are_functions_of_the_samples() {
     // Off must equal the per-sample estimate bit for bit; on must equal the
@@ -223,19 +167,19 @@ fn filter_off_and_on_are_functions_of_the_samples() {
     // single-ray one).
     let off = render_body(STEP, 4, 9, false, Backend::Bvh);
     let on = render_body(STEP, 4, 9, true, Backend::Bvh);
-    let (film_off, _) = rebuild_left(&off, 4, 9);
+    let (film_off, _) = rebuild_left(&off, 4, 9, 8);
     assert_eq!(
         off.out.images[0], film_off,
         "filter off is the plain estimate"
     );
-    let (mut film, fog) = rebuild_left(&on, 4, 9);
+    let (mut film, fog) = rebuild_left(&on, 4, 9, 8);
     assert!(!fog.is_empty(), "the fog carries first-scatter light");
     assert!(
-        fog.l_surf_fog.iter().any(|l| l.y > 0.0),
+        fog.l_surf.iter().any(|l| l.y > 0.0),
         "the fog lights the walls"
     );
     let cam = RenderCamera::new(&on.rig.left, on.scene.origin_world);
-    filter_view_inscatter(&on.scene, &cam, &on.out.left.depth_z_f32(), &mut film, &fog);
+    filter_view(&on.scene, &cam, &on.out.left.depth_z_f32(), &mut film, &fog);
     assert_eq!(on.out.images[0], film, "filter on is the filtered estimate");
     assert_ne!(on.out.images[0], off.out.images[0]);
 }
@@ -310,14 +254,14 @@ fn ground_body(albedo: [f32; 2]) -> String {
 /// The left view of `r` rebuilt at `spp` with seed `seed`, filtered with
 /// the fog component only (`rho` zeroed) and with both components.
 fn fog_only_and_both(r: &Rendered, spp: u32, seed: u64) -> (Film, Film, FogLayer) {
-    let (film, fog) = rebuild_left(r, spp, seed);
+    let (film, fog) = rebuild_left(r, spp, seed, 8);
     let cam = RenderCamera::new(&r.rig.left, r.scene.origin_world);
     let depth = r.out.left.depth_z_f32();
     let mut fog_only = fog.clone();
     fog_only.rho.fill(Vec3::ZERO);
     let (mut a, mut b) = (film.clone(), film);
-    filter_view_inscatter(&r.scene, &cam, &depth, &mut a, &fog_only);
-    filter_view_inscatter(&r.scene, &cam, &depth, &mut b, &fog);
+    filter_view(&r.scene, &cam, &depth, &mut a, &fog_only);
+    filter_view(&r.scene, &cam, &depth, &mut b, &fog);
     (a, b, fog)
 }
 
@@ -362,7 +306,7 @@ fn surface_fog_filtered_mean_equals_unfiltered_mean() {
         let (a, b, fog) = fog_only_and_both(&r, 8, seed);
         diffs.extend(a.rgb.iter().zip(&b.rgb).map(|(a, b)| (b.y - a.y) as f64));
         m_a += a.rgb.iter().map(|c| c.y as f64).sum::<f64>();
-        component += fog.l_surf_fog.iter().map(|c| c.y as f64).sum::<f64>();
+        component += fog.l_surf.iter().map(|c| c.y as f64).sum::<f64>();
     }
     let n = diffs.len() as f64;
     let (bias, se) = mean_stderr(&diffs);
@@ -425,7 +369,7 @@ fn checker_ground_keeps_its_contrast_under_the_surface_fog_filter() {
     let r = render_body(&body, 0, 1, true, Backend::Bvh);
     let ground = ground_pixels(&r);
     let (_, both, _) = fog_only_and_both(&r, 16, 2);
-    let (plain, _) = rebuild_left(&r, 64, 3);
+    let (plain, _) = rebuild_left(&r, 64, 3, 8);
     let contrast = |f: &Film| {
         let mean = |p: i64| {
             let v: Vec<f64> = ground

@@ -31,8 +31,8 @@ pub struct FogLayer {
     /// Mean opacity 1 − Tr of the samples' first segments per pixel, in [0, 1].
     pub opacity: Vec<f32>,
     /// Mean fog light on the first (Lambertian) surface per pixel
-    /// (`LiSample::l_surf_fog`, part of the film's radiance).
-    pub l_surf_fog: Vec<Vec3>,
+    /// (`LiSample::l_surf`, part of the film's radiance).
+    pub l_surf: Vec<Vec3>,
     /// Mean throughput × albedo at the first surface per pixel (`LiSample::rho`).
     pub rho: Vec<Vec3>,
 }
@@ -45,7 +45,7 @@ impl FogLayer {
             height,
             l_fog: vec![Vec3::ZERO; width * height],
             opacity: vec![0.0; width * height],
-            l_surf_fog: vec![Vec3::ZERO; width * height],
+            l_surf: vec![Vec3::ZERO; width * height],
             rho: vec![Vec3::ZERO; width * height],
         }
     }
@@ -54,7 +54,7 @@ impl FogLayer {
     pub fn is_empty(&self) -> bool {
         self.opacity.iter().all(|&o| o == 0.0)
             && self.l_fog.iter().all(|&l| l == Vec3::ZERO)
-            && self.l_surf_fog.iter().all(|&l| l == Vec3::ZERO)
+            && self.l_surf.iter().all(|&l| l == Vec3::ZERO)
             && self.rho.iter().all(|&r| r == Vec3::ZERO)
     }
 }
@@ -94,6 +94,16 @@ impl FogFilter {
             sigma_depth_rel: 0.3,
         }
     }
+
+    /// [`FogFilter::for_width`] with the narrower spatial σ for indirect
+    /// light on the first surface of a medium-free scene (only the surface
+    /// component has anything to filter there).
+    pub fn indirect_for_width(width: usize) -> FogFilter {
+        FogFilter {
+            sigma_px: (width as f32 / 160.0 * INDIRECT_SIGMA_PX_AT_160).max(1.0),
+            ..FogFilter::for_width(width)
+        }
+    }
 }
 
 /// Spatial σ at 160 pixels across (the tuning images' width): in the foggy
@@ -101,11 +111,18 @@ impl FogFilter {
 /// the rest of the error is the surfaces' own noise.
 const SIGMA_PX_AT_160: f32 = 2.0;
 
+/// Spatial σ at 160 pixels across for indirect light on the first surface
+/// of a medium-free scene: in the clear street at 16 spp (400×225, against
+/// 1024 spp) the median relative error of its darkest 30 % of pixels falls
+/// from 0.26 to 0.098 at this σ and to 0.097 at twice it, which leaks 0.6 %
+/// more light into those shadows.
+const INDIRECT_SIGMA_PX_AT_160: f32 = 1.0;
+
 /// Replaces the first-scatter part of every pixel of `film` by its
 /// filtered estimate: `film = film − fog.l_fog + fog.opacity · S̃`. Pixels
 /// whose neighbourhood has no opacity keep their radiance. Then the same
 /// for the fog light on the first surface (`surface.rs`):
-/// `film −= l_surf_fog − rho · Ẽ`. Preconditions: `fog` and `guide` match
+/// `film −= l_surf − rho · Ẽ`. Preconditions: `fog` and `guide` match
 /// `film`'s size (`guide.normal` may be empty).
 pub fn filter_fog(film: &mut Film, fog: &FogLayer, guide: &FogGuide<'_>, filter: &FogFilter) {
     let (w, h) = (film.width, film.height);

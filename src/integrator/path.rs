@@ -238,6 +238,9 @@ pub(super) struct PathState {
     pub prev_p: Vec3,
     /// Scattering events so far.
     pub bounces: u32,
+    /// Throughput × albedo at a Lambertian first vertex, where the scene
+    /// filters indirect light (else zero): `LiSample::rho`.
+    pub rho: Vec3,
 }
 
 impl PathState {
@@ -250,6 +253,7 @@ impl PathState {
             prev_delta: true,
             prev_p: o,
             bounces: 0,
+            rho: Vec3::ZERO,
         }
     }
 
@@ -280,12 +284,16 @@ pub struct LiSample {
     /// without a scattering medium): `l_fog / opacity` is the mean radiance
     /// scattered toward the camera along that segment.
     pub opacity: f32,
-    /// The part whose first event is a Lambertian surface vertex x1 and
-    /// whose next event after x1 is a medium scatter: fog light on the
-    /// first surface (zero unless the fog filter splits the camera ray).
-    pub l_surf_fog: Vec3,
+    /// The part filtered over the first surface x1, when x1 is Lambertian:
+    /// with a fog filter, the light whose next event after x1 is a medium
+    /// scatter (fog light on the first surface); in a medium-free scene
+    /// that filters indirect light (`Scene::filter_indirect`), all the
+    /// light x1 reflects except its own emission and next-event estimates
+    /// (sky and indirect light). Zero otherwise.
+    pub l_surf: Vec3,
     /// Throughput at x1 times x1's albedo (zero when x1 is missing or not
-    /// Lambertian): `l_surf_fog / rho` is the fog-scattered irradiance / π.
+    /// Lambertian, or nothing is filtered): `l_surf / rho` is the filtered
+    /// light's irradiance / π, smooth over a surface and free of texture.
     pub rho: Vec3,
 }
 
@@ -377,9 +385,13 @@ impl<A: Accel> PathContext<'_, A> {
             pending.resolve(self.accel, &mut st.l);
             return LiSample {
                 l: st.l,
+                rho: st.rho,
                 ..LiSample::default()
             };
         };
+        // The radiance once the first vertex's own light is in: what
+        // follows is its indirect part (`LiSample::l_surf`).
+        let mut l_first = None;
         loop {
             *rays += 1;
             let hit = self.accel.intersect(&ray);
@@ -392,6 +404,7 @@ impl<A: Accel> PathContext<'_, A> {
             }
             // The previous vertex's shadow rays, while the record loads.
             pending.resolve(self.accel, &mut st.l);
+            l_first.get_or_insert(st.l);
             let Some(hit) = hit else {
                 st.l += st.beta
                     * self
@@ -408,8 +421,14 @@ impl<A: Accel> PathContext<'_, A> {
                 }
             }
         }
+        let l_surf = match l_first {
+            Some(l_first) if st.rho != Vec3::ZERO => st.l - l_first,
+            _ => Vec3::ZERO,
+        };
         LiSample {
             l: st.l,
+            l_surf,
+            rho: st.rho,
             ..LiSample::default()
         }
     }
@@ -472,6 +491,11 @@ impl<A: Accel> PathContext<'_, A> {
         if is_two_sided(&bsdf) && !front {
             si.n_geo = -si.n_geo;
             si.n_shading = -si.n_shading;
+        }
+        if st.bounces == 0 && scene.filter_indirect {
+            if let Bsdf::Lambert { albedo } = bsdf {
+                st.rho = st.beta * albedo;
+            }
         }
         let frame = Frame::from_z(si.n_shading);
         let vertex = Vertex {

@@ -51,7 +51,7 @@ mod surf_fog;
 #[cfg(test)]
 mod tests;
 
-pub use guide::{centre_normals, centre_opacity, filter_view_inscatter};
+pub use guide::{centre_normals, centre_opacity, filter_view};
 
 /// First 4D set of the sun-lobe dimensions (two sets per bounce, above
 /// every segment's volume dimensions).
@@ -119,7 +119,7 @@ impl<A: Accel> PathContext<'_, A> {
         let mut opacity = 0.0;
         let mut surf_fog = surf_fog::SurfFog::default();
         let mut rho_split = Vec3::ZERO;
-        let mut l_surf_fog_split = Vec3::ZERO;
+        let mut l_surf_split = Vec3::ZERO;
         loop {
             let first_segment = st.bounces == 0;
             let after_x1 = surf_fog.segment_start(st.l);
@@ -198,7 +198,7 @@ impl<A: Accel> PathContext<'_, A> {
                         // expected weight Tr, the fog's as drawn.
                         let beta_surf = st.beta * seg.tr_seg;
                         let li = self.trace(ray, hit, stream, rays, strategies, Some(beta_surf));
-                        (l_split, rho_split, l_surf_fog_split) = (li.l, li.rho, li.l_surf_fog);
+                        (l_split, rho_split, l_surf_split) = (li.l, li.rho, li.l_surf);
                     } else if split {
                         st.beta *= seg.tr_seg;
                     }
@@ -255,7 +255,7 @@ impl<A: Accel> PathContext<'_, A> {
             l: st.l + l_split,
             l_fog: l_fog_passed.unwrap_or(st.l),
             opacity,
-            l_surf_fog: surf_fog.l_surf_fog(st.l) + l_surf_fog_split,
+            l_surf: surf_fog.l_surf(st.l) + l_surf_split,
             rho: surf_fog.rho + rho_split,
         }
     }

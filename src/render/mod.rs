@@ -180,16 +180,15 @@ pub fn render_frame(
                 rays,
                 non_finite,
             } = render_view(&ctx, cam, key, settings.spp);
-            // Fog in-scattering filtered per view, guided by this view's
-            // exact pixel-centre depth (left, or baseline b's right view).
+            // Fog light, or indirect light on first surfaces, filtered per
+            // view, guided by this view's exact pixel-centre depth (left, or
+            // baseline b's right view).
             if let Some(fog) = fog {
                 let depth_z = match view {
                     0 => left.depth_z_f32(),
                     v => baselines[v - 1].depth_right.clone(),
                 };
-                crate::integrator::volpath::filter_view_inscatter(
-                    scene, cam, &depth_z, &mut film, &fog,
-                );
+                crate::integrator::volpath::filter_view(scene, cam, &depth_z, &mut film, &fog);
             }
             stats.path_rays += rays;
             stats.non_finite_samples += non_finite;
@@ -239,13 +238,13 @@ struct ChunkScratch {
 }
 
 /// Per pixel, the fog filter's inputs: (mean l_fog, mean first-segment
-/// opacity, mean l_surf_fog, mean rho).
+/// opacity, mean l_surf, mean rho).
 type FogMeans = (Vec3, f32, Vec3, Vec3);
 
-/// One tile's pixel means in raster order: the radiance, and the fog
-/// filter's inputs (`Some` only where the scene filters fog). Those are 40
-/// of a pixel's 52 bytes (58 MB a view at 1600×900, and as much again in
-/// the view's `FogLayer`), all zero without fog.
+/// One tile's pixel means in raster order: the radiance, and the image
+/// filter's inputs (`Some` only where the scene filters fog or indirect
+/// light). Those are 40 of a pixel's 52 bytes (58 MB a view at 1600×900,
+/// and as much again in the view's `FogLayer`).
 struct TileMeans {
     rgb: Vec<Vec3>,
     fog: Option<Vec<FogMeans>>,
@@ -258,8 +257,8 @@ struct TileMeans {
 /// One path-traced view.
 struct ViewRender {
     film: Film,
-    /// The first-scatter part of its radiance (the fog filter's input;
-    /// `None` where the scene filters no fog).
+    /// The parts of its radiance the image filter treats (`None` where the
+    /// scene filters neither fog nor indirect light).
     fog: Option<FogLayer>,
     /// Rays traced.
     rays: u64,
@@ -284,7 +283,7 @@ fn render_view<A: Accel>(
     let (w, h) = (cam.intrinsics.width, cam.intrinsics.height);
     let tiles_x = w.div_ceil(TILE_PX);
     let n_tiles = tiles_x * h.div_ceil(TILE_PX);
-    let keep_fog = ctx.scene.filter_inscatter;
+    let keep_fog = ctx.scene.filter_inscatter || ctx.scene.filter_indirect;
     let tiles: Vec<TileMeans> = (0..n_tiles)
         .into_par_iter()
         .with_max_len(1) // tiles differ in cost (sky vs street): balance per tile
@@ -324,7 +323,7 @@ fn render_view<A: Accel>(
             let means = &means[row * tw..(row + 1) * tw];
             for (k, &(l_fog, opacity, l_sf, rho)) in (start..start + tw).zip(means) {
                 (fog.l_fog[k], fog.opacity[k]) = (l_fog, opacity);
-                (fog.l_surf_fog[k], fog.rho[k]) = (l_sf, rho);
+                (fog.l_surf[k], fog.rho[k]) = (l_sf, rho);
             }
         }
     }
@@ -391,7 +390,7 @@ fn render_chunk<A: Accel>(
     let mut starts = scratch.starts.drain(..);
     for stream_px in scratch.streams.chunks_mut(spp as usize) {
         let (mut sum, mut fog, mut opacity) = (Vec3::ZERO, Vec3::ZERO, 0.0f32);
-        let (mut surf_fog, mut rho) = (Vec3::ZERO, Vec3::ZERO);
+        let (mut surf, mut rho) = (Vec3::ZERO, Vec3::ZERO);
         // The pixel's streams lead the zip: it must not pull a start too many.
         for (stream, start) in stream_px.iter_mut().zip(starts.by_ref()) {
             let li = ctx.finish_path(start, stream, &mut out.rays);
@@ -400,7 +399,7 @@ fn render_chunk<A: Accel>(
                 sum += li.l;
                 fog += li.l_fog;
                 opacity += li.opacity;
-                surf_fog += li.l_surf_fog;
+                surf += li.l_surf;
                 rho += li.rho;
             } else {
                 out.non_finite += 1;
@@ -409,7 +408,7 @@ fn render_chunk<A: Accel>(
         let n = spp as f32;
         out.rgb.push(sum / n);
         if let Some(means) = out.fog.as_mut() {
-            means.push((fog / n, opacity / n, surf_fog / n, rho / n));
+            means.push((fog / n, opacity / n, surf / n, rho / n));
         }
     }
 }

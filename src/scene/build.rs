@@ -157,6 +157,7 @@ pub fn build_scene(scene: &LoadedScene, origin_world: DVec3) -> Result<Scene, Sc
             .medium
             .as_ref()
             .is_some_and(|m| m.filter_inscatter && m.albedo.iter().any(|&a| a > 0.0)),
+        filter_indirect: desc.render.filter_indirect && desc.medium.is_none(),
         rain: desc
             .rain
             .as_ref()

@@ -118,6 +118,10 @@ pub struct Scene {
     /// Whether renders filter the camera rays' in-scattered radiance
     /// (`MediumDesc::filter_inscatter`; false without a scattering medium).
     pub filter_inscatter: bool,
+    /// Whether renders filter the light Lambertian first surfaces reflect
+    /// beyond their next-event estimates (`RenderDesc::filter_indirect`;
+    /// false in scenes with a medium, whose paths take the volumetric loop).
+    pub filter_indirect: bool,
     /// Rain field centred on the rig; its `seed` is set per frame by the
     /// renderer (`Rain { seed, ..rain }`). None: no rain.
     pub rain: Option<shaders_cpu::medium::Rain>,

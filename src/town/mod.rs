@@ -233,6 +233,7 @@ pub fn town_scene(desc: &TownDesc, seed: u64, frame: u64, config: CameraConfig) 
             spp: 16,
             max_depth: 5,
             seed: Some(seed),
+            filter_indirect: true,
         },
         sky: Some(materials::town_sky(desc)),
         medium: None,

@@ -6,9 +6,17 @@ pub mod towns;
 
 use std::path::Path;
 
-use parallax::accel::{build_accel, AnyAccel, Backend};
+use glam::Vec3;
+use parallax::accel::{build_accel, Accel, AnyAccel, Backend, ShadingAccel};
 use parallax::camera::StereoRig;
+use parallax::film::{Film, FogLayer};
+use parallax::geometry::SurfaceTable;
+use parallax::integrator::path::PathContext;
+use parallax::integrator::volpath::SunLobe;
+use parallax::integrator::RenderCamera;
+use parallax::light::LightSet;
 use parallax::render::{render_frame, FrameOutput, RenderSettings};
+use parallax::sampler::{SampleStream, StreamKey};
 use parallax::scene::{build_scene, parse_scene_str, LoadedScene, Scene};
 
 /// Parses an inline scene (OBJ paths resolve against `tests/`).
@@ -57,6 +65,60 @@ pub fn render(loaded: &LoadedScene, backend: Backend, spp: u32) -> Rendered {
         accel,
         out,
     }
+}
+
+/// The left view of `r` rebuilt sample by sample from `PathContext::li`
+/// with the frame's streams (`spp`, `seed`, `max_depth`): the plain film and
+/// the image filter's layer (fog light, light on the first surface).
+pub fn rebuild_left(r: &Rendered, spp: u32, seed: u64, max_depth: u32) -> (Film, FogLayer) {
+    let scene = &r.scene;
+    let lights = LightSet::build(scene);
+    let surfaces = SurfaceTable::build(scene);
+    let shading = ShadingAccel(&r.accel);
+    let ctx = PathContext {
+        scene,
+        accel: &shading,
+        lights: &lights,
+        surfaces: &surfaces,
+        max_depth,
+        sun_lobe: SunLobe::find(scene, &lights),
+    };
+    let cam = RenderCamera::new(&r.rig.left, scene.origin_world);
+    let key = StreamKey {
+        seed,
+        frame: 0,
+        view: 0,
+    };
+    let (wu, hu) = (r.rig.left.intrinsics.width, r.rig.left.intrinsics.height);
+    let (w, h) = (wu as usize, hu as usize);
+    let mut film = Film::new(w, h);
+    let mut fog = FogLayer::new(w, h);
+    for j in 0..hu {
+        for i in 0..wu {
+            let (mut l, mut l_fog, mut opacity) = (Vec3::ZERO, Vec3::ZERO, 0.0f32);
+            let (mut l_sf, mut rho) = (Vec3::ZERO, Vec3::ZERO);
+            let mut rays = 0;
+            for s in 0..spp {
+                let mut stream = SampleStream::new(key, i, j, s);
+                let ray = cam.jittered_ray(i, j, &mut stream);
+                let li = ctx.li_from_hit(ray, shading.intersect(&ray), &mut stream, &mut rays);
+                assert!(
+                    li.l.is_finite(),
+                    "non-finite sample {s} at pixel ({i}, {j})"
+                );
+                l += li.l;
+                l_fog += li.l_fog;
+                opacity += li.opacity;
+                l_sf += li.l_surf;
+                rho += li.rho;
+            }
+            let k = j as usize * w + i as usize;
+            let n = spp as f32;
+            (film.rgb[k], fog.l_fog[k], fog.opacity[k]) = (l / n, l_fog / n, opacity / n);
+            (fog.l_surf[k], fog.rho[k]) = (l_sf / n, rho / n);
+        }
+    }
+    (film, fog)
 }
 
 /// A camera block for a level rig at `position` looking along +x.

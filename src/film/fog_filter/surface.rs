@@ -1,14 +1,18 @@
 //! The second component of the fog filter: fog light on the first surface
-//! (`FogLayer::l_surf_fog`, paths camera → Lambertian x1 → medium scatter).
+//! (`FogLayer::l_surf`, paths camera → Lambertian x1 → medium scatter).
 //! Its mean is rho·E with rho = throughput × albedo at x1 (texture included)
 //! and E the fog-scattered irradiance / π, smooth over a surface; per pixel
-//! Ẽ = Σw·l_surf_fog / Σw·rho per channel and pixel = L − l_surf_fog + rho·Ẽ,
+//! Ẽ = Σw·l_surf / Σw·rho per channel and pixel = L − l_surf + rho·Ẽ,
 //! so texture and the first segment's Tr stay exact per pixel. Range
-//! weights: relative depth_z, the pixel-centre normal, never sky.
+//! weights: relative depth_z, the pixel-centre normal, never sky. The same
+//! component carries indirect light in medium-free scenes
+//! (`LiSample::l_surf`). Fireflies (`FIREFLY_RATIO`) are left out of the
+//! sums and keep their own radiance.
 
 use std::ops::{Add, Div, Mul};
 
 use glam::Vec3;
+use rayon::prelude::*;
 
 use super::{
     atrous_levels, atrous_pass, ln_depth, soft_gaussian, Axis, FogFilter, FogGuide, FogLayer,
@@ -18,7 +22,16 @@ use crate::film::Film;
 /// Range σ on |Δn| between unit pixel-centre normals (about 17° at 1σ).
 const SIGMA_NORMAL: f32 = 0.3;
 
-/// Replaces `l_surf_fog` in `film` by its filtered estimate; pixels with no
+/// A pixel whose filtered light per unit albedo exceeds this multiple of
+/// the median over its neighbourhood is a firefly (a rare path to a bright
+/// source through glass or metal): spread by the kernel it would become a
+/// bright blob, so it is left out of every neighbour's sum and keeps its
+/// own radiance, one speck as traced.
+const FIREFLY_RATIO: f32 = 6.0;
+/// Half-width in pixels of the firefly test's square neighbourhood.
+const FIREFLY_RADIUS: usize = 2;
+
+/// Replaces `l_surf` in `film` by its filtered estimate; pixels with no
 /// rho in their neighbourhood (per channel) keep their radiance.
 pub(super) fn filter_surface_fog(
     film: &mut Film,
@@ -29,7 +42,7 @@ pub(super) fn filter_surface_fog(
     let (w, h) = (film.width, film.height);
     let n = w * h;
     assert!(
-        fog.l_surf_fog.len() == n && fog.rho.len() == n,
+        fog.l_surf.len() == n && fog.rho.len() == n,
         "surface fog layer size does not match the film"
     );
     if fog.rho.iter().all(|&r| r == Vec3::ZERO) {
@@ -39,11 +52,15 @@ pub(super) fn filter_surface_fog(
     let keys: Vec<SurfKey> = (0..n)
         .map(|k| SurfKey::new(guide.depth_z[k], normal(k)))
         .collect();
+    let firefly = fireflies(&fog.l_surf, &fog.rho, (w, h));
+    // A firefly's pair is zero: it adds to neither sum of a neighbour's
+    // ratio (the weights cancel in the ratio).
     let mut cur: Vec<Pair> = fog
-        .l_surf_fog
+        .l_surf
         .iter()
         .zip(&fog.rho)
-        .map(|(&l, &rho)| Pair { l, rho })
+        .zip(&firefly)
+        .map(|((&l, &rho), &f)| if f { Pair::default() } else { Pair { l, rho } })
         .collect();
     let mut tmp = vec![Pair::default(); n];
     let inv_rel2 = 1.0 / filter.sigma_depth_rel.max(1e-6).powi(2);
@@ -56,16 +73,45 @@ pub(super) fn filter_surface_fog(
     }
     for (k, px) in film.rgb.iter_mut().enumerate() {
         let (s, rho) = (cur[k], fog.rho[k]);
-        if rho == Vec3::ZERO {
+        if rho == Vec3::ZERO || firefly[k] {
             continue;
         }
         for c in 0..3 {
             // Below this the ratio is noise over nothing.
             if s.rho[c] > 1e-7 {
-                px[c] += rho[c] * (s.l[c] / s.rho[c]) - fog.l_surf_fog[k][c];
+                px[c] += rho[c] * (s.l[c] / s.rho[c]) - fog.l_surf[k][c];
             }
         }
     }
+}
+
+/// Per pixel (row-major), whether its light per unit albedo, summed over
+/// channels, exceeds `FIREFLY_RATIO` times the median of that ratio over
+/// the pixels within `FIREFLY_RADIUS` that have a rho (itself included).
+fn fireflies(l: &[Vec3], rho: &[Vec3], (w, h): (usize, usize)) -> Vec<bool> {
+    let ratio: Vec<Option<f32>> = l
+        .iter()
+        .zip(rho)
+        .map(|(l, r)| (r.element_sum() > 0.0).then(|| l.element_sum() / r.element_sum()))
+        .collect();
+    (0..w * h)
+        .into_par_iter()
+        .map_init(Vec::new, |window: &mut Vec<f32>, k| {
+            let Some(e) = ratio[k].filter(|&e| e > 0.0) else {
+                return false;
+            };
+            let (i, j) = (k % w, k / w);
+            window.clear();
+            for jj in j.saturating_sub(FIREFLY_RADIUS)..(j + FIREFLY_RADIUS + 1).min(h) {
+                let row = &ratio[jj * w..(jj + 1) * w];
+                let cols = i.saturating_sub(FIREFLY_RADIUS)..(i + FIREFLY_RADIUS + 1).min(w);
+                window.extend(row[cols].iter().flatten());
+            }
+            let mid = window.len() / 2;
+            let (_, median, _) = window.select_nth_unstable_by(mid, f32::total_cmp);
+            e > FIREFLY_RATIO * *median
+        })
+        .collect()
 }
 
 /// The filtered pair: fog light on the surface and its rho.

@@ -3,7 +3,7 @@
 //! pixel-centre convention as `gt.rs`: u = i + 0.5, v = j + 0.5, camera
 //! z = depth_z), so the filter groups pixels by how much fog they look through;
 //! and pixel-centre normals from that depth, which keep the fog light on the
-//! first surface (`LiSample::l_surf_fog`) from mixing across creases.
+//! first surface (`LiSample::l_surf`) from mixing across creases.
 
 use glam::Vec3;
 use rayon::prelude::*;
@@ -38,11 +38,13 @@ pub fn centre_opacity(scene: &Scene, cam: &RenderCamera, depth_z: &[f32]) -> Vec
         .collect()
 }
 
-/// Filters the fog in-scattering of one rendered view in place
-/// (`film::filter_fog` with the default widths for its size, both
-/// components), guided by the view's exact pixel-centre `depth_z`, the
-/// opacity along those rays and the normals the depth implies.
-pub fn filter_view_inscatter(
+/// Filters one rendered view's smooth light in place (`film::filter_fog`,
+/// both components: fog in-scattering, and the light on the first surface
+/// that `LiSample::l_surf` holds), guided by the view's exact pixel-centre
+/// `depth_z`, the opacity along those rays and the normals the depth
+/// implies. Widths: the fog filter's defaults for the view's size, or the
+/// narrower indirect-light ones in a scene without a medium.
+pub fn filter_view(
     scene: &Scene,
     cam: &RenderCamera,
     depth_z: &[f32],
@@ -56,7 +58,11 @@ pub fn filter_view_inscatter(
         opacity: &opacity,
         normal: &normal,
     };
-    filter_fog(film, fog, &guide, &FogFilter::for_width(film.width));
+    let widths = match scene.medium {
+        Some(_) => FogFilter::for_width(film.width),
+        None => FogFilter::indirect_for_width(film.width),
+    };
+    filter_fog(film, fog, &guide, &widths);
 }
 
 /// Unit camera-space normals of the pixel-centre surfaces from `depth_z`

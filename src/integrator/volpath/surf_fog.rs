@@ -1,8 +1,8 @@
-//! Bookkeeping of `LiSample::l_surf_fog` (issue 4): the part of a split
+//! Bookkeeping of `LiSample::l_surf` (issue 4): the part of a split
 //! camera sample whose first event is a Lambertian surface vertex x1 and
 //! whose next event is a medium scatter. Its mean is β(x1)·ρ(x1)·E_fog/π
 //! with E_fog the fog-scattered irradiance at x1, smooth over surfaces, so
-//! `film::filter_surface_fog` filters the ratio l_surf_fog / (β·ρ).
+//! `film::filter_surface_fog` filters the ratio l_surf / (β·ρ).
 
 use glam::Vec3;
 
@@ -50,7 +50,7 @@ impl SurfFog {
     }
 
     /// The fog light on x1 given the path's final radiance `l`.
-    pub fn l_surf_fog(&self, l: Vec3) -> Vec3 {
+    pub fn l_surf(&self, l: Vec3) -> Vec3 {
         self.from.map_or(Vec3::ZERO, |a| self.to.unwrap_or(l) - a)
     }
 }

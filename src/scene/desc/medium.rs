@@ -53,7 +53,10 @@ pub struct MediumDesc {
     /// at weight Tr rather than by a collide-or-pass choice (default true:
     /// far less grain at equal time; false gives the plain path-traced
     /// image bit for bit). Ground truth is never filtered.
-    #[serde(default = "default_true", skip_serializing_if = "is_true")]
+    #[serde(
+        default = "super::default_true",
+        skip_serializing_if = "super::is_true"
+    )]
     pub filter_inscatter: bool,
 }
 
@@ -94,12 +97,6 @@ pub struct RainDesc {
 
 fn default_albedo() -> [f64; 3] {
     [0.99; 3]
-}
-fn default_true() -> bool {
-    true
-}
-fn is_true(b: &bool) -> bool {
-    *b
 }
 fn default_g() -> f64 {
     0.85

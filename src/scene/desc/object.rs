@@ -120,7 +120,7 @@ pub enum ShapeDesc {
         #[serde(default = "default_segments")]
         segments: u32,
         /// Whether the ends are closed by disks (default true).
-        #[serde(default = "default_true")]
+        #[serde(default = "super::default_true")]
         capped: bool,
     },
     /// A tessellated ellipsoid centred at the origin.
@@ -180,7 +180,4 @@ fn default_segments() -> u32 {
 }
 fn default_rings() -> u32 {
     16
-}
-fn default_true() -> bool {
-    true
 }
