@@ -75,6 +75,11 @@ pub struct RenderArgs {
     /// turns a preset's noise off.
     #[arg(long, value_name = "ISO")]
     pub sensor_noise: Option<f64>,
+    /// Write the plain path-traced images: no image-space filter of sky and
+    /// indirect light or of fog light (the scene's `filter_indirect` and
+    /// `filter_inscatter` turned off, a weather preset's included).
+    #[arg(long)]
+    pub no_filter: bool,
 }
 
 /// Applies command-line overrides to the loaded description and validates them.
@@ -163,6 +168,9 @@ pub fn run(a: RenderArgs) -> Result<(), CliError> {
     let mut weather = a.weather.map(|w| crate::weather::draw_params(w, seed));
     if let Some(p) = &weather {
         crate::weather::apply(&mut loaded.desc, p);
+    }
+    if a.no_filter {
+        loaded.desc.turn_image_filters_off();
     }
     let noise = sensor_noise(a.sensor_noise, weather.as_mut())?;
     let pool = thread_pool(a.threads)?;

@@ -64,6 +64,12 @@ pub struct DatasetConfig {
     /// Also write linear HDR radiance EXRs in the native layout (default false).
     #[serde(default)]
     pub hdr: bool,
+    /// Filter sky and indirect light (and fog light) in image space, guided
+    /// by the exact depth (`[render] filter_indirect`, `[medium]
+    /// filter_inscatter`; default true). false writes the plain path-traced
+    /// images. Ground truth is never filtered.
+    #[serde(default = "yes", skip_serializing_if = "is_yes")]
+    pub filter: bool,
 }
 
 fn all_configs() -> Vec<String> {
@@ -80,6 +86,12 @@ fn default_baselines() -> Vec<f64> {
 }
 fn one() -> u32 {
     1
+}
+fn yes() -> bool {
+    true
+}
+fn is_yes(b: &bool) -> bool {
+    *b
 }
 fn default_width() -> u32 {
     1600

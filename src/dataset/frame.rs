@@ -114,6 +114,9 @@ pub fn render_job(
         sequence_seed(config.seed, &job.town, job.weather, job.sequence),
     );
     crate::weather::apply(&mut loaded.desc, &weather);
+    if !config.filter {
+        loaded.desc.turn_image_filters_off();
+    }
     let rig = StereoRig::from_desc(&loaded.desc.camera);
     let scene = build_scene(&loaded, rig.left.center_world).map_err(|e| e.to_string())?;
     let accel = build_accel(backend, &scene.accel_geometry()).map_err(|e| e.to_string())?;

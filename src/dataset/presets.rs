@@ -38,6 +38,7 @@ pub fn demo() -> DatasetConfig {
         max_depth: 3,
         layouts: vec!["native".into()],
         hdr: false,
+        filter: true,
     }
 }
 
@@ -66,6 +67,7 @@ pub fn stereocarla() -> DatasetConfig {
         max_depth: 5,
         layouts: vec!["native".into()],
         hdr: false,
+        filter: true,
     }
 }
 

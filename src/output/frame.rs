@@ -51,6 +51,10 @@ pub struct CameraFile {
     pub spp: u32,
     /// Maximum path depth.
     pub max_depth: u32,
+    /// Whether the images' smooth light was filtered in image space: sky
+    /// and indirect light on diffuse surfaces (`[render] filter_indirect`)
+    /// or fog light (`[medium] filter_inscatter`). Ground truth never is.
+    pub image_filter: bool,
     /// Semantic class table: (name, id).
     pub semantic_classes: Vec<(String, u8)>,
     /// Conventions, spelled out for readers of the file.
@@ -184,6 +188,7 @@ pub fn camera_file(
         frame: settings.frame,
         spp: settings.spp,
         max_depth: settings.max_depth,
+        image_filter: scene.filter_indirect || scene.filter_inscatter,
         semantic_classes: crate::scene::semantic::CLASSES
             .iter()
             .map(|(n, id)| (n.to_string(), *id))

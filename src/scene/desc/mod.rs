@@ -66,6 +66,17 @@ impl SceneDesc {
         serialize_scene(self)
     }
 
+    /// Turns every image-space filter off (`[render] filter_indirect`, and
+    /// `[medium] filter_inscatter` when there is a medium): the images are
+    /// then the plain path-traced estimate. Call it after any weather preset,
+    /// which brings its own medium.
+    pub fn turn_image_filters_off(&mut self) {
+        self.render.filter_indirect = false;
+        if let Some(m) = self.medium.as_mut() {
+            m.filter_inscatter = false;
+        }
+    }
+
     /// Checks the `[medium]`, `[rain]` and `[wetness]` sections (their
     /// checks live beside their descriptions); an error is (key, message).
     pub(crate) fn check_weather(&self) -> Result<(), (String, String)> {
