@@ -7,7 +7,9 @@
 //! only (pixel-centre opacity, relative depth_z, sky vs surface: a joint
 //! bilateral, Petschnigg et al. 2004), so both sums are filtered alike.
 //! The fog light on the first surface is filtered the same way as a ratio
-//! to the surface's albedo (`surface.rs`).
+//! to the surface's albedo (`surface.rs`); in medium-free scenes that
+//! component carries the first surface's sky and indirect light instead
+//! (`[render] filter_indirect`) and the first-scatter cascade is skipped.
 //! Row-major pixels (`Film`); fixed-order sums: same bytes on any thread count.
 
 use std::ops::{Add, Div, Mul};
@@ -121,8 +123,8 @@ const INDIRECT_SIGMA_PX_AT_160: f32 = 1.0;
 /// Replaces the first-scatter part of every pixel of `film` by its
 /// filtered estimate: `film = film − fog.l_fog + fog.opacity · S̃`. Pixels
 /// whose neighbourhood has no opacity keep their radiance. Then the same
-/// for the fog light on the first surface (`surface.rs`):
-/// `film −= l_surf − rho · Ẽ`. Preconditions: `fog` and `guide` match
+/// for the light on the first surface (`surface.rs`: fog light, or in a
+/// medium-free scene sky and indirect light): `film −= l_surf − rho · Ẽ`. Preconditions: `fog` and `guide` match
 /// `film`'s size (`guide.normal` may be empty).
 pub fn filter_fog(film: &mut Film, fog: &FogLayer, guide: &FogGuide<'_>, filter: &FogFilter) {
     let (w, h) = (film.width, film.height);
@@ -135,6 +137,18 @@ pub fn filter_fog(film: &mut Film, fog: &FogLayer, guide: &FogGuide<'_>, filter:
         guide.depth_z.len() == n && guide.opacity.len() == n,
         "guide size does not match the film"
     );
+    // Without first-scatter light (a medium-free scene filtering indirect
+    // light) every pixel would keep its radiance: skip the cascade.
+    if fog.opacity.iter().any(|&o| o != 0.0) || fog.l_fog.iter().any(|&l| l != Vec3::ZERO) {
+        filter_first_scatter(film, fog, guide, filter);
+    }
+    surface::filter_surface_fog(film, fog, guide, filter);
+}
+
+/// The first component of [`filter_fog`]: `film = film − l_fog + opacity · S̃`.
+fn filter_first_scatter(film: &mut Film, fog: &FogLayer, guide: &FogGuide<'_>, filter: &FogFilter) {
+    let n = film.width * film.height;
+    let (w, h) = (film.width, film.height);
     let keys: Vec<Key> = guide
         .depth_z
         .iter()
@@ -164,7 +178,6 @@ pub fn filter_fog(film: &mut Film, fog: &FogLayer, guide: &FogGuide<'_>, filter:
             *px = *px - fog.l_fog[k] + s.truncate() * (fog.opacity[k] / s.w);
         }
     }
-    surface::filter_surface_fog(film, fog, guide, filter);
 }
 
 /// The B3-spline taps of one à-trous level at offsets −2..=2 (Dammertz et al.
