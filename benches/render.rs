@@ -1,5 +1,6 @@
 //! Criterion benches on `scenes/street.toml`: the ground-truth pass (every view
-//! and baseline, no path pass) and path tracing of the left view at 1 spp.
+//! and baseline, no path pass) and path tracing of the left view at 1 spp,
+//! plain and with its image-space filter of sky and indirect light.
 //! Images are reduced so a run stays short; `parallax bench` reports full-size
 //! Mrays/s and the ratios to raw traversal.
 
@@ -15,6 +16,8 @@ fn street(c: &mut Criterion) {
     loaded.desc.camera.width = 400;
     loaded.desc.camera.height = 225;
     let rig = StereoRig::from_desc(&loaded.desc.camera);
+    let filtered = build_scene(&loaded, rig.left.center_world).expect("street builds");
+    loaded.desc.turn_image_filters_off();
     let scene = build_scene(&loaded, rig.left.center_world).expect("street builds");
     let accel = build_accel(Backend::default_backend(), &scene.accel_geometry()).expect("accel");
     let gt = RenderSettings {
@@ -35,6 +38,9 @@ fn street(c: &mut Criterion) {
     let path = RenderSettings { spp: 1, ..gt };
     group.bench_function("path_left_1spp_depth5", |b| {
         b.iter(|| render_frame(&scene, &accel, &left_only, &path, &|_, _| {}))
+    });
+    group.bench_function("path_left_1spp_depth5_filtered", |b| {
+        b.iter(|| render_frame(&filtered, &accel, &left_only, &path, &|_, _| {}))
     });
     group.finish();
 }

@@ -79,8 +79,11 @@ const MIN_GT_S: f64 = 1.0;
 pub fn run_bench(loaded: &LoadedScene, s: &BenchSettings) -> Result<BenchReport, SceneError> {
     let rig = StereoRig::from_desc(&loaded.desc.camera);
     let t = Instant::now();
-    let scene = build_scene(loaded, rig.left.center_world)?;
+    let mut scene = build_scene(loaded, rig.left.center_world)?;
     let scene_build_s = t.elapsed().as_secs_f64();
+    // The path figures are the path tracer's: image-space filtering is
+    // post-processing that none of the renderers compared with does.
+    (scene.filter_indirect, scene.filter_inscatter) = (false, false);
     let t = Instant::now();
     let accel = build_bench_accel(s, &scene.accel_geometry())
         .map_err(|e| SceneError::at(&loaded.path, SceneErrorKind::Resource, "", e.to_string()))?;
