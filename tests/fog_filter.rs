@@ -11,7 +11,7 @@
 
 mod common;
 
-use common::{camera_block, mean_stderr, rebuild_left, render, scene_from_toml, Rendered};
+use common::{ground_tile_pixels, mean_stderr, rebuild_left, render_inline, Rendered};
 use glam::Vec3;
 use parallax::accel::Backend;
 use parallax::film::{Film, FogLayer};
@@ -66,12 +66,7 @@ fn render_body(body: &str, spp: u32, seed: u64, filter: bool, backend: Backend) 
     } else {
         "filter_inscatter = false\n"
     };
-    let text = format!(
-        "{}baselines_cm = [54.0]\n[render]\nspp = {}\nmax_depth = 8\nseed = {seed}\n{body}{key}",
-        camera_block(W, H, [0.0, 0.0, 1.5]),
-        spp.max(1)
-    );
-    render(&scene_from_toml(&text), backend, spp)
+    render_inline(&format!("{body}{key}"), (W, H), (spp, seed, 8), "", backend)
 }
 
 fn green(r: &Rendered) -> Vec<f64> {
@@ -266,34 +261,9 @@ fn fog_only_and_both(r: &Rendered, spp: u32, seed: u64) -> (Film, Film, FogLayer
 }
 
 /// Ground pixels of the left view (depth < 60 m) as (index, tile parity),
-/// those whose 4 neighbours lie on the same tile only.
+/// those whose 4 neighbours lie on tiles of the same parity.
 fn ground_pixels(r: &Rendered) -> Vec<(usize, i64)> {
-    let cam = RenderCamera::new(&r.rig.left, r.scene.origin_world);
-    let (w, h) = (W as usize, H as usize);
-    let z = &r.out.left.depth_z;
-    let parity = |i: usize, j: usize| -> Option<i64> {
-        let zz = z[j * w + i];
-        if !zz.is_finite() || zz > 60.0 {
-            return None;
-        }
-        let p = r.scene.origin_world + cam.center + cam.dir(i as f64 + 0.5, j as f64 + 0.5) * zz;
-        (p.z.abs() < 0.05 && (2.0..42.0).contains(&p.x) && p.y.abs() < 16.0).then(|| {
-            (((p.x - 2.0) / 4.0).floor() as i64 + ((p.y + 16.0) / 4.0).floor() as i64).rem_euclid(2)
-        })
-    };
-    let mut out = Vec::new();
-    for j in 1..h - 1 {
-        for i in 1..w - 1 {
-            let Some(c) = parity(i, j) else { continue };
-            let same = [(i - 1, j), (i + 1, j), (i, j - 1), (i, j + 1)]
-                .iter()
-                .all(|&(a, b)| parity(a, b) == Some(c));
-            if same {
-                out.push((j * w + i, c));
-            }
-        }
-    }
-    out
+    ground_tile_pixels(r, 60.0, |(ix, iy)| (ix + iy).rem_euclid(2))
 }
 
 #[test]

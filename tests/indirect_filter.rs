@@ -11,7 +11,7 @@
 
 mod common;
 
-use common::{camera_block, mean_stderr, rebuild_left, render, scene_from_toml, Rendered};
+use common::{ground_tile_pixels, mean_stderr, rebuild_left, render_inline, Rendered};
 use glam::Vec3;
 use parallax::accel::Backend;
 use parallax::film::{filter_fog, Film, FogFilter, FogGuide, FogLayer};
@@ -88,48 +88,18 @@ fn render_body(body: &str, spp: u32, seed: u64, filter: bool, backend: Backend) 
     } else {
         "filter_indirect = false\n"
     };
-    let text = format!(
-        "{}baselines_cm = [54.0]\n[render]\nspp = {}\nmax_depth = 5\nseed = {seed}\n{key}{body}",
-        camera_block(W, H, [0.0, 0.0, 1.5]),
-        spp.max(1)
-    );
-    render(&scene_from_toml(&text), backend, spp)
+    render_inline(body, (W, H), (spp, seed, 5), key, backend)
 }
 
 /// Near ground pixels of the left view (depth_z < 12 m, where a pixel
-/// spans under 2 m of ground) as (index, tile parity): those whose centre
-/// and 4 neighbours' centres lie on one tile, so every sample of the pixel
+/// spans under 2 m of ground) as (index, tile parity): those whose 4
+/// neighbours' centres lie on the same tile, so every sample of the pixel
 /// lands on that tile.
 fn ground_pixels(r: &Rendered) -> Vec<(usize, i64)> {
-    let cam = RenderCamera::new(&r.rig.left, r.scene.origin_world);
-    let (w, h) = (W as usize, H as usize);
-    let z = &r.out.left.depth_z;
-    let tile = |i: usize, j: usize| -> Option<(i64, i64)> {
-        let zz = z[j * w + i];
-        if !zz.is_finite() || zz > 12.0 {
-            return None;
-        }
-        let p = r.scene.origin_world + cam.center + cam.dir(i as f64 + 0.5, j as f64 + 0.5) * zz;
-        (p.z.abs() < 1e-3 && (2.0..42.0).contains(&p.x) && p.y.abs() < 16.0).then(|| {
-            (
-                ((p.x - 2.0) / 4.0).floor() as i64,
-                ((p.y + 16.0) / 4.0).floor() as i64,
-            )
-        })
-    };
-    let mut out = Vec::new();
-    for j in 1..h - 1 {
-        for i in 1..w - 1 {
-            let Some(t) = tile(i, j) else { continue };
-            let same = [(i - 1, j), (i + 1, j), (i, j - 1), (i, j + 1)]
-                .iter()
-                .all(|&(a, b)| tile(a, b) == Some(t));
-            if same {
-                out.push((j * w + i, (t.0 + t.1).rem_euclid(2)));
-            }
-        }
-    }
-    out
+    ground_tile_pixels(r, 12.0, |t| t)
+        .into_iter()
+        .map(|(k, (ix, iy))| (k, (ix + iy).rem_euclid(2)))
+        .collect()
 }
 
 /// Green channel of the left image at pixel `k`.

@@ -121,6 +121,68 @@ pub fn rebuild_left(r: &Rendered, spp: u32, seed: u64, max_depth: u32) -> (Film,
     (film, fog)
 }
 
+/// Renders an inline scene seen by a level rig of `size` pixels at
+/// [0, 0, 1.5] m looking along +x with one 54 cm baseline: `[render]` with
+/// `spp` (at least 1 in the file; 0 renders ground truth only), `max_depth`,
+/// `seed` and the lines `render_keys`, then `body`.
+pub fn render_inline(
+    body: &str,
+    size: (u32, u32),
+    (spp, seed, max_depth): (u32, u64, u32),
+    render_keys: &str,
+    backend: Backend,
+) -> Rendered {
+    let text = format!(
+        "{}baselines_cm = [54.0]\n[render]\nspp = {}\nmax_depth = {max_depth}\nseed = {seed}\n{render_keys}{body}",
+        camera_block(size.0, size.1, [0.0, 0.0, 1.5]),
+        spp.max(1)
+    );
+    render(&scene_from_toml(&text), backend, spp)
+}
+
+/// Left-view pixels on a ground of 4 m tiles at z = 0 spanning x = 2–42 m
+/// and y = −16–16 m, nearer than `max_depth_z` metres, as (index,
+/// `key(tile)`) for tile (ix, iy) counted from that corner: those whose
+/// 4 neighbours' centres lie on tiles of the same key.
+pub fn ground_tile_pixels<K: Copy + PartialEq>(
+    r: &Rendered,
+    max_depth_z: f64,
+    key: impl Fn((i64, i64)) -> K,
+) -> Vec<(usize, K)> {
+    let cam = RenderCamera::new(&r.rig.left, r.scene.origin_world);
+    let (w, h) = (
+        cam.intrinsics.width as usize,
+        cam.intrinsics.height as usize,
+    );
+    let z = &r.out.left.depth_z;
+    let at = |i: usize, j: usize| -> Option<K> {
+        let zz = z[j * w + i];
+        if !zz.is_finite() || zz > max_depth_z {
+            return None;
+        }
+        let p = r.scene.origin_world + cam.center + cam.dir(i as f64 + 0.5, j as f64 + 0.5) * zz;
+        (p.z.abs() < 0.05 && (2.0..42.0).contains(&p.x) && p.y.abs() < 16.0).then(|| {
+            key((
+                ((p.x - 2.0) / 4.0).floor() as i64,
+                ((p.y + 16.0) / 4.0).floor() as i64,
+            ))
+        })
+    };
+    let mut out = Vec::new();
+    for j in 1..h - 1 {
+        for i in 1..w - 1 {
+            let Some(c) = at(i, j) else { continue };
+            let same = [(i - 1, j), (i + 1, j), (i, j - 1), (i, j + 1)]
+                .iter()
+                .all(|&(a, b)| at(a, b) == Some(c));
+            if same {
+                out.push((j * w + i, c));
+            }
+        }
+    }
+    out
+}
+
 /// A camera block for a level rig at `position` looking along +x.
 pub fn camera_block(width: u32, height: u32, position: [f64; 3]) -> String {
     format!(
