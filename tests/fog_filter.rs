@@ -11,7 +11,9 @@
 
 mod common;
 
-use common::{ground_tile_pixels, mean_stderr, rebuild_left, render_inline, Rendered};
+use common::{
+    checker_ground, ground_tile_pixels, mean_stderr, rebuild_left, render_inline, Rendered,
+};
 use glam::Vec3;
 use parallax::accel::Backend;
 use parallax::film::{Film, FogLayer};
@@ -223,27 +225,12 @@ fn ground_truth_is_the_same_with_the_filter_on_and_off() {
 /// Fog over a ground of 4 m tiles in a checker of albedos `albedo` (equal:
 /// a plain diffuse ground), lit by a low sun and a gradient sky; the fog
 /// scatters a good part of the light the ground receives.
-fn ground_body(albedo: [f32; 2]) -> String {
-    let mut s = String::from(
+fn ground_body(albedo: [f64; 2]) -> String {
+    String::from(
         "[sky]\nkind = \"gradient\"\nzenith = [0.3, 0.4, 0.8]\nhorizon = [0.8, 0.8, 0.9]\nground = [0.1, 0.1, 0.1]\n\
          [[light]]\nkind = \"sun\"\nelevation_deg = 20.0\nazimuth_deg = 150.0\nirradiance = [300.0, 290.0, 280.0]\n\
          [medium]\nkind = \"homogeneous\"\nsigma_t = 0.06\nalbedo = [0.95, 0.95, 0.95]\ng = 0.7\nz_max_m = 25.0\n",
-    );
-    for (k, a) in albedo.iter().enumerate() {
-        s += &format!(
-            "[[material]]\nname = \"m{k}\"\nkind = \"diffuse\"\nalbedo = [{a:?}, {a:?}, {a:?}]\n"
-        );
-    }
-    for ix in 0..10i32 {
-        for iy in -4..4 {
-            let m = (ix + iy).rem_euclid(2);
-            let (x, y) = (2.0 + 4.0 * ix as f64 + 2.0, 4.0 * iy as f64 + 2.0);
-            s += &format!(
-                "[[object]]\nkind = \"box\"\nsize = [4.0, 4.0, 0.2]\nmaterial = \"m{m}\"\ntransform = {{ translate = [{x:?}, {y:?}, -0.1] }}\n"
-            );
-        }
-    }
-    s
+    ) + &checker_ground(albedo)
 }
 
 /// The left view of `r` rebuilt at `spp` with seed `seed`, filtered with

@@ -11,7 +11,9 @@
 
 mod common;
 
-use common::{ground_tile_pixels, mean_stderr, rebuild_left, render_inline, Rendered};
+use common::{
+    checker_ground, ground_tile_pixels, mean_stderr, rebuild_left, render_inline, Rendered,
+};
 use glam::Vec3;
 use parallax::accel::Backend;
 use parallax::film::{filter_fog, Film, FogFilter, FogGuide, FogLayer};
@@ -49,30 +51,14 @@ fn radiance_per_albedo(scene: &Scene) -> f64 {
     E_SUN * ELEVATION_DEG.to_radians().sin() / std::f64::consts::PI + sky
 }
 
-/// Ground of 4 m tiles at z = 0 in a checker of albedos `albedo` from
-/// x = 2 m to 42 m and y = −16 m to 16 m (tile (ix, iy) has material
-/// m((ix + iy) mod 2)), under the sun and sky, plus `extra` objects.
+/// The checker ground of albedos `albedo` (`common::checker_ground`) under
+/// the sun and sky, plus `extra` objects.
 fn ground_body(albedo: [f64; 2], extra: &str) -> String {
-    let mut s = format!(
+    format!(
         "{SKY}[[light]]\nkind = \"sun\"\nelevation_deg = {ELEVATION_DEG:?}\nazimuth_deg = 150.0\n\
-         irradiance = [{E_SUN:?}, {E_SUN:?}, {E_SUN:?}]\n"
-    );
-    for (k, a) in albedo.iter().enumerate() {
-        s += &format!(
-            "[[material]]\nname = \"m{k}\"\nkind = \"diffuse\"\nalbedo = [{a:?}, {a:?}, {a:?}]\n"
-        );
-    }
-    for ix in 0..10i32 {
-        for iy in -4..4 {
-            let m = (ix + iy).rem_euclid(2);
-            let (x, y) = (4.0 + 4.0 * ix as f64, 4.0 * iy as f64 + 2.0);
-            s += &format!(
-                "[[object]]\nkind = \"quad\"\nsize = [4.0, 4.0]\nmaterial = \"m{m}\"\n\
-                 transform = {{ translate = [{x:?}, {y:?}, 0.0] }}\n"
-            );
-        }
-    }
-    s + extra
+         irradiance = [{E_SUN:?}, {E_SUN:?}, {E_SUN:?}]\n{}{extra}",
+        checker_ground(albedo)
+    )
 }
 
 /// A sunlit wall beside the ground (x from 6 m to 30 m at y = 5 m, 4 m

@@ -140,6 +140,29 @@ pub fn render_inline(
     render(&scene_from_toml(&text), backend, spp)
 }
 
+/// A ground of 4 m tiles with their tops at z = 0, from x = 2 m to 42 m
+/// and y = −16 m to 16 m (the tiles of `ground_tile_pixels`): tile
+/// (ix, iy) is a 0.2 m box of material m((ix + iy) mod 2), of diffuse
+/// albedo `albedo[0]` or `albedo[1]`.
+pub fn checker_ground(albedo: [f64; 2]) -> String {
+    let mut s = String::new();
+    for (k, a) in albedo.iter().enumerate() {
+        s += &format!(
+            "[[material]]\nname = \"m{k}\"\nkind = \"diffuse\"\nalbedo = [{a:?}, {a:?}, {a:?}]\n"
+        );
+    }
+    for ix in 0..10i32 {
+        for iy in -4..4 {
+            let m = (ix + iy).rem_euclid(2);
+            let (x, y) = (2.0 + 4.0 * ix as f64 + 2.0, 4.0 * iy as f64 + 2.0);
+            s += &format!(
+                "[[object]]\nkind = \"box\"\nsize = [4.0, 4.0, 0.2]\nmaterial = \"m{m}\"\ntransform = {{ translate = [{x:?}, {y:?}, -0.1] }}\n"
+            );
+        }
+    }
+    s
+}
+
 /// Left-view pixels on a ground of 4 m tiles at z = 0 spanning x = 2–42 m
 /// and y = −16–16 m, nearer than `max_depth_z` metres, as (index,
 /// `key(tile)`) for tile (ix, iy) counted from that corner: those whose
