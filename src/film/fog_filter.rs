@@ -128,8 +128,9 @@ const INDIRECT_SIGMA_PX: f32 = 2.5;
 /// filtered estimate: `film = film − fog.l_fog + fog.opacity · S̃`. Pixels
 /// whose neighbourhood has no opacity keep their radiance. Then the same
 /// for the light on the first surface (`surface.rs`: fog light, or in a
-/// medium-free scene sky and indirect light): `film −= l_surf − rho · Ẽ`. Preconditions: `fog` and `guide` match
-/// `film`'s size (`guide.normal` may be empty).
+/// medium-free scene sky and indirect light): `film −= l_surf − rho · Ẽ`.
+/// Preconditions: `fog` and `guide` match `film`'s size (`guide.normal`
+/// may be empty).
 pub fn filter_fog(film: &mut Film, fog: &FogLayer, guide: &FogGuide<'_>, filter: &FogFilter) {
     let (w, h) = (film.width, film.height);
     let n = w * h;
