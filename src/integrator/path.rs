@@ -206,6 +206,26 @@ pub struct PathContext<'a, A: Accel> {
     pub sun_lobe: Option<super::volpath::SunLobe>,
 }
 
+impl<'a, A: Accel> PathContext<'a, A> {
+    /// The context of a frame's paths, its sun lobe found once here.
+    pub fn new(
+        scene: &'a Scene,
+        accel: &'a A,
+        lights: &'a LightSet,
+        surfaces: &'a SurfaceTable,
+        max_depth: u32,
+    ) -> Self {
+        PathContext {
+            scene,
+            accel,
+            lights,
+            surfaces,
+            max_depth,
+            sun_lobe: super::volpath::SunLobe::find(scene, lights),
+        }
+    }
+}
+
 /// What next-event estimation needs of a surface vertex: the interaction,
 /// its BSDF and shading frame, `wo` in that frame, and the origin its
 /// front-side rays share (every ray a reflecting vertex spawns leaves the

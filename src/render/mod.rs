@@ -159,14 +159,7 @@ pub fn render_frame(
         // Paths trace on the backend's fast, not necessarily watertight
         // variant; ground truth above stayed on the watertight one.
         let shading = ShadingAccel(accel);
-        let ctx = PathContext {
-            scene,
-            accel: &shading,
-            lights: &lights,
-            surfaces: &surfaces,
-            max_depth: settings.max_depth,
-            sun_lobe: crate::integrator::volpath::SunLobe::find(scene, &lights),
-        };
+        let ctx = PathContext::new(scene, &shading, &lights, &surfaces, settings.max_depth);
         for (view, cam) in cams.iter().enumerate() {
             progress(view, n_views);
             let key = StreamKey {
@@ -283,7 +276,7 @@ fn render_view<A: Accel>(
     let (w, h) = (cam.intrinsics.width, cam.intrinsics.height);
     let tiles_x = w.div_ceil(TILE_PX);
     let n_tiles = tiles_x * h.div_ceil(TILE_PX);
-    let keep_fog = ctx.scene.filter_inscatter || ctx.scene.filter_indirect;
+    let keep_filter_inputs = ctx.scene.filter_inscatter || ctx.scene.filter_indirect;
     let tiles: Vec<TileMeans> = (0..n_tiles)
         .into_par_iter()
         .with_max_len(1) // tiles differ in cost (sky vs street): balance per tile
@@ -293,7 +286,7 @@ fn render_view<A: Accel>(
             let n = ((x1 - x0) * (y1 - y0)) as usize;
             let mut tile = TileMeans {
                 rgb: Vec::with_capacity(n),
-                fog: keep_fog.then(|| Vec::with_capacity(n)),
+                fog: keep_filter_inputs.then(|| Vec::with_capacity(n)),
                 rays: 0,
                 non_finite: 0,
             };
@@ -309,7 +302,7 @@ fn render_view<A: Accel>(
     let rays = tiles.iter().map(|t| t.rays).sum();
     let non_finite = tiles.iter().map(|t| t.non_finite).sum();
     let mut film = Film::new(w as usize, h as usize);
-    let mut fog = keep_fog.then(|| FogLayer::new(w as usize, h as usize));
+    let mut fog = keep_filter_inputs.then(|| FogLayer::new(w as usize, h as usize));
     for (t, tile) in tiles.iter().enumerate() {
         let t = t as u32;
         let (x0, y0) = ((t % tiles_x) * TILE_PX, (t / tiles_x) * TILE_PX);

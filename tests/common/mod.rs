@@ -12,7 +12,6 @@ use parallax::camera::StereoRig;
 use parallax::film::{Film, FogLayer};
 use parallax::geometry::SurfaceTable;
 use parallax::integrator::path::PathContext;
-use parallax::integrator::volpath::SunLobe;
 use parallax::integrator::RenderCamera;
 use parallax::light::LightSet;
 use parallax::render::{render_frame, FrameOutput, RenderSettings};
@@ -75,14 +74,7 @@ pub fn rebuild_left(r: &Rendered, spp: u32, seed: u64, max_depth: u32) -> (Film,
     let lights = LightSet::build(scene);
     let surfaces = SurfaceTable::build(scene);
     let shading = ShadingAccel(&r.accel);
-    let ctx = PathContext {
-        scene,
-        accel: &shading,
-        lights: &lights,
-        surfaces: &surfaces,
-        max_depth,
-        sun_lobe: SunLobe::find(scene, &lights),
-    };
+    let ctx = PathContext::new(scene, &shading, &lights, &surfaces, max_depth);
     let cam = RenderCamera::new(&r.rig.left, scene.origin_world);
     let key = StreamKey {
         seed,

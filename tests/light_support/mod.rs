@@ -70,14 +70,7 @@ pub fn render_left(
     let lights = LightSet::build_with(scene, selection);
     let surfaces = SurfaceTable::build(scene);
     let shading = ShadingAccel(&accel);
-    let ctx = PathContext {
-        scene,
-        accel: &shading,
-        lights: &lights,
-        surfaces: &surfaces,
-        max_depth,
-        sun_lobe: parallax::integrator::volpath::SunLobe::find(scene, &lights),
-    };
+    let ctx = PathContext::new(scene, &shading, &lights, &surfaces, max_depth);
     let cam = RenderCamera::new(&b.rig.left, scene.origin_world);
     let (w, h) = (cam.intrinsics.width, cam.intrinsics.height);
     let key = StreamKey {

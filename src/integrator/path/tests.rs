@@ -10,7 +10,6 @@ use crate::accel::{build_accel, Accel, Backend, Ray, ShadingAccel};
 use crate::camera::StereoRig;
 use crate::geometry::SurfaceTable;
 use crate::integrator::path::PathContext;
-use crate::integrator::volpath::SunLobe;
 use crate::integrator::RenderCamera;
 use crate::light::LightSet;
 use crate::sampler::{SampleStream, StreamKey};
@@ -26,14 +25,7 @@ fn batched_first_shadows_give_the_same_bits_as_path_by_path() {
     let shading = ShadingAccel(&accel);
     let lights = LightSet::build(&scene);
     let surfaces = SurfaceTable::build(&scene);
-    let ctx = PathContext {
-        scene: &scene,
-        accel: &shading,
-        lights: &lights,
-        surfaces: &surfaces,
-        max_depth: 5,
-        sun_lobe: SunLobe::find(&scene, &lights),
-    };
+    let ctx = PathContext::new(&scene, &shading, &lights, &surfaces, 5);
     let cam = RenderCamera::new(&rig.left, scene.origin_world);
     let key = StreamKey {
         seed: 5,

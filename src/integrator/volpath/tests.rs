@@ -13,7 +13,7 @@ use crate::accel::{build_accel, Accel, Backend, Ray};
 use crate::geometry::SurfaceTable;
 use crate::integrator::path::PathContext;
 use crate::integrator::path::PathState;
-use crate::integrator::volpath::{Strategies, SunLobe};
+use crate::integrator::volpath::Strategies;
 use crate::light::LightSet;
 use crate::sampler::{SampleStream, StreamKey};
 use crate::scene::{build_scene, parse_scene_str};
@@ -53,14 +53,7 @@ fn samples(strategies: Strategies, dirs: &[Vec3], n: u32) -> Vec<Vec<f64>> {
     let accel = build_accel(Backend::Bvh, &scene.accel_geometry()).expect("accel builds");
     let lights = LightSet::build(&scene);
     let surfaces = SurfaceTable::build(&scene);
-    let ctx = PathContext {
-        scene: &scene,
-        accel: &accel,
-        lights: &lights,
-        surfaces: &surfaces,
-        max_depth: 4,
-        sun_lobe: SunLobe::find(&scene, &lights),
-    };
+    let ctx = PathContext::new(&scene, &accel, &lights, &surfaces, 4);
     let key = StreamKey {
         seed: 7,
         frame: 0,
