@@ -7,7 +7,7 @@
 //! weights: relative depth_z, the pixel-centre normal, never sky. The same
 //! component carries indirect light in medium-free scenes
 //! (`LiSample::l_surf`). Fireflies (`FIREFLY_RATIO`) are left out of the
-//! sums and keep their own radiance.
+//! sums and take their neighbours' estimate.
 
 use std::ops::{Add, Div, Mul};
 
@@ -23,16 +23,19 @@ use crate::film::Film;
 const SIGMA_NORMAL: f32 = 0.3;
 
 /// A pixel whose filtered light per unit albedo exceeds this multiple of
-/// the median over its neighbourhood is a firefly (a rare path to a bright
-/// source through glass or metal): spread by the kernel it would become a
-/// bright blob, so it is left out of every neighbour's sum and keeps its
-/// own radiance, one speck as traced.
+/// the median over its neighbourhood is a firefly: a rare path to a bright
+/// source, mostly the sun reflected by a window or metal onto a shadowed
+/// surface. Spread by the kernel it would become a bright blob, kept it is a
+/// white speck, so it is left out of every neighbour's sum and takes their
+/// estimate. The light it carried is dropped: in the street at 16 spp about
+/// 0.3 % of the image's mean luminance.
 const FIREFLY_RATIO: f32 = 6.0;
 /// Half-width in pixels of the firefly test's square neighbourhood.
 const FIREFLY_RADIUS: usize = 2;
 
-/// Replaces `l_surf` in `film` by its filtered estimate; pixels with no
-/// rho in their neighbourhood (per channel) keep their radiance.
+/// Replaces `l_surf` in `film` by its filtered estimate (for a firefly,
+/// its neighbours'); pixels with no rho in their neighbourhood (per channel)
+/// keep their radiance.
 pub(super) fn filter_surface_fog(
     film: &mut Film,
     fog: &FogLayer,
@@ -73,7 +76,7 @@ pub(super) fn filter_surface_fog(
     }
     for (k, px) in film.rgb.iter_mut().enumerate() {
         let (s, rho) = (cur[k], fog.rho[k]);
-        if rho == Vec3::ZERO || firefly[k] {
+        if rho == Vec3::ZERO {
             continue;
         }
         for c in 0..3 {
