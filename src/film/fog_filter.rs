@@ -37,6 +37,10 @@ pub struct FogLayer {
     pub l_surf: Vec<Vec3>,
     /// Mean throughput × albedo at the first surface per pixel (`LiSample::rho`).
     pub rho: Vec<Vec3>,
+    /// Share of the samples whose split vertex lies behind delta scatters
+    /// (`LiSample::split_behind_delta`): the surface component filters
+    /// pixels only with pixels of a like share.
+    pub behind_delta: Vec<f32>,
 }
 
 impl FogLayer {
@@ -49,6 +53,7 @@ impl FogLayer {
             opacity: vec![0.0; width * height],
             l_surf: vec![Vec3::ZERO; width * height],
             rho: vec![Vec3::ZERO; width * height],
+            behind_delta: vec![0.0; width * height],
         }
     }
 

@@ -258,9 +258,16 @@ pub(super) struct PathState {
     pub prev_p: Vec3,
     /// Scattering events so far.
     pub bounces: u32,
-    /// Throughput × albedo at a Lambertian first vertex, where the scene
-    /// filters indirect light (else zero): `LiSample::rho`.
+    /// Throughput × albedo at the split vertex, where the scene filters
+    /// indirect light and that vertex is Lambertian (else zero):
+    /// `LiSample::rho`. The split vertex is the first that is not a delta
+    /// scatter: x1, or what x1's mirrors show and its glass lets through.
     pub rho: Vec3,
+    /// Whether the split vertex is still ahead (every vertex so far
+    /// scattered through a delta lobe, and no glass reflected).
+    pub split_ahead: bool,
+    /// Whether the split vertex came after delta scatters.
+    pub split_behind_delta: bool,
 }
 
 impl PathState {
@@ -274,6 +281,8 @@ impl PathState {
             prev_p: o,
             bounces: 0,
             rho: Vec3::ZERO,
+            split_ahead: true,
+            split_behind_delta: false,
         }
     }
 
@@ -314,7 +323,13 @@ pub struct LiSample {
     /// Throughput at x1 times x1's albedo (zero when x1 is missing or not
     /// Lambertian, or nothing is filtered): `l_surf / rho` is the filtered
     /// light's irradiance / π, smooth over a surface and free of texture.
+    /// In a medium-free scene the split vertex may lie behind x1's mirrors
+    /// and glass instead (`PathState::rho`).
     pub rho: Vec3,
+    /// Whether the split vertex lies behind delta scatters (seen through
+    /// glass or in a mirror): the filter keeps such light apart from light
+    /// split at x1.
+    pub split_behind_delta: bool,
 }
 
 impl<A: Accel> PathContext<'_, A> {
@@ -424,7 +439,9 @@ impl<A: Accel> PathContext<'_, A> {
             }
             // The previous vertex's shadow rays, while the record loads.
             pending.resolve(self.accel, &mut st.l);
-            l_first.get_or_insert(st.l);
+            if st.rho != Vec3::ZERO {
+                l_first.get_or_insert(st.l);
+            }
             let Some(hit) = hit else {
                 st.l += st.beta
                     * self
@@ -441,14 +458,14 @@ impl<A: Accel> PathContext<'_, A> {
                 }
             }
         }
-        let l_surf = match l_first {
-            Some(l_first) if st.rho != Vec3::ZERO => st.l - l_first,
-            _ => Vec3::ZERO,
-        };
+        // No l_first with a split vertex: the path ended there, after its
+        // own light, so its indirect estimate is zero.
+        let l_surf = l_first.map_or(Vec3::ZERO, |l_first| st.l - l_first);
         LiSample {
             l: st.l,
             l_surf,
             rho: st.rho,
+            split_behind_delta: st.split_behind_delta,
             ..LiSample::default()
         }
     }
@@ -512,9 +529,11 @@ impl<A: Accel> PathContext<'_, A> {
             si.n_geo = -si.n_geo;
             si.n_shading = -si.n_shading;
         }
-        if st.bounces == 0 && scene.filter_indirect {
-            if let Bsdf::Lambert { albedo } = bsdf {
-                st.rho = st.beta * albedo;
+        if st.split_ahead && !bsdf.is_delta() {
+            st.split_ahead = false;
+            if let (true, Bsdf::Lambert { albedo }) = (scene.filter_indirect, &bsdf) {
+                st.rho = st.beta * *albedo;
+                st.split_behind_delta = st.bounces > 0;
             }
         }
         let frame = Frame::from_z(si.n_shading);
@@ -541,6 +560,11 @@ impl<A: Accel> PathContext<'_, A> {
         let bs = bsdf.sample(vertex.wo_local, u.u_lobe, u.u_bsdf)?;
         if bs.pdf <= 0.0 {
             return None;
+        }
+        // Glass's reflection is not followed to a split vertex: its light
+        // would be filtered with that of the refracted samples behind it.
+        if st.split_ahead && !is_two_sided(&bsdf) && bs.wi.z * vertex.wo_local.z > 0.0 {
+            st.split_ahead = false;
         }
         let wi = frame.from_local(bs.wi);
         // Reflection-only surfaces must not send light through the geometry.

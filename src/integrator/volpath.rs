@@ -257,6 +257,7 @@ impl<A: Accel> PathContext<'_, A> {
             opacity,
             l_surf: surf_fog.l_surf(st.l) + l_surf_split,
             rho: surf_fog.rho + rho_split,
+            split_behind_delta: false,
         }
     }
 

@@ -231,8 +231,9 @@ struct ChunkScratch {
 }
 
 /// Per pixel, the fog filter's inputs: (mean l_fog, mean first-segment
-/// opacity, mean l_surf, mean rho).
-type FogMeans = (Vec3, f32, Vec3, Vec3);
+/// opacity, mean l_surf, mean rho, share of samples split behind delta
+/// scatters).
+type FogMeans = (Vec3, f32, Vec3, Vec3, f32);
 
 /// One tile's pixel means in raster order: the radiance, and the image
 /// filter's inputs (`Some` only where the scene filters fog or indirect
@@ -314,9 +315,10 @@ fn render_view<A: Accel>(
                 continue;
             };
             let means = &means[row * tw..(row + 1) * tw];
-            for (k, &(l_fog, opacity, l_sf, rho)) in (start..start + tw).zip(means) {
+            for (k, &(l_fog, opacity, l_sf, rho, behind)) in (start..start + tw).zip(means) {
                 (fog.l_fog[k], fog.opacity[k]) = (l_fog, opacity);
                 (fog.l_surf[k], fog.rho[k]) = (l_sf, rho);
+                fog.behind_delta[k] = behind;
             }
         }
     }
@@ -383,7 +385,7 @@ fn render_chunk<A: Accel>(
     let mut starts = scratch.starts.drain(..);
     for stream_px in scratch.streams.chunks_mut(spp as usize) {
         let (mut sum, mut fog, mut opacity) = (Vec3::ZERO, Vec3::ZERO, 0.0f32);
-        let (mut surf, mut rho) = (Vec3::ZERO, Vec3::ZERO);
+        let (mut surf, mut rho, mut behind) = (Vec3::ZERO, Vec3::ZERO, 0u32);
         // The pixel's streams lead the zip: it must not pull a start too many.
         for (stream, start) in stream_px.iter_mut().zip(starts.by_ref()) {
             let li = ctx.finish_path(start, stream, &mut out.rays);
@@ -394,6 +396,7 @@ fn render_chunk<A: Accel>(
                 opacity += li.opacity;
                 surf += li.l_surf;
                 rho += li.rho;
+                behind += li.split_behind_delta as u32;
             } else {
                 out.non_finite += 1;
             }
@@ -401,7 +404,7 @@ fn render_chunk<A: Accel>(
         let n = spp as f32;
         out.rgb.push(sum / n);
         if let Some(means) = out.fog.as_mut() {
-            means.push((fog / n, opacity / n, surf / n, rho / n));
+            means.push((fog / n, opacity / n, surf / n, rho / n, behind as f32 / n));
         }
     }
 }

@@ -88,7 +88,7 @@ pub fn rebuild_left(r: &Rendered, spp: u32, seed: u64, max_depth: u32) -> (Film,
     for j in 0..hu {
         for i in 0..wu {
             let (mut l, mut l_fog, mut opacity) = (Vec3::ZERO, Vec3::ZERO, 0.0f32);
-            let (mut l_sf, mut rho) = (Vec3::ZERO, Vec3::ZERO);
+            let (mut l_sf, mut rho, mut behind) = (Vec3::ZERO, Vec3::ZERO, 0u32);
             let mut rays = 0;
             for s in 0..spp {
                 let mut stream = SampleStream::new(key, i, j, s);
@@ -103,11 +103,13 @@ pub fn rebuild_left(r: &Rendered, spp: u32, seed: u64, max_depth: u32) -> (Film,
                 opacity += li.opacity;
                 l_sf += li.l_surf;
                 rho += li.rho;
+                behind += li.split_behind_delta as u32;
             }
             let k = j as usize * w + i as usize;
             let n = spp as f32;
             (film.rgb[k], fog.l_fog[k], fog.opacity[k]) = (l / n, l_fog / n, opacity / n);
             (fog.l_surf[k], fog.rho[k]) = (l_sf / n, rho / n);
+            fog.behind_delta[k] = behind as f32 / n;
         }
     }
     (film, fog)

@@ -6,8 +6,10 @@
 //! so texture and the first segment's Tr stay exact per pixel. Range
 //! weights: relative depth_z, the pixel-centre normal, never sky. The same
 //! component carries indirect light in medium-free scenes
-//! (`LiSample::l_surf`). Fireflies (`FIREFLY_RATIO`) are left out of the
-//! sums and take their neighbours' estimate.
+//! (`LiSample::l_surf`), on x1 or on the surface x1's glass and mirrors
+//! show; pixels mix only with pixels whose share of the latter is alike
+//! (`FogLayer::behind_delta`). Fireflies (`FIREFLY_RATIO`) are left out of
+//! the sums and take their neighbours' estimate.
 
 use std::ops::{Add, Div, Mul};
 
@@ -21,6 +23,11 @@ use crate::film::Film;
 
 /// Range σ on |Δn| between unit pixel-centre normals (about 17° at 1σ).
 const SIGMA_NORMAL: f32 = 0.3;
+
+/// 1/σ² on the step in `FogLayer::behind_delta` (σ = 0.15): a window's
+/// pixels, lit through glass, and the wall around it, at the same depth,
+/// stay apart.
+const INV_BEHIND2: f32 = 1.0 / (0.15 * 0.15);
 
 /// A pixel whose filtered light per unit albedo exceeds this multiple of
 /// the median over its neighbourhood is a firefly: a rare path to a bright
@@ -53,7 +60,7 @@ pub(super) fn filter_surface_fog(
     }
     let normal = |k: usize| guide.normal.get(k).copied().unwrap_or(Vec3::ZERO);
     let keys: Vec<SurfKey> = (0..n)
-        .map(|k| SurfKey::new(guide.depth_z[k], normal(k)))
+        .map(|k| SurfKey::new(guide.depth_z[k], normal(k), fog.behind_delta[k]))
         .collect();
     let firefly = fireflies(&fog.l_surf, &fog.rho, (w, h));
     // A firefly's pair is zero: it adds to neither sum of a neighbour's
@@ -161,13 +168,16 @@ struct SurfKey {
     ln_z: f32,
     /// Unit normal, zero when unknown.
     n: Vec3,
+    /// Share of samples split behind delta scatters (`FogLayer::behind_delta`).
+    behind: f32,
 }
 
 impl SurfKey {
-    fn new(z: f32, n: Vec3) -> SurfKey {
+    fn new(z: f32, n: Vec3, behind: f32) -> SurfKey {
         SurfKey {
             ln_z: ln_depth(z),
             n: if n.is_finite() { n } else { Vec3::ZERO },
+            behind,
         }
     }
 
@@ -183,7 +193,8 @@ impl SurfKey {
             return 1.0;
         }
         let rel = self.ln_z - b.ln_z;
-        let mut e = rel * rel * inv_rel2;
+        let behind = self.behind - b.behind;
+        let mut e = rel * rel * inv_rel2 + behind * behind * INV_BEHIND2;
         if self.n != Vec3::ZERO && b.n != Vec3::ZERO {
             e += (self.n - b.n).length_squared() * inv_n2;
         }

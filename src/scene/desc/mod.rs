@@ -148,8 +148,9 @@ pub struct RenderDesc {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub seed: Option<u64>,
     /// Filter, in image space, the light that Lambertian first surfaces
-    /// reflect beyond their direct lighting (sky and indirect light: the
-    /// grain of shadowed areas), as a ratio to their albedo so texture and
+    /// (or the surfaces smooth glass and mirrors show) reflect beyond their
+    /// direct lighting (sky and indirect light: the grain of shadowed
+    /// areas), as a ratio to their albedo so texture and
     /// direct light stay exact per pixel, guided by the exact depth (default
     /// true: far less grain at equal time, at a small bias where that light
     /// changes within a few pixels; false gives the plain path-traced image
