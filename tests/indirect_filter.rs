@@ -253,23 +253,7 @@ fn light_behind_glass_is_filtered_apart_from_light_beside_it() {
         layer.behind_delta[k] = if through { 1.0 } else { 0.0 };
         layer.l_surf[k] = rho * if through { 0.2 } else { 1.0 };
     }
-    let mut film = Film::new(w, h);
-    for (px, l) in film.rgb.iter_mut().zip(&layer.l_surf) {
-        *px = *l + Vec3::splat(0.25);
-    }
-    let before = film.clone();
-    let (depth, opacity, normal) = (vec![10.0; w * h], vec![0.0; w * h], vec![Vec3::Z; w * h]);
-    let guide = FogGuide {
-        depth_z: &depth,
-        opacity: &opacity,
-        normal: &normal,
-    };
-    let widths = FogFilter {
-        sigma_px: 4.0,
-        sigma_opacity: 0.1,
-        sigma_depth_rel: 0.3,
-    };
-    filter_fog(&mut film, &layer, &guide, &widths);
+    let (before, film) = filter_flat_surface(&layer);
     for (k, (a, b)) in before.rgb.iter().zip(&film.rgb).enumerate() {
         assert!(
             (a.y - b.y).abs() <= 1e-5 * a.y,
@@ -353,9 +337,8 @@ fn scenes_with_a_medium_leave_indirect_light_to_the_fog_filter() {
 }
 
 /// A flat 32×32 surface (depth 10 m, one normal) whose light per unit
-/// albedo is 1 except at the centre pixel, where it is `hot`; its film adds
-/// 0.25 of direct light. Returns the film before and after filtering at
-/// σ = 4 px.
+/// albedo is 1 except at the centre pixel, where it is `hot`, filtered by
+/// [`filter_flat_surface`]; also returns the centre's index.
 fn filter_one_hot_pixel(hot: f32) -> (Film, Film, usize) {
     let (w, h) = (32, 32);
     let centre = 16 * w + 16;
@@ -364,6 +347,15 @@ fn filter_one_hot_pixel(hot: f32) -> (Film, Film, usize) {
     layer.rho.fill(rho);
     layer.l_surf.fill(rho);
     layer.l_surf[centre] = rho * hot;
+    let (before, after) = filter_flat_surface(&layer);
+    (before, after, centre)
+}
+
+/// The film of a flat surface (depth 10 m, one normal) carrying `layer`'s
+/// light on the surface plus 0.25 of direct light, before and after
+/// filtering at σ = 4 px.
+fn filter_flat_surface(layer: &FogLayer) -> (Film, Film) {
+    let (w, h) = (layer.width, layer.height);
     let mut film = Film::new(w, h);
     for (px, l) in film.rgb.iter_mut().zip(&layer.l_surf) {
         *px = *l + Vec3::splat(0.25);
@@ -380,8 +372,8 @@ fn filter_one_hot_pixel(hot: f32) -> (Film, Film, usize) {
         sigma_opacity: 0.1,
         sigma_depth_rel: 0.3,
     };
-    filter_fog(&mut film, &layer, &guide, &widths);
-    (before, film, centre)
+    filter_fog(&mut film, layer, &guide, &widths);
+    (before, film)
 }
 
 #[test]
