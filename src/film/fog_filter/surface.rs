@@ -35,7 +35,7 @@ const INV_BEHIND2: f32 = 1.0 / (0.15 * 0.15);
 /// surface. Spread by the kernel it would become a bright blob, kept it is a
 /// white speck, so it is left out of every neighbour's sum and takes their
 /// estimate. The light it carried is dropped: in the street at 16 spp about
-/// 0.3 % of the image's mean luminance.
+/// 0.35 % of the image's mean luminance.
 const FIREFLY_RATIO: f32 = 6.0;
 /// Half-width in pixels of the firefly test's square neighbourhood.
 const FIREFLY_RADIUS: usize = 2;
