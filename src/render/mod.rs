@@ -237,7 +237,7 @@ type FogMeans = (Vec3, f32, Vec3, Vec3, f32);
 
 /// One tile's pixel means in raster order: the radiance, and the image
 /// filter's inputs (`Some` only where the scene filters fog or indirect
-/// light). Those are 40 of a pixel's 52 bytes (58 MB a view at 1600×900,
+/// light). Those are 44 of a pixel's 56 bytes (63 MB a view at 1600×900,
 /// and as much again in the view's `FogLayer`).
 struct TileMeans {
     rgb: Vec<Vec3>,
