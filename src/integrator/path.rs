@@ -332,6 +332,35 @@ pub struct LiSample {
     pub split_behind_delta: bool,
 }
 
+/// Running sums of one pixel's samples, field by field.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PixelSum {
+    /// Σ `LiSample::l`.
+    pub l: Vec3,
+    /// Σ `LiSample::l_fog`.
+    pub l_fog: Vec3,
+    /// Σ `LiSample::opacity`.
+    pub opacity: f32,
+    /// Σ `LiSample::l_surf`.
+    pub l_surf: Vec3,
+    /// Σ `LiSample::rho`.
+    pub rho: Vec3,
+    /// Samples split behind delta scatters (`LiSample::split_behind_delta`).
+    pub behind_delta: u32,
+}
+
+impl PixelSum {
+    /// Adds one sample.
+    pub fn add(&mut self, li: &LiSample) {
+        self.l += li.l;
+        self.l_fog += li.l_fog;
+        self.opacity += li.opacity;
+        self.l_surf += li.l_surf;
+        self.rho += li.rho;
+        self.behind_delta += li.split_behind_delta as u32;
+    }
+}
+
 impl<A: Accel> PathContext<'_, A> {
     /// Radiance arriving along `ray` (unit direction); adds traced rays to `rays`.
     pub fn li(&self, ray: Ray, stream: &mut SampleStream, rays: &mut u64) -> LiSample {

@@ -16,7 +16,7 @@ use crate::camera::StereoRig;
 use crate::film::{Film, FogLayer};
 use crate::geometry::SurfaceTable;
 use crate::integrator::gt::{occlusion_mask, view_gt, ViewGt};
-use crate::integrator::path::{PathContext, PathStart};
+use crate::integrator::path::{PathContext, PathStart, PixelSum};
 use crate::integrator::rain;
 use crate::integrator::RenderCamera;
 use crate::light::LightSet;
@@ -384,27 +384,28 @@ fn render_chunk<A: Accel>(
     }
     let mut starts = scratch.starts.drain(..);
     for stream_px in scratch.streams.chunks_mut(spp as usize) {
-        let (mut sum, mut fog, mut opacity) = (Vec3::ZERO, Vec3::ZERO, 0.0f32);
-        let (mut surf, mut rho, mut behind) = (Vec3::ZERO, Vec3::ZERO, 0u32);
+        let mut sum = PixelSum::default();
         // The pixel's streams lead the zip: it must not pull a start too many.
         for (stream, start) in stream_px.iter_mut().zip(starts.by_ref()) {
             let li = ctx.finish_path(start, stream, &mut out.rays);
             // A non-finite sample would poison the pixel: drop it, counted.
             if li.l.is_finite() {
-                sum += li.l;
-                fog += li.l_fog;
-                opacity += li.opacity;
-                surf += li.l_surf;
-                rho += li.rho;
-                behind += li.split_behind_delta as u32;
+                sum.add(&li);
             } else {
                 out.non_finite += 1;
             }
         }
         let n = spp as f32;
-        out.rgb.push(sum / n);
+        out.rgb.push(sum.l / n);
         if let Some(means) = out.fog.as_mut() {
-            means.push((fog / n, opacity / n, surf / n, rho / n, behind as f32 / n));
+            let behind = sum.behind_delta as f32 / n;
+            means.push((
+                sum.l_fog / n,
+                sum.opacity / n,
+                sum.l_surf / n,
+                sum.rho / n,
+                behind,
+            ));
         }
     }
 }

@@ -6,12 +6,11 @@ pub mod towns;
 
 use std::path::Path;
 
-use glam::Vec3;
 use parallax::accel::{build_accel, Accel, AnyAccel, Backend, ShadingAccel};
 use parallax::camera::StereoRig;
 use parallax::film::{Film, FogLayer};
 use parallax::geometry::SurfaceTable;
-use parallax::integrator::path::PathContext;
+use parallax::integrator::path::{PathContext, PixelSum};
 use parallax::integrator::RenderCamera;
 use parallax::light::LightSet;
 use parallax::render::{render_frame, FrameOutput, RenderSettings};
@@ -87,8 +86,7 @@ pub fn rebuild_left(r: &Rendered, spp: u32, seed: u64, max_depth: u32) -> (Film,
     let mut fog = FogLayer::new(w, h);
     for j in 0..hu {
         for i in 0..wu {
-            let (mut l, mut l_fog, mut opacity) = (Vec3::ZERO, Vec3::ZERO, 0.0f32);
-            let (mut l_sf, mut rho, mut behind) = (Vec3::ZERO, Vec3::ZERO, 0u32);
+            let mut sum = PixelSum::default();
             let mut rays = 0;
             for s in 0..spp {
                 let mut stream = SampleStream::new(key, i, j, s);
@@ -98,18 +96,14 @@ pub fn rebuild_left(r: &Rendered, spp: u32, seed: u64, max_depth: u32) -> (Film,
                     li.l.is_finite(),
                     "non-finite sample {s} at pixel ({i}, {j})"
                 );
-                l += li.l;
-                l_fog += li.l_fog;
-                opacity += li.opacity;
-                l_sf += li.l_surf;
-                rho += li.rho;
-                behind += li.split_behind_delta as u32;
+                sum.add(&li);
             }
             let k = j as usize * w + i as usize;
             let n = spp as f32;
-            (film.rgb[k], fog.l_fog[k], fog.opacity[k]) = (l / n, l_fog / n, opacity / n);
-            (fog.l_surf[k], fog.rho[k]) = (l_sf / n, rho / n);
-            fog.behind_delta[k] = behind as f32 / n;
+            (film.rgb[k], fog.l_fog[k], fog.opacity[k]) =
+                (sum.l / n, sum.l_fog / n, sum.opacity / n);
+            (fog.l_surf[k], fog.rho[k]) = (sum.l_surf / n, sum.rho / n);
+            fog.behind_delta[k] = sum.behind_delta as f32 / n;
         }
     }
     (film, fog)
