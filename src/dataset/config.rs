@@ -68,7 +68,10 @@ pub struct DatasetConfig {
     /// by the exact depth (`[render] filter_indirect`, `[medium]
     /// filter_inscatter`; default true). false writes the plain path-traced
     /// images. Ground truth is never filtered.
-    #[serde(default = "yes", skip_serializing_if = "is_yes")]
+    #[serde(
+        default = "crate::scene::desc::default_true",
+        skip_serializing_if = "crate::scene::desc::is_true"
+    )]
     pub filter: bool,
 }
 
@@ -86,12 +89,6 @@ fn default_baselines() -> Vec<f64> {
 }
 fn one() -> u32 {
     1
-}
-fn yes() -> bool {
-    true
-}
-fn is_yes(b: &bool) -> bool {
-    *b
 }
 fn default_width() -> u32 {
     1600

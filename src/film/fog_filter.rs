@@ -58,9 +58,14 @@ impl FogLayer {
     }
 
     /// Whether any pixel carries first-scatter radiance or opacity.
+    pub fn has_first_scatter(&self) -> bool {
+        self.opacity.iter().any(|&o| o != 0.0) || self.l_fog.iter().any(|&l| l != Vec3::ZERO)
+    }
+
+    /// Whether no pixel carries anything to filter: no first-scatter light
+    /// and no light or rho on the first surface.
     pub fn is_empty(&self) -> bool {
-        self.opacity.iter().all(|&o| o == 0.0)
-            && self.l_fog.iter().all(|&l| l == Vec3::ZERO)
+        !self.has_first_scatter()
             && self.l_surf.iter().all(|&l| l == Vec3::ZERO)
             && self.rho.iter().all(|&r| r == Vec3::ZERO)
     }
@@ -149,7 +154,7 @@ pub fn filter_fog(film: &mut Film, fog: &FogLayer, guide: &FogGuide<'_>, filter:
     );
     // Without first-scatter light (a medium-free scene filtering indirect
     // light) every pixel would keep its radiance: skip the cascade.
-    if fog.opacity.iter().any(|&o| o != 0.0) || fog.l_fog.iter().any(|&l| l != Vec3::ZERO) {
+    if fog.has_first_scatter() {
         filter_first_scatter(film, fog, guide, filter);
     }
     surface::filter_surface_fog(film, fog, guide, filter);

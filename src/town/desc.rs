@@ -35,7 +35,7 @@ pub struct TownDesc {
     pub sidewalk_width_m: f64,
     /// Raised sidewalks with curbs, crosswalks and pedestrians (default true);
     /// false gives country roads with flat gravel shoulders and no pedestrians.
-    #[serde(default = "yes")]
+    #[serde(default = "crate::scene::desc::default_true")]
     pub sidewalks: bool,
     /// Fraction of building lots that hold a building, in [0, 1].
     pub building_density: f64,
@@ -177,9 +177,6 @@ fn default_grade_wavelength() -> f64 {
 }
 fn is_default_grade_wavelength(v: &f64) -> bool {
     *v == default_grade_wavelength()
-}
-fn yes() -> bool {
-    true
 }
 fn one() -> u32 {
     1

@@ -108,7 +108,7 @@ pub enum SkyDesc {
         #[serde(default = "default_sky_glow")]
         sky_glow: f64,
         /// Whether stars are drawn.
-        #[serde(default = "yes")]
+        #[serde(default = "super::default_true")]
         stars: bool,
         /// Seed of the star field.
         #[serde(default)]
@@ -121,10 +121,6 @@ pub enum SkyDesc {
 
 fn one() -> f64 {
     1.0
-}
-
-fn yes() -> bool {
-    true
 }
 
 fn default_ground_albedo() -> f64 {

@@ -190,9 +190,11 @@ fn default_max_depth() -> u32 {
     8
 }
 
-fn default_true() -> bool {
+/// Serde default `true` for switches that are on unless a file says otherwise.
+pub(crate) fn default_true() -> bool {
     true
 }
-fn is_true(b: &bool) -> bool {
+/// Serde `skip_serializing_if` for those switches: only `false` is written.
+pub(crate) fn is_true(b: &bool) -> bool {
     *b
 }
