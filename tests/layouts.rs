@@ -17,7 +17,7 @@ mod common;
 use std::fs;
 use std::path::Path;
 
-use common::readback::{pfm, png_gray16, rgb8};
+use common::readback::{pfm, png_gray16, rgb8, same};
 use common::{camera_block, render, scene_from_toml, Rendered, GREY_UNDER_SKY};
 use parallax::accel::Backend;
 use parallax::output::frame::{camera_file, write_native_frame, WriteOptions};
@@ -310,8 +310,16 @@ fn kitti_images_and_disparities_are_the_native_ones_of_their_baseline() {
     let stem = "town01_normal_clear_0002_000005.png";
     for (b, name) in BASELINES.iter().enumerate() {
         let at = |sub: &str| root.join(format!("kitti/{name}/{sub}/{stem}"));
-        assert_eq!(rgb8(&at("image_2")).2, views[0], "{name} image_2");
-        assert_eq!(rgb8(&at("image_3")).2, views[1 + b], "{name} image_3");
+        same(
+            &rgb8(&at("image_2")).2,
+            &views[0],
+            &format!("{name} image_2"),
+        );
+        same(
+            &rgb8(&at("image_3")).2,
+            &views[1 + b],
+            &format!("{name} image_3"),
+        );
         let (_, _, disp) = pfm(&root.join(format!("native/{name}/disp/000005.pfm")));
         let (_, _, occ) =
             common::readback::png_gray8(&root.join(format!("native/{name}/occ/000005.png")));
@@ -323,16 +331,10 @@ fn kitti_images_and_disparities_are_the_native_ones_of_their_baseline() {
             .collect();
         assert!(want_occ.iter().filter(|&&v| v > 0).count() > 500);
         assert_ne!(want_occ, want_noc, "{name}: no occluded valid pixel");
-        assert_eq!(
-            png_gray16(&at("disp_occ_0")).2,
-            want_occ,
-            "{name} disp_occ_0"
-        );
-        assert_eq!(
-            png_gray16(&at("disp_noc_0")).2,
-            want_noc,
-            "{name} disp_noc_0"
-        );
+        let occ_0 = png_gray16(&at("disp_occ_0")).2;
+        same(&occ_0, &want_occ, &format!("{name} disp_occ_0"));
+        let noc_0 = png_gray16(&at("disp_noc_0")).2;
+        same(&noc_0, &want_noc, &format!("{name} disp_noc_0"));
     }
 }
 
@@ -347,12 +349,10 @@ fn sceneflow_images_and_disparities_are_the_native_ones_of_their_baseline() {
                 "sceneflow/{pass}/{name}/town01_normal_clear/0002/{side}/000005.{ext}"
             ))
         };
-        assert_eq!(rgb8(&seq("frames_cleanpass", "left", "png")).2, views[0]);
-        assert_eq!(
-            rgb8(&seq("frames_cleanpass", "right", "png")).2,
-            views[1 + b],
-            "{name}"
-        );
+        let left = rgb8(&seq("frames_cleanpass", "left", "png")).2;
+        same(&left, &views[0], &format!("{name} left"));
+        let right = rgb8(&seq("frames_cleanpass", "right", "png")).2;
+        same(&right, &views[1 + b], &format!("{name} right"));
         for (side, native) in [("left", "disp"), ("right", "disp_right")] {
             let n = fs::read(root.join(format!("native/{name}/{native}/000005.pfm"))).unwrap();
             let l = fs::read(seq("disparity", side, "pfm")).unwrap();
@@ -413,7 +413,7 @@ fn stereocarla_jpegs_are_nearest_to_the_native_view_of_their_baseline() {
     for (b, name) in BASELINES.iter().enumerate() {
         check(&base.join(format!("{name}/rgb/0002_000005.jpg")), 1 + b);
         let (_, _, cm) = png_gray16(&base.join(format!("{name}/depth/0002_000005.png")));
-        assert_eq!(cm, want_cm, "{name} depth");
+        same(&cm, &want_cm, &format!("{name} depth"));
         let pose: serde_json::Value = serde_json::from_slice(
             &fs::read(base.join(format!("{name}/pose/0002_000005.json"))).unwrap(),
         )

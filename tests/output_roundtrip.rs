@@ -333,7 +333,9 @@ transform = { translate = [11.0, -2.5, 1.5] }
 /// are the left pose moved by B·x_L (GROUND_TRUTH.md, stereo rig).
 #[test]
 fn native_frame_written_by_the_binary_reads_back_as_the_render() {
-    use common::readback::{bits, exr_channel, exr_channels, pfm, png_gray16, png_gray8, rgb8};
+    use common::readback::{
+        bits, exr_channel, exr_channels, pfm, png_gray16, png_gray8, rgb8, same,
+    };
     let dir = tempfile::tempdir().unwrap();
     let text = labelled_scene();
     let scene_path = dir.path().join("scene.toml");
@@ -351,12 +353,12 @@ fn native_frame_written_by_the_binary_reads_back_as_the_render() {
         parallax::accel::Backend::Bvh,
         2,
     );
-    let (g, w, h) = (&r.out.left, 64, 36);
+    let g = &r.out.left;
     let file = |rel: &str| out_dir.join(rel);
 
     // Every channel must carry information, or its comparison proves little.
     let sky = g.depth_z.iter().filter(|z| z.is_infinite()).count();
-    assert!(sky > 100 && sky < w * h - 100, "sky pixels {sky}");
+    assert!(sky > 100 && sky < 64 * 36 - 100, "sky pixels {sky}");
     for (bit, name) in [(1u8, "sky"), (8, "mirror")] {
         assert!(g.mask.iter().any(|m| m & bit != 0), "no {name} bit");
     }
@@ -364,35 +366,41 @@ fn native_frame_written_by_the_binary_reads_back_as_the_render() {
     let classes: std::collections::BTreeSet<u8> = g.semantic.iter().copied().collect();
     assert!(classes.len() >= 4, "classes {classes:?}");
 
+    // Each reader's (width, height, data), checked to be 64×36.
+    fn sized<T>((fw, fh, v): (usize, usize, T), what: &str) -> T {
+        assert_eq!((fw, fh), (64, 36), "{what}: size");
+        v
+    }
     let depth: Vec<f32> = g.depth_z.iter().map(|&z| z as f32).collect();
-    assert_eq!(
-        exr_channel(&file("left/depth/000000.exr"), "Z"),
-        (w, h, depth.clone())
-    );
-    let (nw, nh, normal) = exr_channels(&file("left/normal/000000.exr"));
-    assert_eq!((nw, nh), (w, h));
+    let read = sized(exr_channel(&file("left/depth/000000.exr"), "Z"), "depth");
+    same(&bits(&read), &bits(&depth), "left depth");
+    let normal = sized(exr_channels(&file("left/normal/000000.exr")), "normal");
     for (c, name) in ["R", "G", "B"].iter().enumerate() {
         let want: Vec<f32> = g.normal_world.iter().map(|n| n[c]).collect();
-        assert_eq!(bits(&normal[*name]), bits(&want), "normal {name}");
+        same(
+            &bits(&normal[*name]),
+            &bits(&want),
+            &format!("normal {name}"),
+        );
     }
-    assert_eq!(
-        png_gray8(&file("left/semantic/000000.png")),
-        (w, h, g.semantic.clone())
-    );
-    assert_eq!(
-        png_gray16(&file("left/instance/000000.png")),
-        (w, h, g.instance.clone())
-    );
-    assert_eq!(
-        png_gray8(&file("left/mask/000000.png")),
-        (w, h, g.mask.clone())
+    let semantic = sized(png_gray8(&file("left/semantic/000000.png")), "semantic");
+    same(&semantic, &g.semantic, "semantic");
+    let instance = sized(png_gray16(&file("left/instance/000000.png")), "instance");
+    same(&instance, &g.instance, "instance");
+    same(
+        &sized(png_gray8(&file("left/mask/000000.png")), "mask"),
+        &g.mask,
+        "mask",
     );
     let mut seen_occlusion = false;
     for (b, gt) in r.out.baselines.iter().enumerate() {
         let d = format!("baseline_{:03}", [10, 54, 300][b]);
-        let (pw, ph, disp) = pfm(&file(&format!("{d}/disp/000000.pfm")));
-        assert_eq!((pw, ph), (w, h));
-        assert_eq!(bits(&disp), bits(&gt.disparity_left), "{d} disp");
+        let disp = sized(pfm(&file(&format!("{d}/disp/000000.pfm"))), &d);
+        same(
+            &bits(&disp),
+            &bits(&gt.disparity_left),
+            &format!("{d} disp"),
+        );
         // The stored values are f·B/Z of the stored depth (not a swapped map).
         let f = r.rig.left.intrinsics.f_px;
         for (k, &z) in depth.iter().enumerate() {
@@ -406,12 +414,21 @@ fn native_frame_written_by_the_binary_reads_back_as_the_render() {
                 "{d} {k}"
             );
         }
-        let (_, _, disp_r) = pfm(&file(&format!("{d}/disp_right/000000.pfm")));
-        assert_eq!(bits(&disp_r), bits(&gt.disparity_right), "{d} disp_right");
-        let (_, _, depth_r) = exr_channel(&file(&format!("{d}/depth_right/000000.exr")), "Z");
-        assert_eq!(bits(&depth_r), bits(&gt.depth_right), "{d} depth_right");
-        let occ = png_gray8(&file(&format!("{d}/occ/000000.png")));
-        assert_eq!(occ, (w, h, gt.occlusion.clone()), "{d} occ");
+        let disp_r = sized(pfm(&file(&format!("{d}/disp_right/000000.pfm"))), &d);
+        same(
+            &bits(&disp_r),
+            &bits(&gt.disparity_right),
+            &format!("{d} disp_right"),
+        );
+        let depth_r = exr_channel(&file(&format!("{d}/depth_right/000000.exr")), "Z");
+        let depth_r = sized(depth_r, &d);
+        same(
+            &bits(&depth_r),
+            &bits(&gt.depth_right),
+            &format!("{d} depth_right"),
+        );
+        let occ = sized(png_gray8(&file(&format!("{d}/occ/000000.png"))), &d);
+        same(&occ, &gt.occlusion, &format!("{d} occ"));
         seen_occlusion |= gt.occlusion.contains(&255);
     }
     assert!(seen_occlusion, "no occluded pixel at any baseline");
@@ -421,15 +438,12 @@ fn native_frame_written_by_the_binary_reads_back_as_the_render() {
         .chain([10, 54, 300].map(|cm| format!("baseline_{cm:03}")));
     for (film, v) in r.out.images.iter().zip(views) {
         let srgb = parallax::film::tonemap_to_srgb8(film, r.out.exposure_scale);
-        assert_eq!(
-            rgb8(&file(&format!("{v}/rgb/000000.png"))),
-            (w, h, srgb),
-            "{v}"
-        );
-        let hdr = exr_channels(&file(&format!("{v}/rgb_hdr/000000.exr"))).2;
+        let png = sized(rgb8(&file(&format!("{v}/rgb/000000.png"))), &v);
+        same(&png, &srgb, &format!("{v} rgb"));
+        let hdr = sized(exr_channels(&file(&format!("{v}/rgb_hdr/000000.exr"))), &v);
         for (c, name) in ["R", "G", "B"].iter().enumerate() {
             let want: Vec<f32> = film.rgb.iter().map(|p| p[c]).collect();
-            assert_eq!(bits(&hdr[*name]), bits(&want), "{v} hdr {name}");
+            same(&bits(&hdr[*name]), &bits(&want), &format!("{v} hdr {name}"));
         }
     }
 

@@ -113,3 +113,20 @@ pub fn pfm(path: &Path) -> (usize, usize, Vec<f32>) {
 pub fn bits(v: &[f32]) -> Vec<u32> {
     v.iter().map(|x| x.to_bits()).collect()
 }
+
+/// Asserts that `got` equals `want` element for element; on failure names
+/// `what`, the number of differing elements and the first of them (not the
+/// whole buffers).
+pub fn same<T: PartialEq + std::fmt::Debug>(got: &[T], want: &[T], what: &str) {
+    assert_eq!(got.len(), want.len(), "{what}: length");
+    let diff: Vec<usize> = (0..got.len()).filter(|&k| got[k] != want[k]).collect();
+    if let Some(&k) = diff.first() {
+        panic!(
+            "{what}: {} of {} differ, first at {k}: {:?}, expected {:?}",
+            diff.len(),
+            got.len(),
+            got[k],
+            want[k]
+        );
+    }
+}
