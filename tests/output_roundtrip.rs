@@ -1,7 +1,10 @@
 //! Round trips and failure modes of the output writers: PFM (bit-exact, rows
 //! bottom-up in the file, both byte orders), EXR depth and RGB (bit-exact,
 //! +inf kept), PNG 8/16-bit, JPEG, JSON, SHA-256 records, atomic replacement,
-//! and errors that name the path.
+//! and errors that name the path; and a frame written by `parallax render`
+//! read back file by file against the library's render of the same scene.
+
+mod common;
 
 use glam::Vec3;
 use parallax::output::*;
@@ -287,4 +290,207 @@ fn native_layout_files_round_trip_through_writers() {
     write_pfm_gray(&layout.baseline_disp(42, 54.0), 2, 2, &disp).unwrap();
     let (_, _, back) = read_pfm_gray(&dir.path().join("baseline_054/disp/000042.pfm")).unwrap();
     assert_eq!(back, disp);
+}
+
+/// A small analytic scene with every ground-truth channel non-trivial: sky
+/// (mask bit 1), a mirror-flagged box (bit 8), semantic classes and a
+/// 16-bit instance id above 255, three baselines.
+fn labelled_scene() -> String {
+    common::camera_block(64, 36, [0.0, 0.0, 1.65])
+        + "baselines_cm = [10.0, 54.0, 300.0]\n[render]\nspp = 2\nmax_depth = 3\nseed = 9\n"
+        + common::GREY_UNDER_SKY
+        + r#"
+[[material]]
+name = "chrome"
+kind = "diffuse"
+albedo = [0.8, 0.8, 0.8]
+mask = ["mirror"]
+[[object]]
+kind = "quad"
+size = [1000.0, 1000.0]
+material = "grey"
+semantic = "road"
+[[object]]
+kind = "box"
+size = [2.0, 1.6, 1.5]
+material = "grey"
+semantic = "vehicle"
+instance = 300
+transform = { translate = [7.0, 0.8, 0.75] }
+[[object]]
+kind = "box"
+size = [1.0, 1.0, 3.0]
+material = "chrome"
+semantic = "pole"
+instance = 7
+transform = { translate = [11.0, -2.5, 1.5] }
+"#
+}
+
+/// `parallax render` writes a frame; every file, read back with the `exr`
+/// and `image` crates and a PFM parser of its own, holds bit for bit what the
+/// library renders from the same scene, and the camera file's right poses
+/// are the left pose moved by B·x_L (GROUND_TRUTH.md, stereo rig).
+#[test]
+fn native_frame_written_by_the_binary_reads_back_as_the_render() {
+    use common::readback::{
+        bits, exr_channel, exr_channels, pfm, png_gray16, png_gray8, rgb8, same,
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let text = labelled_scene();
+    let scene_path = dir.path().join("scene.toml");
+    fs::write(&scene_path, &text).unwrap();
+    let out_dir = dir.path().join("out");
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_parallax"))
+        .args(["render", scene_path.to_str().unwrap(), "-o"])
+        .arg(&out_dir)
+        .args(["--backend", "bvh", "--threads", "2", "--hdr"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let r = common::render(
+        &common::scene_from_toml(&text),
+        parallax::accel::Backend::Bvh,
+        2,
+    );
+    let g = &r.out.left;
+    let file = |rel: &str| out_dir.join(rel);
+
+    // Every channel must carry information, or its comparison proves little.
+    let sky = g.depth_z.iter().filter(|z| z.is_infinite()).count();
+    assert!(sky > 100 && sky < 64 * 36 - 100, "sky pixels {sky}");
+    for (bit, name) in [(1u8, "sky"), (8, "mirror")] {
+        assert!(g.mask.iter().any(|m| m & bit != 0), "no {name} bit");
+    }
+    assert!(g.instance.contains(&300) && g.instance.contains(&7));
+    let classes: std::collections::BTreeSet<u8> = g.semantic.iter().copied().collect();
+    assert!(classes.len() >= 4, "classes {classes:?}");
+
+    // Each reader's (width, height, data), checked to be 64×36.
+    fn sized<T>((fw, fh, v): (usize, usize, T), what: &str) -> T {
+        assert_eq!((fw, fh), (64, 36), "{what}: size");
+        v
+    }
+    let depth: Vec<f32> = g.depth_z.iter().map(|&z| z as f32).collect();
+    let read = sized(exr_channel(&file("left/depth/000000.exr"), "Z"), "depth");
+    same(&bits(&read), &bits(&depth), "left depth");
+    let normal = sized(exr_channels(&file("left/normal/000000.exr")), "normal");
+    for (c, name) in ["R", "G", "B"].iter().enumerate() {
+        let want: Vec<f32> = g.normal_world.iter().map(|n| n[c]).collect();
+        same(
+            &bits(&normal[*name]),
+            &bits(&want),
+            &format!("normal {name}"),
+        );
+    }
+    let semantic = sized(png_gray8(&file("left/semantic/000000.png")), "semantic");
+    same(&semantic, &g.semantic, "semantic");
+    let instance = sized(png_gray16(&file("left/instance/000000.png")), "instance");
+    same(&instance, &g.instance, "instance");
+    same(
+        &sized(png_gray8(&file("left/mask/000000.png")), "mask"),
+        &g.mask,
+        "mask",
+    );
+    let mut seen_occlusion = false;
+    for (b, gt) in r.out.baselines.iter().enumerate() {
+        let d = format!("baseline_{:03}", [10, 54, 300][b]);
+        let disp = sized(pfm(&file(&format!("{d}/disp/000000.pfm"))), &d);
+        same(
+            &bits(&disp),
+            &bits(&gt.disparity_left),
+            &format!("{d} disp"),
+        );
+        // The stored values are f·B/Z of the stored depth (not a swapped map).
+        let f = r.rig.left.intrinsics.f_px;
+        for (k, &z) in depth.iter().enumerate() {
+            let want = if z.is_finite() {
+                f * gt.baseline_m / z as f64
+            } else {
+                0.0
+            };
+            assert!(
+                (disp[k] as f64 - want).abs() <= 1e-5 * want.max(1.0),
+                "{d} {k}"
+            );
+        }
+        let disp_r = sized(pfm(&file(&format!("{d}/disp_right/000000.pfm"))), &d);
+        same(
+            &bits(&disp_r),
+            &bits(&gt.disparity_right),
+            &format!("{d} disp_right"),
+        );
+        let depth_r = exr_channel(&file(&format!("{d}/depth_right/000000.exr")), "Z");
+        let depth_r = sized(depth_r, &d);
+        same(
+            &bits(&depth_r),
+            &bits(&gt.depth_right),
+            &format!("{d} depth_right"),
+        );
+        let occ = sized(png_gray8(&file(&format!("{d}/occ/000000.png"))), &d);
+        same(&occ, &gt.occlusion, &format!("{d} occ"));
+        seen_occlusion |= gt.occlusion.contains(&255);
+    }
+    assert!(seen_occlusion, "no occluded pixel at any baseline");
+
+    // Images: the tone-mapped film of each view, and its linear radiance.
+    let views = std::iter::once("left".to_string())
+        .chain([10, 54, 300].map(|cm| format!("baseline_{cm:03}")));
+    for (film, v) in r.out.images.iter().zip(views) {
+        let srgb = parallax::film::tonemap_to_srgb8(film, r.out.exposure_scale);
+        let png = sized(rgb8(&file(&format!("{v}/rgb/000000.png"))), &v);
+        same(&png, &srgb, &format!("{v} rgb"));
+        let hdr = sized(exr_channels(&file(&format!("{v}/rgb_hdr/000000.exr"))), &v);
+        for (c, name) in ["R", "G", "B"].iter().enumerate() {
+            let want: Vec<f32> = film.rgb.iter().map(|p| p[c]).collect();
+            same(&bits(&hdr[*name]), &bits(&want), &format!("{v} hdr {name}"));
+        }
+    }
+
+    let cam: serde_json::Value =
+        serde_json::from_slice(&fs::read(file("cameras/000000.json")).unwrap()).unwrap();
+    let m = |v: &serde_json::Value| -> [[f64; 4]; 4] { serde_json::from_value(v.clone()).unwrap() };
+    let left = m(&cam["left_pose"]);
+    assert_eq!(left, r.rig.left.pose_matrix());
+    let right = cam["right"].as_array().unwrap();
+    assert_eq!(right.len(), 3);
+    for (b, entry) in right.iter().enumerate() {
+        let bm = [0.10, 0.54, 3.0][b];
+        assert_eq!(entry["baseline_m"].as_f64(), Some(bm));
+        assert_eq!(entry["dir"], format!("baseline_{:03}", [10, 54, 300][b]));
+        let pose = m(&entry["pose"]);
+        for row in 0..3 {
+            // Same rotation; centre C_L + B·x_L, x_L the rotation's first column.
+            assert_eq!(pose[row][..3], left[row][..3], "baseline {bm} row {row}");
+            let want = left[row][3] + bm * left[row][0];
+            assert!((pose[row][3] - want).abs() < 1e-12, "{bm}: {pose:?}");
+        }
+        assert_eq!(pose[3], [0.0, 0.0, 0.0, 1.0]);
+    }
+    // A level rig at [0, 0, 1.65] looking along +x: x_L is the world's −y.
+    let c = common::level_right_centre(glam::DVec3::new(0.0, 0.0, 1.65), 0.54);
+    let p = m(&right[1]["pose"]);
+    assert!((glam::DVec3::new(p[0][3], p[1][3], p[2][3]) - c).length() < 1e-12);
+    assert_eq!(cam["seed"], 9);
+    assert_eq!(cam["spp"], 2);
+    assert_eq!(cam["f_px"].as_f64(), Some(r.rig.left.intrinsics.f_px));
+    // Written as an f32's shortest decimal: read back as f32.
+    assert_eq!(
+        cam["exposure_scale"].as_f64().map(|x| x as f32),
+        Some(r.out.exposure_scale)
+    );
+
+    // Nothing else was written: left 5 maps + rgb + rgb_hdr, per baseline 4
+    // maps + rgb + rgb_hdr, one camera file.
+    let count = walk_files(&out_dir);
+    assert_eq!(count, 5 + 2 + 3 * (4 + 2) + 1);
+}
+
+/// Number of regular files below `dir`.
+fn walk_files(dir: &Path) -> usize {
+    fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .map(|p| if p.is_dir() { walk_files(&p) } else { 1 })
+        .sum()
 }

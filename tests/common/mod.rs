@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod boxes;
+pub mod readback;
 pub mod towns;
 
 use std::path::Path;
