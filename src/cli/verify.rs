@@ -19,9 +19,10 @@ pub struct VerifyArgs {
     /// manifest lines and delete extra files, then verify again.
     #[arg(long)]
     pub repair: bool,
-    /// Directory holding the town files (with --repair).
-    #[arg(long, default_value = "scenes")]
-    pub scenes: PathBuf,
+    /// Directory holding the town files (NAME.toml) for --repair, instead
+    /// of the built-in town descriptions.
+    #[arg(long)]
+    pub scenes: Option<PathBuf>,
     /// Worker threads (0 = all cores).
     #[arg(long, default_value_t = 0)]
     pub threads: usize,
