@@ -127,8 +127,9 @@ pub fn write_obj(loaded: &LoadedScene, scene: &Scene, obj_path: &Path) -> io::Re
         base += m.p_render.len() as u64;
         triangles += m.triangles.len() as u64;
     }
-    std::fs::write(&mtl_path, mtl)?;
-    std::fs::write(obj_path, obj)?;
+    // Atomic, and the directory is created: no half-written export.
+    crate::output::write_atomic(&mtl_path, mtl.as_bytes())?;
+    crate::output::write_atomic(obj_path, obj.as_bytes())?;
     Ok(ExportStats {
         triangles,
         vertices: base - 1,
