@@ -7,12 +7,13 @@ use clap::Args;
 use super::{show, thread_pool, CliError};
 use crate::accel::Backend;
 use crate::bench::{bench_scene_from_obj, run_bench, BenchSettings};
-use crate::scene::load_scene;
+use crate::scene::{load_scene, parse_scene_str};
 
 /// Arguments of `parallax bench`.
 #[derive(Args, Debug)]
 pub struct BenchArgs {
-    /// A scene description (.toml) or a plain OBJ mesh (default: scenes/street.toml).
+    /// A scene description (.toml) or a plain OBJ mesh (default: the
+    /// built-in scenes/street.toml).
     pub input: Option<PathBuf>,
     /// Camera file for an OBJ (the shared benchmark's camera.json format).
     #[arg(long)]
@@ -46,10 +47,12 @@ pub struct BenchArgs {
 
 /// Runs `parallax bench`.
 pub fn run(a: BenchArgs) -> Result<(), CliError> {
+    // Without an input, the street built into the binary: works from any directory.
+    let builtin = a.input.is_none();
     let input = a
         .input
         .clone()
-        .unwrap_or_else(|| PathBuf::from("scenes/street.toml"));
+        .unwrap_or_else(|| PathBuf::from("<built-in>/street.toml"));
     let is_obj = input
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
@@ -62,6 +65,8 @@ pub fn run(a: BenchArgs) -> Result<(), CliError> {
             None => None,
         };
         bench_scene_from_obj(&input, camera.as_ref())
+    } else if builtin {
+        parse_scene_str(crate::town::source::STREET_SCENE, &input)
     } else {
         load_scene(&input)
     }

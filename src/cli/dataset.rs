@@ -41,9 +41,10 @@ pub struct DatasetArgs {
     /// On resume, check the SHA-256 of complete frames (not only their sizes).
     #[arg(long)]
     pub check_hashes: bool,
-    /// Directory holding the town files.
-    #[arg(long, default_value = "scenes")]
-    pub scenes: PathBuf,
+    /// Directory holding the town files (NAME.toml), instead of the
+    /// built-in town descriptions.
+    #[arg(long)]
+    pub scenes: Option<PathBuf>,
     /// Worker threads (0 = all cores).
     #[arg(long, default_value_t = 0)]
     pub threads: usize,
@@ -137,7 +138,7 @@ pub fn run(a: DatasetArgs) -> Result<(), CliError> {
 }
 
 fn dry_run(config: &DatasetConfig, a: &DatasetArgs, shard: Shard) -> Result<(), CliError> {
-    let towns = Towns::load(config, &a.scenes).map_err(CliError::input)?;
+    let towns = Towns::load(config, a.scenes.as_deref()).map_err(CliError::input)?;
     let t0 = Instant::now();
     let e = ds::estimate::estimate(config, &towns, a.backend).map_err(CliError::failure)?;
     let in_shard = (0..e.frames as usize).filter(|&i| shard.owns(i)).count();

@@ -11,10 +11,13 @@ use super::{parse_baselines, show, thread_pool, CliError};
 use crate::accel::{build_accel, Accel, Backend};
 use crate::camera::StereoRig;
 use crate::film::apply_sensor_noise;
-use crate::output::frame::{camera_file, write_native_frame, WriteOptions};
+use crate::output::frame::{
+    camera_file, write_native_frame, FrameSeeds, TownFrameRecord, WriteOptions,
+};
 use crate::render::{render_frame, RenderSettings};
 use crate::scene::desc::SensorNoiseDesc;
 use crate::scene::{build_scene, load_scene, LoadedScene};
+use crate::town::{CameraConfig, NamedTown};
 
 /// Arguments of `parallax render`.
 #[derive(Args, Debug)]
@@ -32,9 +35,10 @@ pub struct RenderArgs {
     /// roll15, roll30, pitch00, pitch30.
     #[arg(long, default_value = "normal", requires = "town")]
     pub config: crate::town::CameraConfig,
-    /// Directory holding the town files (with --town).
-    #[arg(long, default_value = "scenes")]
-    pub scenes: PathBuf,
+    /// Directory holding the town files (NAME.toml) for --town, instead of
+    /// the built-in town descriptions.
+    #[arg(long)]
+    pub scenes: Option<PathBuf>,
     /// Output directory (created; frame 000000 is written in the native layout).
     #[arg(short, long)]
     pub output: PathBuf,
@@ -54,6 +58,21 @@ pub struct RenderArgs {
     /// the town's seed (absent: one is drawn and recorded).
     #[arg(long)]
     pub seed: Option<u64>,
+    /// Seed of the sample streams, rain and sensor noise (default: --seed,
+    /// else the scene's, else drawn); a dataset frame's `seeds.samples`.
+    #[arg(long)]
+    pub sample_seed: Option<u64>,
+    /// Seed of the --weather preset's draw (default: the sample seed); a
+    /// dataset frame's `seeds.weather`.
+    #[arg(long, requires = "weather")]
+    pub weather_seed: Option<u64>,
+    /// Frame index of the sample streams and the output files (default:
+    /// --frame with --town, else 0); a dataset frame's `frame`.
+    #[arg(long)]
+    pub sample_frame: Option<u32>,
+    /// Horizontal field of view, degrees (overrides the scene).
+    #[arg(long)]
+    pub hfov: Option<f64>,
     /// Maximum path depth (overrides the scene).
     #[arg(long)]
     pub max_depth: Option<u32>,
@@ -113,15 +132,18 @@ fn apply_overrides(loaded: &mut LoadedScene, a: &RenderArgs) -> Result<(), CliEr
     if let Some(b) = &a.baselines {
         d.camera.baselines_cm = b.0.clone();
     }
-    if a.seed.is_some() {
-        d.render.seed = a.seed;
+    if let Some(h) = a.hfov {
+        d.camera.hfov_deg = h;
+    }
+    if let Some(s) = a.sample_seed.or(a.seed) {
+        d.render.seed = Some(s);
     }
     crate::scene::validate::check_rig(&loaded.desc.camera, &loaded.path)
         .map_err(|e| CliError::input(format!("with the command-line overrides: {e}")))
 }
 
 /// A seed for runs that named none; recorded in the outputs (STYLE.md rule 7).
-fn draw_seed() -> u64 {
+pub(super) fn draw_seed() -> u64 {
     let nanos = std::time::SystemTime::now()
         .duration_since(std::time::UNIX_EPOCH)
         .map(|d| d.as_nanos() as u64)
@@ -142,21 +164,24 @@ fn progress_bar(total: u64) -> ProgressBar {
 
 /// Runs `parallax render`.
 pub fn run(a: RenderArgs) -> Result<(), CliError> {
-    let (mut loaded, frame) = match (&a.town, &a.scene) {
+    let (mut loaded, frame, mut origin) = match (&a.town, &a.scene) {
         (Some(name), _) => {
-            let (desc, path) =
-                crate::town::load_named_town(name, &a.scenes).map_err(CliError::input)?;
+            let t =
+                crate::town::load_named_town(name, a.scenes.as_deref()).map_err(CliError::input)?;
             let seed = a.seed.unwrap_or_else(draw_seed);
-            let loaded = crate::town::load_town_frame(&desc, seed, a.frame as u64, a.config, &path)
-                .map_err(|e| CliError::input(e.to_string()))?;
-            (loaded, a.frame)
+            let loaded =
+                crate::town::load_town_frame(&t.desc, seed, a.frame as u64, a.config, &t.path)
+                    .map_err(|e| CliError::input(e.to_string()))?;
+            (loaded, a.frame, Origin::town(&t, seed, a.frame, a.config))
         }
         (None, Some(scene)) => (
             load_scene(scene).map_err(|e| CliError::input(e.to_string()))?,
             0,
+            Origin::default(),
         ),
         (None, None) => return Err(CliError::input("give a SCENE file or --town NAME")),
     };
+    let frame = a.sample_frame.unwrap_or(frame);
     apply_overrides(&mut loaded, &a)?;
     if a.output.is_file() {
         return Err(CliError::input(format!(
@@ -165,7 +190,12 @@ pub fn run(a: RenderArgs) -> Result<(), CliError> {
         )));
     }
     let seed = loaded.desc.render.seed.unwrap_or_else(draw_seed);
-    let mut weather = a.weather.map(|w| crate::weather::draw_params(w, seed));
+    let weather_seed = a.weather.map(|_| a.weather_seed.unwrap_or(seed));
+    origin.seeds.weather = weather_seed;
+    let mut weather = a
+        .weather
+        .zip(weather_seed)
+        .map(|(w, s)| crate::weather::draw_params(w, s));
     if let Some(p) = &weather {
         crate::weather::apply(&mut loaded.desc, p);
     }
@@ -174,7 +204,28 @@ pub fn run(a: RenderArgs) -> Result<(), CliError> {
     }
     let noise = sensor_noise(a.sensor_noise, weather.as_mut())?;
     let pool = thread_pool(a.threads)?;
-    pool.install(|| render_to(&loaded, &a, seed, frame, weather.as_ref(), noise))
+    pool.install(|| render_to(&loaded, &a, seed, frame, weather.as_ref(), noise, origin))
+}
+
+/// What the camera file records of where the frame came from.
+#[derive(Default)]
+struct Origin {
+    seeds: FrameSeeds,
+    town: Option<TownFrameRecord>,
+}
+
+impl Origin {
+    /// A town frame generated with `seed`.
+    fn town(t: &NamedTown, seed: u64, frame: u32, config: CameraConfig) -> Origin {
+        Origin {
+            seeds: FrameSeeds {
+                town: Some(seed),
+                traffic: Some(seed),
+                ..FrameSeeds::default()
+            },
+            town: Some(t.source.frame_record(frame as u64, config)),
+        }
+    }
 }
 
 /// The frame's sensor noise: `--sensor-noise ISO` (0 = none) over the
@@ -208,6 +259,7 @@ fn render_to(
     frame: u32,
     weather: Option<&crate::weather::WeatherParams>,
     noise: Option<SensorNoiseDesc>,
+    origin: Origin,
 ) -> Result<(), CliError> {
     let started = Instant::now();
     let rig = StereoRig::from_desc(&loaded.desc.camera);
@@ -234,7 +286,12 @@ fn render_to(
         apply_sensor_noise(&mut out.images, &noise.model(), scale, seed, frame);
     }
     pb.finish_and_clear();
-    let meta = camera_file(&scene, &rig, &out, &settings, weather);
+    let mut meta = camera_file(&scene, &rig, &out, &settings, weather);
+    meta.seeds = FrameSeeds {
+        samples: Some(seed),
+        ..origin.seeds
+    };
+    meta.town = origin.town;
     write_native_frame(
         &a.output,
         frame,

@@ -8,6 +8,7 @@ use clap::Args;
 
 use super::{show, thread_pool, CliError};
 use crate::accel::Backend;
+use crate::dataset::frame::Towns;
 use crate::dataset::{self as ds, RunOptions, Shard, StopGuard};
 
 /// Arguments of `parallax verify`.
@@ -19,9 +20,10 @@ pub struct VerifyArgs {
     /// manifest lines and delete extra files, then verify again.
     #[arg(long)]
     pub repair: bool,
-    /// Directory holding the town files (with --repair).
-    #[arg(long, default_value = "scenes")]
-    pub scenes: PathBuf,
+    /// Directory holding the town files (NAME.toml) for --repair, instead
+    /// of the built-in town descriptions.
+    #[arg(long)]
+    pub scenes: Option<PathBuf>,
     /// Worker threads (0 = all cores).
     #[arg(long, default_value_t = 0)]
     pub threads: usize,
@@ -45,6 +47,13 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
         )));
     }
     let config = ds::verify::dataset_config(&a.root).map_err(CliError::from)?;
+    // Other town descriptions than the recorded ones are refused before
+    // anything is touched.
+    let towns = Towns::load(&config, a.scenes.as_deref()).map_err(CliError::input)?;
+    if let Ok(Some(meta)) = ds::manifest::read_meta(&a.root) {
+        meta.check_towns(&towns.sources(&config))
+            .map_err(CliError::input)?;
+    }
     let redo = ds::prepare_repair(&a.root, &report).map_err(CliError::from)?;
     println!("repair: re-rendering {} frames", redo.len());
     let opts = RunOptions {

@@ -67,11 +67,9 @@ pub struct DatasetConfig {
     /// Filter sky and indirect light (and fog light) in image space, guided
     /// by the exact depth (`[render] filter_indirect`, `[medium]
     /// filter_inscatter`; default true). false writes the plain path-traced
-    /// images. Ground truth is never filtered.
-    #[serde(
-        default = "crate::scene::desc::default_true",
-        skip_serializing_if = "crate::scene::desc::is_true"
-    )]
+    /// images. Ground truth is never filtered. Always written to
+    /// `dataset.json`, so the record says which images a dataset holds.
+    #[serde(default = "crate::scene::desc::default_true")]
     pub filter: bool,
 }
 

@@ -5,7 +5,7 @@
 
 use std::collections::BTreeMap;
 use std::io;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use super::config::DatasetConfig;
 use super::layouts::write_extra_layouts;
@@ -14,20 +14,21 @@ use super::plan::{frame_seed, sequence_seed, town_frame, town_seed, Job};
 use crate::accel::{build_accel, Backend};
 use crate::camera::StereoRig;
 use crate::film::apply_sensor_noise;
-use crate::output::frame::{camera_file, write_native_frame, CameraFile, WriteOptions};
+use crate::output::frame::{camera_file, write_native_frame, CameraFile, FrameSeeds, WriteOptions};
 use crate::output::FileRecord;
 use crate::render::{render_frame, FrameOutput, RenderSettings};
 use crate::scene::build_scene;
-use crate::town::{load_named_town, load_town_frame, TownDesc};
+use crate::town::{load_named_town, load_town_frame, NamedTown, TownSource};
 
 /// The town descriptions a configuration names, loaded once.
 pub struct Towns {
-    by_name: BTreeMap<String, (TownDesc, PathBuf)>,
+    by_name: BTreeMap<String, NamedTown>,
 }
 
 impl Towns {
-    /// Loads every town of `config` from `scenes_dir` (`<dir>/<name>.toml`).
-    pub fn load(config: &DatasetConfig, scenes_dir: &Path) -> Result<Towns, String> {
+    /// Loads every town of `config`: from `scenes_dir` (`<dir>/<name>.toml`)
+    /// when given, else the built-in descriptions.
+    pub fn load(config: &DatasetConfig, scenes_dir: Option<&Path>) -> Result<Towns, String> {
         let mut by_name = BTreeMap::new();
         for name in &config.towns {
             by_name.insert(name.clone(), load_named_town(name, scenes_dir)?);
@@ -35,10 +36,19 @@ impl Towns {
         Ok(Towns { by_name })
     }
 
-    fn get(&self, name: &str) -> Result<&(TownDesc, PathBuf), String> {
+    fn get(&self, name: &str) -> Result<&NamedTown, String> {
         self.by_name
             .get(name)
             .ok_or_else(|| format!("town '{name}' is not loaded"))
+    }
+
+    /// Where each town's description came from, in the configuration's order.
+    pub fn sources(&self, config: &DatasetConfig) -> Vec<TownSource> {
+        config
+            .towns
+            .iter()
+            .filter_map(|n| self.by_name.get(n).map(|t| t.source.clone()))
+            .collect()
     }
 }
 
@@ -52,6 +62,8 @@ pub struct RenderedFrame {
     pub meta: CameraFile,
     /// Seed of the frame's sample streams.
     pub seed: u64,
+    /// Every seed of the frame (town, traffic, weather, samples).
+    pub seeds: FrameSeeds,
     /// Town frame (time step) rendered.
     pub town_frame: u64,
 }
@@ -87,17 +99,14 @@ pub fn render_job(
     backend: Backend,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<RenderedFrame, String> {
-    let (desc, path) = towns.get(&job.town)?;
+    let town = towns.get(&job.town)?;
+    let path = &town.path;
     let t_frame = town_frame(config, job);
-    let mut loaded = load_town_frame(
-        desc,
-        town_seed(config.seed, &job.town),
-        t_frame,
-        job.config,
-        path,
-    )
-    .map_err(|e| e.to_string())?;
+    let t_seed = town_seed(config.seed, &job.town);
+    let mut loaded = load_town_frame(&town.desc, t_seed, t_frame, job.config, path)
+        .map_err(|e| e.to_string())?;
     let seed = frame_seed(config.seed, job);
+    let w_seed = sequence_seed(config.seed, &job.town, job.weather, job.sequence);
     {
         let d = &mut loaded.desc;
         d.camera.width = quality.width;
@@ -109,10 +118,7 @@ pub fn render_job(
         d.render.seed = Some(seed);
     }
     crate::scene::validate::check_rig(&loaded.desc.camera, path).map_err(|e| e.to_string())?;
-    let weather = crate::weather::draw_params(
-        job.weather,
-        sequence_seed(config.seed, &job.town, job.weather, job.sequence),
-    );
+    let weather = crate::weather::draw_params(job.weather, w_seed);
     crate::weather::apply(&mut loaded.desc, &weather);
     if !config.filter {
         loaded.desc.turn_image_filters_off();
@@ -131,12 +137,20 @@ pub fn render_job(
         let scale = out.exposure_scale;
         apply_sensor_noise(&mut out.images, &noise.model(), scale, seed, job.frame);
     }
-    let meta = camera_file(&scene, &rig, &out, &settings, Some(&weather));
+    let mut meta = camera_file(&scene, &rig, &out, &settings, Some(&weather));
+    meta.seeds = FrameSeeds {
+        town: Some(t_seed),
+        traffic: Some(t_seed),
+        weather: Some(w_seed),
+        samples: Some(seed),
+    };
+    meta.town = Some(town.source.frame_record(t_frame, job.config));
     Ok(RenderedFrame {
         rig,
         out,
-        meta,
         seed,
+        seeds: meta.seeds,
+        meta,
         town_frame: t_frame,
     })
 }
@@ -182,6 +196,7 @@ pub fn write_job(
         frame: job.frame,
         town_frame: r.town_frame,
         seed: r.seed,
+        seeds: Some(r.seeds),
         files,
         render: RenderRecord {
             spp: config.spp,

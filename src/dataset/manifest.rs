@@ -14,7 +14,10 @@ use serde::{Deserialize, Serialize};
 
 use super::config::DatasetConfig;
 use super::plan::Job;
+use crate::output::frame::FrameSeeds;
 use crate::output::{Access, FileRecord, OutputError};
+use crate::stats::DisparityHistogram;
+use crate::town::TownSource;
 
 /// Name of the dataset description at the root.
 pub const DATASET_JSON: &str = "dataset.json";
@@ -41,11 +44,16 @@ pub struct DatasetMeta {
     pub baselines_cm: Vec<f64>,
     /// Layouts written.
     pub layouts: Vec<String>,
+    /// The town descriptions the frames were generated from, in the
+    /// configuration's order: source (`built-in` or path) and SHA-256 of
+    /// the text. Absent in datasets of older versions.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub towns: Vec<TownSource>,
 }
 
 impl DatasetMeta {
-    /// The description of a dataset rendered from `config`.
-    pub fn new(config: &DatasetConfig) -> DatasetMeta {
+    /// The description of a dataset rendered from `config` with `towns`.
+    pub fn new(config: &DatasetConfig, towns: Vec<TownSource>) -> DatasetMeta {
         let intr = crate::camera::Intrinsics::from_hfov(
             config.width,
             config.height,
@@ -59,7 +67,26 @@ impl DatasetMeta {
             resolution: [config.width, config.height],
             baselines_cm: config.baselines_cm.clone(),
             layouts: config.layouts.clone(),
+            towns,
         }
+    }
+
+    /// Refuses town descriptions other than those recorded (a resumed or
+    /// repaired dataset must not mix towns); an older `dataset.json` without
+    /// the record accepts any.
+    pub fn check_towns(&self, towns: &[TownSource]) -> Result<(), String> {
+        for t in towns {
+            let Some(old) = self.towns.iter().find(|o| o.name == t.name) else {
+                continue;
+            };
+            if old.sha256 != t.sha256 {
+                return Err(format!(
+                    "town '{}': the description from {} (SHA-256 {}) is not the one this                      dataset was made from ({}, SHA-256 {}, recorded in {DATASET_JSON});                      pass --scenes DIR holding that description",
+                    t.name, t.source, t.sha256, old.source, old.sha256
+                ));
+            }
+        }
+        Ok(())
     }
 }
 
@@ -87,13 +114,14 @@ pub struct RenderRecord {
     pub seconds: f64,
 }
 
-/// Left-view disparity statistics of one baseline over finite pixels.
+/// Left-view disparity statistics of one baseline over valid pixels
+/// (finite and > 0, as `stats` counts them: sky is 0).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DisparityRecord {
     /// Baseline, centimetres.
     pub baseline_cm: f64,
-    /// Pixels with finite disparity (not sky).
+    /// Pixels with valid disparity (finite and > 0; not sky).
     pub valid_px: u64,
     /// Minimum disparity, px (0 when no pixel is valid).
     pub min_px: f64,
@@ -104,25 +132,23 @@ pub struct DisparityRecord {
 }
 
 impl DisparityRecord {
-    /// Statistics of `disparity` (non-finite values are skipped).
+    /// Statistics of the valid values of `disparity` (the rule and figures
+    /// of `stats`' histogram); zeros when none is valid.
     pub fn of(baseline_cm: f64, disparity: &[f32]) -> DisparityRecord {
-        let (mut n, mut lo, mut hi, mut sum) = (0u64, f64::INFINITY, f64::NEG_INFINITY, 0.0);
-        for &d in disparity.iter().filter(|d| d.is_finite()) {
-            let d = d as f64;
-            n += 1;
-            lo = lo.min(d);
-            hi = hi.max(d);
-            sum += d;
-        }
-        if n == 0 {
-            (lo, hi) = (0.0, 0.0);
-        }
+        let mut h = DisparityHistogram::default();
+        disparity.iter().for_each(|&d| h.add(d));
+        let s = h.summary();
+        let (min_px, max_px, mean_px) = if s.pixels == 0 {
+            (0.0, 0.0, 0.0)
+        } else {
+            (s.min, s.max, s.mean)
+        };
         DisparityRecord {
             baseline_cm,
-            valid_px: n,
-            min_px: lo,
-            max_px: hi,
-            mean_px: if n > 0 { sum / n as f64 } else { 0.0 },
+            valid_px: s.pixels,
+            min_px,
+            max_px,
+            mean_px,
         }
     }
 }
@@ -145,6 +171,10 @@ pub struct ManifestLine {
     pub town_frame: u64,
     /// Seed of the frame's sample streams.
     pub seed: u64,
+    /// Every seed of the frame (town, traffic, weather, samples); absent in
+    /// manifests of older versions.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seeds: Option<FrameSeeds>,
     /// Every file of the frame, paths relative to the dataset root.
     pub files: Vec<FileRecord>,
     /// Render statistics.
@@ -264,13 +294,19 @@ mod tests {
 
     #[test]
     fn disparity_stats_skip_sky() {
-        let r = DisparityRecord::of(54.0, &[1.0, f32::INFINITY, 3.0, 8.0]);
+        // Sky is 0 in the disparity maps: it counts no more than ∞ or NaN.
+        let r = DisparityRecord::of(54.0, &[1.0, 0.0, f32::INFINITY, 3.0, 0.0, 8.0, f32::NAN]);
         assert_eq!(
             (r.valid_px, r.min_px, r.max_px, r.mean_px),
             (3, 1.0, 8.0, 4.0)
         );
-        let sky = DisparityRecord::of(54.0, &[f32::INFINITY]);
-        assert_eq!((sky.valid_px, sky.min_px, sky.max_px), (0, 0.0, 0.0));
+        for sky in [[f32::INFINITY], [0.0]] {
+            let s = DisparityRecord::of(54.0, &sky);
+            assert_eq!(
+                (s.valid_px, s.min_px, s.max_px, s.mean_px),
+                (0, 0.0, 0.0, 0.0)
+            );
+        }
     }
 
     #[test]

@@ -67,8 +67,8 @@ pub struct RunOptions {
     pub check_hashes: bool,
     /// Traversal backend.
     pub backend: Backend,
-    /// Directory holding the town files.
-    pub scenes: PathBuf,
+    /// Directory holding the town files (`None`: the built-in towns).
+    pub scenes: Option<PathBuf>,
     /// Render only these jobs (verify --repair); `None`: the whole shard.
     pub only: Option<BTreeSet<Job>>,
 }
@@ -78,9 +78,15 @@ pub fn is_temp_name(name: &str) -> bool {
     name.contains(".tmp-")
 }
 
-/// Creates the root, refuses a different configuration (or foreign files)
-/// in a non-empty root unless `force`, and writes `dataset.json`.
-pub fn prepare_root(root: &Path, config: &DatasetConfig, force: bool) -> Result<(), DatasetError> {
+/// Creates the root, refuses a different configuration or town descriptions
+/// (or foreign files) in a non-empty root unless `force`, and writes
+/// `dataset.json`.
+pub fn prepare_root(
+    root: &Path,
+    config: &DatasetConfig,
+    towns: &[crate::town::TownSource],
+    force: bool,
+) -> Result<(), DatasetError> {
     if root.is_file() {
         return Err(DatasetError::input(format!(
             "{}: is a file, expected a directory",
@@ -88,18 +94,24 @@ pub fn prepare_root(root: &Path, config: &DatasetConfig, force: bool) -> Result<
         )));
     }
     fs::create_dir_all(root).map_err(|e| OutputError::wrap(root, Access::Write, e))?;
-    let meta = DatasetMeta::new(config);
+    let meta = DatasetMeta::new(config, towns.to_vec());
     let existing = super::manifest::read_meta(root);
+    let towns_differ = match &existing {
+        Ok(Some(m)) if m.config == meta.config => m.check_towns(towns).err(),
+        _ => None,
+    };
     let nonempty = fs::read_dir(root)
         .map_err(|e| OutputError::wrap(root, Access::Read, e))?
         .filter_map(|e| e.ok())
         .any(|e| !is_temp_name(&e.file_name().to_string_lossy()));
-    let same = matches!(&existing, Ok(Some(m)) if m.config == meta.config);
+    let same =
+        matches!(&existing, Ok(Some(m)) if m.config == meta.config) && towns_differ.is_none();
     if nonempty && !same {
-        let why = match existing {
-            Ok(Some(_)) => "holds a dataset of a different configuration",
-            Ok(None) => "is not empty and holds no dataset.json",
-            Err(_) => "holds an unreadable dataset.json",
+        let why = match (&existing, towns_differ) {
+            (_, Some(towns)) => format!("holds a dataset of other town descriptions: {towns}"),
+            (Ok(Some(_)), _) => "holds a dataset of a different configuration".into(),
+            (Ok(None), _) => "is not empty and holds no dataset.json".into(),
+            (Err(_), _) => "holds an unreadable dataset.json".into(),
         };
         if !force {
             return Err(DatasetError::input(format!(
@@ -240,8 +252,8 @@ pub fn run_dataset(
     stop: &StopGuard,
 ) -> Result<RunSummary, DatasetError> {
     let started = Instant::now();
-    let towns = Towns::load(config, &opts.scenes).map_err(DatasetError::input)?;
-    prepare_root(&opts.root, config, opts.force)?;
+    let towns = Towns::load(config, opts.scenes.as_deref()).map_err(DatasetError::input)?;
+    prepare_root(&opts.root, config, &towns.sources(config), opts.force)?;
     let root = opts.root.as_path();
     let jobs: Vec<Job> = plan(config)
         .into_iter()

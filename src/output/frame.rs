@@ -4,7 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use super::{
     write_exr_f32_gray, write_exr_rgb_f32, write_json, write_pfm_gray, write_png_gray16,
@@ -43,7 +43,8 @@ pub struct CameraFile {
     /// Weather preset and its drawn parameters; null when the frame uses the
     /// scene's own sky and lights (no preset applied).
     pub weather: Option<WeatherParams>,
-    /// Seed of every random stream of this frame.
+    /// Seed of every random stream of this frame (the sample streams,
+    /// rain and sensor noise: `seeds.samples`).
     pub seed: u64,
     /// Frame index.
     pub frame: u32,
@@ -59,6 +60,44 @@ pub struct CameraFile {
     pub semantic_classes: Vec<(String, u8)>,
     /// Conventions, spelled out for readers of the file.
     pub conventions: &'static str,
+    /// Every seed that determines the frame.
+    pub seeds: FrameSeeds,
+    /// The generated town and town frame rendered; null for a scene file.
+    pub town: Option<TownFrameRecord>,
+}
+
+/// Every seed that determines a frame; with the town frame, camera
+/// configuration, resolution and quality they re-render it exactly.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FrameSeeds {
+    /// Seed of the town's layout, buildings, furniture and terrain; null
+    /// for a scene file.
+    pub town: Option<u64>,
+    /// Seed of the town's traffic (vehicles and pedestrians at every town
+    /// frame): the town seed, as the traffic is part of the town; null for
+    /// a scene file.
+    pub traffic: Option<u64>,
+    /// Seed of the weather preset's drawn parameters; null without a preset.
+    pub weather: Option<u64>,
+    /// Seed of the sample streams, rain streaks and sensor noise; null in a
+    /// town export (nothing is sampled).
+    pub samples: Option<u64>,
+}
+
+/// The town description and town frame a frame was generated from.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TownFrameRecord {
+    /// Town name as given (`town01` or a file path).
+    pub name: String,
+    /// Where its description came from: `built-in` or the file path.
+    pub source: String,
+    /// SHA-256 of the description's text.
+    pub sha256: String,
+    /// Town frame (time step at the town's fps) of the vehicles and pedestrians.
+    pub frame: u64,
+    /// Camera configuration on the ego vehicle.
+    pub config: String,
 }
 
 /// One right camera in the metadata.
@@ -166,13 +205,7 @@ pub fn camera_file(
         k: rig.left.intrinsics.k_matrix(),
         f_px: rig.left.intrinsics.f_px,
         left_pose: rig.left.pose_matrix(),
-        right: (0..rig.baselines_m.len())
-            .map(|b| RightCamera {
-                baseline_m: rig.baselines_m[b],
-                dir: super::baseline_dir_name(rig.baselines_m[b] * 100.0),
-                pose: rig.right(b).pose_matrix(),
-            })
-            .collect(),
+        right: right_cameras(rig),
         exposure_scale: out.exposure_scale,
         exposure_ev: out.exposure_scale.log2(),
         sun_direction_world: scene
@@ -194,5 +227,22 @@ pub fn camera_file(
             .map(|(n, id)| (n.to_string(), *id))
             .collect(),
         conventions: CONVENTIONS,
+        // The caller fills in the town and weather seeds it used.
+        seeds: FrameSeeds {
+            samples: Some(settings.seed),
+            ..FrameSeeds::default()
+        },
+        town: None,
     }
+}
+
+/// The right cameras of `rig` as camera files list them.
+pub fn right_cameras(rig: &StereoRig) -> Vec<RightCamera> {
+    (0..rig.baselines_m.len())
+        .map(|b| RightCamera {
+            baseline_m: rig.baselines_m[b],
+            dir: super::baseline_dir_name(rig.baselines_m[b] * 100.0),
+            pose: rig.right(b).pose_matrix(),
+        })
+        .collect()
 }

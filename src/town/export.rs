@@ -3,14 +3,23 @@
 //! round-trip precision), one `o` per mesh named after its semantic class and
 //! instance id, `usemtl` per material run. Analytic spheres are not exported.
 //!
+//! Beside the OBJ, `<stem>.cameras.json` gives the frame's cameras as a
+//! render's camera file does (K, left pose, right poses) with the town,
+//! town frame, configuration and seeds, so the export lines up with the
+//! dataset frame it came from.
+//!
 //! MTL mapping (what `scene::obj` reads back): diffuse → Kd; conductor →
 //! Pm 1 with Kd = normal-incidence reflectance and Pr roughness; dielectric →
 //! d 0, Ni ior, Tf tint, Pr roughness; emissive → Ke radiance.
 
 use std::fmt::Write as _;
 use std::io;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
+use serde::Serialize;
+
+use crate::camera::StereoRig;
+use crate::output::frame::{right_cameras, FrameSeeds, RightCamera, TownFrameRecord, CONVENTIONS};
 use crate::scene::desc::{MaterialDesc, MaterialKindDesc};
 use crate::scene::semantic::class_name;
 use crate::scene::{LoadedScene, Scene};
@@ -24,6 +33,64 @@ pub struct ExportStats {
     pub vertices: u64,
     /// Materials written.
     pub materials: usize,
+}
+
+/// The cameras of an exported town frame, named and laid out as in a
+/// render's camera file.
+#[derive(Clone, Debug, Serialize)]
+pub struct ExportCameras {
+    /// Image width, pixels.
+    pub width: u32,
+    /// Image height, pixels.
+    pub height: u32,
+    /// Intrinsic matrix K (row-major), pixels.
+    pub k: [[f64; 3]; 3],
+    /// Focal length, pixels.
+    pub f_px: f64,
+    /// World-from-camera pose of the left camera (row-major 4×4, OpenCV
+    /// camera frame), in the OBJ's world coordinates.
+    pub left_pose: [[f64; 4]; 4],
+    /// One entry per baseline.
+    pub right: Vec<RightCamera>,
+    /// The seeds of the geometry (town and traffic; nothing is sampled).
+    pub seeds: FrameSeeds,
+    /// The town description, town frame and camera configuration.
+    pub town: TownFrameRecord,
+    /// Conventions, as in camera files.
+    pub conventions: &'static str,
+}
+
+impl ExportCameras {
+    /// The cameras of `rig` on the frame of `town` generated with `seed`.
+    pub fn new(rig: &StereoRig, seed: u64, town: TownFrameRecord) -> Self {
+        ExportCameras {
+            width: rig.left.intrinsics.width,
+            height: rig.left.intrinsics.height,
+            k: rig.left.intrinsics.k_matrix(),
+            f_px: rig.left.intrinsics.f_px,
+            left_pose: rig.left.pose_matrix(),
+            right: right_cameras(rig),
+            seeds: FrameSeeds {
+                town: Some(seed),
+                traffic: Some(seed),
+                ..FrameSeeds::default()
+            },
+            town,
+            conventions: CONVENTIONS,
+        }
+    }
+}
+
+/// The cameras file beside an OBJ: `<stem>.cameras.json`.
+pub fn cameras_path(obj_path: &Path) -> PathBuf {
+    obj_path.with_extension("cameras.json")
+}
+
+/// Writes `cameras` beside `obj_path` ([`cameras_path`]) and returns its path.
+pub fn write_cameras(obj_path: &Path, cameras: &ExportCameras) -> io::Result<PathBuf> {
+    let path = cameras_path(obj_path);
+    crate::output::write_json(&path, cameras)?;
+    Ok(path)
 }
 
 /// Writes `scene` (built from `loaded`) to `obj_path` and its materials to
@@ -60,8 +127,9 @@ pub fn write_obj(loaded: &LoadedScene, scene: &Scene, obj_path: &Path) -> io::Re
         base += m.p_render.len() as u64;
         triangles += m.triangles.len() as u64;
     }
-    std::fs::write(&mtl_path, mtl)?;
-    std::fs::write(obj_path, obj)?;
+    // Atomic, and the directory is created: no half-written export.
+    crate::output::write_atomic(&mtl_path, mtl.as_bytes())?;
+    crate::output::write_atomic(obj_path, obj.as_bytes())?;
     Ok(ExportStats {
         triangles,
         vertices: base - 1,

@@ -35,15 +35,17 @@ pub mod roads;
 pub mod roundabout;
 pub mod routes;
 pub mod signals;
+pub mod source;
 pub mod terrain;
 pub mod traffic;
 pub mod vehicles;
 pub mod walkers;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 pub use desc::{load_town, parse_town_str, TownDesc};
 pub use rig::{rig_desc, CameraConfig, CONFIGS};
+pub use source::{load_named_town, town_path, NamedTown, TownSource};
 pub use traffic::{frame_at, TownFrame, VehiclePose};
 
 use crate::scene::desc::{ObjectDesc, RenderDesc, SceneDesc};
@@ -262,34 +264,6 @@ pub fn load_town_frame(
         objs,
         triangle_estimate,
     })
-}
-
-/// `scenes/NAME.toml` for a bare town name; a path ending in `.toml` as is.
-pub fn town_path(name: &str, scenes_dir: &Path) -> PathBuf {
-    if name.ends_with(".toml") {
-        PathBuf::from(name)
-    } else {
-        scenes_dir.join(format!("{name}.toml"))
-    }
-}
-
-/// Reads and validates the town `name` ([`town_path`]), with the path it
-/// came from. A bare name that is not there says where it was looked for:
-/// the default `--scenes` is relative to the working directory.
-pub fn load_named_town(name: &str, scenes_dir: &Path) -> Result<(TownDesc, PathBuf), String> {
-    let path = town_path(name, scenes_dir);
-    let desc = load_town(&path).map_err(|e| {
-        if name.ends_with(".toml") || path.exists() {
-            e
-        } else {
-            format!(
-                "{e}; town '{name}' is looked up in the --scenes directory ('{}'): \
-                 run from the repository root or pass --scenes DIR",
-                scenes_dir.display()
-            )
-        }
-    })?;
-    Ok((desc, path))
 }
 
 /// A hash of a built scene's geometry: every f64 position (world), triangle,
