@@ -12,6 +12,7 @@ use crate::accel::{build_accel, Accel, Backend};
 use crate::camera::StereoRig;
 use crate::film::apply_sensor_noise;
 use crate::output::frame::{camera_file, write_native_frame, WriteOptions};
+use crate::output::StagedDir;
 use crate::render::{render_frame, RenderSettings};
 use crate::scene::desc::SensorNoiseDesc;
 use crate::scene::{build_scene, load_scene, LoadedScene};
@@ -35,7 +36,10 @@ pub struct RenderArgs {
     /// Directory holding the town files (with --town).
     #[arg(long, default_value = "scenes")]
     pub scenes: PathBuf,
-    /// Output directory (created; frame 000000 is written in the native layout).
+    /// Output directory: frame K (with --town; else 000000) in the native
+    /// layout. A new or empty directory, or an earlier render's output, which
+    /// is replaced whole once the new frame is complete; any other non-empty
+    /// directory is refused untouched.
     #[arg(short, long)]
     pub output: PathBuf,
     /// Samples per pixel per view (overrides the scene).
@@ -158,12 +162,6 @@ pub fn run(a: RenderArgs) -> Result<(), CliError> {
         (None, None) => return Err(CliError::input("give a SCENE file or --town NAME")),
     };
     apply_overrides(&mut loaded, &a)?;
-    if a.output.is_file() {
-        return Err(CliError::input(format!(
-            "--output {}: is a file, expected a directory",
-            show(&a.output)
-        )));
-    }
     let seed = loaded.desc.render.seed.unwrap_or_else(draw_seed);
     let mut weather = a.weather.map(|w| crate::weather::draw_params(w, seed));
     if let Some(p) = &weather {
@@ -173,8 +171,11 @@ pub fn run(a: RenderArgs) -> Result<(), CliError> {
         loaded.desc.turn_image_filters_off();
     }
     let noise = sensor_noise(a.sensor_noise, weather.as_mut())?;
+    // Before any render work: refuse a foreign directory, prove it writable.
+    let staged = StagedDir::prepare(&a.output)
+        .map_err(|e| CliError::input(format!("--output {}: {e}", show(&a.output))))?;
     let pool = thread_pool(a.threads)?;
-    pool.install(|| render_to(&loaded, &a, seed, frame, weather.as_ref(), noise))
+    pool.install(|| render_to(&loaded, &a, staged, seed, frame, weather.as_ref(), noise))
 }
 
 /// The frame's sensor noise: `--sensor-noise ISO` (0 = none) over the
@@ -201,9 +202,11 @@ fn sensor_noise(
     Ok(noise)
 }
 
+/// Renders the frame into `staged` and swaps it in as `a.output`.
 fn render_to(
     loaded: &LoadedScene,
     a: &RenderArgs,
+    staged: StagedDir,
     seed: u64,
     frame: u32,
     weather: Option<&crate::weather::WeatherParams>,
@@ -236,7 +239,7 @@ fn render_to(
     pb.finish_and_clear();
     let meta = camera_file(&scene, &rig, &out, &settings, weather);
     write_native_frame(
-        &a.output,
+        staged.path(),
         frame,
         &rig,
         &out,
@@ -244,6 +247,12 @@ fn render_to(
         WriteOptions { hdr: a.hdr },
     )
     .map_err(|e| CliError::failure(e.to_string()))?;
+    let warning = staged
+        .commit()
+        .map_err(|e| CliError::failure(format!("--output {}: {e}", show(&a.output))))?;
+    if let Some(w) = warning {
+        eprintln!("parallax: --output {}: {w}", show(&a.output));
+    }
     summary(
         &a.output,
         &out.stats,
