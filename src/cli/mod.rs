@@ -121,7 +121,10 @@ fn parse_baselines(s: &str) -> Result<BaselinesCm, String> {
             Ok(v)
         })
         .collect::<Result<Vec<_>, _>>()
-        .map(BaselinesCm)
+        .and_then(|v| match crate::output::check_baseline_dirs(&v) {
+            Ok(()) => Ok(BaselinesCm(v)),
+            Err(e) => Err(e.to_string()),
+        })
 }
 
 /// Builds the rayon pool for `--threads` (0 = all cores).

@@ -14,6 +14,7 @@ use crate::film::apply_sensor_noise;
 use crate::output::frame::{
     camera_file, write_native_frame, FrameSeeds, TownFrameRecord, WriteOptions,
 };
+use crate::output::StagedDir;
 use crate::render::{render_frame, RenderSettings};
 use crate::scene::desc::SensorNoiseDesc;
 use crate::scene::{build_scene, load_scene, LoadedScene};
@@ -39,7 +40,10 @@ pub struct RenderArgs {
     /// the built-in town descriptions.
     #[arg(long)]
     pub scenes: Option<PathBuf>,
-    /// Output directory (created; frame 000000 is written in the native layout).
+    /// Output directory: frame K (with --town; else 000000) in the native
+    /// layout. A new or empty directory, or an earlier render's output, which
+    /// is replaced whole once the new frame is complete; any other non-empty
+    /// directory is refused untouched.
     #[arg(short, long)]
     pub output: PathBuf,
     /// Samples per pixel per view (overrides the scene).
@@ -164,7 +168,7 @@ fn progress_bar(total: u64) -> ProgressBar {
 
 /// Runs `parallax render`.
 pub fn run(a: RenderArgs) -> Result<(), CliError> {
-    let (mut loaded, frame, mut origin) = match (&a.town, &a.scene) {
+    let (mut loaded, mut origin) = match (&a.town, &a.scene) {
         (Some(name), _) => {
             let t =
                 crate::town::load_named_town(name, a.scenes.as_deref()).map_err(CliError::input)?;
@@ -172,23 +176,16 @@ pub fn run(a: RenderArgs) -> Result<(), CliError> {
             let loaded =
                 crate::town::load_town_frame(&t.desc, seed, a.frame as u64, a.config, &t.path)
                     .map_err(|e| CliError::input(e.to_string()))?;
-            (loaded, a.frame, Origin::town(&t, seed, a.frame, a.config))
+            (loaded, Origin::town(&t, seed, a.frame, a.config))
         }
         (None, Some(scene)) => (
             load_scene(scene).map_err(|e| CliError::input(e.to_string()))?,
-            0,
             Origin::default(),
         ),
         (None, None) => return Err(CliError::input("give a SCENE file or --town NAME")),
     };
-    let frame = a.sample_frame.unwrap_or(frame);
+    origin.frame = a.sample_frame.unwrap_or(origin.frame);
     apply_overrides(&mut loaded, &a)?;
-    if a.output.is_file() {
-        return Err(CliError::input(format!(
-            "--output {}: is a file, expected a directory",
-            show(&a.output)
-        )));
-    }
     let seed = loaded.desc.render.seed.unwrap_or_else(draw_seed);
     let weather_seed = a.weather.map(|_| a.weather_seed.unwrap_or(seed));
     origin.seeds.weather = weather_seed;
@@ -203,13 +200,18 @@ pub fn run(a: RenderArgs) -> Result<(), CliError> {
         loaded.desc.turn_image_filters_off();
     }
     let noise = sensor_noise(a.sensor_noise, weather.as_mut())?;
+    // Before any render work: refuse a foreign directory, prove it writable.
+    let staged = StagedDir::prepare(&a.output)
+        .map_err(|e| CliError::input(format!("--output {}: {e}", show(&a.output))))?;
     let pool = thread_pool(a.threads)?;
-    pool.install(|| render_to(&loaded, &a, seed, frame, weather.as_ref(), noise, origin))
+    pool.install(|| render_to(&loaded, &a, staged, seed, weather.as_ref(), noise, origin))
 }
 
 /// What the camera file records of where the frame came from.
 #[derive(Default)]
 struct Origin {
+    /// Frame index: the output files' number and the sample streams' frame key.
+    frame: u32,
     seeds: FrameSeeds,
     town: Option<TownFrameRecord>,
 }
@@ -218,6 +220,7 @@ impl Origin {
     /// A town frame generated with `seed`.
     fn town(t: &NamedTown, seed: u64, frame: u32, config: CameraConfig) -> Origin {
         Origin {
+            frame,
             seeds: FrameSeeds {
                 town: Some(seed),
                 traffic: Some(seed),
@@ -252,16 +255,18 @@ fn sensor_noise(
     Ok(noise)
 }
 
+/// Renders the frame into `staged` and swaps it in as `a.output`.
 fn render_to(
     loaded: &LoadedScene,
     a: &RenderArgs,
+    staged: StagedDir,
     seed: u64,
-    frame: u32,
     weather: Option<&crate::weather::WeatherParams>,
     noise: Option<SensorNoiseDesc>,
     origin: Origin,
 ) -> Result<(), CliError> {
     let started = Instant::now();
+    let frame = origin.frame;
     let rig = StereoRig::from_desc(&loaded.desc.camera);
     let scene =
         build_scene(loaded, rig.left.center_world).map_err(|e| CliError::input(e.to_string()))?;
@@ -293,7 +298,7 @@ fn render_to(
     };
     meta.town = origin.town;
     write_native_frame(
-        &a.output,
+        staged.path(),
         frame,
         &rig,
         &out,
@@ -301,6 +306,12 @@ fn render_to(
         WriteOptions { hdr: a.hdr },
     )
     .map_err(|e| CliError::failure(e.to_string()))?;
+    let warning = staged
+        .commit()
+        .map_err(|e| CliError::failure(format!("--output {}: {e}", show(&a.output))))?;
+    if let Some(w) = warning {
+        eprintln!("parallax: --output {}: {w}", show(&a.output));
+    }
     summary(
         &a.output,
         &out.stats,

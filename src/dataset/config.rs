@@ -214,6 +214,8 @@ impl DatasetConfig {
                 ));
             }
         }
+        crate::output::check_baseline_dirs(&self.baselines_cm)
+            .map_err(|e| err(format!("baselines_cm[{}]", e.index), e.to_string()))?;
         for (i, l) in self.layouts.iter().enumerate() {
             if !LAYOUTS.contains(&l.as_str()) {
                 return Err(err(

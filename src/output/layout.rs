@@ -1,9 +1,12 @@
 //! The `native` frame layout of DATASET.md as path functions: a sequence
 //! directory holds `left/<aov>/NNNNNN.<ext>`, `baseline_XXX/<aov>/NNNNNN.<ext>`
 //! (XXX = baseline in whole centimetres, zero-padded to 3 digits) and
-//! `cameras/NNNNNN.json`. Nothing here touches the file system.
+//! `cameras/NNNNNN.json`. Also the one rule that a rig's baselines need
+//! folders of their own, and the recogniser of native-layout paths. Nothing
+//! here touches the file system.
 
-use std::path::{Path, PathBuf};
+use std::fmt;
+use std::path::{Component, Path, PathBuf};
 
 /// Six-digit zero-padded frame stem: frame 7 → "000007".
 pub fn frame_stem(frame: u32) -> String {
@@ -15,7 +18,159 @@ pub fn frame_stem(frame: u32) -> String {
 /// 300.0 → "baseline_300". Precondition: `baseline_cm` finite and ≥ 0.
 pub fn baseline_dir_name(baseline_cm: f64) -> String {
     debug_assert!(baseline_cm.is_finite() && baseline_cm >= 0.0);
-    format!("baseline_{:03}", baseline_cm.round() as u64)
+    // Snap to a millionth of a centimetre first: writers pass `metres * 100`,
+    // configurations pass centimetres, and 14.5 / 100 * 100 is 14.4999…,
+    // which would otherwise name another folder than 14.5 itself.
+    let snapped = (baseline_cm * 1e6).round() / 1e6;
+    format!("baseline_{:03}", snapped.round() as u64)
+}
+
+/// Two baselines of one rig whose folders coincide (same whole centimetre).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SharedBaselineDir {
+    /// Index of the later of the two in the list (the value to report).
+    pub index: usize,
+    /// The earlier baseline, centimetres.
+    pub first_cm: f64,
+    /// The later baseline, centimetres.
+    pub second_cm: f64,
+    /// The folder both would be written to (`baseline_XXX`).
+    pub dir: String,
+}
+
+impl fmt::Display for SharedBaselineDir {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (a, b, dir) = (self.first_cm, self.second_cm, &self.dir);
+        if a == b {
+            write!(f, "baseline {a} cm is listed twice (both would be {dir})")
+        } else {
+            write!(
+                f,
+                "baselines {a} cm and {b} cm would share the folder {dir} (folders name \
+                 the baseline in whole centimetres; give each its own centimetre)"
+            )
+        }
+    }
+}
+
+/// Checks that every baseline gets its own `baseline_XXX` folder; the error
+/// names the first pair that would share one. Render, dataset and the scene
+/// and CLI checks all call this one rule. Precondition: values finite, ≥ 0.
+pub fn check_baseline_dirs(baselines_cm: &[f64]) -> Result<(), SharedBaselineDir> {
+    let dirs: Vec<String> = baselines_cm.iter().map(|&b| baseline_dir_name(b)).collect();
+    for (j, dir) in dirs.iter().enumerate() {
+        if let Some(i) = dirs[..j].iter().position(|d| d == dir) {
+            return Err(SharedBaselineDir {
+                index: j,
+                first_cm: baselines_cm[i],
+                second_cm: baselines_cm[j],
+                dir: dir.clone(),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// AOV folders below `left/` and their files' extension.
+const LEFT_AOVS: [(&str, &str); 7] = [
+    ("rgb", "png"),
+    ("rgb_hdr", "exr"),
+    ("depth", "exr"),
+    ("normal", "exr"),
+    ("semantic", "png"),
+    ("instance", "png"),
+    ("mask", "png"),
+];
+
+/// AOV folders below `baseline_XXX/` and their files' extension.
+const BASELINE_AOVS: [(&str, &str); 6] = [
+    ("rgb", "png"),
+    ("rgb_hdr", "exr"),
+    ("disp", "pfm"),
+    ("depth_right", "exr"),
+    ("disp_right", "pfm"),
+    ("occ", "png"),
+];
+
+/// What a path below a sequence directory is in the native layout.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NativePath {
+    /// One of the layout's folders (`left`, `left/rgb`, `baseline_054/occ`, …).
+    Folder,
+    /// A file of frame `frame`; `camera` for the camera file
+    /// `cameras/NNNNNN.json` itself. The temporary file of an interrupted
+    /// atomic write (`NNNNNN.png.tmp-<pid>-<seq>`) counts as its frame's.
+    File {
+        /// The frame the file belongs to.
+        frame: u32,
+        /// Whether it is the frame's camera file.
+        camera: bool,
+    },
+}
+
+/// Recognises `rel` (relative to a sequence directory) as a folder or file
+/// the native layout writes; `None` for anything else.
+pub fn native_path(rel: &Path) -> Option<NativePath> {
+    let mut parts = Vec::new();
+    for c in rel.components() {
+        match c {
+            Component::Normal(s) => parts.push(s.to_str()?),
+            _ => return None,
+        }
+    }
+    let aovs: &[(&str, &str)] = match *parts.first()? {
+        "left" => &LEFT_AOVS,
+        "cameras" => &[],
+        top if is_baseline_dir(top) => &BASELINE_AOVS,
+        _ => return None,
+    };
+    match parts[..] {
+        [_] => Some(NativePath::Folder),
+        ["cameras", file] => frame_file(file, "json").map(|(frame, tmp)| NativePath::File {
+            frame,
+            camera: !tmp,
+        }),
+        [_, aov] => aovs
+            .iter()
+            .any(|(a, _)| *a == aov)
+            .then_some(NativePath::Folder),
+        [_, aov, file] => {
+            let (_, ext) = aovs.iter().find(|(a, _)| *a == aov)?;
+            frame_file(file, ext).map(|(frame, _)| NativePath::File {
+                frame,
+                camera: false,
+            })
+        }
+        _ => None,
+    }
+}
+
+/// `baseline_` followed by three or more digits, as `baseline_dir_name` writes.
+fn is_baseline_dir(name: &str) -> bool {
+    name.strip_prefix("baseline_")
+        .is_some_and(|d| d.len() >= 3 && d.bytes().all(|b| b.is_ascii_digit()))
+}
+
+/// `NNNNNN.<ext>` (or its `.tmp-<pid>-<seq>` temporary): the frame and
+/// whether it is a temporary file.
+fn frame_file(name: &str, ext: &str) -> Option<(u32, bool)> {
+    let (stem, rest) = name.split_once('.')?;
+    let frame: u32 = stem.parse().ok()?;
+    if frame_stem(frame) != stem {
+        return None;
+    }
+    let tmp = match rest.strip_prefix(ext)? {
+        "" => false,
+        t => {
+            let (pid, seq) = t.strip_prefix(".tmp-")?.split_once('-')?;
+            let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
+            if !(digits(pid) && digits(seq)) {
+                return None;
+            }
+            true
+        }
+    };
+    Some((frame, tmp))
 }
 
 /// Paths of the native layout below one sequence directory.
@@ -181,5 +336,93 @@ mod tests {
         assert_eq!(baseline_dir_name(0.54 * 100.0), "baseline_054");
         assert_eq!(baseline_dir_name(5.0), "baseline_005");
         assert_eq!(baseline_dir_name(1234.0), "baseline_1234");
+    }
+
+    #[test]
+    fn baseline_dir_is_the_same_from_centimetres_and_from_metres() {
+        // Writers name folders from `baseline_m * 100`, split lists and the
+        // folder check from the configured centimetres: both must agree.
+        for cm in [3.5, 14.5, 28.5, 54.5, 100.5, 0.5, 299.5] {
+            assert_eq!(baseline_dir_name(cm / 100.0 * 100.0), baseline_dir_name(cm));
+        }
+        assert_eq!(baseline_dir_name(14.5 / 100.0 * 100.0), "baseline_015");
+    }
+
+    #[test]
+    fn baselines_sharing_a_folder_are_named() {
+        assert_eq!(
+            check_baseline_dirs(&[10.0, 54.0, 100.0, 200.0, 300.0]),
+            Ok(())
+        );
+        assert_eq!(check_baseline_dirs(&[54.0, 54.6]), Ok(()));
+        let e = check_baseline_dirs(&[10.0, 53.6, 20.0, 54.4]).unwrap_err();
+        assert_eq!((e.index, e.first_cm, e.second_cm), (3, 53.6, 54.4));
+        assert_eq!(e.dir, "baseline_054");
+        let msg = e.to_string();
+        assert!(
+            msg.contains("53.6 cm and 54.4 cm") && msg.contains("baseline_054"),
+            "{msg}"
+        );
+        let e = check_baseline_dirs(&[54.0, 10.0, 54.0]).unwrap_err();
+        assert_eq!(e.index, 2);
+        assert!(e.to_string().contains("54 cm is listed twice"), "{e}");
+    }
+
+    #[test]
+    fn every_native_path_is_recognised() {
+        let l = NativeLayout::new("");
+        for b in [10.0, 54.0, 1234.0] {
+            for f in [0, 7, 1_000_000] {
+                for p in [
+                    l.left_rgb(f),
+                    l.left_rgb_hdr(f),
+                    l.left_depth(f),
+                    l.left_normal(f),
+                    l.left_semantic(f),
+                    l.left_instance(f),
+                    l.left_mask(f),
+                    l.baseline_rgb(f, b),
+                    l.baseline_rgb_hdr(f, b),
+                    l.baseline_disp(f, b),
+                    l.baseline_depth_right(f, b),
+                    l.baseline_disp_right(f, b),
+                    l.baseline_occ(f, b),
+                ] {
+                    let file = NativePath::File {
+                        frame: f,
+                        camera: false,
+                    };
+                    assert_eq!(native_path(&p), Some(file), "{}", p.display());
+                    let mut tmp = p.clone().into_os_string();
+                    tmp.push(".tmp-123-4");
+                    assert_eq!(native_path(Path::new(&tmp)), Some(file));
+                    for dir in p.ancestors().skip(1).filter(|d| !d.as_os_str().is_empty()) {
+                        assert_eq!(native_path(dir), Some(NativePath::Folder));
+                    }
+                }
+                let cam = NativePath::File {
+                    frame: f,
+                    camera: true,
+                };
+                assert_eq!(native_path(&l.camera_json(f)), Some(cam));
+            }
+        }
+        for other in [
+            "notes.txt",
+            "left/rgb/000000.jpg",
+            "left/rgb/0.png",
+            "left/rgb/0000001.png",
+            "left/disp/000000.pfm",
+            "baseline_54/rgb/000000.png",
+            "baseline_054/rgb/000000.png/x",
+            "cameras/000000.json.bak",
+            "cameras/notes.json",
+            "dataset.json",
+            "manifest",
+            "../left",
+            "/left",
+        ] {
+            assert_eq!(native_path(Path::new(other)), None, "{other}");
+        }
     }
 }

@@ -13,6 +13,7 @@ mod hash;
 mod image_io;
 mod layout;
 mod pfm;
+mod render_dir;
 
 pub mod frame;
 pub mod layouts;
@@ -24,5 +25,9 @@ pub use image_io::{
     read_jpeg_rgb8, read_png_gray16, read_png_gray8, read_png_rgb8, write_jpeg_rgb8,
     write_png_gray16, write_png_gray8, write_png_rgb8,
 };
-pub use layout::{baseline_dir_name, frame_stem, NativeLayout};
+pub use layout::{
+    baseline_dir_name, check_baseline_dirs, frame_stem, native_path, NativeLayout, NativePath,
+    SharedBaselineDir,
+};
 pub use pfm::{decode_pfm_gray, encode_pfm_gray, read_pfm_gray, write_pfm_gray};
+pub use render_dir::StagedDir;

@@ -85,6 +85,8 @@ impl V<'_> {
             return Err(self.err("camera.baselines_cm", "at least one baseline is needed"));
         }
         self.positive("camera.baselines_cm", &rig.baselines_cm)?;
+        crate::output::check_baseline_dirs(&rig.baselines_cm)
+            .map_err(|e| self.err(format!("camera.baselines_cm[{}]", e.index), e.to_string()))?;
         self.finite("camera.position", &rig.position)?;
         self.finite("camera.yaw_deg", &[rig.yaw_deg])?;
         self.range("camera.pitch_deg", &[rig.pitch_deg], -90.0, 90.0)?;
