@@ -69,13 +69,28 @@ pub struct RunOptions {
     pub backend: Backend,
     /// Directory holding the town files.
     pub scenes: PathBuf,
-    /// Render only these jobs (verify --repair); `None`: the whole shard.
+    /// Render exactly these jobs, even those a manifest line calls complete
+    /// (verify --repair); `None`: the whole shard, skipping complete frames.
     pub only: Option<BTreeSet<Job>>,
 }
 
-/// True for names written by `write_atomic` before their rename.
+/// The name a temporary file of the atomic writers will be renamed to:
+/// `<name>.tmp-<pid>-<seq>` (`write_atomic`) or `<name>.tmp-link-<pid>`
+/// (a layout's hard link) give `<name>`; any other name gives `None`.
+pub fn temp_base(name: &str) -> Option<&str> {
+    let (base, tail) = name.rsplit_once(".tmp-")?;
+    let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
+    let ok = match tail.split_once('-') {
+        Some(("link", pid)) => digits(pid),
+        Some((pid, seq)) => digits(pid) && digits(seq),
+        None => false,
+    };
+    (ok && !base.is_empty()).then_some(base)
+}
+
+/// True for names written by the atomic writers before their rename.
 pub fn is_temp_name(name: &str) -> bool {
-    name.contains(".tmp-")
+    temp_base(name).is_some()
 }
 
 /// Creates the root, refuses a different configuration (or foreign files)
@@ -96,10 +111,13 @@ pub fn prepare_root(root: &Path, config: &DatasetConfig, force: bool) -> Result<
         .any(|e| !is_temp_name(&e.file_name().to_string_lossy()));
     let same = matches!(&existing, Ok(Some(m)) if m.config == meta.config);
     if nonempty && !same {
-        let why = match existing {
-            Ok(Some(_)) => "holds a dataset of a different configuration",
-            Ok(None) => "is not empty and holds no dataset.json",
-            Err(_) => "holds an unreadable dataset.json",
+        let why = match &existing {
+            Ok(Some(old)) => format!(
+                "holds a dataset of a different configuration ({})",
+                config_differences(&old.config, config).join("; ")
+            ),
+            Ok(None) => "is not empty and holds no dataset.json".into(),
+            Err(_) => "holds an unreadable dataset.json".into(),
         };
         if !force {
             return Err(DatasetError::input(format!(
@@ -120,6 +138,30 @@ pub fn prepare_root(root: &Path, config: &DatasetConfig, force: bool) -> Result<
     }
     write_json(&root.join(DATASET_JSON), &meta)?;
     Ok(())
+}
+
+/// The configuration keys whose values differ, each as
+/// `key = <old> in dataset.json, <new> in the new configuration` (compact JSON).
+fn config_differences(old: &DatasetConfig, new: &DatasetConfig) -> Vec<String> {
+    use serde_json::{Map, Value};
+    let object = |c: &DatasetConfig| match serde_json::to_value(c) {
+        Ok(Value::Object(m)) => m,
+        _ => Map::new(),
+    };
+    let (a, b) = (object(old), object(new));
+    // A key left out when serialized holds its default.
+    let show = |v: Option<&Value>| v.map_or_else(|| "its default".to_string(), Value::to_string);
+    let keys: BTreeSet<&String> = a.keys().chain(b.keys()).collect();
+    keys.into_iter()
+        .filter(|k| a.get(*k) != b.get(*k))
+        .map(|k| {
+            format!(
+                "{k} = {} in {DATASET_JSON}, {} in the new configuration",
+                show(a.get(k)),
+                show(b.get(k))
+            )
+        })
+        .collect()
 }
 
 /// Removes the frames of the dataset being replaced: every file its
@@ -163,7 +205,7 @@ fn remove_old_frames(root: &Path) -> Result<(), DatasetError> {
 
 /// The job a native-layout path below the root belongs to
 /// (`<town>/<config>_<weather>/<seq>/…/NNNNNN.ext…`).
-fn job_of_path(rel: &Path) -> Option<Job> {
+pub(crate) fn job_of_path(rel: &Path) -> Option<Job> {
     let parts: Vec<String> = rel
         .components()
         .map(|c| c.as_os_str().to_string_lossy().into_owned())
@@ -270,7 +312,8 @@ pub fn run_dataset(
         if stop.stopped() {
             break;
         }
-        if let Some(line) = existing.get(job) {
+        // A repair renders its frames whatever their old lines say.
+        if let Some(line) = existing.get(job).filter(|_| opts.only.is_none()) {
             if frame_complete(root, line, opts.check_hashes) {
                 s.skipped += 1;
                 progress.frame(k as u64 + 1, job, "complete, skipped", &s);
@@ -383,5 +426,15 @@ mod tests {
         assert_eq!(j.id(), "town01/roll05_night/0002/000007");
         assert!(job_of_path(Path::new("dataset.json.tmp-1-2")).is_none());
         assert!(job_of_path(Path::new("town01/bogus/0002/left/rgb/000007.png")).is_none());
+    }
+
+    #[test]
+    fn only_the_atomic_writers_names_are_temporary() {
+        assert_eq!(temp_base("000007.png.tmp-9-1"), Some("000007.png"));
+        assert_eq!(temp_base("0000_000001.jpg.tmp-link-42"), Some("0000_000001.jpg"));
+        assert_eq!(temp_base("dataset.json.tmp-123-45"), Some("dataset.json"));
+        for name in ["notes.tmp-old", "a.tmp-1", "a.tmp-1-", "a.tmp-x-2", ".tmp-1-2", "a.png"] {
+            assert_eq!(temp_base(name), None, "{name}");
+        }
     }
 }
