@@ -70,7 +70,10 @@ pub fn run(a: VerifyArgs) -> Result<(), CliError> {
             .map_err(CliError::failure)?;
         let pool = thread_pool(a.threads)?;
         pool.install(|| ds::run_dataset(&config, &opts, &stop))
-            .map_err(CliError::from)?;
+            .map_err(|mut e| {
+                e.message += "; the repair dropped no manifest line and removed no file";
+                CliError::from(e)
+            })?;
     }
     let done = ds::repair::finish(&a.root, &staged).map_err(CliError::from)?;
     println!(

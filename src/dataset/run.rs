@@ -136,7 +136,10 @@ pub fn prepare_root(root: &Path, config: &DatasetConfig, force: bool) -> Result<
             }
         }
     }
-    write_json(&root.join(DATASET_JSON), &meta)?;
+    // A resume leaves an identical dataset.json as it is (bytes and mtime).
+    if !matches!(&existing, Ok(Some(m)) if *m == meta) {
+        write_json(&root.join(DATASET_JSON), &meta)?;
+    }
     Ok(())
 }
 
@@ -308,6 +311,8 @@ pub fn run_dataset(
         ));
     }
     let mut s = RunSummary::default();
+    // Frames written again over a line of theirs (damaged on disk).
+    let mut superseded = BTreeSet::new();
     for (k, job) in jobs.iter().enumerate() {
         if stop.stopped() {
             break;
@@ -349,6 +354,9 @@ pub fn run_dataset(
             );
             match written {
                 Ok(line) => {
+                    if existing.contains_key(job) {
+                        superseded.insert(job.clone());
+                    }
                     s.done += 1;
                     s.rays += line.render.rays;
                     s.frame_seconds += line.render.seconds;
@@ -379,6 +387,10 @@ pub fn run_dataset(
         }
     }
     progress.finish();
+    // A repair drops old lines itself (module `repair`), after every frame.
+    if opts.only.is_none() {
+        drop_superseded_lines(&manifest, &superseded)?;
+    }
     write_failures(root, opts.shard, &s)?;
     eprintln!(
         "shard {}: {}",
@@ -386,6 +398,44 @@ pub fn run_dataset(
         s.line(started.elapsed().as_secs_f64())
     );
     Ok(s)
+}
+
+/// Drops from this shard's manifest every line of `jobs` but the last, so a
+/// frame written again over a damaged one keeps one line. Other shards'
+/// manifests are theirs to append to and stay as they are (a line of the
+/// frame there remains, and `verify` reports the frame as duplicate).
+fn drop_superseded_lines(manifest: &Path, jobs: &BTreeSet<Job>) -> io::Result<()> {
+    if jobs.is_empty() {
+        return Ok(());
+    }
+    let bytes = crate::output::read_file(manifest)?;
+    let text = String::from_utf8_lossy(&bytes);
+    let lines: Vec<(&str, Option<Job>)> = text
+        .lines()
+        .map(|l| {
+            let job = serde_json::from_str::<super::manifest::ManifestLine>(l)
+                .ok()
+                .and_then(|p| p.job())
+                .filter(|j| jobs.contains(j));
+            (l, job)
+        })
+        .collect();
+    let last: std::collections::BTreeMap<&Job, usize> = lines
+        .iter()
+        .enumerate()
+        .filter_map(|(i, (_, j))| Some((j.as_ref()?, i)))
+        .collect();
+    let mut kept = String::new();
+    for (i, (l, job)) in lines.iter().enumerate() {
+        if job.as_ref().is_none_or(|j| last[j] == i) {
+            kept.push_str(l);
+            kept.push('\n');
+        }
+    }
+    if kept.lines().count() != lines.len() {
+        write_atomic(manifest, kept.as_bytes())?;
+    }
+    Ok(())
 }
 
 /// Writes `failures/shard-i-of-N.txt` (one `id<TAB>error` per line), or

@@ -149,11 +149,17 @@ impl Ownership {
         temp.is_some() && (dir.is_empty() || self.layout_dirs.contains(top))
     }
 
-    /// The planned frame a native-layout path (temporary suffix stripped) belongs to.
+    /// The planned frame a native-layout file `…/NNNNNN.ext` (temporary
+    /// suffix stripped) belongs to; a name with more (`000001.png.bak`) or
+    /// other stems is not a frame file.
     pub fn planned_frame_file(&self, rel: &str) -> Option<Job> {
         let (dir, name) = rel.rsplit_once('/')?;
-        let path = format!("{dir}/{}", temp_base(name).unwrap_or(name));
-        job_of_path(Path::new(&path)).filter(|j| self.planned.contains(j))
+        let name = temp_base(name).unwrap_or(name);
+        let (stem, ext) = name.split_once('.')?;
+        if ext.contains('.') || !stem.bytes().all(|b| b.is_ascii_digit()) {
+            return None;
+        }
+        job_of_path(Path::new(&format!("{dir}/{name}"))).filter(|j| self.planned.contains(j))
     }
 }
 
@@ -255,4 +261,74 @@ pub fn verify_dataset(root: &Path) -> Result<VerifyReport, DatasetError> {
         }
     }
     Ok(report)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::output::FileRecord;
+
+    #[test]
+    fn ownership_covers_named_frame_and_temporary_files_only() {
+        let text = "seed = 1\ntowns = [\"town01\"]\nconfigs = [\"normal\"]\n\
+                    weathers = [\"clear\"]\nframes_per_sequence = 2\n\
+                    layouts = [\"native\", \"kitti\"]\n";
+        let config = super::super::parse_config(text, "t.toml").unwrap();
+        let job = plan(&config)[0].clone();
+        let line = ManifestLine {
+            town: job.town.clone(),
+            config: job.config.name().into(),
+            weather: job.weather.name().into(),
+            sequence: 0,
+            frame: 0,
+            town_frame: 0,
+            seed: 0,
+            files: vec![FileRecord {
+                path: "old/listed.bin".into(),
+                bytes: 1,
+                sha256: String::new(),
+            }],
+            render: super::super::manifest::RenderRecord {
+                spp: 1,
+                rays: 0,
+                seconds: 0.0,
+            },
+            disparity: Vec::new(),
+        };
+        let owner = Ownership::new(&config, [&line]);
+        let seq = "town01/normal_clear/0000";
+        for rel in [
+            "old/listed.bin",
+            "old/listed.bin.tmp-7-0",
+            &format!("{seq}/left/rgb/000001.png"),
+            &format!("{seq}/baseline_054/disp/000000.pfm.tmp-12-3"),
+            "dataset.json.tmp-5-1",
+            "kitti/baseline_054/image_2/x.png.tmp-link-9",
+        ] {
+            assert!(owner.owns(rel), "{rel} is the dataset's");
+        }
+        for rel in [
+            "notes.txt",
+            "old/other.bin",
+            "old/notes.tmp-old",
+            &format!("{seq}/left/rgb/stray.png"),
+            &format!("{seq}/left/rgb/000001.png.bak"),
+            // Frame 2 and sequence 1 are not planned; sceneflow is not written.
+            &format!("{seq}/left/rgb/000002.png"),
+            "town01/normal_clear/0001/left/rgb/000000.png",
+            "sceneflow/disparity/a.pfm.tmp-1-1",
+        ] {
+            assert!(!owner.owns(rel), "{rel} is not the dataset's");
+        }
+        let twice = ManifestLine {
+            files: vec![line.files[0].clone(), line.files[0].clone()],
+            ..line.clone()
+        };
+        let planned = plan(&config).into_iter().collect();
+        assert_eq!(line_problem(&line, &planned), None);
+        assert_eq!(
+            line_problem(&twice, &planned).as_deref(),
+            Some("names old/listed.bin twice")
+        );
+    }
 }
