@@ -162,7 +162,7 @@ pub fn lines_by_frame(root: &Path) -> BTreeMap<String, Vec<String>> {
                 v["town"].as_str().unwrap(),
                 v["config"].as_str().unwrap(),
                 v["weather"].as_str().unwrap(),
-                v["sequence"],
+                v["sequence"].as_u64().unwrap(),
                 v["frame"].as_u64().unwrap()
             );
             out.entry(id).or_default().push(l.to_string());
