@@ -481,9 +481,19 @@ mod tests {
     #[test]
     fn only_the_atomic_writers_names_are_temporary() {
         assert_eq!(temp_base("000007.png.tmp-9-1"), Some("000007.png"));
-        assert_eq!(temp_base("0000_000001.jpg.tmp-link-42"), Some("0000_000001.jpg"));
+        assert_eq!(
+            temp_base("0000_000001.jpg.tmp-link-42"),
+            Some("0000_000001.jpg")
+        );
         assert_eq!(temp_base("dataset.json.tmp-123-45"), Some("dataset.json"));
-        for name in ["notes.tmp-old", "a.tmp-1", "a.tmp-1-", "a.tmp-x-2", ".tmp-1-2", "a.png"] {
+        for name in [
+            "notes.tmp-old",
+            "a.tmp-1",
+            "a.tmp-1-",
+            "a.tmp-x-2",
+            ".tmp-1-2",
+            "a.png",
+        ] {
             assert_eq!(temp_base(name), None, "{name}");
         }
     }
