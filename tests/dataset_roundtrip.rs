@@ -1,7 +1,8 @@
 //! Dataset round trips through the real binary: a run verifies whole and
-//! resumes as all-skipped; shards unite to the one-shard bytes; tampering is
-//! detected and repaired; a different configuration is refused; config
-//! errors name the file and key.
+//! resumes as all-skipped; a resume with --check-hashes re-renders exactly
+//! a corrupted and a truncated frame; shards unite to the one-shard bytes;
+//! tampering is detected and repaired; a different configuration is refused
+//! naming the keys; config errors name the file and key.
 
 mod dataset_common;
 
@@ -40,6 +41,56 @@ fn run_verifies_whole_and_second_run_skips_every_frame() {
         text(&again)
     );
     assert_eq!(manifest_lines(&out), 4);
+}
+
+#[test]
+fn resume_with_check_hashes_re_renders_exactly_the_corrupted_and_truncated_frames() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = write_config(
+        dir.path(),
+        "c.toml",
+        &tiny_config(&["normal", "pitch30"], 2),
+    );
+    let out = dir.path().join("out");
+    ok(&dataset(&cfg, &out, &[]));
+    let files = data_files(&out);
+    let lines = lines_by_frame(&out);
+    // Same size, other bytes: only a hash finds it. And a truncated file.
+    let corrupted = "town01/normal_clear/0000/000000";
+    let truncated = "town01/pitch30_clear/0000/000001";
+    flip_byte(&out.join("town01/normal_clear/0000/left/rgb/000000.png"));
+    truncate_half(&out.join("town01/pitch30_clear/0000/baseline_010/disp/000001.pfm"));
+    let before = mtimes(&out);
+
+    let o = dataset(&cfg, &out, &["--check-hashes"]);
+    ok(&o);
+    assert!(
+        text(&o).contains("2 frames done, 2 skipped, 0 failed"),
+        "{}",
+        text(&o)
+    );
+    assert_eq!(data_files(&out), files);
+    // Every file of the two frames is written again, no other file.
+    let mut redone = frame_files(files.keys(), corrupted);
+    redone.extend(frame_files(files.keys(), truncated));
+    assert_eq!(redone.len(), 2 * 17);
+    let after = mtimes(&out);
+    for rel in files.keys() {
+        assert_eq!(
+            after[rel] != before[rel],
+            redone.contains(rel),
+            "{rel}: written again or not"
+        );
+    }
+    // One line per frame: the two new ones replace theirs, the rest stay.
+    let now = lines_by_frame(&out);
+    assert_eq!(now.len(), 4);
+    for (id, l) in &now {
+        assert_eq!(l.len(), 1, "{id}: {l:?}");
+        let redone = id == corrupted || id == truncated;
+        assert_eq!(*l != lines[id], redone, "{id}: line replaced or not");
+    }
+    ok(&verify(&out, &[]));
 }
 
 #[test]
@@ -104,7 +155,7 @@ fn tampering_is_detected_and_repaired_to_the_original_bytes() {
         "{t}"
     );
     assert!(
-        t.contains("extra      town01/normal_clear/0000/left/rgb/stray.png"),
+        t.contains("extra, kept town01/normal_clear/0000/left/rgb/stray.png"),
         "{t}"
     );
     assert!(t.contains("0 frames ok"), "{t}");
@@ -112,7 +163,12 @@ fn tampering_is_detected_and_repaired_to_the_original_bytes() {
     let r = verify(&out, &["--repair"]);
     ok(&r);
     assert!(text(&r).contains("re-rendering 3 frames"), "{}", text(&r));
-    assert_eq!(data_files(&out), before);
+    // The user's file stays; the dataset is back to its bytes.
+    let mut after = data_files(&out);
+    assert!(after
+        .remove("town01/normal_clear/0000/left/rgb/stray.png")
+        .is_some());
+    assert_eq!(after, before);
     assert_eq!(manifest_lines(&out), 3);
     ok(&verify(&out, &[]));
 }
@@ -126,8 +182,12 @@ fn different_configuration_in_a_used_directory_is_refused_unless_forced() {
     ok(&dataset(&a, &out, &[]));
     let refused = dataset(&b, &out, &[]);
     assert_eq!(refused.status.code(), Some(2));
+    // The refusal names the key that differs, with both values.
     assert!(
-        text(&refused).contains("different configuration"),
+        text(&refused).contains(
+            "different configuration (configs = [\"normal\"] in dataset.json, \
+             [\"roll05\"] in the new configuration)"
+        ),
         "{}",
         text(&refused)
     );
@@ -161,15 +221,6 @@ fn different_configuration_in_a_used_directory_is_refused_unless_forced() {
         text(&refused)
     );
     assert_eq!(tree(&foreign), before, "the refused directory was touched");
-}
-
-/// Every entry below `root` (directories with `None`, files with their bytes),
-/// manifests and hidden files included: a refused run must leave it as it was.
-fn tree(root: &std::path::Path) -> std::collections::BTreeMap<String, Option<Vec<u8>>> {
-    walk(root)
-        .into_iter()
-        .map(|(rel, p, is_dir)| (rel, (!is_dir).then(|| std::fs::read(&p).unwrap())))
-        .collect()
 }
 
 #[test]

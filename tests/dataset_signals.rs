@@ -1,5 +1,6 @@
 //! Interruptions through the real binary: SIGKILL after the first manifest
-//! line, then a resume, ends byte-identical to an uninterrupted run; SIGTERM
+//! line, then a resume (which sweeps the temporary files left behind), ends
+//! byte-identical to an uninterrupted run; SIGTERM
 //! stops cleanly and promptly (at most the frame being written finishes),
 //! with no partial frame and no temporary file.
 
@@ -70,10 +71,24 @@ fn sigkill_then_resume_is_byte_identical_to_an_uninterrupted_run() {
     child.wait().unwrap();
     let done_before = manifest_lines(&out);
     assert!(done_before < 6, "the kill came after the last frame");
+    // Temporary files as a kill mid-write leaves them: of a frame and of
+    // dataset.json (the atomic writer's `<name>.tmp-<pid>-<n>`).
+    let planted = [
+        out.join("town01/pitch00_clear/0000/left/rgb/000002.png.tmp-4242-0"),
+        out.join("dataset.json.tmp-4242-1"),
+    ];
+    for p in &planted {
+        std::fs::create_dir_all(p.parent().unwrap()).unwrap();
+        std::fs::write(p, b"half written").unwrap();
+    }
     let o = dataset(&cfg, &out, &[]);
     ok(&o);
     let t = text(&o);
     assert!(t.contains(&format!("{} skipped", done_before)), "{t}");
+    assert!(t.contains("temporary files of an interrupted run"), "{t}");
+    for p in &planted {
+        assert!(!p.exists(), "{} was not swept", p.display());
+    }
     assert!(temp_files(&out).is_empty());
     assert_eq!(data_files(&out), data_files(&reference));
     ok(&verify(&out, &[]));

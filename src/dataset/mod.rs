@@ -2,8 +2,8 @@
 //! configuration (`config`, `presets`) becomes a job list that is a pure
 //! function of it (`plan`), split by `shard`; `run` renders and writes each
 //! frame whole (`frame`), appending a manifest line (`manifest`) and skipping
-//! complete frames on resume; `verify` proves a root whole and repairs it;
-//! `progress` and `signals` make long runs observable and stoppable.
+//! complete frames on resume; `verify` proves a root whole and `repair`
+//! mends it; `progress` and `signals` make long runs observable and stoppable.
 
 pub mod config;
 pub mod estimate;
@@ -13,6 +13,7 @@ pub mod manifest;
 pub mod plan;
 pub mod presets;
 pub mod progress;
+pub mod repair;
 pub mod run;
 pub mod shard;
 pub mod signals;
@@ -24,4 +25,4 @@ pub use progress::RunSummary;
 pub use run::{run_dataset, DatasetError, RunOptions};
 pub use shard::Shard;
 pub use signals::StopGuard;
-pub use verify::{prepare_repair, verify_dataset, VerifyReport};
+pub use verify::{verify_dataset, VerifyReport};

@@ -69,13 +69,28 @@ pub struct RunOptions {
     pub backend: Backend,
     /// Directory holding the town files (`None`: the built-in towns).
     pub scenes: Option<PathBuf>,
-    /// Render only these jobs (verify --repair); `None`: the whole shard.
+    /// Render exactly these jobs, even those a manifest line calls complete
+    /// (verify --repair); `None`: the whole shard, skipping complete frames.
     pub only: Option<BTreeSet<Job>>,
 }
 
-/// True for names written by `write_atomic` before their rename.
+/// The name a temporary file of the atomic writers will be renamed to:
+/// `<name>.tmp-<pid>-<seq>` (`write_atomic`) or `<name>.tmp-link-<pid>`
+/// (a layout's hard link) give `<name>`; any other name gives `None`.
+pub fn temp_base(name: &str) -> Option<&str> {
+    let (base, tail) = name.rsplit_once(".tmp-")?;
+    let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
+    let ok = match tail.split_once('-') {
+        Some(("link", pid)) => digits(pid),
+        Some((pid, seq)) => digits(pid) && digits(seq),
+        None => false,
+    };
+    (ok && !base.is_empty()).then_some(base)
+}
+
+/// True for names written by the atomic writers before their rename.
 pub fn is_temp_name(name: &str) -> bool {
-    name.contains(".tmp-")
+    temp_base(name).is_some()
 }
 
 /// Creates the root, refuses a different configuration or town descriptions
@@ -109,7 +124,10 @@ pub fn prepare_root(
     if nonempty && !same {
         let why = match (&existing, towns_differ) {
             (_, Some(towns)) => format!("holds a dataset of other town descriptions: {towns}"),
-            (Ok(Some(_)), _) => "holds a dataset of a different configuration".into(),
+            (Ok(Some(old)), _) => format!(
+                "holds a dataset of a different configuration ({})",
+                config_differences(&old.config, config).join("; ")
+            ),
             (Ok(None), _) => "is not empty and holds no dataset.json".into(),
             (Err(_), _) => "holds an unreadable dataset.json".into(),
         };
@@ -130,8 +148,35 @@ pub fn prepare_root(
             }
         }
     }
-    write_json(&root.join(DATASET_JSON), &meta)?;
+    // A resume leaves an identical dataset.json as it is (bytes and mtime).
+    if !matches!(&existing, Ok(Some(m)) if *m == meta) {
+        write_json(&root.join(DATASET_JSON), &meta)?;
+    }
     Ok(())
+}
+
+/// The configuration keys whose values differ, each as
+/// `key = <old> in dataset.json, <new> in the new configuration` (compact JSON).
+fn config_differences(old: &DatasetConfig, new: &DatasetConfig) -> Vec<String> {
+    use serde_json::{Map, Value};
+    let object = |c: &DatasetConfig| match serde_json::to_value(c) {
+        Ok(Value::Object(m)) => m,
+        _ => Map::new(),
+    };
+    let (a, b) = (object(old), object(new));
+    // A key left out when serialized holds its default.
+    let show = |v: Option<&Value>| v.map_or_else(|| "its default".to_string(), Value::to_string);
+    let keys: BTreeSet<&String> = a.keys().chain(b.keys()).collect();
+    keys.into_iter()
+        .filter(|k| a.get(*k) != b.get(*k))
+        .map(|k| {
+            format!(
+                "{k} = {} in {DATASET_JSON}, {} in the new configuration",
+                show(a.get(k)),
+                show(b.get(k))
+            )
+        })
+        .collect()
 }
 
 /// Removes the frames of the dataset being replaced: every file its
@@ -175,7 +220,7 @@ fn remove_old_frames(root: &Path) -> Result<(), DatasetError> {
 
 /// The job a native-layout path below the root belongs to
 /// (`<town>/<config>_<weather>/<seq>/…/NNNNNN.ext…`).
-fn job_of_path(rel: &Path) -> Option<Job> {
+pub(crate) fn job_of_path(rel: &Path) -> Option<Job> {
     let parts: Vec<String> = rel
         .components()
         .map(|c| c.as_os_str().to_string_lossy().into_owned())
@@ -278,11 +323,14 @@ pub fn run_dataset(
         ));
     }
     let mut s = RunSummary::default();
+    // Frames written again over a line of theirs (damaged on disk).
+    let mut superseded = BTreeSet::new();
     for (k, job) in jobs.iter().enumerate() {
         if stop.stopped() {
             break;
         }
-        if let Some(line) = existing.get(job) {
+        // A repair renders its frames whatever their old lines say.
+        if let Some(line) = existing.get(job).filter(|_| opts.only.is_none()) {
             if frame_complete(root, line, opts.check_hashes) {
                 s.skipped += 1;
                 progress.frame(k as u64 + 1, job, "complete, skipped", &s);
@@ -318,6 +366,9 @@ pub fn run_dataset(
             );
             match written {
                 Ok(line) => {
+                    if existing.contains_key(job) {
+                        superseded.insert(job.clone());
+                    }
                     s.done += 1;
                     s.rays += line.render.rays;
                     s.frame_seconds += line.render.seconds;
@@ -348,6 +399,10 @@ pub fn run_dataset(
         }
     }
     progress.finish();
+    // A repair drops old lines itself (module `repair`), after every frame.
+    if opts.only.is_none() {
+        drop_superseded_lines(&manifest, &superseded)?;
+    }
     write_failures(root, opts.shard, &s)?;
     eprintln!(
         "shard {}: {}",
@@ -355,6 +410,44 @@ pub fn run_dataset(
         s.line(started.elapsed().as_secs_f64())
     );
     Ok(s)
+}
+
+/// Drops from this shard's manifest every line of `jobs` but the last, so a
+/// frame written again over a damaged one keeps one line. Other shards'
+/// manifests are theirs to append to and stay as they are (a line of the
+/// frame there remains, and `verify` reports the frame as duplicate).
+fn drop_superseded_lines(manifest: &Path, jobs: &BTreeSet<Job>) -> io::Result<()> {
+    if jobs.is_empty() {
+        return Ok(());
+    }
+    let bytes = crate::output::read_file(manifest)?;
+    let text = String::from_utf8_lossy(&bytes);
+    let lines: Vec<(&str, Option<Job>)> = text
+        .lines()
+        .map(|l| {
+            let job = serde_json::from_str::<super::manifest::ManifestLine>(l)
+                .ok()
+                .and_then(|p| p.job())
+                .filter(|j| jobs.contains(j));
+            (l, job)
+        })
+        .collect();
+    let last: std::collections::BTreeMap<&Job, usize> = lines
+        .iter()
+        .enumerate()
+        .filter_map(|(i, (_, j))| Some((j.as_ref()?, i)))
+        .collect();
+    let mut kept = String::new();
+    for (i, (l, job)) in lines.iter().enumerate() {
+        if job.as_ref().is_none_or(|j| last[j] == i) {
+            kept.push_str(l);
+            kept.push('\n');
+        }
+    }
+    if kept.lines().count() != lines.len() {
+        write_atomic(manifest, kept.as_bytes())?;
+    }
+    Ok(())
 }
 
 /// Writes `failures/shard-i-of-N.txt` (one `id<TAB>error` per line), or
@@ -395,5 +488,25 @@ mod tests {
         assert_eq!(j.id(), "town01/roll05_night/0002/000007");
         assert!(job_of_path(Path::new("dataset.json.tmp-1-2")).is_none());
         assert!(job_of_path(Path::new("town01/bogus/0002/left/rgb/000007.png")).is_none());
+    }
+
+    #[test]
+    fn only_the_atomic_writers_names_are_temporary() {
+        assert_eq!(temp_base("000007.png.tmp-9-1"), Some("000007.png"));
+        assert_eq!(
+            temp_base("0000_000001.jpg.tmp-link-42"),
+            Some("0000_000001.jpg")
+        );
+        assert_eq!(temp_base("dataset.json.tmp-123-45"), Some("dataset.json"));
+        for name in [
+            "notes.tmp-old",
+            "a.tmp-1",
+            "a.tmp-1-",
+            "a.tmp-x-2",
+            ".tmp-1-2",
+            "a.png",
+        ] {
+            assert_eq!(temp_base(name), None, "{name}");
+        }
     }
 }

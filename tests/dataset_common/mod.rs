@@ -121,3 +121,83 @@ pub fn manifest_lines(root: &Path) -> usize {
         .map(|t| t.lines().filter(|l| l.ends_with('}')).count())
         .sum()
 }
+
+/// Every entry below `root` (directories with `None`, files with their bytes),
+/// manifests and hidden files included.
+pub fn tree(root: &Path) -> BTreeMap<String, Option<Vec<u8>>> {
+    walk(root)
+        .into_iter()
+        .map(|(rel, p, is_dir)| (rel, (!is_dir).then(|| std::fs::read(&p).unwrap())))
+        .collect()
+}
+
+/// Modification time of every data file below `root` (as `data_files`).
+pub fn mtimes(root: &Path) -> BTreeMap<String, std::time::SystemTime> {
+    data_files(root)
+        .into_keys()
+        .map(|rel| {
+            let t = std::fs::metadata(root.join(&rel))
+                .unwrap()
+                .modified()
+                .unwrap();
+            (rel, t)
+        })
+        .collect()
+}
+
+/// The manifest lines of every shard below `root`, by frame id
+/// (`town01/normal_clear/0000/000001`), in file and line order.
+pub fn lines_by_frame(root: &Path) -> BTreeMap<String, Vec<String>> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(root.join("manifest"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    files.sort();
+    let mut out: BTreeMap<String, Vec<String>> = BTreeMap::new();
+    for f in files {
+        for l in std::fs::read_to_string(f).unwrap().lines() {
+            let v: serde_json::Value = serde_json::from_str(l).unwrap();
+            let id = format!(
+                "{}/{}_{}/{:04}/{:06}",
+                v["town"].as_str().unwrap(),
+                v["config"].as_str().unwrap(),
+                v["weather"].as_str().unwrap(),
+                v["sequence"].as_u64().unwrap(),
+                v["frame"].as_u64().unwrap()
+            );
+            out.entry(id).or_default().push(l.to_string());
+        }
+    }
+    out
+}
+
+/// Flips one bit in the middle of `path` (same size, other SHA-256).
+pub fn flip_byte(path: &Path) {
+    let mut bytes = std::fs::read(path).unwrap();
+    let mid = bytes.len() / 2;
+    bytes[mid] ^= 0x40;
+    std::fs::write(path, &bytes).unwrap();
+}
+
+/// Cuts `path` to half its size; returns the old size.
+pub fn truncate_half(path: &Path) -> u64 {
+    let len = std::fs::metadata(path).unwrap().len();
+    std::fs::OpenOptions::new()
+        .write(true)
+        .open(path)
+        .unwrap()
+        .set_len(len / 2)
+        .unwrap();
+    len
+}
+
+/// The data files (relative paths) of one frame: those whose path holds its
+/// sequence directory and whose name starts with its 6-digit number.
+pub fn frame_files<'a>(files: impl IntoIterator<Item = &'a String>, id: &str) -> Vec<String> {
+    let (seq, frame) = id.rsplit_once('/').unwrap();
+    files
+        .into_iter()
+        .filter(|rel| rel.starts_with(seq) && rel.rsplit('/').next().unwrap().starts_with(frame))
+        .cloned()
+        .collect()
+}

@@ -1,0 +1,152 @@
+//! `verify --repair` in two steps around the re-render, so that a repair
+//! that cannot render changes nothing: [`stage`] only reads (the frames to
+//! render and the manifest lines each has now); the caller renders them with
+//! `run_dataset`, which overwrites a frame's files atomically and appends its
+//! new line; [`finish`] then drops the lines the new ones replace and the
+//! unreadable and unplanned lines, and removes the dataset's files that no
+//! kept line lists. A frame that was not rendered keeps its lines and files;
+//! files that are not the dataset's ([`Ownership`]) are never removed.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::fs;
+use std::io;
+use std::path::{Path, PathBuf};
+
+use super::manifest::{manifest_files, ManifestLine};
+use super::plan::{plan, Job};
+use super::run::{walk_files, DatasetError};
+use super::verify::{dataset_config, is_bookkeeping, slash_path, Ownership, VerifyReport};
+use crate::output::{read_file, write_atomic, Access, OutputError};
+
+/// A repair planned but not begun.
+#[derive(Clone, Debug)]
+pub struct Staged {
+    /// Frames to render again: missing, corrupted and duplicated.
+    pub redo: BTreeSet<Job>,
+    /// The texts of those frames' manifest lines before the render.
+    old: BTreeMap<Job, BTreeSet<String>>,
+}
+
+/// What [`finish`] changed.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Finished {
+    /// Frames whose new line replaced their old ones.
+    pub replaced: usize,
+    /// Frames to redo that have no new line (failed or stopped): untouched.
+    pub not_rendered: usize,
+    /// Manifest lines dropped.
+    pub lines_dropped: usize,
+    /// The dataset's files removed (root-relative).
+    pub removed: Vec<String>,
+}
+
+/// Every manifest file with its lines (blank lines left out).
+fn manifest_texts(root: &Path) -> io::Result<Vec<(PathBuf, Vec<String>)>> {
+    manifest_files(root)?
+        .into_iter()
+        .map(|file| {
+            let text = String::from_utf8_lossy(&read_file(&file)?).into_owned();
+            let lines = text
+                .lines()
+                .filter(|l| !l.trim().is_empty())
+                .map(str::to_string)
+                .collect();
+            Ok((file, lines))
+        })
+        .collect()
+}
+
+fn parse(line: &str) -> Option<ManifestLine> {
+    serde_json::from_str(line).ok()
+}
+
+/// Plans the repair of what `report` found; reads only.
+pub fn stage(root: &Path, report: &VerifyReport) -> Result<Staged, DatasetError> {
+    let config = dataset_config(root)?;
+    let ids = report.frames_to_render();
+    let redo: BTreeSet<Job> = plan(&config)
+        .into_iter()
+        .filter(|j| ids.contains(&j.id()))
+        .collect();
+    let mut old: BTreeMap<Job, BTreeSet<String>> = BTreeMap::new();
+    for (_, lines) in manifest_texts(root)? {
+        for text in lines {
+            if let Some(job) = parse(&text).and_then(|l| l.job()) {
+                if redo.contains(&job) {
+                    old.entry(job).or_default().insert(text);
+                }
+            }
+        }
+    }
+    Ok(Staged { redo, old })
+}
+
+/// Completes a repair after the render: every frame of `staged` with a new
+/// line keeps only that line, unreadable and unplanned lines go, and the
+/// dataset's files no kept line lists are removed (except those of frames
+/// that were not rendered).
+pub fn finish(root: &Path, staged: &Staged) -> Result<Finished, DatasetError> {
+    let config = dataset_config(root)?;
+    let planned: BTreeSet<Job> = plan(&config).into_iter().collect();
+    let manifests = manifest_texts(root)?;
+    // The newest line of each frame to redo that was not there before.
+    let mut new: BTreeMap<Job, &str> = BTreeMap::new();
+    let mut parsed = Vec::new();
+    for text in manifests.iter().flat_map(|(_, lines)| lines) {
+        let Some(line) = parse(text) else { continue };
+        if let Some(job) = line.job().filter(|j| staged.redo.contains(j)) {
+            if !staged.old.get(&job).is_some_and(|o| o.contains(text)) {
+                new.insert(job, text);
+            }
+        }
+        parsed.push(line);
+    }
+    let owner = Ownership::new(&config, &parsed);
+    let mut done = Finished {
+        replaced: new.len(),
+        not_rendered: staged.redo.len() - new.len(),
+        ..Finished::default()
+    };
+    let mut listed = BTreeSet::new();
+    for (file, lines) in &manifests {
+        let mut kept = String::new();
+        for text in lines {
+            let keep = parse(text)
+                .and_then(|l| Some((l.job().filter(|j| planned.contains(j))?, l)))
+                .filter(|(job, _)| new.get(job).is_none_or(|n| *n == text.as_str()));
+            match keep {
+                Some((_, line)) => {
+                    listed.extend(line.files.into_iter().map(|f| f.path));
+                    kept.push_str(text);
+                    kept.push('\n');
+                }
+                None => done.lines_dropped += 1,
+            }
+        }
+        if kept.lines().count() != lines.len() {
+            write_atomic(file, kept.as_bytes())?;
+        }
+    }
+    let unrendered: BTreeSet<&Job> = staged
+        .redo
+        .iter()
+        .filter(|j| !new.contains_key(*j))
+        .collect();
+    for rel in walk_files(root)? {
+        let slash = slash_path(&rel);
+        if is_bookkeeping(&rel) || listed.contains(&slash) || !owner.owns(&slash) {
+            continue;
+        }
+        // A frame that was not rendered again keeps whatever it has.
+        if owner
+            .planned_frame_file(&slash)
+            .is_some_and(|j| unrendered.contains(&j))
+        {
+            continue;
+        }
+        let p = root.join(&rel);
+        fs::remove_file(&p).map_err(|e| OutputError::wrap(&p, Access::Write, e))?;
+        done.removed.push(slash);
+    }
+    Ok(done)
+}
