@@ -63,7 +63,11 @@ fn every_layout_mirror_is_found_and_scored_as_the_native_one() {
             write_pfm_gray(&path, 2, 2, p).unwrap();
         }
         let r = run(gt.path(), pred.path(), layout);
-        assert_eq!(r.images_evaluated, 2, "{layout}: {:?}", r.missing_predictions);
+        assert_eq!(
+            r.images_evaluated, 2,
+            "{layout}: {:?}",
+            r.missing_predictions
+        );
         // Pooled over 8 valid pixels, 7 predicted: EPE (1 + 5 + 2) / 7; D1
         // (45 vs 40 and the missing pixel) 2/8; density 7/8.
         let o = &r.overall.all.pooled;
@@ -86,7 +90,9 @@ fn every_layout_mirror_is_found_and_scored_as_the_native_one() {
     // A tree laid out otherwise finds nothing, and says where it looked.
     let pred = tempfile::tempdir().unwrap();
     write_pfm_gray(
-        &pred.path().join(format!("{}.pfm", mirrored(LayoutKind::Kitti, 0))),
+        &pred
+            .path()
+            .join(format!("{}.pfm", mirrored(LayoutKind::Kitti, 0))),
         2,
         2,
         &preds[0],
@@ -152,6 +158,9 @@ fn layouts_written_by_parallax_are_found_by_their_mirrors() {
     for img in parallax::eval::find_gt_disparities(gt.path()).unwrap() {
         let stem = parallax::eval::mirror::prediction_stem(&img, LayoutKind::Stereocarla).unwrap();
         let depth = stem.to_str().unwrap().replace("/disp/", "/depth/") + ".png";
-        assert!(dir.join(&depth).is_file(), "{depth} not written by the layout");
+        assert!(
+            dir.join(&depth).is_file(),
+            "{depth} not written by the layout"
+        );
     }
 }

@@ -69,15 +69,29 @@ fn missing_predictions_are_errors_by_default_and_filled_as_kitti_on_request() {
         // 3 missing) 5/7; bad2 (4 + 3) 4/7; bad3 4/7; D1 4/7; density 4/7.
         let r = run(pred, Fill::None);
         let p = 100.0 / 7.0;
-        close(&r.overall.all.pooled, [1.75, 4.0 * p, 5.0 * p, 4.0 * p, 4.0 * p, 4.0 * p]);
+        close(
+            &r.overall.all.pooled,
+            [1.75, 4.0 * p, 5.0 * p, 4.0 * p, 4.0 * p, 4.0 * p],
+        );
         assert_eq!(r.fill, Fill::None);
-        assert!(r.missing_rule.contains("counted in D1"), "{}", r.missing_rule);
+        assert!(
+            r.missing_rule.contains("counted in D1"),
+            "{}",
+            r.missing_rule
+        );
         // KITTI fill: row 0's gap takes min(11, 12) = 11 (errors 1, 1); row 1's
         // left end takes 20 (error 0). Errors 1 1 1 2 | 0 0 4: EPE 9/7; bad1
         // 2/7; bad2, bad3, D1 1/7; density still 4/7 (before the fill).
         let r = run(pred, Fill::Kitti);
-        close(&r.overall.all.pooled, [9.0 / 7.0, p, 2.0 * p, p, p, 4.0 * p]);
-        assert!(r.missing_rule.contains("KITTI devkit"), "{}", r.missing_rule);
+        close(
+            &r.overall.all.pooled,
+            [9.0 / 7.0, p, 2.0 * p, p, p, 4.0 * p],
+        );
+        assert!(
+            r.missing_rule.contains("KITTI devkit"),
+            "{}",
+            r.missing_rule
+        );
     }
 }
 
@@ -274,7 +288,16 @@ fn eval_cli_bad_inputs_exit_2_naming_the_path() {
         &["--fill", "zero", "none or kitti"],
     );
     fails(
-        &["--gt", g, "--pred", p, "--layout", "middlebury", "--json", r],
+        &[
+            "--gt",
+            g,
+            "--pred",
+            p,
+            "--layout",
+            "middlebury",
+            "--json",
+            r,
+        ],
         &["--layout", "middlebury", "kitti"],
     );
     fails(
@@ -286,11 +309,17 @@ fn eval_cli_bad_inputs_exit_2_naming_the_path() {
     write_pfm_gray(&bad, 2, 2, &[1.0; 4]).unwrap();
     let (code, err, out) = run_eval(&["--gt", g, "--pred", p, "--json", r]);
     assert_eq!(code, 0, "{err}");
-    assert!(out.contains("dens %") && out.contains("fill none: missing prediction"), "{out}");
+    assert!(
+        out.contains("dens %") && out.contains("fill none: missing prediction"),
+        "{out}"
+    );
     let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&report).unwrap()).unwrap();
     assert_eq!(v["overall"]["all"]["pooled"]["epe"].as_f64(), Some(0.0));
     assert_eq!(v["per_town"]["-"]["images"].as_u64(), Some(1));
-    assert_eq!(v["overall"]["all"]["pooled"]["density"].as_f64(), Some(100.0));
+    assert_eq!(
+        v["overall"]["all"]["pooled"]["density"].as_f64(),
+        Some(100.0)
+    );
     assert_eq!(v["fill"].as_str(), Some("none"));
     assert_eq!(v["layout"].as_str(), Some("native"));
     assert!(v["missing_rule"].as_str().unwrap().contains("density"));

@@ -40,7 +40,12 @@ fn tiny_render(dir: &Path) -> std::path::PathBuf {
     let scene = dir.join("scene.toml");
     fs::write(&scene, text).unwrap();
     let out = dir.join("render");
-    let (code, err) = parallax(&["render", scene.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    let (code, err) = parallax(&[
+        "render",
+        scene.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
     assert_eq!(code, 0, "{err}");
     out
 }
@@ -77,9 +82,18 @@ fn preview_of_a_tiny_render_shows_the_documented_colours() {
     let d = tempfile::tempdir().unwrap();
     let render = tiny_render(d.path());
     let out = d.path().join("pv");
-    let (code, err) = parallax(&["preview", render.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    let (code, err) = parallax(&[
+        "preview",
+        render.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
     assert_eq!(code, 0, "{err}");
-    assert_eq!(fs::read_dir(&out).unwrap().count(), 8, "4 left maps + 2 per baseline");
+    assert_eq!(
+        fs::read_dir(&out).unwrap().count(),
+        8,
+        "4 left maps + 2 per baseline"
+    );
     let (_, _, depth) = read_exr_f32_gray(&render.join("left/depth/000000.exr")).unwrap();
     let (_, _, semantic) = read_png_gray8(&render.join("left/semantic/000000.png")).unwrap();
     let (_, _, left) = read_png_rgb8(&render.join("left/rgb/000000.png")).unwrap();
@@ -100,13 +114,20 @@ fn preview_of_a_tiny_render_shows_the_documented_colours() {
             assert_eq!(dep.at(x, y) == INVALID, !depth[i].is_finite(), "({x}, {y})");
         }
     }
-    assert!(sky > 0 && sky < W * H, "the view shows sky and ground: {sky}");
+    assert!(
+        sky > 0 && sky < W * H,
+        "the view shows sky and ground: {sky}"
+    );
     for b in ["baseline_054", "baseline_300"] {
         let (_, _, disp) = read_pfm_gray(&render.join(format!("{b}/disp/000000.pfm"))).unwrap();
         let (_, _, occ) = read_png_gray8(&render.join(format!("{b}/occ/000000.png"))).unwrap();
         let dp = Preview::open(&out.join(format!("000000_{b}_disp.png")));
         let op = Preview::open(&out.join(format!("000000_{b}_occ.png")));
-        let max = disp.iter().cloned().filter(|d| d.is_finite()).fold(0.0, f32::max);
+        let max = disp
+            .iter()
+            .cloned()
+            .filter(|d| d.is_finite())
+            .fold(0.0, f32::max);
         for y in 0..H {
             for x in 0..W {
                 let i = y * W + x;
@@ -127,7 +148,10 @@ fn preview_of_a_tiny_render_shows_the_documented_colours() {
                 assert_eq!(op.at(x, y), want, "{b} ({x}, {y})");
             }
         }
-        assert!(dp.legend_ink() > 200, "{b}: no legend text under the disparity map");
+        assert!(
+            dp.legend_ink() > 200,
+            "{b}: no legend text under the disparity map"
+        );
     }
     assert!(occluded > 0, "the box occludes part of the ground");
     assert!(sem.legend_ink() > 200 && dep.legend_ink() > 200);
@@ -148,9 +172,18 @@ fn preview_bad_inputs_exit_2_naming_the_path_and_write_nothing() {
         }
         assert!(!out.exists(), "{args:?}: a failed run wrote {o}");
     };
-    fails(&["preview", "/no/such/render", "-o", o], &["/no/such/render"]);
-    fails(&["preview", r, "--frame", "3", "-o", o], &["left/depth/000003.exr"]);
-    fails(&["preview", r, "--frame", "x", "-o", o], &["--frame", "'x'"]);
+    fails(
+        &["preview", "/no/such/render", "-o", o],
+        &["/no/such/render"],
+    );
+    fails(
+        &["preview", r, "--frame", "3", "-o", o],
+        &["left/depth/000003.exr"],
+    );
+    fails(
+        &["preview", r, "--frame", "x", "-o", o],
+        &["--frame", "'x'"],
+    );
     // A corrupt map names its file, even with every other map readable.
     let sem = render.join("left/semantic/000000.png");
     fs::write(&sem, b"not a png").unwrap();

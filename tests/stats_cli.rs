@@ -177,13 +177,20 @@ fn histogram_png_has_axes_ticks_labels_and_a_title() {
     let plots = r.join("plots");
     let (code, _, err) = stats(&[r.to_str().unwrap(), "--plot", plots.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
-    let (w, h, rgb) = parallax::output::read_png_rgb8(&plots.join("hist_baseline_054.png")).unwrap();
+    let (w, h, rgb) =
+        parallax::output::read_png_rgb8(&plots.join("hist_baseline_054.png")).unwrap();
     assert_eq!((w, h), parallax::stats::PLOT_SIZE);
     let (ax, ay) = parallax::stats::AXES_AT;
     // The x axis: one dark row under the 512 px of bars; the y axis: one dark
     // column the 200 px plot height.
-    assert!((ax..ax + 512).all(|x| dark(&rgb, w, x, ay)), "x axis row {ay}");
-    assert!((ay - 199..=ay).all(|y| dark(&rgb, w, ax, y)), "y axis column {ax}");
+    assert!(
+        (ax..ax + 512).all(|x| dark(&rgb, w, x, ay)),
+        "x axis row {ay}"
+    );
+    assert!(
+        (ay - 199..=ay).all(|y| dark(&rgb, w, ax, y)),
+        "y axis column {ax}"
+    );
     let ink = |xs: std::ops::Range<usize>, ys: std::ops::Range<usize>| {
         ys.flat_map(|y| xs.clone().map(move |x| (x, y)))
             .filter(|&(x, y)| dark(&rgb, w, x, y))

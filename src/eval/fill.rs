@@ -113,7 +113,10 @@ pub fn interpolate_background(w: usize, raw: &[f32]) -> Vec<f32> {
         let Some(top) = (0..h).find(|&v| predicted(d[v * w + u])) else {
             continue;
         };
-        let bottom = (0..h).rev().find(|&v| predicted(d[v * w + u])).unwrap_or(top);
+        let bottom = (0..h)
+            .rev()
+            .find(|&v| predicted(d[v * w + u]))
+            .unwrap_or(top);
         let (a, b) = (d[top * w + u], d[bottom * w + u]);
         (0..top).for_each(|v| d[v * w + u] = a);
         (bottom + 1..h).for_each(|v| d[v * w + u] = b);
@@ -147,6 +150,8 @@ mod tests {
         // As in the devkit, an empty row between two others stays missing.
         let col = interpolate_background(1, &[5.0, N, 7.0]);
         assert!(col[0] == 5.0 && col[1].is_nan() && col[2] == 7.0);
-        assert!(interpolate_background(2, &[N, N]).iter().all(|v| v.is_nan()));
+        assert!(interpolate_background(2, &[N, N])
+            .iter()
+            .all(|v| v.is_nan()));
     }
 }

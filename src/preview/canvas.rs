@@ -107,7 +107,11 @@ pub fn text_width(s: &str) -> usize {
 }
 
 fn glyph(ch: char) -> [u8; 8] {
-    let i = if ch.is_ascii() { ch as usize } else { '?' as usize };
+    let i = if ch.is_ascii() {
+        ch as usize
+    } else {
+        '?' as usize
+    };
     font8x8::legacy::BASIC_LEGACY[i]
 }
 

@@ -7,7 +7,7 @@ use crate::film::{MASK_MIRROR, MASK_RAIN, MASK_SKY, MASK_TRANSPARENT};
 /// Colour of invalid pixels in every colour-coded map (sky, no value).
 pub const INVALID: [u8; 3] = [0, 0, 0];
 
-/// Turbo at `t` ∈ [0, 1] (clamped): dark blue → green → yellow → dark red.
+/// Turbo at `t` ∈ [0, 1] (clamped): near-black → blue → green → yellow → dark red.
 pub fn turbo(t: f64) -> [u8; 3] {
     let t = t.clamp(0.0, 1.0);
     let poly = |c: [f64; 6]| {
@@ -15,9 +15,30 @@ pub fn turbo(t: f64) -> [u8; 3] {
         (v.clamp(0.0, 1.0) * 255.0).round() as u8
     };
     [
-        poly([0.13572138, 4.61539260, -42.66032258, 132.13108234, -152.94239396, 59.28637943]),
-        poly([0.09140261, 2.19418839, 4.84296658, -14.18503333, 4.27729857, 2.82956604]),
-        poly([0.10667330, 12.64194608, -60.58204836, 110.36276771, -89.90310912, 27.34824973]),
+        poly([
+            0.13572138,
+            4.61539260,
+            -42.66032258,
+            132.13108234,
+            -152.94239396,
+            59.28637943,
+        ]),
+        poly([
+            0.09140261,
+            2.19418839,
+            4.84296658,
+            -14.18503333,
+            4.27729857,
+            2.82956604,
+        ]),
+        poly([
+            0.10667330,
+            12.64194608,
+            -60.58204836,
+            110.36276771,
+            -89.90310912,
+            27.34824973,
+        ]),
     ]
 }
 
@@ -83,9 +104,12 @@ mod tests {
     use super::*;
 
     #[test]
-    fn turbo_runs_from_dark_blue_to_dark_red_and_palettes_keep_black_for_none() {
-        let (lo, hi) = (turbo(0.0), turbo(1.0));
-        assert!(lo[2] > lo[0] && hi[0] > hi[2], "{lo:?} {hi:?}");
+    fn turbo_runs_from_dark_through_green_to_red_and_palettes_keep_black_for_none() {
+        // Dark at 0, green in the middle, red at 1 (and never pure black).
+        let (lo, mid, hi) = (turbo(0.0), turbo(0.5), turbo(1.0));
+        assert!(lo.iter().map(|&v| v as u32).sum::<u32>() < 100, "{lo:?}");
+        assert!(mid[1] > mid[0] && mid[1] > mid[2], "{mid:?}");
+        assert!(hi[0] > hi[1] && hi[0] > hi[2], "{hi:?}");
         assert_ne!(turbo(0.0), INVALID);
         assert_eq!(semantic_colour(13), [70, 130, 180]);
         assert_eq!(instance_colour(0), INVALID);

@@ -42,7 +42,9 @@ impl Scale {
     fn t(self, v: f64) -> f64 {
         match self {
             Scale::Linear { lo, hi } if hi > lo => (v - lo) / (hi - lo),
-            Scale::LogReversed { near, far } if far > near => 1.0 - (v / near).ln() / (far / near).ln(),
+            Scale::LogReversed { near, far } if far > near => {
+                1.0 - (v / near).ln() / (far / near).ln()
+            }
             _ => 1.0,
         }
     }
@@ -101,21 +103,43 @@ pub fn scalar_map(title: &str, unit: &str, w: usize, h: usize, v: &[f32], scale:
         .collect();
     compose(w, h, &rgb, title, BAR_H + 4 + GLYPH, |c, y0| {
         for i in 0..BAR_W {
-            c.fill_rect(PAD + 2 * GLYPH + i, y0, 1, BAR_H, turbo(i as f64 / (BAR_W - 1) as f64));
+            c.fill_rect(
+                PAD + 2 * GLYPH + i,
+                y0,
+                1,
+                BAR_H,
+                turbo(i as f64 / (BAR_W - 1) as f64),
+            );
         }
         let y = y0 + BAR_H + 4;
         let labels = scale.ticks().map(|t| format!("{t:.1} {unit}"));
         c.text(PAD, y, &labels[0], INK);
         let mid = PAD + 2 * GLYPH + BAR_W / 2;
-        c.text(mid.saturating_sub(text_width(&labels[1]) / 2), y, &labels[1], INK);
+        c.text(
+            mid.saturating_sub(text_width(&labels[1]) / 2),
+            y,
+            &labels[1],
+            INK,
+        );
         let right = PAD + 2 * GLYPH + BAR_W + 2 * GLYPH;
-        c.text(right.saturating_sub(text_width(&labels[2])), y, &labels[2], INK);
+        c.text(
+            right.saturating_sub(text_width(&labels[2])),
+            y,
+            &labels[2],
+            INK,
+        );
     })
 }
 
 /// A map already in colours, with a legend of colour swatches and names
 /// (flowing left to right, as many per row as fit).
-pub fn palette_map(title: &str, w: usize, h: usize, rgb: &[u8], entries: &[([u8; 3], String)]) -> Canvas {
+pub fn palette_map(
+    title: &str,
+    w: usize,
+    h: usize,
+    rgb: &[u8],
+    entries: &[([u8; 3], String)],
+) -> Canvas {
     let cw = canvas_width(w, title);
     let cell = entries
         .iter()

@@ -67,7 +67,10 @@ pub struct FrameMaps {
 }
 
 fn bad(path: &Path, msg: impl std::fmt::Display) -> io::Error {
-    io::Error::new(io::ErrorKind::InvalidData, format!("{}: {msg}", path.display()))
+    io::Error::new(
+        io::ErrorKind::InvalidData,
+        format!("{}: {msg}", path.display()),
+    )
 }
 
 /// Checks that an image read from `path` is `w × h`.
@@ -75,7 +78,10 @@ fn same_size(path: &Path, got: (usize, usize), want: (usize, usize)) -> io::Resu
     if got != want {
         return Err(bad(
             path,
-            format!("is {}×{}, the depth map is {}×{}", got.0, got.1, want.0, want.1),
+            format!(
+                "is {}×{}, the depth map is {}×{}",
+                got.0, got.1, want.0, want.1
+            ),
         ));
     }
     Ok(())
@@ -170,7 +176,10 @@ pub fn occlusion_overlay(left_rgb: &[u8], occlusion: &[u8]) -> Vec<u8> {
 }
 
 fn positive_range(v: &[f32]) -> Option<(f64, f64)> {
-    let valid = v.iter().filter(|d| d.is_finite() && **d > 0.0).map(|&d| d as f64);
+    let valid = v
+        .iter()
+        .filter(|d| d.is_finite() && **d > 0.0)
+        .map(|&d| d as f64);
     valid.fold(None, |r, d| match r {
         None => Some((d, d)),
         Some((lo, hi)) => Some((lo.min(d), hi.max(d))),
@@ -184,30 +193,57 @@ pub fn previews(m: &FrameMaps) -> Vec<(String, Canvas)> {
     let (near, far) = positive_range(&m.depth).unwrap_or((1.0, 1.0));
     let title = "depth_z [m], log scale; black = sky";
     let scale = Scale::LogReversed { near, far };
-    out.push((format!("{s}_depth.png"), scalar_map(title, "m", w, h, &m.depth, scale)));
-    let rgb: Vec<u8> = m.semantic.iter().flat_map(|&c| semantic_colour(c)).collect();
+    out.push((
+        format!("{s}_depth.png"),
+        scalar_map(title, "m", w, h, &m.depth, scale),
+    ));
+    let rgb: Vec<u8> = m
+        .semantic
+        .iter()
+        .flat_map(|&c| semantic_colour(c))
+        .collect();
     let mut ids: Vec<u8> = m.semantic.clone();
     ids.sort_unstable();
     ids.dedup();
     let entries: Vec<([u8; 3], String)> = ids
         .iter()
-        .map(|&id| (semantic_colour(id), class_name(id).map_or(format!("id {id}"), str::to_string)))
+        .map(|&id| {
+            (
+                semantic_colour(id),
+                class_name(id).map_or(format!("id {id}"), str::to_string),
+            )
+        })
         .collect();
-    out.push((format!("{s}_semantic.png"), palette_map("semantic classes (CARLA palette)", w, h, &rgb, &entries)));
-    let rgb: Vec<u8> = m.instance.iter().flat_map(|&i| instance_colour(i)).collect();
+    out.push((
+        format!("{s}_semantic.png"),
+        palette_map("semantic classes (CARLA palette)", w, h, &rgb, &entries),
+    ));
+    let rgb: Vec<u8> = m
+        .instance
+        .iter()
+        .flat_map(|&i| instance_colour(i))
+        .collect();
     let mut ids = m.instance.clone();
     ids.sort_unstable();
     ids.dedup();
     let objects = ids.iter().filter(|&&i| i != 0).count();
     let title = format!("instance ids: {objects} objects, hashed colours");
     let entries = [(instance_colour(0), "no instance".to_string())];
-    out.push((format!("{s}_instance.png"), palette_map(&title, w, h, &rgb, &entries)));
+    out.push((
+        format!("{s}_instance.png"),
+        palette_map(&title, w, h, &rgb, &entries),
+    ));
     let rgb: Vec<u8> = m.mask.iter().flat_map(|&b| mask_colour(b)).collect();
-    let mut entries: Vec<([u8; 3], String)> =
-        MASK_COLOURS.iter().map(|&(_, n, c)| (c, n.to_string())).collect();
+    let mut entries: Vec<([u8; 3], String)> = MASK_COLOURS
+        .iter()
+        .map(|&(_, n, c)| (c, n.to_string()))
+        .collect();
     entries.push((mask_colour(0), "no bit".into()));
     let title = "mask bits (several set: mean colour)";
-    out.push((format!("{s}_mask.png"), palette_map(title, w, h, &rgb, &entries)));
+    out.push((
+        format!("{s}_mask.png"),
+        palette_map(title, w, h, &rgb, &entries),
+    ));
     let grey = vec![NO_IMAGE_GREY; w * h * 3];
     let left = m.left_rgb.as_deref().unwrap_or(&grey);
     for b in &m.baselines {
@@ -219,7 +255,10 @@ pub fn previews(m: &FrameMaps) -> Vec<(String, Canvas)> {
         let rgb = occlusion_overlay(left, &b.occlusion);
         let title = format!("occlusion {} over the left image", b.name);
         let entries = [(OCC_TINT, "occluded: (pixel + tint) / 2".to_string())];
-        out.push((format!("{s}_{}_occ.png", b.name), palette_map(&title, w, h, &rgb, &entries)));
+        out.push((
+            format!("{s}_{}_occ.png", b.name),
+            palette_map(&title, w, h, &rgb, &entries),
+        ));
     }
     out
 }

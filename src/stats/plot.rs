@@ -64,7 +64,9 @@ fn draw(title: &str, bars: &[(f64, f64, u64)], hi: f64) -> Canvas {
     let bottom = TOP + PLOT_H;
     let top = bars.iter().map(|b| b.2).max().unwrap_or(0);
     let scale = ((1 + top) as f64).log10().max(1e-12);
-    let y_of = |count: u64| bottom - (((1 + count) as f64).log10() / scale * PLOT_H as f64).round() as usize;
+    let y_of = |count: u64| {
+        bottom - (((1 + count) as f64).log10() / scale * PLOT_H as f64).round() as usize
+    };
     for (b, &(_, _, count)) in bars.iter().enumerate() {
         let y = y_of(count).max(TOP);
         c.fill_rect(LEFT + b * BAR_W, y, BAR_W, bottom - y, BAR);
@@ -91,7 +93,12 @@ fn draw(title: &str, bars: &[(f64, f64, u64)], hi: f64) -> Canvas {
         if last_y == usize::MAX || last_y >= y + GLYPH + 2 {
             c.fill_rect(LEFT - 5, y, 4, 1, INK);
             let s = count_label(count);
-            c.text(LEFT - 7 - text_width(&s), y.saturating_sub(GLYPH / 2), &s, INK);
+            c.text(
+                LEFT - 7 - text_width(&s),
+                y.saturating_sub(GLYPH / 2),
+                &s,
+                INK,
+            );
             last_y = y;
         }
         count = if count == 0 { 1 } else { count * 10 };
@@ -122,7 +129,11 @@ fn write_one(dir: &Path, name: &str, hist: &DisparityHistogram) -> io::Result<Ve
     }
     let csv_path = dir.join(format!("hist_{name}.csv"));
     write_atomic(&csv_path, csv.as_bytes())?;
-    let label = if name == "overall" { "all baselines" } else { name };
+    let label = if name == "overall" {
+        "all baselines"
+    } else {
+        name
+    };
     let title = format!(
         "disparity histogram, {label}: {} px, median {:.2} px",
         s.pixels, s.median
