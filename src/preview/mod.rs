@@ -87,6 +87,27 @@ fn same_size(path: &Path, got: (usize, usize), want: (usize, usize)) -> io::Resu
     Ok(())
 }
 
+/// The smallest frame index with a depth map in `dir/left/depth/` (the
+/// default frame); an error naming the directory when there is none.
+pub fn first_frame(dir: &Path) -> io::Result<u32> {
+    let depth_dir = dir.join("left").join("depth");
+    let none = || {
+        bad(
+            &depth_dir,
+            "no NNNNNN.exr depth map: DIR must be a native render or sequence directory",
+        )
+    };
+    let entries = fs::read_dir(&depth_dir).map_err(|_| none())?;
+    entries
+        .filter_map(|e| e.ok())
+        .filter_map(|e| {
+            let name = e.file_name().to_string_lossy().into_owned();
+            name.strip_suffix(".exr")?.parse::<u32>().ok()
+        })
+        .min()
+        .ok_or_else(none)
+}
+
 /// Reads frame `frame` of the native directory `dir` (a `parallax render`
 /// output or a dataset sequence directory). Errors name the file or directory.
 pub fn read_frame(dir: &Path, frame: u32) -> io::Result<FrameMaps> {
