@@ -14,6 +14,7 @@ pub mod geometry;
 pub mod integrator;
 pub mod light;
 pub mod output;
+pub mod preview;
 pub mod render;
 pub mod sampler;
 pub mod scene;

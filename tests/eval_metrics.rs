@@ -5,13 +5,14 @@ use std::path::Path;
 use std::process::Command;
 
 use parallax::eval::pred::read_prediction;
-use parallax::eval::{evaluate, image_counts, MetricAccumulator, Metrics};
+use parallax::eval::{evaluate, image_counts, EvalOptions, Fill, MetricAccumulator, Metrics};
 use parallax::output::{
     write_atomic, write_exr_f32_gray, write_pfm_gray, write_png_gray16, write_png_gray8,
 };
 
-fn close(m: &Metrics, want: [f64; 5]) {
-    let got = [m.epe, m.d1, m.bad1, m.bad2, m.bad3];
+/// `[EPE, D1, bad1, bad2, bad3, density]` within 1e-9.
+fn close(m: &Metrics, want: [f64; 6]) {
+    let got = [m.epe, m.d1, m.bad1, m.bad2, m.bad3, m.density];
     for (g, w) in got.iter().zip(want) {
         assert!((g - w).abs() < 1e-9, "got {got:?}, want {want:?}");
     }
@@ -20,16 +21,78 @@ fn close(m: &Metrics, want: [f64; 5]) {
 #[test]
 fn metrics_match_hand_values_with_d1_both_conditions_noc_and_invalid_pixels() {
     // err: 0.5 | 3.5 (> 3 and > 5 % of 10: D1) | 4 (> 3 but < 5 % of 100: not D1,
-    // occluded) | invalid gt 0 | invalid gt inf | 0 | NaN prediction → 0 px, err 2.
+    // occluded) | invalid gt 0 | invalid gt inf | 0 | NaN prediction: missing.
     let gt = [10.0, 10.0, 100.0, 0.0, f32::INFINITY, 50.0, 2.0];
     let pred = [10.5, 13.5, 104.0, 7.0, 7.0, 50.0, f32::NAN];
     let occ = [0, 0, 255, 0, 0, 0, 0];
     let (all, noc) = image_counts(&gt, &pred, &occ);
     assert_eq!((all.n, noc.n), (5, 4));
-    // all: EPE 10/5; D1 1/5; bad1 3/5 (3.5, 4, 2); bad2 2/5 (2 is not > 2); bad3 2/5.
-    close(&all.metrics(), [2.0, 20.0, 60.0, 40.0, 40.0]);
-    // noc drops the 4 px pixel: EPE 6/4; D1 1/4; bad1 2/4; bad2 1/4; bad3 1/4.
-    close(&noc.metrics(), [1.5, 25.0, 50.0, 25.0, 25.0]);
+    assert_eq!((all.predicted, all.scored), (4, 4));
+    // all: EPE 8/4 over the 4 predicted; the missing pixel is an error in D1
+    // and every bad-x: D1 2/5; bad1 3/5 (3.5, 4, missing); bad2 3/5; bad3 3/5;
+    // density 4/5.
+    close(&all.metrics(), [2.0, 40.0, 60.0, 60.0, 60.0, 80.0]);
+    // noc drops the 4 px pixel: EPE 4/3; D1 2/4; bad1 2/4; bad2 2/4; bad3 2/4; density 3/4.
+    close(&noc.metrics(), [4.0 / 3.0, 50.0, 50.0, 50.0, 50.0, 75.0]);
+}
+
+/// A 4×2 native ground truth (row 1's third pixel is sky) under `root`.
+fn missing_gt(root: &Path) {
+    let gt = [10.0, 10.0, 10.0, 10.0, 20.0, 20.0, 0.0, 20.0];
+    let base = root.join("baseline_010");
+    write_pfm_gray(&base.join("disp/000000.pfm"), 4, 2, &gt).unwrap();
+    write_png_gray8(&base.join("occ/000000.png"), 4, 2, &[0; 8]).unwrap();
+}
+
+#[test]
+fn missing_predictions_are_errors_by_default_and_filled_as_kitti_on_request() {
+    // Prediction (· = missing): row 0 [11 · · 12], row 1 [· 20 25 24].
+    // As a KITTI PNG (0 = missing) and as a PFM (NaN and -1 = missing).
+    let gt = tempfile::tempdir().unwrap();
+    missing_gt(gt.path());
+    let (png, pfm) = (tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap());
+    let rel = "baseline_010/disp/000000";
+    let v = [11.0f32, 0.0, 0.0, 12.0, 0.0, 20.0, 25.0, 24.0];
+    let k: Vec<u16> = v.iter().map(|x| (x * 256.0) as u16).collect();
+    write_png_gray16(&png.path().join(format!("{rel}.png")), 4, 2, &k).unwrap();
+    let f = [11.0, f32::NAN, -1.0, 12.0, f32::NAN, 20.0, 25.0, 24.0];
+    write_pfm_gray(&pfm.path().join(format!("{rel}.pfm")), 4, 2, &f).unwrap();
+    let run = |pred: &Path, fill: Fill| {
+        let opts = EvalOptions {
+            fill,
+            ..EvalOptions::default()
+        };
+        evaluate(gt.path(), pred, &opts).unwrap()
+    };
+    for pred in [png.path(), pfm.path()] {
+        // 7 valid pixels, 4 predicted (errors 1, 2, 0, 4): EPE 7/4; bad1 (2, 4,
+        // 3 missing) 5/7; bad2 (4 + 3) 4/7; bad3 4/7; D1 4/7; density 4/7.
+        let r = run(pred, Fill::None);
+        let p = 100.0 / 7.0;
+        close(
+            &r.overall.all.pooled,
+            [1.75, 4.0 * p, 5.0 * p, 4.0 * p, 4.0 * p, 4.0 * p],
+        );
+        assert_eq!(r.fill, Fill::None);
+        assert!(
+            r.missing_rule.contains("counted in D1"),
+            "{}",
+            r.missing_rule
+        );
+        // KITTI fill: row 0's gap takes min(11, 12) = 11 (errors 1, 1); row 1's
+        // left end takes 20 (error 0). Errors 1 1 1 2 | 0 0 4: EPE 9/7; bad1
+        // 2/7; bad2, bad3, D1 1/7; density still 4/7 (before the fill).
+        let r = run(pred, Fill::Kitti);
+        close(
+            &r.overall.all.pooled,
+            [9.0 / 7.0, p, 2.0 * p, p, p, 4.0 * p],
+        );
+        assert!(
+            r.missing_rule.contains("KITTI devkit"),
+            "{}",
+            r.missing_rule
+        );
+    }
 }
 
 #[test]
@@ -42,8 +105,8 @@ fn pooled_and_per_image_means_differ_as_computed_by_hand() {
     acc.add_image(&a);
     acc.add_image(&b);
     acc.add_image(&empty);
-    close(&acc.pooled(), [1.0, 25.0, 25.0, 25.0, 25.0]);
-    close(&acc.per_image_mean(), [2.0, 50.0, 50.0, 50.0, 50.0]);
+    close(&acc.pooled(), [1.0, 25.0, 25.0, 25.0, 25.0, 100.0]);
+    close(&acc.per_image_mean(), [2.0, 50.0, 50.0, 50.0, 50.0, 100.0]);
     assert_eq!((acc.images, acc.images_with_pixels()), (3, 2));
 }
 
@@ -74,11 +137,14 @@ fn prediction_readers_round_trip_every_format() {
     let p = dir.path().join("a.exr");
     write_exr_f32_gray(&p, w, h, &v).unwrap();
     assert_eq!(read_prediction(&p).unwrap(), (w, h, v.clone()));
-    // KITTI ×256: these values are multiples of 1/256, so exact; 0 stays 0.
+    // KITTI ×256: these values are multiples of 1/256, so exact; 0 = missing (NaN).
     let p = dir.path().join("a.png");
     let k: Vec<u16> = v.iter().map(|x| (x * 256.0) as u16).collect();
     write_png_gray16(&p, w, h, &k).unwrap();
-    assert_eq!(read_prediction(&p).unwrap(), (w, h, v.clone()));
+    let (pw, ph, got) = read_prediction(&p).unwrap();
+    assert_eq!((pw, ph), (w, h));
+    assert!(got[0].is_nan(), "PNG 0 reads as missing, got {}", got[0]);
+    assert_eq!(got[1..], v[1..]);
     // .npy: float32 C order, float64 C order, float32 Fortran order.
     let f32_c: Vec<u8> = v.iter().flat_map(|x| x.to_le_bytes()).collect();
     let f64_c: Vec<u8> = v.iter().flat_map(|x| (*x as f64).to_le_bytes()).collect();
@@ -151,7 +217,7 @@ fn dataset_groups_are_parsed_from_paths_and_missing_predictions_counted() {
         &[5.0; 4],
     )
     .unwrap();
-    let r = evaluate(gt.path(), pred.path()).unwrap();
+    let r = evaluate(gt.path(), pred.path(), &EvalOptions::default()).unwrap();
     assert_eq!((r.gt_images, r.images_evaluated), (3, 2));
     assert_eq!(
         r.missing_predictions,
@@ -172,7 +238,8 @@ fn dataset_groups_are_parsed_from_paths_and_missing_predictions_counted() {
     assert_eq!(r.per_baseline.len(), 1, "baseline_054 had no prediction");
 }
 
-fn run_eval(args: &[&str]) -> (i32, String) {
+/// `(exit code, stderr, stdout)` of `parallax eval ARGS`.
+fn run_eval(args: &[&str]) -> (i32, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_parallax"))
         .arg("eval")
         .args(args)
@@ -181,6 +248,7 @@ fn run_eval(args: &[&str]) -> (i32, String) {
     (
         out.status.code().unwrap_or(-1),
         String::from_utf8_lossy(&out.stderr).into_owned(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
     )
 }
 
@@ -195,7 +263,7 @@ fn eval_cli_bad_inputs_exit_2_naming_the_path() {
     let r = report.to_str().unwrap();
     // Every failing run asks for a report: none may be written.
     let fails = |args: &[&str], needles: &[&str]| {
-        let (code, err) = run_eval(args);
+        let (code, err, _) = run_eval(args);
         assert_eq!(code, 2, "{args:?}: {err}");
         for n in needles {
             assert!(err.contains(n), "stderr does not name `{n}`: {err}");
@@ -214,12 +282,45 @@ fn eval_cli_bad_inputs_exit_2_naming_the_path() {
     // Unreadable (garbage bytes).
     write_atomic(&bad, b"not a pfm").unwrap();
     fails(&["--gt", g, "--pred", p, "--json", r], &[b]);
+    // Unknown fill or layout; a layout a bare render directory cannot have.
+    fails(
+        &["--gt", g, "--pred", p, "--fill", "zero", "--json", r],
+        &["--fill", "zero", "none or kitti"],
+    );
+    fails(
+        &[
+            "--gt",
+            g,
+            "--pred",
+            p,
+            "--layout",
+            "middlebury",
+            "--json",
+            r,
+        ],
+        &["--layout", "middlebury", "kitti"],
+    );
+    fails(
+        &["--gt", g, "--pred", p, "--layout", "kitti", "--json", r],
+        &[g, "baseline_010/disp/000000.pfm", "--layout native"],
+    );
     assert_eq!(std::fs::read_dir(sink.path()).unwrap().count(), 0);
     // A good prediction: exit 0 and a JSON report.
     write_pfm_gray(&bad, 2, 2, &[1.0; 4]).unwrap();
-    let (code, err) = run_eval(&["--gt", g, "--pred", p, "--json", r]);
+    let (code, err, out) = run_eval(&["--gt", g, "--pred", p, "--json", r]);
     assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("dens %") && out.contains("fill none: missing prediction"),
+        "{out}"
+    );
     let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&report).unwrap()).unwrap();
     assert_eq!(v["overall"]["all"]["pooled"]["epe"].as_f64(), Some(0.0));
     assert_eq!(v["per_town"]["-"]["images"].as_u64(), Some(1));
+    assert_eq!(
+        v["overall"]["all"]["pooled"]["density"].as_f64(),
+        Some(100.0)
+    );
+    assert_eq!(v["fill"].as_str(), Some("none"));
+    assert_eq!(v["layout"].as_str(), Some("native"));
+    assert!(v["missing_rule"].as_str().unwrap().contains("density"));
 }

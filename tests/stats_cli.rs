@@ -162,3 +162,45 @@ fn stats_bad_inputs_exit_2_naming_the_path() {
         "failed runs left files behind"
     );
 }
+
+/// Dark (ink) pixel of an RGB8 image.
+fn dark(rgb: &[u8], w: usize, x: usize, y: usize) -> bool {
+    let i = (y * w + x) * 3;
+    rgb[i..i + 3].iter().all(|&v| v < 64)
+}
+
+#[test]
+fn histogram_png_has_axes_ticks_labels_and_a_title() {
+    let d = tempfile::tempdir().unwrap();
+    let r = d.path();
+    pfm(r, "baseline_054/disp/000000.pfm", [1.0, 2.5, 40.0, 97.0]);
+    let plots = r.join("plots");
+    let (code, _, err) = stats(&[r.to_str().unwrap(), "--plot", plots.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let (w, h, rgb) =
+        parallax::output::read_png_rgb8(&plots.join("hist_baseline_054.png")).unwrap();
+    assert_eq!((w, h), parallax::stats::PLOT_SIZE);
+    let (ax, ay) = parallax::stats::AXES_AT;
+    // The x axis: one dark row under the 512 px of bars; the y axis: one dark
+    // column the 200 px plot height.
+    assert!(
+        (ax..ax + 512).all(|x| dark(&rgb, w, x, ay)),
+        "x axis row {ay}"
+    );
+    assert!(
+        (ay - 199..=ay).all(|y| dark(&rgb, w, ax, y)),
+        "y axis column {ax}"
+    );
+    let ink = |xs: std::ops::Range<usize>, ys: std::ops::Range<usize>| {
+        ys.flat_map(|y| xs.clone().map(move |x| (x, y)))
+            .filter(|&(x, y)| dark(&rgb, w, x, y))
+            .count()
+    };
+    // Text: title above the plot, tick numbers and the x label below the x
+    // axis, tick numbers and the turned y label left of the y axis.
+    assert!(ink(0..w, 0..ay - 200) > 100, "no title");
+    assert!(ink(ax + 1..w, ay + 2..h) > 150, "no x tick numbers / label");
+    assert!(ink(0..ax - 1, 0..h) > 100, "no y tick numbers / label");
+    // Tick marks: dark pixels just below the x axis at 0 px (the axis start).
+    assert!(dark(&rgb, w, ax + 1, ay + 3), "no tick at 0 px");
+}

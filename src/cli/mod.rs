@@ -1,11 +1,12 @@
 //! The command line (the only home of `clap`): `render`, `town`, `bench`,
-//! `dataset`, `verify`, `eval` and `stats`.
+//! `dataset`, `verify`, `eval`, `stats` and `preview`.
 //! Errors surface as one message naming the file, field or argument, and a
 //! non-zero exit code; nothing is written before the inputs are validated.
 
 mod bench;
 mod dataset;
 mod eval;
+mod preview;
 mod render;
 mod stats;
 mod town;
@@ -71,6 +72,8 @@ enum Command {
     Dataset(dataset::DatasetArgs),
     /// Check a dataset's manifests and checksums; --repair re-renders bad frames.
     Verify(verify::VerifyArgs),
+    /// Colour-coded PNGs of a native frame's ground truth (depth, disparity, semantic, instance, mask, occlusion).
+    Preview(preview::PreviewArgs),
 }
 
 /// Runs the CLI on `args` (including the program name).
@@ -101,6 +104,7 @@ where
         Command::Stats(a) => stats::run(a),
         Command::Dataset(a) => dataset::run(a),
         Command::Verify(a) => verify::run(a),
+        Command::Preview(a) => preview::run(a),
     }
 }
 

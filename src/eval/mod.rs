@@ -1,14 +1,18 @@
 //! `parallax eval`: stereo metrics of predicted disparities against a native
 //! ground-truth tree, overall and per baseline, configuration, weather and town.
 //!
-//! A prediction mirrors the relative path of each ground-truth
-//! `baseline_XXX/disp/NNNNNN.pfm` below the prediction root, with extension
-//! .pfm, .png, .exr or .npy (`pred`). A missing prediction is listed and
-//! counted, never silently skipped. Two means are reported everywhere:
-//! pooled (every valid pixel weighs the same) and per-image (every image with
-//! valid pixels weighs the same).
+//! The ground truth is always a native tree. A prediction mirrors each
+//! ground-truth `baseline_XXX/disp/NNNNNN.pfm` as laid out in the native,
+//! kitti, sceneflow or stereocarla layout (`mirror`), with extension .pfm,
+//! .png, .exr or .npy (`pred`). A missing prediction file is listed and
+//! counted, never silently skipped; missing pixels inside a file are scored by
+//! the stated rule (`fill`) and their share reported as density. Two means are
+//! reported everywhere: pooled (every valid pixel weighs the same) and
+//! per-image (every image with valid pixels weighs the same).
 
+pub mod fill;
 pub mod metrics;
+pub mod mirror;
 pub mod pred;
 mod report;
 mod walk;
@@ -19,11 +23,33 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
-pub use metrics::{gt_valid, image_counts, MetricAccumulator, Metrics, PixelCounts};
+pub use fill::{interpolate_background, Fill};
+pub use metrics::{
+    gt_valid, image_counts, image_counts_filled, predicted, MetricAccumulator, Metrics, PixelCounts,
+};
 pub use report::format_table;
 pub use walk::{find_gt_disparities, GtImage};
 
+use crate::output::layouts::LayoutKind;
 use crate::output::{read_pfm_gray, read_png_gray8};
+
+/// How `evaluate` finds and scores predictions.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct EvalOptions {
+    /// The layout the prediction tree mirrors (default native).
+    pub layout: LayoutKind,
+    /// The rule for missing predictions (default: counted as errors).
+    pub fill: Fill,
+}
+
+impl Default for EvalOptions {
+    fn default() -> Self {
+        EvalOptions {
+            layout: LayoutKind::Native,
+            fill: Fill::None,
+        }
+    }
+}
 
 /// Pooled and per-image-mean metrics of one pixel set.
 #[derive(Clone, Debug, Serialize)]
@@ -86,6 +112,12 @@ pub struct EvalReport {
     pub gt: String,
     /// Prediction root.
     pub pred: String,
+    /// The layout the predictions mirror.
+    pub layout: LayoutKind,
+    /// The rule for missing predictions (`none` or `kitti`).
+    pub fill: Fill,
+    /// That rule in words.
+    pub missing_rule: &'static str,
     /// Ground-truth disparity images found.
     pub gt_images: u64,
     /// Images evaluated (prediction found).
@@ -107,8 +139,9 @@ pub struct EvalReport {
 }
 
 /// The definitions stored in every report.
-pub const DEFINITIONS: &str = "valid: GT disparity finite and > 0; error = |pred - gt| px, non-finite prediction = 0 px; \
-EPE = mean error px; bad-x = % error > x px; D1 = % error > 3 px and > 5% of gt; \
+pub const DEFINITIONS: &str = "valid: GT disparity finite and > 0; missing prediction: not finite or < 0 (16-bit PNG: 0); \
+density = % of valid pixels predicted; error = |pred - gt| px; EPE = mean error px over scored pixels; \
+bad-x = % of valid pixels with error > x px or not scored; D1 = % with error > 3 px and > 5% of gt, or not scored; \
 all = every valid pixel, noc = valid and occlusion mask 0; \
 pooled = pixel-weighted over the group, per_image_mean = mean of per-image figures over images with valid pixels";
 
@@ -119,10 +152,11 @@ fn invalid(path: &Path, msg: impl std::fmt::Display) -> io::Error {
     )
 }
 
-/// Evaluates every prediction below `pred_root` against the ground truth below
-/// `gt_root`. Errors (unreadable file, size mismatch, no ground truth) name the
+/// Evaluates every prediction below `pred_root` (laid out as `opts.layout`)
+/// against the native ground truth below `gt_root`. Errors (unreadable file,
+/// size mismatch, no ground truth, a layout the tree cannot have) name the
 /// path; a missing prediction is not an error but listed in the report.
-pub fn evaluate(gt_root: &Path, pred_root: &Path) -> io::Result<EvalReport> {
+pub fn evaluate(gt_root: &Path, pred_root: &Path, opts: &EvalOptions) -> io::Result<EvalReport> {
     for (flag, dir) in [("--gt", gt_root), ("--pred", pred_root)] {
         if !dir.is_dir() {
             return Err(io::Error::new(
@@ -142,9 +176,10 @@ pub fn evaluate(gt_root: &Path, pred_root: &Path) -> io::Result<EvalReport> {
     let mut groups: [BTreeMap<String, GroupAccumulator>; 4] = Default::default();
     let mut missing = Vec::new();
     for img in &images {
-        let stem_path: PathBuf = pred_root.join(img.rel.with_extension(""));
+        let stem = mirror::prediction_stem(img, opts.layout).map_err(|e| invalid(gt_root, e))?;
+        let stem_path: PathBuf = pred_root.join(&stem);
         let Some(pred_path) = pred::find_prediction(&stem_path) else {
-            missing.push(img.rel.with_extension("").display().to_string());
+            missing.push(stem.display().to_string());
             continue;
         };
         let (w, h, gt) = read_pfm_gray(&gt_root.join(&img.rel))?;
@@ -163,7 +198,8 @@ pub fn evaluate(gt_root: &Path, pred_root: &Path) -> io::Result<EvalReport> {
                 format!("prediction is {pw}×{ph}, ground truth is {w}×{h}"),
             ));
         }
-        let (all, noc) = image_counts(&gt, &p, &occ);
+        let scored = opts.fill.apply(w, &p);
+        let (all, noc) = image_counts_filled(&gt, &p, &scored, &occ);
         overall.add(&all, &noc);
         let keys = [&img.baseline, &img.config, &img.weather, &img.town];
         for (g, k) in groups.iter_mut().zip(keys) {
@@ -175,6 +211,9 @@ pub fn evaluate(gt_root: &Path, pred_root: &Path) -> io::Result<EvalReport> {
     Ok(EvalReport {
         gt: gt_root.display().to_string(),
         pred: pred_root.display().to_string(),
+        layout: opts.layout,
+        fill: opts.fill,
+        missing_rule: opts.fill.rule(),
         gt_images: images.len() as u64,
         images_evaluated: (images.len() - missing.len()) as u64,
         missing_predictions: missing,

@@ -1,5 +1,5 @@
 //! Readers for predicted disparity maps (the only home of `npyz`): PFM, 16-bit
-//! KITTI PNG (value/256, 0 = no estimate → 0 px), float EXR (one channel) and
+//! KITTI PNG (value/256, 0 = no estimate → NaN, i.e. missing), float EXR (one channel) and
 //! NumPy `.npy` (2-D float32 or float64, C or Fortran order). Every reader
 //! returns `(w, h, disparity_px)` row-major, top row first; errors name the path.
 
@@ -28,7 +28,11 @@ pub fn read_prediction(path: &Path) -> io::Result<(usize, usize, Vec<f32>)> {
         Some("exr") => read_exr_f32_gray(path),
         Some("png") => {
             let (w, h, v) = read_png_gray16(path)?;
-            Ok((w, h, v.into_iter().map(|x| x as f32 / 256.0).collect()))
+            let d = v.into_iter().map(|x| match x {
+                0 => f32::NAN,
+                x => x as f32 / 256.0,
+            });
+            Ok((w, h, d.collect()))
         }
         Some("npy") => read_npy(path),
         _ => Err(OutputError::wrap(

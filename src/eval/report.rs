@@ -8,8 +8,8 @@ use super::{EvalReport, GroupReport, Metrics};
 fn row(out: &mut String, group: &str, images: u64, set: &str, mean: &str, m: &Metrics) {
     let _ = writeln!(
         out,
-        "{group:<22} {images:>7} {set:<4} {mean:<9} {:>9.4} {:>8.3} {:>8.3} {:>8.3} {:>8.3}",
-        m.epe, m.d1, m.bad1, m.bad2, m.bad3
+        "{group:<22} {images:>7} {set:<4} {mean:<9} {:>9.4} {:>8.3} {:>8.3} {:>8.3} {:>8.3} {:>8.3}",
+        m.epe, m.d1, m.bad1, m.bad2, m.bad3, m.density
     );
 }
 
@@ -20,13 +20,14 @@ fn block(out: &mut String, name: &str, g: &GroupReport) {
     row(out, "", g.images, "noc", "per-image", &g.noc.per_image_mean);
 }
 
-/// Formats the report as a fixed-width table (EPE in px, the rest in %).
+/// Formats the report as a fixed-width table (EPE in px, the rest in %),
+/// ending with the layout and the rule for missing predictions.
 pub fn format_table(r: &EvalReport) -> String {
     let mut out = String::new();
     let _ = writeln!(
         out,
-        "{:<22} {:>7} {:<4} {:<9} {:>9} {:>8} {:>8} {:>8} {:>8}",
-        "group", "images", "set", "mean", "EPE px", "D1 %", "bad1 %", "bad2 %", "bad3 %"
+        "{:<22} {:>7} {:<4} {:<9} {:>9} {:>8} {:>8} {:>8} {:>8} {:>8}",
+        "group", "images", "set", "mean", "EPE px", "D1 %", "bad1 %", "bad2 %", "bad3 %", "dens %"
     );
     block(&mut out, "overall", &r.overall);
     let sections = [
@@ -48,7 +49,11 @@ pub fn format_table(r: &EvalReport) -> String {
         r.missing_predictions.len()
     );
     for m in r.missing_predictions.iter().take(20) {
-        let _ = writeln!(out, "  missing prediction: {m}.{{pfm,png,exr,npy}}");
+        let _ = writeln!(
+            out,
+            "  missing prediction: {}/{m}.{{pfm,png,exr,npy}}",
+            r.pred
+        );
     }
     if r.missing_predictions.len() > 20 {
         let _ = writeln!(out, "  … and {} more", r.missing_predictions.len() - 20);
@@ -57,5 +62,7 @@ pub fn format_table(r: &EvalReport) -> String {
         out,
         "pooled: pixel-weighted; per-image: mean over images with valid pixels"
     );
+    let _ = writeln!(out, "predictions laid out as: {}", r.layout);
+    let _ = writeln!(out, "fill {}: {}", r.fill, r.missing_rule);
     out
 }

@@ -7,6 +7,7 @@ use std::fs;
 use std::io;
 use std::path::{Path, PathBuf};
 
+use crate::output::layouts::FrameKey;
 use crate::output::{Access, OutputError};
 
 /// One ground-truth disparity image of a native tree.
@@ -34,6 +35,30 @@ impl GtImage {
             .and_then(Path::parent)
             .unwrap_or(Path::new(""));
         base.join("occ").join(stem).with_extension("png")
+    }
+
+    /// The dataset frame of this image, `None` unless the path is
+    /// `<town>/<config>_<weather>/<SSSS>/baseline_XXX/disp/<NNNNNN>.pfm`.
+    pub fn frame_key(&self) -> Option<FrameKey> {
+        let names: Vec<&str> = self.rel.iter().filter_map(|c| c.to_str()).collect();
+        let [_, _, seq, _, _, file] = names[..] else {
+            return None;
+        };
+        if self.weather == "-" {
+            return None;
+        }
+        Some(FrameKey {
+            town: self.town.clone(),
+            config: self.config.clone(),
+            weather: self.weather.clone(),
+            sequence: seq.parse().ok()?,
+            frame: file.strip_suffix(".pfm")?.parse().ok()?,
+        })
+    }
+
+    /// The baseline in centimetres, from the directory name (`baseline_054` → 54).
+    pub fn baseline_cm(&self) -> Option<f64> {
+        self.baseline.strip_prefix("baseline_")?.parse().ok()
     }
 
     /// The sequence directory relative to the root, with the frame stem: one
@@ -127,6 +152,9 @@ mod tests {
             ("town03", "roll15", "foggy")
         );
         assert_eq!(g.baseline, "baseline_054");
+        assert_eq!(g.baseline_cm(), Some(54.0));
+        let k = g.frame_key().unwrap();
+        assert_eq!((k.sequence, k.frame, k.weather.as_str()), (2, 7, "foggy"));
         assert_eq!(
             g.occ_rel(),
             PathBuf::from("town03/roll15_foggy/0002/baseline_054/occ/000007.png")
@@ -137,6 +165,7 @@ mod tests {
         );
         let g = group_of(Path::new("baseline_010/disp/000000.pfm"));
         assert_eq!((g.town.as_str(), g.config.as_str()), ("-", "-"));
+        assert_eq!(g.frame_key(), None);
         assert!(is_disparity(Path::new("baseline_010/disp/000000.pfm")));
         assert!(!is_disparity(Path::new(
             "baseline_010/disp_right/000000.pfm"

@@ -53,7 +53,7 @@ fn stem(key: &FrameKey) -> String {
 }
 
 /// Root-relative `[image_2, image_3, disp_occ_0, disp_noc_0]` of a frame.
-fn sample_paths(key: &FrameKey, baseline_cm: f64) -> [String; 4] {
+pub(super) fn sample_paths(key: &FrameKey, baseline_cm: f64) -> [String; 4] {
     let b = baseline_dir_name(baseline_cm);
     let file = format!("{}.png", stem(key));
     ["image_2", "image_3", "disp_occ_0", "disp_noc_0"].map(|d| rel_str(&[&b, d, &file]))

@@ -150,6 +150,19 @@ pub fn write_layout_index(
     }
 }
 
+/// Root-relative path of the left-view ground truth a layout writes for one
+/// frame and baseline: kitti `disp_occ_0` PNG, sceneflow `disparity/…/left`
+/// PFM, stereocarla depth PNG; `None` for native (`NativeLayout` names it).
+/// `parallax eval` mirrors these names for predictions.
+pub fn left_truth_rel(kind: LayoutKind, key: &FrameKey, baseline_cm: f64) -> Option<String> {
+    match kind {
+        LayoutKind::Native => None,
+        LayoutKind::Kitti => Some(kitti::sample_paths(key, baseline_cm)[2].clone()),
+        LayoutKind::Sceneflow => Some(sceneflow::sample_paths(key, baseline_cm)[2].clone()),
+        LayoutKind::Stereocarla => Some(stereocarla::sample_paths(key, baseline_cm)[2].clone()),
+    }
+}
+
 /// A root-relative path as a split-list entry (always `/`-separated).
 fn rel_str(parts: &[&str]) -> String {
     parts.join("/")

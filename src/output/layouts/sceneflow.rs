@@ -15,7 +15,7 @@ use crate::output::{baseline_dir_name, frame_stem, write_pfm_gray, write_png_rgb
 use crate::render::FrameOutput;
 
 /// Root-relative `[left png, right png, left pfm, right pfm]` of a frame.
-fn sample_paths(key: &FrameKey, baseline_cm: f64) -> [String; 4] {
+pub(super) fn sample_paths(key: &FrameKey, baseline_cm: f64) -> [String; 4] {
     let b = baseline_dir_name(baseline_cm);
     let scene = format!("{}_{}_{}", key.town, key.config, key.weather);
     let seq = format!("{:04}", key.sequence);

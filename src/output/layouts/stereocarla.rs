@@ -88,7 +88,7 @@ fn dir_and_stem(key: &FrameKey) -> (Vec<String>, String) {
 }
 
 /// Root-relative `[left, right, depth]` of a frame at one baseline.
-fn sample_paths(key: &FrameKey, baseline_cm: f64) -> [String; 3] {
+pub(super) fn sample_paths(key: &FrameKey, baseline_cm: f64) -> [String; 3] {
     let (dir, stem) = dir_and_stem(key);
     let d: Vec<&str> = dir.iter().map(String::as_str).collect();
     let b = baseline_dir_name(baseline_cm);
