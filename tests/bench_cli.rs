@@ -139,6 +139,18 @@ fn obj_with_a_camera_file_is_measured_from_that_camera() {
         let text = String::from_utf8_lossy(&o.stdout).into_owned();
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
         assert!(text.starts_with("scene: 3 triangles,"), "{text}");
+        // The report says which view it measured (the y-up file, in z-up world).
+        let from = match camera {
+            Some(_) => format!(
+                "camera: {}: 32x18 px",
+                dir.path().join("camera.json").display()
+            ),
+            None => "camera: the scene's camera: 32x18 px".to_string(),
+        };
+        assert!(text.contains(&from), "{text}");
+        if camera.is_some() {
+            assert!(text.contains("position (0, 0, 1.6) m (z up)"), "{text}");
+        }
         rays_per_sample(&text)
     };
     // Facing the wall every camera ray hits and the path goes on (shadow

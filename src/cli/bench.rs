@@ -94,5 +94,15 @@ pub fn run(a: BenchArgs) -> Result<(), CliError> {
         .install(|| run_bench(&loaded, &settings))
         .map_err(|e| CliError::failure(format!("{}: {e}", show(&input))))?;
     println!("{}", report.render_text(a.threads));
+    println!("{}", camera_line(&loaded.desc.camera, a.camera.as_deref()));
     Ok(())
+}
+
+/// Which view was measured: the camera file's, or the scene's own.
+fn camera_line(c: &crate::scene::desc::RigDesc, file: Option<&std::path::Path>) -> String {
+    let from = file.map_or_else(|| "the scene's camera".to_string(), show);
+    format!(
+        "camera: {from}: {}x{} px, hfov {} deg, position ({}, {}, {}) m (z up), yaw {} deg, pitch {} deg, roll {} deg",
+        c.width, c.height, c.hfov_deg, c.position[0], c.position[1], c.position[2], c.yaw_deg, c.pitch_deg, c.roll_deg
+    )
 }

@@ -51,18 +51,41 @@ impl Shard {
             let min = num("SLURM_ARRAY_TASK_MIN")?.unwrap_or(1);
             let index = id
                 .checked_sub(min)
-                .map(|k| k + 1)
+                .map(|k| k.saturating_add(1))
                 .ok_or("SLURM_ARRAY_TASK_ID is below SLURM_ARRAY_TASK_MIN")?;
-            return Shard::parse(&format!("{index}/{count}")).map(Some);
+            return Shard::from_variables(
+                index,
+                count,
+                &format!("SLURM_ARRAY_TASK_ID={id} (SLURM_ARRAY_TASK_MIN={min}, SLURM_ARRAY_TASK_COUNT={count})"),
+            )
+            .map(Some);
         }
         if let Some(k) = num("JOB_COMPLETION_INDEX")? {
             let count = num("PARALLAX_SHARD_COUNT")?.ok_or(
                 "JOB_COMPLETION_INDEX is set: give the shard count as PARALLAX_SHARD_COUNT \
                  (the Job's spec.completions) or pass --shard",
             )?;
-            return Shard::parse(&format!("{}/{count}", k + 1)).map(Some);
+            return Shard::from_variables(
+                k.saturating_add(1),
+                count,
+                &format!("JOB_COMPLETION_INDEX={k} (PARALLAX_SHARD_COUNT={count})"),
+            )
+            .map(Some);
         }
         Ok(None)
+    }
+
+    /// Shard `index` of `count` (1-based) taken from the batch engine's
+    /// variables, shown as `vars` when out of range: the user set those, not
+    /// `--shard`.
+    fn from_variables(index: u32, count: u32, vars: &str) -> Result<Shard, String> {
+        if count == 0 || index == 0 || index > count {
+            return Err(format!(
+                "{vars}: the task's shard would be {index} of {count}; \
+                 a shard index must lie in 1..={count} of a count of at least 1"
+            ));
+        }
+        Ok(Shard { index, count })
     }
 
     /// True when the job at plan position `position` belongs to this shard.
@@ -139,6 +162,26 @@ mod tests {
             Ok(Some(Shard { index: 3, count: 3 }))
         );
         assert!(Shard::from_env(&env_of(&[("JOB_COMPLETION_INDEX", "2")])).is_err());
+    }
+
+    #[test]
+    fn out_of_range_task_names_the_variables_not_the_flag() {
+        let slurm = env_of(&[
+            ("SLURM_ARRAY_TASK_ID", "3"),
+            ("SLURM_ARRAY_TASK_COUNT", "2"),
+        ]);
+        let e = Shard::from_env(&slurm).unwrap_err();
+        assert!(
+            e.contains("SLURM_ARRAY_TASK_ID=3") && e.contains("3 of 2"),
+            "{e}"
+        );
+        assert!(!e.contains("--shard"), "{e}");
+        let k8s = env_of(&[
+            ("JOB_COMPLETION_INDEX", "4294967295"),
+            ("PARALLAX_SHARD_COUNT", "3"),
+        ]);
+        let e = Shard::from_env(&k8s).unwrap_err();
+        assert!(e.contains("JOB_COMPLETION_INDEX=4294967295"), "{e}");
         assert_eq!(Shard::from_env(&env_of(&[])), Ok(None));
     }
 }

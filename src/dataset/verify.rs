@@ -294,6 +294,7 @@ mod tests {
                 seconds: 0.0,
             },
             disparity: Vec::new(),
+            seeds: None,
         };
         let owner = Ownership::new(&config, [&line]);
         let seq = "town01/normal_clear/0000";

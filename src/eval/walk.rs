@@ -82,7 +82,7 @@ fn is_disparity(rel: &Path) -> bool {
         && names[n - 2] == "disp"
         && names[n - 3].starts_with("baseline_")
         && names[n - 1].ends_with(".pfm")
-        && !names[n - 1].contains(".tmp-")
+        && !crate::dataset::run::is_temp_name(names[n - 1])
 }
 
 fn group_of(rel: &Path) -> GtImage {
