@@ -229,7 +229,7 @@ fn obj_with_absurd_coordinates_is_refused() {
 fn obj_with_bad_indices_is_refused() {
     obj_fails(
         "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n",
-        &["object[0].file", "index out of bounds"],
+        &["object[0].file", "line 4: vertex index 9", "out of range"],
     );
 }
 
