@@ -40,11 +40,17 @@ fn bad_values_are_refused_naming_file_line_and_key() {
         ("Ks 0.5 0.5 -0.1", "Ks: -0.1 is out of range"),
         ("Ke inf 1 1", "Ke: inf is out of range"),
         ("Ke -2 1 1", "Ke: -2 is out of range"),
-        ("Ni nan", "Ni: nan is out of range; allowed: a number > 0 and finite"),
+        (
+            "Ni nan",
+            "Ni: nan is out of range; allowed: a number > 0 and finite",
+        ),
         ("Ni 0", "Ni: 0 is out of range"),
         ("d 2", "d: 2 is out of range; allowed: a number in [0, 1]"),
         ("Ns -1", "Ns: -1 is out of range"),
-        ("Kd 0.5", "Kd: \"0.5\" has 1 values; allowed: 3 numbers (r g b)"),
+        (
+            "Kd 0.5",
+            "Kd: \"0.5\" has 1 values; allowed: 3 numbers (r g b)",
+        ),
     ] {
         let mtl = format!("# looks\nnewmtl paint\n{line}\n");
         let msg = load(&mtl).expect_err(line);

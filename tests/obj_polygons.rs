@@ -56,7 +56,10 @@ fn inside(p: DVec3, poly: &[[f64; 2]]) -> bool {
 }
 
 fn obj_of(poly: &[[f64; 2]]) -> String {
-    let mut s: String = poly.iter().map(|p| format!("v {} {} 0\n", p[0], p[1])).collect();
+    let mut s: String = poly
+        .iter()
+        .map(|p| format!("v {} {} 0\n", p[0], p[1]))
+        .collect();
     s += "f";
     for i in 1..=poly.len() {
         s += &format!(" {i}");
@@ -92,7 +95,10 @@ fn concave_face_is_triangulated_inside_its_outline() {
     for t in &g.triangles {
         let [a, b, c] = t.map(|i| g.positions[i as usize]);
         let n = (b - a).cross(c - a);
-        assert!(n.z > 0.0, "triangle {t:?} flipped against the face's winding");
+        assert!(
+            n.z > 0.0,
+            "triangle {t:?} flipped against the face's winding"
+        );
         area += n.length() / 2.0;
         let centroid = (a + b + c) / 3.0;
         assert!(inside(centroid, &poly), "triangle {t:?} leaves the face");

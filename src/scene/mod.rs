@@ -17,6 +17,7 @@ pub mod obj;
 mod obj_scan;
 mod polygon;
 pub mod prefab;
+mod ranges;
 mod resolve;
 pub mod semantic;
 pub mod transform;

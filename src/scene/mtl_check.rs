@@ -113,12 +113,21 @@ mod tests {
     #[test]
     fn bad_values_name_line_key_value_and_rule() {
         for (line, says) in [
-            ("Kd nan 0.5 0.5", "line 2: Kd: nan is out of range; allowed: 3 numbers (r g b), each in [0, 1]"),
+            (
+                "Kd nan 0.5 0.5",
+                "line 2: Kd: nan is out of range; allowed: 3 numbers (r g b), each in [0, 1]",
+            ),
             ("Kd 0.5", "line 2: Kd: \"0.5\" has 1 values"),
             ("Ks 1.5 0 0", "line 2: Ks: 1.5 is out of range"),
-            ("Ke -1 0 0", "line 2: Ke: -1 is out of range; allowed: 3 numbers (r g b), each ≥ 0 and finite"),
+            (
+                "Ke -1 0 0",
+                "line 2: Ke: -1 is out of range; allowed: 3 numbers (r g b), each ≥ 0 and finite",
+            ),
             ("Ke inf 0 0", "Ke: inf is out of range"),
-            ("Ni nan", "line 2: Ni: nan is out of range; allowed: a number > 0 and finite"),
+            (
+                "Ni nan",
+                "line 2: Ni: nan is out of range; allowed: a number > 0 and finite",
+            ),
             ("Ni 0", "Ni: 0 is out of range"),
             ("d 1.2", "line 2: d: 1.2 is out of range"),
             ("Ns -5", "line 2: Ns: -5 is out of range"),

@@ -119,13 +119,19 @@ mod tests {
         let e = scan(&format!("{TRI}f 1//1 2//0 3//1\n")).unwrap_err();
         assert!(e.starts_with("line 6: normal index 0"), "{e}");
         let e = scan(&format!("{TRI}f 1 2 4\n")).unwrap_err();
-        assert!(e.contains("line 6: vertex index 4") && e.contains("3 vertices"), "{e}");
+        assert!(
+            e.contains("line 6: vertex index 4") && e.contains("3 vertices"),
+            "{e}"
+        );
         let e = scan(&format!("{TRI}f 1 2 -4\n")).unwrap_err();
         assert!(e.contains("vertex index -4"), "{e}");
         let e = scan(&format!("{TRI}f 1/1/2 2 3\n")).unwrap_err();
         assert!(e.contains("normal index 2"), "{e}");
         let e = scan(&format!("{TRI}f 1 2\n")).unwrap_err();
-        assert!(e.contains("line 6: a face needs at least 3 corners, got 2"), "{e}");
+        assert!(
+            e.contains("line 6: a face needs at least 3 corners, got 2"),
+            "{e}"
+        );
         let e = scan(&format!("{TRI}f 1 2 x\n")).unwrap_err();
         assert!(e.contains("\"x\""), "{e}");
     }
