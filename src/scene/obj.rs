@@ -103,7 +103,7 @@ pub fn load_obj(
             Err(m) => fail(format!("{}: {m}", name.display())),
         }
     };
-    let loaded = tobj::load_obj_buf(&mut scan.geometry.as_bytes(), &options, load_mtl);
+    let loaded = tobj::load_obj_buf(&mut scan.geometry(&text).as_bytes(), &options, load_mtl);
     if let Some(m) = mtl_error.take() {
         return Err(err(m));
     }

@@ -4,20 +4,41 @@
 //! faces of fewer than three corners, and `l` / `p` elements, which tobj
 //! would turn into triangles and which are blanked out of the geometry.
 
-/// The faces' lines and the text tobj should parse.
+use std::borrow::Cow;
+
+/// The faces' lines and the lines tobj should not see.
 #[derive(Debug)]
 pub struct ObjScan {
     /// 1-based line of each `f` element, in file order (tobj's face order).
     pub face_lines: Vec<usize>,
-    /// The text with `l` and `p` lines emptied (line numbers unchanged).
-    pub geometry: String,
+    /// 0-based indices of the `l` and `p` lines.
+    pub skipped: Vec<usize>,
+}
+
+impl ObjScan {
+    /// The scanned text with the `l` and `p` lines emptied (line numbers
+    /// unchanged), copied only when there are any.
+    pub fn geometry<'a>(&self, text: &'a str) -> Cow<'a, str> {
+        if self.skipped.is_empty() {
+            return Cow::Borrowed(text);
+        }
+        let mut skip = self.skipped.iter().peekable();
+        let mut out = String::with_capacity(text.len());
+        for (i, line) in text.lines().enumerate() {
+            if skip.next_if_eq(&&i).is_none() {
+                out.push_str(line);
+            }
+            out.push('\n');
+        }
+        Cow::Owned(out)
+    }
 }
 
 /// Scans OBJ text; an error names the line and the offending value.
 pub fn scan(text: &str) -> Result<ObjScan, String> {
     let mut counts = [0usize; 3]; // positions, texcoords, normals so far
     let mut face_lines = Vec::new();
-    let mut geometry = String::with_capacity(text.len());
+    let mut skipped = Vec::new();
     for (i, line) in text.lines().enumerate() {
         let mut words = line.split_whitespace();
         match words.next() {
@@ -39,19 +60,14 @@ pub fn scan(text: &str) -> Result<ObjScan, String> {
                 }
                 face_lines.push(i + 1);
             }
-            // Lines and points are not surfaces: keep the line, drop its content.
-            Some("l") | Some("p") => {
-                geometry.push('\n');
-                continue;
-            }
+            // Lines and points are not surfaces.
+            Some("l") | Some("p") => skipped.push(i),
             _ => {}
         }
-        geometry.push_str(line);
-        geometry.push('\n');
     }
     Ok(ObjScan {
         face_lines,
-        geometry,
+        skipped,
     })
 }
 
@@ -105,11 +121,16 @@ mod tests {
 
     #[test]
     fn faces_are_numbered_by_line_and_polylines_blanked() {
-        let s = scan(&format!("{TRI}l 1 2 3\nf 1 2 3\np 1\nf -3 -2 -1\n")).unwrap();
+        let text = format!("{TRI}l 1 2 3\nf 1 2 3\np 1\nf -3 -2 -1\n");
+        let s = scan(&text).unwrap();
         assert_eq!(s.face_lines, vec![7, 9]);
-        assert_eq!(s.geometry.lines().nth(5), Some(""));
-        assert_eq!(s.geometry.lines().nth(7), Some(""));
-        assert_eq!(s.geometry.lines().count(), 9);
+        let g = s.geometry(&text);
+        assert_eq!(g.lines().nth(5), Some(""));
+        assert_eq!(g.lines().nth(6), Some("f 1 2 3"));
+        assert_eq!(g.lines().nth(7), Some(""));
+        assert_eq!(g.lines().count(), 9);
+        let plain = scan(TRI).unwrap();
+        assert!(matches!(plain.geometry(TRI), Cow::Borrowed(_)));
     }
 
     #[test]
