@@ -129,7 +129,14 @@ pub fn load_obj(
     let mut faces = scan.face_lines.iter().copied();
     for model in &models {
         let group = group_from_mesh(&model.mesh, &mut faces, &mut asset.dropped_degenerate)
-            .map_err(|m| err(format!("object \"{}\": {m}", model.name)))?;
+            .map_err(|m| {
+                // A face error names its line; others name the tobj object.
+                if m.starts_with("line ") {
+                    err(m)
+                } else {
+                    err(format!("object \"{}\": {m}", model.name))
+                }
+            })?;
         if !group.triangles.is_empty() {
             asset.groups.push(group);
         }
