@@ -229,7 +229,7 @@ fn obj_with_absurd_coordinates_is_refused() {
 fn obj_with_bad_indices_is_refused() {
     obj_fails(
         "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n",
-        &["object[0].file", "index out of bounds"],
+        &["object[0].file", "line 4: vertex index 9", "out of range"],
     );
 }
 
@@ -290,4 +290,164 @@ fn scene_without_light_is_refused() {
         &with("le = [1.0, 1.0, 1.0]", "le = [0.0, 0.0, 0.0]"),
     );
     c.fails(&s, &[], &["dark.toml", "light"]);
+}
+
+/// One bad input through the binary: files written into a fresh directory
+/// (the first is the input), the arguments (`FILE` and `OUT` stand for the
+/// input and an output directory) and what the message must contain.
+struct Row {
+    files: Vec<(&'static str, String)>,
+    args: &'static [&'static str],
+    says: &'static [&'static str],
+}
+
+fn row(
+    file: &'static str,
+    text: String,
+    args: &'static [&'static str],
+    says: &'static [&'static str],
+) -> Row {
+    Row {
+        files: vec![(file, text)],
+        args,
+        says,
+    }
+}
+
+const RENDER: &[&str] = &["render", "FILE", "-o", "OUT"];
+
+/// A row of a scene naming mesh.obj, with looks.mtl beside it.
+fn obj_row(obj: &str, mtl: &str, says: &'static [&'static str]) -> Row {
+    let scene = with(
+        "kind = \"box\"\nsize = [1.0, 1.0, 1.0]\nmaterial = \"grey\"",
+        "kind = \"obj\"\nfile = \"mesh.obj\"",
+    );
+    Row {
+        files: vec![
+            ("obj.toml", scene),
+            ("mesh.obj", obj.into()),
+            ("looks.mtl", mtl.into()),
+        ],
+        args: RENDER,
+        says,
+    }
+}
+
+/// An OBJ triangle of material "paint", defined in looks.mtl as `paint`.
+fn mtl_row(paint: &str, says: &'static [&'static str]) -> Row {
+    let obj = "mtllib looks.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl paint\nf 1 2 3\n";
+    obj_row(obj, &format!("newmtl paint\n{paint}\n"), says)
+}
+
+#[test]
+fn bad_inputs_name_the_place_the_value_and_what_is_allowed() {
+    let rows = [
+        row(
+            "far.toml",
+            with("translate = [5.0", "translate = [1e308"),
+            RENDER,
+            &["far.toml: object[0].transform.translate: 1e308 is beyond the coordinate limit of ±1e7 m"],
+        ),
+        row(
+            "big.toml",
+            with("size = [1.0, 1.0, 1.0]", "size = [1.0, 1e308, 1.0]"),
+            RENDER,
+            &["big.toml: object[0].size: 1e308 is beyond the coordinate limit of ±1e7 m"],
+        ),
+        row(
+            "cam.toml",
+            with("position = [0.0, 0.0, 1.65]", "position = [0.0, -1e308, 1.65]"),
+            RENDER,
+            &["cam.toml: camera.position: -1e308 is beyond the coordinate limit"],
+        ),
+        row(
+            "end.toml",
+            format!("{GOOD}foo ="),
+            RENDER,
+            &["end.toml:21:6: the file ends inside \"foo =\": a value is missing"],
+        ),
+        row(
+            "sky.toml",
+            with("le = [1.0, 1.0, 1.0]", "le = [1.0, -1.0, 1.0]"),
+            RENDER,
+            &["sky.toml: sky.le: must be ≥ 0, got -1\n"],
+        ),
+        row(
+            "good.toml",
+            GOOD.into(),
+            &["render", "FILE", "-o", "OUT", "--spp", "4294967296"],
+            &["error: invalid value '4294967296' for '--spp <SPP>'", "0..=4294967295"],
+        ),
+        row(
+            "data.toml",
+            "seed = 1\ntowns = [\"town01\"]\nframes_per_sequence = 1\nspp =".into(),
+            &["dataset", "FILE", "-o", "OUT"],
+            &["data.toml: line 4, column 6: the file ends inside \"spp =\": a value is missing"],
+        ),
+        row(
+            "tw.toml",
+            "seed =".into(),
+            &["town", "FILE"],
+            &["tw.toml:1:7: the file ends inside \"seed =\": a value is missing"],
+        ),
+        row(
+            "scale.toml",
+            with("translate = [5.0, 0.0, 1.0] }", "translate = [5.0, 0.0, 1.0], scale = 1e308 }"),
+            RENDER,
+            &["scale.toml: object[0].transform.scale: must be in [0, 1e7], got 1e308"],
+        ),
+        obj_row(
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/0\n",
+            "",
+            &["obj.toml: object[0].file: mesh.obj: line 5: texcoord index 0 in face corner \"3/0\""],
+        ),
+        mtl_row("Kd 0.5 nan 0.5", &["obj.toml: object[0].file: mesh.obj: looks.mtl: line 2: Kd: nan is out of range; allowed: 3 numbers (r g b), each in [0, 1]"]),
+        mtl_row("Ni inf", &["looks.mtl: line 2: Ni: inf is out of range; allowed: a number > 0 and finite"]),
+    ];
+    // Every row runs; the failures are reported together.
+    let mut failures = Vec::new();
+    for r in rows {
+        let c = Case::new();
+        let paths: Vec<PathBuf> = r.files.iter().map(|(n, t)| c.file(n, t)).collect();
+        let args: Vec<std::ffi::OsString> = r
+            .args
+            .iter()
+            .map(|&a| match a {
+                "FILE" => paths[0].clone().into_os_string(),
+                "OUT" => c.out().into_os_string(),
+                a => a.into(),
+            })
+            .collect();
+        let o = Command::new(env!("CARGO_BIN_EXE_parallax"))
+            .args(&args)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr).to_string();
+        let mut wrong = Vec::new();
+        if o.status.code() != Some(2) {
+            wrong.push(format!("exit code {:?}", o.status.code()));
+        }
+        if c.out().exists() {
+            wrong.push("output directory created".into());
+        }
+        if !err.starts_with("error: ") || err.starts_with("error: error:") {
+            wrong.push("not one \"error: \" prefix".into());
+        }
+        if err.len() >= 400 {
+            wrong.push(format!("{} bytes long", err.len()));
+        }
+        for s in r.says {
+            if !err.contains(s) {
+                wrong.push(format!("lacks {s:?}"));
+            }
+        }
+        if !wrong.is_empty() {
+            failures.push(format!(
+                "{}: {}\n  stderr: {err}",
+                r.files[0].0,
+                wrong.join("; ")
+            ));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

@@ -93,7 +93,10 @@ where
                 print!("{e}");
                 return Ok(());
             }
-            return Err(CliError::input(e.to_string().trim_end().to_string()));
+            // main prints "error: " before every message; clap's has its own.
+            let text = e.to_string();
+            let text = text.strip_prefix("error: ").unwrap_or(&text).trim_end();
+            return Err(CliError::input(text));
         }
     };
     match cli.command {

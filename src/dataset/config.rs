@@ -150,17 +150,22 @@ pub fn parse_config(text: &str, file: &str) -> Result<DatasetConfig, ConfigError
         if key == "." {
             key.clear();
         }
-        let msg = inner.message().trim().replace('\n', "; ");
+        let (msg, pos) = crate::scene::load::toml_error(text, &inner);
         // Unknown keys and missing fields: name the key itself.
         for prefix in ["unknown field `", "missing field `"] {
             if let Some(field) = msg.strip_prefix(prefix).and_then(|r| r.split('`').next()) {
                 key = field.to_string();
             }
         }
+        // Syntax errors have no key: give their place instead.
+        let message = match pos {
+            Some((line, col)) if key.is_empty() => format!("line {line}, column {col}: {msg}"),
+            _ => msg,
+        };
         ConfigError {
             file: file.to_string(),
             key,
-            message: msg,
+            message,
         }
     })?;
     config.validate(file)?;

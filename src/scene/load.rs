@@ -139,14 +139,37 @@ pub fn parse_desc(text: &str, path: &Path) -> Result<SceneDesc, SceneError> {
                 };
             }
         }
+        let (message, line_col) = toml_error(text, &inner);
         SceneError {
             file: path.to_path_buf(),
             kind: SceneErrorKind::Syntax,
             key,
-            line_col: inner.span().map(|s| line_col(text, s.start)),
-            message: inner.message().trim().replace('\n', "; "),
+            line_col,
+            message,
         }
     })
+}
+
+/// A TOML error's description on one line, never empty (toml gives none for
+/// a value missing at the end of the file), and its 1-based line and column.
+/// Scene, town and dataset-configuration files all report through this.
+pub fn toml_error(text: &str, e: &toml::de::Error) -> (String, Option<(usize, usize)>) {
+    let pos = e.span().map(|s| line_col(text, s.start));
+    let message = e.message().trim().replace('\n', "; ");
+    if !message.is_empty() {
+        return (message, pos);
+    }
+    let at = e.span().map_or(text.len(), |s| s.start.min(text.len()));
+    let (before, after) = text.split_at(text.floor_char_boundary(at));
+    let line = before.rsplit('\n').next().unwrap_or("").to_string()
+        + after.split('\n').next().unwrap_or("");
+    let line = line.trim();
+    let message = if after.trim().is_empty() {
+        format!("the file ends inside \"{line}\": a value is missing (a number, \"string\", true/false, [array] or {{ inline table }})")
+    } else {
+        format!("cannot parse \"{line}\"")
+    };
+    (message, pos)
 }
 
 /// 1-based line and column (in characters) of a byte offset.

@@ -1,11 +1,15 @@
 //! Wavefront OBJ/MTL import through tobj (the only file naming tobj), with
-//! validation: finite, sane coordinates (|x| ≤ 1e7 m), valid indices, known
-//! `usemtl` names, and degenerate triangles dropped (all-degenerate is an error).
+//! validation: finite, sane coordinates (|x| ≤ 1e7 m), valid indices (by
+//! line, `obj_scan`), MTL values in range (by line, `mtl_check`), known
+//! `usemtl` names, and degenerate triangles dropped (all-degenerate is an
+//! error). Polygons are triangulated by `polygon` (ear clipping when
+//! concave); `l` and `p` elements are not surfaces and are ignored.
 //!
 //! MTL → material: Ke > 0 emissive; d < 1, illum 4/6/7 or Ni with Tf
 //! dielectric; Pm or illum 3 with strong Ks conductor (roughness from Ns);
 //! otherwise Kd diffuse. Material names become "<file>/<mtl name>".
 
+use std::cell::RefCell;
 use std::path::Path;
 
 use glam::DVec3;
@@ -13,6 +17,7 @@ use glam::DVec3;
 use super::desc::{MaterialDesc, MaterialKindDesc};
 use super::load::{SceneError, SceneErrorKind};
 use super::mesh::{check_positions, keep_nondegenerate};
+use super::{mtl_check, obj_scan, polygon};
 
 pub use super::mesh::MAX_COORD_M;
 
@@ -74,12 +79,35 @@ pub fn load_obj(
             format!("cannot read OBJ {}: {e}", obj_path.display()),
         )
     })?;
+    let scan = obj_scan::scan(&text).map_err(err)?;
+    // Faces come back whole (face_arities) for `polygon` to triangulate.
     let options = tobj::LoadOptions {
-        triangulate: true,
+        triangulate: false,
         single_index: true,
         ..Default::default()
     };
-    let (models, mtl) = tobj::load_obj(obj_path, &options).map_err(|e| err(format!("{e}")))?;
+    let dir = obj_path.parent().unwrap_or(Path::new("."));
+    // tobj's loader can only return its own error codes: keep ours aside.
+    let mtl_error = RefCell::new(None);
+    let load_mtl = |name: &Path| {
+        let fail = |msg: String| {
+            mtl_error.borrow_mut().get_or_insert(msg);
+            Err(tobj::LoadError::MaterialParseError)
+        };
+        let text = match std::fs::read_to_string(dir.join(name)) {
+            Ok(t) => t,
+            Err(e) => return fail(format!("cannot read MTL {}: {e}", name.display())),
+        };
+        match mtl_check::check_mtl(&text) {
+            Ok(()) => tobj::load_mtl_buf(&mut text.as_bytes()),
+            Err(m) => fail(format!("{}: {m}", name.display())),
+        }
+    };
+    let loaded = tobj::load_obj_buf(&mut scan.geometry(&text).as_bytes(), &options, load_mtl);
+    if let Some(m) = mtl_error.take() {
+        return Err(err(m));
+    }
+    let (models, mtl) = loaded.map_err(|e| err(format!("{e}")))?;
     let mtl = mtl.map_err(|e| err(format!("cannot load its MTL library: {e}")))?;
     // tobj silently ignores unknown `usemtl` names; we refuse them.
     for (i, line) in text.lines().enumerate() {
@@ -98,9 +126,17 @@ pub fn load_obj(
         materials,
         ..Default::default()
     };
+    let mut faces = scan.face_lines.iter().copied();
     for model in &models {
-        let group = group_from_mesh(&model.mesh, &mut asset.dropped_degenerate)
-            .map_err(|m| err(format!("object \"{}\": {m}", model.name)))?;
+        let group = group_from_mesh(&model.mesh, &mut faces, &mut asset.dropped_degenerate)
+            .map_err(|m| {
+                // A face error names its line; others name the tobj object.
+                if m.starts_with("line ") {
+                    err(m)
+                } else {
+                    err(format!("object \"{}\": {m}", model.name))
+                }
+            })?;
         if !group.triangles.is_empty() {
             asset.groups.push(group);
         }
@@ -115,7 +151,13 @@ pub fn load_obj(
     Ok(asset)
 }
 
-fn group_from_mesh(mesh: &tobj::Mesh, dropped: &mut usize) -> Result<ObjGroup, String> {
+/// One tobj mesh as triangles; `face_lines` yields the OBJ line of each of
+/// its faces in turn (tobj keeps file order).
+fn group_from_mesh(
+    mesh: &tobj::Mesh,
+    face_lines: &mut impl Iterator<Item = usize>,
+    dropped: &mut usize,
+) -> Result<ObjGroup, String> {
     let positions: Vec<DVec3> = mesh
         .positions
         .chunks_exact(3)
@@ -133,11 +175,29 @@ fn group_from_mesh(mesh: &tobj::Mesh, dropped: &mut usize) -> Result<ObjGroup, S
         // Missing or unusable shading normals: fall back to geometric ones.
         normals.clear();
     }
-    let triangles: Vec<[u32; 3]> = mesh
-        .indices
-        .chunks_exact(3)
-        .map(|t| [t[0], t[1], t[2]])
-        .collect();
+    // No arities means every face is a triangle.
+    let arities: Vec<usize> = if mesh.face_arities.is_empty() {
+        vec![3; mesh.indices.len() / 3]
+    } else {
+        mesh.face_arities.iter().map(|&a| a as usize).collect()
+    };
+    let mut triangles = Vec::with_capacity(mesh.indices.len() / 3);
+    let mut start = 0;
+    for arity in arities {
+        let face = &mesh.indices[start..start + arity];
+        start += arity;
+        let line = face_lines.next();
+        if arity == 3 {
+            triangles.push([face[0], face[1], face[2]]);
+            continue;
+        }
+        let corners: Vec<DVec3> = face.iter().map(|&i| positions[i as usize]).collect();
+        let tris = polygon::triangulate(&corners).map_err(|m| match line {
+            Some(l) => format!("line {l}: {m}"),
+            None => m,
+        })?;
+        triangles.extend(tris.iter().map(|t| t.map(|k| face[k])));
+    }
     let (triangles, n) = keep_nondegenerate(&positions, &triangles)?;
     *dropped += n;
     Ok(ObjGroup {
@@ -196,7 +256,7 @@ pub fn material_from_mtl(file: &str, m: &tobj::Material) -> MaterialDesc {
         || (m.optical_density.is_some() && tf.is_some())
     {
         MaterialKindDesc::Dielectric {
-            ior: m.optical_density.map_or(1.5, |n| n as f64).max(1e-3),
+            ior: m.optical_density.map_or(1.5, |n| n as f64),
             roughness,
             tint: tf.unwrap_or([1.0; 3]).map(|x| x.clamp(0.0, 1.0)),
         }

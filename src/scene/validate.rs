@@ -13,7 +13,9 @@ use super::desc::{
     ShapeDesc, SkyDesc,
 };
 use super::load::{SceneError, SceneErrorKind as K};
+use super::mesh::MAX_COORD_M;
 use super::obj::{count_triangles, load_obj, ObjAsset};
+use super::ranges::{num, V};
 use super::semantic::{class_id, CLASSES};
 
 /// Largest accepted image, pixels (64 megapixels).
@@ -36,35 +38,7 @@ pub fn check_rig(rig: &RigDesc, file: &Path) -> Result<(), SceneError> {
     V { file }.rig(rig)
 }
 
-struct V<'a> {
-    file: &'a Path,
-}
-
 impl V<'_> {
-    fn err(&self, key: impl Into<String>, msg: impl Into<String>) -> SceneError {
-        SceneError::at(self.file, K::Invalid, key, msg)
-    }
-    fn finite(&self, key: &str, v: &[f64]) -> Result<(), SceneError> {
-        match v.iter().find(|x| !x.is_finite()) {
-            Some(x) => Err(self.err(key, format!("value {x} is not a finite number"))),
-            None => Ok(()),
-        }
-    }
-    fn positive(&self, key: &str, v: &[f64]) -> Result<(), SceneError> {
-        self.finite(key, v)?;
-        match v.iter().find(|&&x| x <= 0.0) {
-            Some(x) => Err(self.err(key, format!("must be > 0, got {x}"))),
-            None => Ok(()),
-        }
-    }
-    fn range(&self, key: &str, v: &[f64], lo: f64, hi: f64) -> Result<(), SceneError> {
-        self.finite(key, v)?;
-        match v.iter().find(|&&x| x < lo || x > hi) {
-            Some(x) => Err(self.err(key, format!("must be in [{lo}, {hi}], got {x}"))),
-            None => Ok(()),
-        }
-    }
-
     fn rig(&self, rig: &RigDesc) -> Result<(), SceneError> {
         if rig.width == 0 || rig.height == 0 {
             let key = if rig.width == 0 {
@@ -78,16 +52,23 @@ impl V<'_> {
         if !(rig.hfov_deg > 0.0 && rig.hfov_deg < 180.0) {
             return Err(self.err(
                 "camera.hfov_deg",
-                format!("must be in (0, 180), got {}", rig.hfov_deg),
+                format!("must be in (0, 180), got {}", num(rig.hfov_deg)),
             ));
         }
         if rig.baselines_cm.is_empty() {
             return Err(self.err("camera.baselines_cm", "at least one baseline is needed"));
         }
         self.positive("camera.baselines_cm", &rig.baselines_cm)?;
+        // Centimetres: the right camera stays within the coordinate limit.
+        self.range(
+            "camera.baselines_cm",
+            &rig.baselines_cm,
+            0.0,
+            MAX_COORD_M * 100.0,
+        )?;
         crate::output::check_baseline_dirs(&rig.baselines_cm)
             .map_err(|e| self.err(format!("camera.baselines_cm[{}]", e.index), e.to_string()))?;
-        self.finite("camera.position", &rig.position)?;
+        self.coord("camera.position", &rig.position)?;
         self.finite("camera.yaw_deg", &[rig.yaw_deg])?;
         self.range("camera.pitch_deg", &[rig.pitch_deg], -90.0, 90.0)?;
         self.range("camera.roll_deg", &[rig.roll_deg], -180.0, 180.0)?;
@@ -203,7 +184,7 @@ impl V<'_> {
                 position,
                 intensity,
             } => {
-                self.finite(&k("position"), position)?;
+                self.coord(&k("position"), position)?;
                 self.range(&k("intensity"), intensity, 0.0, f64::MAX)
             }
             LightDesc::Spot {
@@ -213,7 +194,7 @@ impl V<'_> {
                 inner_deg,
                 outer_deg,
             } => {
-                self.finite(&k("position"), position)?;
+                self.coord(&k("position"), position)?;
                 self.finite(&k("direction"), direction)?;
                 if direction.iter().all(|&x| x == 0.0) {
                     return Err(self.err(k("direction"), "must not be the zero vector"));
@@ -317,29 +298,31 @@ impl V<'_> {
             }
         }
         let t = &o.transform;
-        self.finite(&k("transform.translate"), &t.translate.unwrap_or_default())?;
+        self.coord(&k("transform.translate"), &t.translate.unwrap_or_default())?;
         self.finite(
             &k("transform.rotate_deg"),
             &t.rotate_deg.unwrap_or_default(),
         )?;
         if let Some(s) = t.scale {
             self.positive(&k("transform.scale"), &s.axes())?;
+            // A factor beyond the coordinate limit takes any shape beyond it.
+            self.range(&k("transform.scale"), &s.axes(), 0.0, MAX_COORD_M)?;
         }
         for (r, level) in o.repeat.iter().enumerate() {
             if level.count == 0 {
                 return Err(self.err(k(&format!("repeat[{r}].count")), "must be ≥ 1"));
             }
-            self.finite(&k(&format!("repeat[{r}].offset")), &level.offset)?;
+            self.coord(&k(&format!("repeat[{r}].offset")), &level.offset)?;
         }
         let needs_material = !matches!(o.shape, ShapeDesc::Obj { .. } | ShapeDesc::Instance { .. });
         if needs_material && o.material.is_none() {
             return Err(self.err(k("material"), "missing material"));
         }
         match &o.shape {
-            ShapeDesc::Quad { size } => self.positive(&k("size"), size),
-            ShapeDesc::Box { size } => self.positive(&k("size"), size),
+            ShapeDesc::Quad { size } => self.length(&k("size"), size),
+            ShapeDesc::Box { size } => self.length(&k("size"), size),
             ShapeDesc::Sphere { radius } => {
-                self.positive(&k("radius"), &[*radius])?;
+                self.length(&k("radius"), &[*radius])?;
                 if t.rotate_deg.is_some_and(|r| r != [0.0; 3]) {
                     return Err(self.err(
                         k("transform.rotate_deg"),
@@ -362,8 +345,8 @@ impl V<'_> {
                 segments,
                 ..
             } => {
-                self.positive(&k("radius"), &[*radius])?;
-                self.positive(&k("height"), &[*height])?;
+                self.length(&k("radius"), &[*radius])?;
+                self.length(&k("height"), &[*height])?;
                 count_range(self, &k("segments"), *segments, 3)
             }
             ShapeDesc::Ellipsoid {
@@ -371,7 +354,7 @@ impl V<'_> {
                 segments,
                 rings,
             } => {
-                self.positive(&k("radii"), radii)?;
+                self.length(&k("radii"), radii)?;
                 count_range(self, &k("segments"), *segments, 3)?;
                 count_range(self, &k("rings"), *rings, 2)
             }

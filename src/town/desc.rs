@@ -331,12 +331,12 @@ impl TownDesc {
 pub fn parse_town_str(text: &str, path: &Path) -> Result<TownDesc, String> {
     let de = toml::Deserializer::new(text);
     let desc: TownDesc = serde_path_to_error::deserialize(de).map_err(|e| {
-        let key = e.path().to_string();
-        format!(
-            "{}: {key}: {}",
-            path.display(),
-            e.into_inner().message().trim()
-        )
+        let (msg, pos) = crate::scene::load::toml_error(text, e.inner());
+        let at = pos.map_or(String::new(), |(line, col)| format!(":{line}:{col}"));
+        match e.path().to_string() {
+            key if key == "." => format!("{}{at}: {msg}", path.display()),
+            key => format!("{}{at}: {key}: {msg}", path.display()),
+        }
     })?;
     desc.validate()
         .map_err(|m| format!("{}: {m}", path.display()))?;

@@ -125,8 +125,14 @@ fn in_range(key: &str, v: f64, lo: f64, hi: f64, lo_open: bool) -> Result<(), Ke
     if ok {
         Ok(())
     } else {
-        let open = if lo_open { "(" } else { "[" };
-        Err((key.into(), format!("must be in {open}{lo}, {hi}], got {v}")))
+        use crate::scene::ranges::num;
+        let allowed = match (hi == f64::MAX, lo_open) {
+            (true, true) => format!("> {}", num(lo)),
+            (true, false) => format!("≥ {}", num(lo)),
+            (false, true) => format!("in ({}, {}]", num(lo), num(hi)),
+            (false, false) => format!("in [{}, {}]", num(lo), num(hi)),
+        };
+        Err((key.into(), format!("must be {allowed}, got {}", num(v))))
     }
 }
 
