@@ -103,6 +103,33 @@ fn rerender_replaces_the_earlier_render_whole() {
 }
 
 #[test]
+fn rerender_over_its_preview_replaces_both_but_a_users_file_there_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let o = render(&out, &["--baselines", "54"]);
+    assert!(o.status.success(), "{}", text(&o));
+    let o = parallax(&["preview", out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(out.join("preview/000000_depth.png").is_file());
+    // The pictures of the old render go with it.
+    let o = render(&out, &["--baselines", "54"]);
+    assert!(o.status.success(), "{}", text(&o));
+    assert_eq!(top_level(&out), ["baseline_054", "cameras", "left"]);
+    // A file of the user's own in the preview folder is not the render's.
+    std::fs::create_dir(out.join("preview")).unwrap();
+    std::fs::write(out.join("preview/notes.txt"), b"mine").unwrap();
+    let o = render(&out, &["--baselines", "54"]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("notes.txt"), "{}", text(&o));
+    assert_eq!(
+        std::fs::read(out.join("preview/notes.txt")).unwrap(),
+        b"mine"
+    );
+}
+
+#[test]
 fn unusable_output_is_refused_before_rendering() {
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join("plain");
@@ -164,6 +191,9 @@ fn help_says_which_frame_is_written() {
     let help = text(&o);
     assert!(o.status.success(), "{help}");
     assert!(!help.contains("frame 000000 is written"), "{help}");
-    assert!(help.contains("frame K (with --town"), "{help}");
+    assert!(
+        help.contains("--sample-frame, else --frame K with --town"),
+        "{help}"
+    );
     assert!(help.contains("replaced whole"), "{help}");
 }

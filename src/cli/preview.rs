@@ -37,7 +37,9 @@ pub fn run(a: PreviewArgs) -> Result<(), CliError> {
         None => first_frame(&a.dir).map_err(input)?,
     };
     let maps = read_frame(&a.dir, frame).map_err(input)?;
-    let out = a.output.unwrap_or_else(|| a.dir.join("preview"));
+    let out = a
+        .output
+        .unwrap_or_else(|| a.dir.join(crate::output::PREVIEW_DIR));
     let files = write_previews(&maps, &out).map_err(|e| CliError::failure(e.to_string()))?;
     println!("wrote {} preview PNGs to {}", files.len(), out.display());
     Ok(())

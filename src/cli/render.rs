@@ -26,10 +26,12 @@ pub struct RenderArgs {
     /// Scene description (TOML); omit when rendering a town with --town.
     #[arg(conflicts_with = "town")]
     pub scene: Option<PathBuf>,
-    /// Render a town frame: a town name (SCENES/NAME.toml) or town file path.
+    /// Render a town frame: a built-in town's name (town01 … town10; with
+    /// --scenes DIR, DIR/NAME.toml) or the path of a town file (.toml).
     #[arg(long)]
     pub town: Option<String>,
-    /// Frame index of the town sequence (with --town).
+    /// Time step of the town (with --town): every vehicle's and pedestrian's
+    /// pose at the town's frame rate (a camera file's `town.frame`).
     #[arg(long, default_value_t = 0, requires = "town")]
     pub frame: u32,
     /// Camera configuration on the ego vehicle (with --town): normal, roll05,
@@ -40,8 +42,8 @@ pub struct RenderArgs {
     /// the built-in town descriptions.
     #[arg(long)]
     pub scenes: Option<PathBuf>,
-    /// Output directory: frame K (with --town; else 000000) in the native
-    /// layout. A new or empty directory, or an earlier render's output, which
+    /// Output directory: one frame in the native layout, numbered
+    /// --sample-frame, else --frame K with --town, else 000000. A new or empty directory, or an earlier render's output, which
     /// is replaced whole once the new frame is complete; any other non-empty
     /// directory is refused untouched.
     #[arg(short, long)]

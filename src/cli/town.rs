@@ -26,7 +26,8 @@ pub struct TownArgs {
     /// exported cameras); a dataset frame's `seeds.town`.
     #[arg(long)]
     pub seed: Option<u64>,
-    /// Frame index of the sequence.
+    /// Time step of the town: every vehicle's and pedestrian's pose at the
+    /// town's frame rate (a camera file's `town.frame`).
     #[arg(long, default_value_t = 0)]
     pub frame: u64,
     /// Camera configuration: normal, roll05, roll15, roll30, pitch00, pitch30.

@@ -80,8 +80,22 @@ impl DatasetMeta {
                 continue;
             };
             if old.sha256 != t.sha256 {
+                // The fix depends on where the recorded description lives.
+                let hint = if t.source == crate::town::source::BUILT_IN {
+                    "pass --scenes DIR holding that description".to_string()
+                } else if old.source == crate::town::source::BUILT_IN {
+                    "leave out --scenes to use the built-in description, or use the parallax \
+                     version the dataset was made with if the built-in one has changed"
+                        .to_string()
+                } else {
+                    format!(
+                        "pass --scenes DIR holding that description (it was read from {})",
+                        old.source
+                    )
+                };
                 return Err(format!(
-                    "town '{}': the description from {} (SHA-256 {}) is not the one this                      dataset was made from ({}, SHA-256 {}, recorded in {DATASET_JSON});                      pass --scenes DIR holding that description",
+                    "town '{}': the description from {} (SHA-256 {}) is not the one this \
+                     dataset was made from ({}, SHA-256 {}, recorded in {DATASET_JSON}); {hint}",
                     t.name, t.source, t.sha256, old.source, old.sha256
                 ));
             }
@@ -307,6 +321,27 @@ mod tests {
                 (0, 0.0, 0.0, 0.0)
             );
         }
+    }
+
+    #[test]
+    fn other_town_descriptions_are_refused_with_the_fix_for_their_source() {
+        let text = "seed = 1\ntowns = [\"town01\"]\nframes_per_sequence = 1\n";
+        let config = super::super::parse_config(text, "t.toml").unwrap();
+        let town = |source: &str, sha: &str| TownSource {
+            name: "town01".into(),
+            source: source.into(),
+            sha256: sha.into(),
+        };
+        let built_in = crate::town::source::BUILT_IN;
+        let meta = DatasetMeta::new(&config, vec![town(built_in, "aa")]);
+        assert!(meta.check_towns(&[town(built_in, "aa")]).is_ok());
+        let e = meta
+            .check_towns(&[town("/x/town01.toml", "bb")])
+            .unwrap_err();
+        assert!(e.contains("leave out --scenes") && !e.contains("  "), "{e}");
+        let from_dir = DatasetMeta::new(&config, vec![town("/d/town01.toml", "aa")]);
+        let e = from_dir.check_towns(&[town(built_in, "bb")]).unwrap_err();
+        assert!(e.contains("pass --scenes DIR") && !e.contains("  "), "{e}");
     }
 
     #[test]

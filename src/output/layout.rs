@@ -145,6 +145,18 @@ pub fn native_path(rel: &Path) -> Option<NativePath> {
     }
 }
 
+/// The folder `parallax preview DIR` writes its pictures to by default.
+pub const PREVIEW_DIR: &str = "preview";
+
+/// A picture `parallax preview` writes: `NNNNNN_<map>.png`.
+pub fn is_preview_file(name: &str) -> bool {
+    name.strip_suffix(".png")
+        .and_then(|s| s.split_once('_'))
+        .is_some_and(|(frame, map)| {
+            frame.len() == 6 && frame.bytes().all(|b| b.is_ascii_digit()) && !map.is_empty()
+        })
+}
+
 /// `baseline_` followed by three or more digits, as `baseline_dir_name` writes.
 fn is_baseline_dir(name: &str) -> bool {
     name.strip_prefix("baseline_")

@@ -14,7 +14,7 @@ use std::fs;
 use std::io;
 use std::path::{Path, PathBuf};
 
-use super::layout::{native_path, NativePath};
+use super::layout::{is_preview_file, native_path, NativePath, PREVIEW_DIR};
 
 /// A render's output directory being written: the staging directory and
 /// where it goes. Dropped without [`StagedDir::commit`], it removes the
@@ -186,6 +186,15 @@ fn walk(dir: &Path, rel: &Path, frames: &mut Vec<u32>) -> Result<(), String> {
         match native_path(&rel) {
             Some(NativePath::Folder) if kind.is_dir() => walk(dir, &rel, frames)?,
             Some(NativePath::File { frame, .. }) if kind.is_file() => frames.push(frame),
+            // `parallax preview DIR`'s pictures of this render: stale once it
+            // is replaced, so they go with it.
+            _ if rel == Path::new(PREVIEW_DIR) && kind.is_dir() => walk(dir, &rel, frames)?,
+            _ if rel.parent() == Some(Path::new(PREVIEW_DIR))
+                && kind.is_file()
+                && rel
+                    .file_name()
+                    .and_then(|n| n.to_str())
+                    .is_some_and(is_preview_file) => {}
             _ => {
                 return Err(format!(
                     "holds {}, which is not part of a parallax render; give a new or empty \
