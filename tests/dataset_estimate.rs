@@ -76,7 +76,11 @@ fn estimate_weights_each_class_by_the_plans_mix() {
     assert!(close(e.core_hours, 12.0 * 9.75 * 2.0 / 3600.0));
     // CPU: fixed + (1e-4 + spp · per_sample + 2e-5) · 5000, mean of the four.
     let cpu = (1.0 + 4.6 + 1.0 + 24.6 + 3.0 + 4.6 + 3.0 + 24.6) / 4.0;
-    assert!(close(e.cpu_seconds_per_frame, cpu), "{}", e.cpu_seconds_per_frame);
+    assert!(
+        close(e.cpu_seconds_per_frame, cpu),
+        "{}",
+        e.cpu_seconds_per_frame
+    );
 
     // Shard 1/2 takes jobs 0, 2, 4, …: two frames of each clear class and
     // one of each foggy class, and its hours follow that mix.
@@ -108,7 +112,9 @@ fn calibration_covers_every_class_and_configuration_at_a_bounded_size() {
     let sc = presets::stereocarla();
     let mix = class_mix(&sc, Shard::ALL);
     assert_eq!(mix.len(), 56);
-    assert!(mix.iter().all(|(_, all, mine)| *all == 6 * 7 * 59 && mine == all));
+    assert!(mix
+        .iter()
+        .all(|(_, all, mine)| *all == 6 * 7 * 59 && mine == all));
     let q = calibration_quality(&sc, mix.len());
     assert_eq!((q.width, q.height, q.spp), (64, 36, 2));
     // The configurations are taken in turn: all six are sampled.
@@ -152,7 +158,10 @@ fn demo_dry_run_prints_the_plan_and_an_estimate_and_writes_nothing() {
     ok(&o);
     let t = text(&o);
     assert!(t.contains("= 24 frames"), "{t}");
-    for class in ["town01 clear (normal frame 1)", "town01 sunset (roll05 frame 1)"] {
+    for class in [
+        "town01 clear (normal frame 1)",
+        "town01 sunset (roll05 frame 1)",
+    ] {
         assert!(t.contains(class), "no calibration line for {class}:\n{t}");
     }
     let line = t

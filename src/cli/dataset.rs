@@ -182,10 +182,10 @@ fn dry_run(config: &DatasetConfig, a: &DatasetArgs, shard: Shard) -> Result<(), 
             c.frame_seconds(config, threads)
         );
     };
-    let cal = ds::calibrate::calibrate(config, &towns, a.backend, &note)
-        .map_err(CliError::failure)?;
-    let e = ds::estimate::estimate(config, &cal.costs, shard, threads)
-        .map_err(CliError::failure)?;
+    let cal =
+        ds::calibrate::calibrate(config, &towns, a.backend, &note).map_err(CliError::failure)?;
+    let e =
+        ds::estimate::estimate(config, &cal.costs, shard, threads).map_err(CliError::failure)?;
     println!(
         "  writing {} files per frame: {:.3} µs/pixel + {:.2} s waiting (timed once in a temporary directory)",
         e.files_per_frame,

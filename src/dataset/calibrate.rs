@@ -130,7 +130,10 @@ fn measure(
     let c1 = process_cpu_seconds();
     let take = |m: Mark| m.into_inner().unwrap_or_else(|e| e.into_inner());
     let (Some((cs, ts)), Some((ce, te))) = (take(start), take(end)) else {
-        return Err(format!("{}: the calibration render traced no paths", job.id()));
+        return Err(format!(
+            "{}: the calibration render traced no paths",
+            job.id()
+        ));
     };
     let path = (ce - cs).max(0.0);
     let ratio = path / te.duration_since(ts).as_secs_f64().max(1e-9);

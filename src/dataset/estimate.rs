@@ -56,7 +56,8 @@ impl ClassCost {
     /// Estimated CPU core-seconds per frame of `config` (no waiting).
     pub fn frame_cpu_seconds(&self, config: &DatasetConfig) -> f64 {
         let p = config.width as f64 * config.height as f64;
-        self.fixed + (self.per_pixel + self.per_sample * config.spp as f64 + self.write_per_pixel) * p
+        self.fixed
+            + (self.per_pixel + self.per_sample * config.spp as f64 + self.write_per_pixel) * p
     }
 }
 
