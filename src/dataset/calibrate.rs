@@ -8,9 +8,11 @@
 //! ends, which splits a frame's CPU time into the build and ground truth
 //! (before), the path pass (between) and the post-processing (after). The
 //! ground truth's share of "before" is its wall time at the path pass's
-//! CPU/wall ratio (both run on every thread). One throw-away render first
-//! pays the process's one-time set-up, which a real run pays once per
-//! shard, not per frame. The first class's frame is also written, once, to
+//! CPU/wall ratio (both run on every thread). The path pass also holds
+//! per-pixel work (image filter, pixel set-up): the first class, rendered
+//! first at four times the spp, gives its per-pixel share by difference,
+//! applied to every class. That render also pays the process's one-time
+//! set-up, which a real run pays once per shard, not per frame. The first class's frame is also written, once, to
 //! a temporary directory (removed after) to time encoding and the disk.
 
 use std::path::PathBuf;
@@ -32,6 +34,8 @@ const MIN_PIXELS: u64 = 64 * 36;
 const MAX_PIXELS: u64 = 160 * 90;
 /// The most samples per pixel a calibration frame takes.
 const MAX_SPP: u32 = 2;
+/// The first class is rendered again at this many times the spp.
+const INTERCEPT_SPP_FACTOR: u32 = 4;
 
 /// Seconds of CPU the process has used so far, over all its threads.
 pub fn process_cpu_seconds() -> f64 {
@@ -82,17 +86,29 @@ pub fn calibrate(
     let mix = class_mix(config, Shard::ALL);
     let quality = calibration_quality(config, mix.len());
     let ((town, weather), _, _) = mix.first().ok_or("the plan is empty")?;
-    let warm = Quality {
-        width: quality.width.min(16),
-        height: quality.height.min(9),
-        spp: 0,
-    };
+    // The first class at INTERCEPT_SPP_FACTOR × the spp: the path pass's
+    // per-pixel share (image filter, per-pixel set-up), which one spp
+    // cannot tell from per-sample work. Also pays the one-time set-up.
     let job = calibration_job(config, 0, town, *weather);
-    render_job(config, towns, &job, warm, backend, &|_, _| {})?;
+    let hi = Quality {
+        spp: quality.spp * INTERCEPT_SPP_FACTOR,
+        ..quality
+    };
+    let path_hi = measure(config, towns, &job, hi, backend, false)?.1;
+    let pixels = quality.width as f64 * quality.height as f64;
+    let mut path_per_pixel = None;
     let mut costs: Vec<ClassCost> = Vec::with_capacity(mix.len());
     for (k, ((town, weather), _, _)) in mix.iter().enumerate() {
         let job = calibration_job(config, k, town, *weather);
-        let mut cost = measure(config, towns, &job, quality, backend, k == 0)?;
+        let (mut cost, path) = measure(config, towns, &job, quality, backend, k == 0)?;
+        let per_pixel = *path_per_pixel.get_or_insert_with(|| {
+            let per_spp = (path_hi - path).max(0.0) / (hi.spp - quality.spp) as f64;
+            (path - per_spp * quality.spp as f64).max(0.0) / pixels
+        });
+        // At most 90 % of a class's path time is per pixel.
+        let share = (per_pixel * pixels).min(0.9 * path);
+        cost.per_pixel += share / pixels;
+        cost.per_sample = (path - share) / (pixels * quality.spp as f64);
         cost.calibrated_on = Some(job);
         // Every class writes the same files: the first class's timing serves all.
         if let Some(first) = costs.first() {
@@ -107,7 +123,8 @@ pub fn calibrate(
 /// A mark set by the progress callback: CPU seconds and the instant.
 type Mark = Mutex<Option<(f64, Instant)>>;
 
-/// Renders `job` at `q` and splits its CPU time (module docs); with
+/// Renders `job` at `q` and splits its CPU time (module docs), the path
+/// pass's CPU seconds returned apart and counted as per-sample; with
 /// `write`, also times writing it to a temporary directory.
 fn measure(
     config: &DatasetConfig,
@@ -116,7 +133,7 @@ fn measure(
     q: Quality,
     backend: Backend,
     write: bool,
-) -> Result<ClassCost, String> {
+) -> Result<(ClassCost, f64), String> {
     let (start, end): (Mark, Mark) = (Mutex::new(None), Mutex::new(None));
     let progress = |done: usize, views: usize| {
         let slot = if done == 0 { &start } else { &end };
@@ -145,7 +162,7 @@ fn measure(
     } else {
         (0.0, 0.0)
     };
-    Ok(ClassCost {
+    let cost = ClassCost {
         town: job.town.clone(),
         weather: job.weather,
         calibrated_on: None,
@@ -154,7 +171,8 @@ fn measure(
         per_sample: path / (pixels * q.spp as f64),
         write_per_pixel: write_per_pixel / pixels,
         write_wait,
-    })
+    };
+    Ok((cost, path))
 }
 
 /// Writes `r` below a fresh temporary directory, removes it, and returns
