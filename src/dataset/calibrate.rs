@@ -12,8 +12,9 @@
 //! per-pixel work (image filter, pixel set-up): the first class, rendered
 //! first at four times the spp, gives its per-pixel share by difference,
 //! applied to every class. That render also pays the process's one-time
-//! set-up, which a real run pays once per shard, not per frame. The first class's frame is also written, once, to
-//! a temporary directory (removed after) to time encoding and the disk.
+//! set-up, which a real run pays once per shard, not per frame. The first
+//! class's frame is also written, once, to a temporary directory (removed
+//! after) to time encoding and the disk.
 
 use std::path::PathBuf;
 use std::sync::Mutex;
