@@ -191,7 +191,7 @@ fn bad_shard_variables_exit_2_naming_them_and_write_nothing() {
                 ("SLURM_ARRAY_TASK_ID", "3"),
                 ("SLURM_ARRAY_TASK_COUNT", "2"),
             ][..],
-            "3/2",
+            "SLURM_ARRAY_TASK_ID=3",
         ),
         (
             &[

@@ -139,38 +139,79 @@ pub fn run(a: DatasetArgs) -> Result<(), CliError> {
 
 fn dry_run(config: &DatasetConfig, a: &DatasetArgs, shard: Shard) -> Result<(), CliError> {
     let towns = Towns::load(config, a.scenes.as_deref()).map_err(CliError::input)?;
-    let t0 = Instant::now();
-    let e = ds::estimate::estimate(config, &towns, a.backend).map_err(CliError::failure)?;
-    let in_shard = (0..e.frames as usize).filter(|&i| shard.owns(i)).count();
+    let frames = ds::plan::frame_count(config);
     println!(
-        "plan: {} towns × {} configurations × {} weathers × {} sequences × {} frames = {} frames \
-         ({} in shard {shard})",
+        "plan: {} towns × {} configurations × {} weathers × {} sequences × {} frames = {} frames",
         config.towns.len(),
         config.configs.len(),
         config.weathers.len(),
         config.sequences,
         config.frames_per_sequence,
-        e.frames,
-        in_shard
+        frames,
     );
     println!(
-        "      {} RGB images ({} views per frame), {} files per frame, {}×{} px, {} spp, baselines {:?} cm, layouts {}",
-        e.images,
+        "      {} RGB images ({} views per frame), {}×{} px, {} spp, baselines {:?} cm, layouts {}",
+        frames * (1 + config.baselines_cm.len() as u64),
         1 + config.baselines_cm.len(),
-        e.files_per_frame,
         config.width,
         config.height,
         config.spp,
         config.baselines_cm,
         config.layouts.join(", ")
     );
+    let threads = rayon::current_num_threads();
+    let t0 = Instant::now();
+    let q = ds::calibrate::calibration_quality(
+        config,
+        ds::estimate::class_mix(config, Shard::ALL).len(),
+    );
     println!(
-        "estimate: {:.2} s per frame on {} threads (calibrated in {:.1} s), {:.1} core-hours in all, {:.1} for this shard",
+        "calibrating each (town, weather) class on one {}×{} {} spp frame (CPU time, {threads} threads):",
+        q.width, q.height, q.spp
+    );
+    let note = |c: &ds::estimate::ClassCost| {
+        let on = c.calibrated_on.as_ref().map_or(String::new(), |j| {
+            format!(" ({} frame {})", j.config.name(), j.frame)
+        });
+        println!(
+            "  {} {}{on}: {:.2} core-s fixed + {:.3} µs/pixel + {:.3} µs/pixel-sample → {:.2} s per frame",
+            c.town,
+            c.weather.name(),
+            c.fixed,
+            c.per_pixel * 1e6,
+            c.per_sample * 1e6,
+            c.frame_seconds(config, threads)
+        );
+    };
+    let cal =
+        ds::calibrate::calibrate(config, &towns, a.backend, &note).map_err(CliError::failure)?;
+    let e =
+        ds::estimate::estimate(config, &cal.costs, shard, threads).map_err(CliError::failure)?;
+    println!(
+        "  writing {} files per frame: {:.3} µs/pixel + {:.2} s waiting (timed once in a temporary directory)",
+        e.files_per_frame,
+        cal.costs[0].write_per_pixel * 1e6,
+        cal.costs[0].write_wait
+    );
+    println!(
+        "estimate: {:.2} s per frame on {} threads ({:.2} core-s of CPU; mean over the plan's mix), \
+         {} core-hours in all, {} for the {} frames of shard {shard} (calibrated in {:.1} s)",
         e.seconds_per_frame,
         e.cores,
+        e.cpu_seconds_per_frame,
+        hours(e.core_hours),
+        hours(e.shard_core_hours),
+        e.frames_in_shard,
         t0.elapsed().as_secs_f64(),
-        e.core_hours,
-        e.core_hours * in_shard as f64 / e.frames.max(1) as f64
     );
     Ok(())
+}
+
+/// Core-hours with the precision their size deserves.
+fn hours(h: f64) -> String {
+    match h {
+        h if h >= 100.0 => format!("{h:.0}"),
+        h if h >= 1.0 => format!("{h:.1}"),
+        h => format!("{h:.3}"),
+    }
 }

@@ -40,8 +40,9 @@ pub struct DatasetConfig {
     /// Frames per sequence, ≥ 1.
     pub frames_per_sequence: u32,
     /// Town frames (at the town's fps) between consecutive dataset frames, ≥ 1
-    /// (default 1).
-    #[serde(default = "one")]
+    /// (default 10: one second of driving at a town's default 10 fps, so
+    /// consecutive frames differ; 1 gives near-duplicate frames).
+    #[serde(default = "default_stride")]
     pub stride: u32,
     /// Image width in pixels (default 1600).
     #[serde(default = "default_width")]
@@ -87,6 +88,9 @@ fn default_baselines() -> Vec<f64> {
 }
 fn one() -> u32 {
     1
+}
+fn default_stride() -> u32 {
+    10
 }
 fn default_width() -> u32 {
     1600
@@ -302,7 +306,7 @@ mod tests {
         assert_eq!(c.baselines_cm, vec![10.0, 54.0, 100.0, 200.0, 300.0]);
         assert_eq!(
             (c.width, c.height, c.sequences, c.stride),
-            (1600, 900, 1, 1)
+            (1600, 900, 1, 10)
         );
         assert_eq!(c.layouts, vec!["native".to_string()]);
     }

@@ -5,6 +5,7 @@
 //! complete frames on resume; `verify` proves a root whole and `repair`
 //! mends it; `progress` and `signals` make long runs observable and stoppable.
 
+pub mod calibrate;
 pub mod config;
 pub mod estimate;
 pub mod frame;
