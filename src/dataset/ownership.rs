@@ -12,6 +12,7 @@
 use std::collections::{BTreeSet, HashMap};
 use std::hash::{DefaultHasher, Hash, Hasher};
 use std::path::Path;
+use std::sync::OnceLock;
 
 use super::config::DatasetConfig;
 use super::manifest::{ManifestLine, DATASET_JSON, FAILURES_DIR, MANIFEST_DIR};
@@ -35,9 +36,10 @@ pub struct Ownership {
     /// Planned frames, indexed by `layout_index`.
     jobs: Vec<Job>,
     /// (hash of a layout file's root-relative path, index into `jobs`),
-    /// sorted: a compact index of every other layout's files; a hit is
-    /// confirmed against the frame's paths, so a collision cannot mislead.
-    layout_index: Vec<(u64, u32)>,
+    /// sorted: a compact index of every other layout's files, built on the
+    /// first file met in a layout's folder; a hit is confirmed against the
+    /// frame's paths, so a collision cannot mislead.
+    layout_index: OnceLock<Vec<(u64, u32)>>,
     baselines_cm: Vec<f64>,
 }
 
@@ -75,7 +77,7 @@ impl Ownership {
             .filter_map(|k| k.parse().ok())
             .filter(|k| *k != LayoutKind::Native)
             .collect();
-        let mut owner = Ownership {
+        Ownership {
             planned: jobs.iter().cloned().collect(),
             sequences,
             baseline_dirs: config
@@ -88,20 +90,25 @@ impl Ownership {
                 .flat_map(|l| l.files.iter().map(|f| f.path.clone()))
                 .collect(),
             layouts,
-            jobs: Vec::new(),
-            layout_index: Vec::new(),
+            jobs,
+            layout_index: OnceLock::new(),
             baselines_cm: config.baselines_cm.clone(),
-        };
-        if !owner.layouts.is_empty() {
-            for (i, job) in jobs.iter().enumerate() {
-                for rel in owner.layout_files(job) {
-                    owner.layout_index.push((path_hash(&rel), i as u32));
-                }
-            }
-            owner.layout_index.sort_unstable();
-            owner.jobs = jobs;
         }
-        owner
+    }
+
+    fn layout_index(&self) -> &[(u64, u32)] {
+        self.layout_index.get_or_init(|| {
+            let mut index = Vec::new();
+            for (i, job) in self.jobs.iter().enumerate() {
+                index.extend(
+                    self.layout_files(job)
+                        .iter()
+                        .map(|f| (path_hash(f), i as u32)),
+                );
+            }
+            index.sort_unstable();
+            index
+        })
     }
 
     /// Root-relative paths of `job`'s files in the other configured layouts.
@@ -156,9 +163,14 @@ impl Ownership {
 
     /// A file another configured layout writes for a planned frame.
     fn layout_frame(&self, rel: &str) -> Option<Job> {
+        let top = rel.split('/').next().unwrap_or("");
+        if !self.layouts.iter().any(|k| k.name() == top) {
+            return None;
+        }
         let h = path_hash(rel);
-        let from = self.layout_index.partition_point(|e| e.0 < h);
-        self.layout_index[from..]
+        let index = self.layout_index();
+        let from = index.partition_point(|e| e.0 < h);
+        index[from..]
             .iter()
             .take_while(|e| e.0 == h)
             .map(|e| &self.jobs[e.1 as usize])
