@@ -128,7 +128,8 @@ impl Ownership {
     pub fn owns(&self, rel: &str) -> bool {
         let (base, temp) = strip_temp(rel);
         self.named.contains(&base)
-            || self.frame_of(&base).is_some()
+            || self.native_frame(&base).is_some()
+            || self.layout_frame(&base).is_some()
             || (temp && is_bookkeeping(Path::new(&base)))
     }
 
@@ -146,6 +147,10 @@ impl Ownership {
         let mut parts = rel.splitn(4, '/');
         let seq = [parts.next()?, parts.next()?, parts.next()?].join("/");
         let rest = parts.next()?;
+        // `native_path` also takes a temporary's name; `rel` is past one.
+        if temp_base(rest.rsplit('/').next().unwrap_or(rest)).is_some() {
+            return None;
+        }
         let job = self.sequences.get(&seq)?;
         let NativePath::File { frame, .. } = native_path(Path::new(rest))? else {
             return None;
@@ -274,6 +279,7 @@ pub(crate) mod tests {
             "old/notes.tmp-old",
             &format!("{seq}/left/rgb/stray.png"),
             &format!("{seq}/left/rgb/000001.png.bak"),
+            &format!("{seq}/left/rgb/000001.png.tmp-1-1.tmp-2-2"),
             // A frame's number in a folder or with an extension the layout
             // does not write, or in a sequence folder not spelled `SSSS`.
             &format!("{seq}/mystuff/000000.txt"),
