@@ -1,9 +1,16 @@
 //! `verify --repair` through the real binary: it re-renders exactly the
 //! damaged frame of several, removes only the dataset's own stray files and
 //! keeps the user's, changes nothing when it cannot render, and a manifest
-//! line naming one file twice is reported and repaired.
+//! line naming one file twice is reported and repaired. What is the
+//! dataset's is exact: a frame's number in a folder, extension or sequence
+//! folder the layouts do not write is the user's, for `--repair` and for
+//! `dataset --force`; the other layouts' files of a planned frame are the
+//! dataset's.
 
 mod dataset_common;
+
+use std::collections::BTreeSet;
+use std::path::Path;
 
 use dataset_common::*;
 
@@ -121,7 +128,10 @@ fn repair_that_cannot_render_changes_nothing() {
     let t = text(&r);
     assert_eq!(r.status.code(), Some(2), "{t}");
     // The towns are looked up before anything is staged or rendered.
-    assert!(t.contains("--scenes /nonexistent"), "{t}");
+    assert!(
+        t.contains("--scenes /nonexistent: no such directory"),
+        "{t}"
+    );
     assert!(tree(&out) == snapshot, "the failed repair changed the root");
     assert_eq!(text(&verify(&out, &[])), report);
 }
@@ -158,4 +168,146 @@ fn a_line_naming_one_file_twice_is_reported_and_repaired() {
     let lines = lines_by_frame(&out);
     let only: serde_json::Value = serde_json::from_str(&lines.values().next().unwrap()[0]).unwrap();
     assert_eq!(only["files"].as_array().unwrap().len(), 17);
+}
+
+/// The paths `verify` reports as `extra` and as `extra, kept`.
+fn extra_and_kept(report: &str) -> (BTreeSet<String>, BTreeSet<String>) {
+    let mut extra = BTreeSet::new();
+    let mut kept = BTreeSet::new();
+    for l in report.lines() {
+        if let Some(p) = l.strip_prefix("extra      ") {
+            extra.insert(p.to_string());
+        } else if let Some(p) = l.strip_prefix("extra, kept ") {
+            kept.insert(p.trim_end_matches(" (not the dataset's)").to_string());
+        }
+    }
+    (extra, kept)
+}
+
+/// Writes `bytes` at `root/rel`, creating its folders.
+fn plant(root: &Path, rel: &str, bytes: &[u8]) {
+    let p = root.join(rel);
+    std::fs::create_dir_all(p.parent().unwrap()).unwrap();
+    std::fs::write(p, bytes).unwrap();
+}
+
+#[test]
+fn files_named_like_frames_outside_the_layout_are_kept_by_repair_and_force() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = write_config(dir.path(), "c.toml", &tiny_config(&["normal"], 1));
+    let out = dir.path().join("out");
+    ok(&dataset(&cfg, &out, &[]));
+    let seq = out.join("town01/normal_clear/0000");
+    let png = std::fs::read(seq.join("left/rgb/000000.png")).unwrap();
+    // The user's: a planned frame's number in a folder, with an extension or
+    // below a sequence folder the native layout does not write, a baseline
+    // not configured, a frame not planned, a temporary of one of these.
+    let mine = [
+        "town01/normal_clear/0000/mystuff/000000.txt",
+        "town01/normal_clear/0000/mystuff/000000.txt.tmp-42-0",
+        "town01/normal_clear/0000/left/rgb/000000.txt",
+        "town01/normal_clear/0/left/rgb/000000.png",
+        "town01/normal_clear/0000/baseline_300/rgb/000000.png",
+        "town01/normal_clear/0000/left/rgb/000003.png",
+    ];
+    for m in mine {
+        plant(&out, m, &png);
+    }
+    // The dataset's: a native file of the planned frame that its line does
+    // not list (no HDR is configured), left by some other run.
+    let hdr_rel = "town01/normal_clear/0000/left/rgb_hdr/000000.exr";
+    let depth = std::fs::read(seq.join("left/depth/000000.exr")).unwrap();
+    plant(&out, hdr_rel, &depth);
+
+    let v = verify(&out, &[]);
+    let t = text(&v);
+    assert_eq!(v.status.code(), Some(1), "{t}");
+    let (extra, kept) = extra_and_kept(&t);
+    assert_eq!(extra, BTreeSet::from([hdr_rel.to_string()]), "{t}");
+    assert_eq!(kept, mine.iter().map(|m| m.to_string()).collect(), "{t}");
+
+    let r = verify(&out, &["--repair"]);
+    ok(&r);
+    assert!(
+        text(&r).contains("0 frames replaced, 0 not rendered (left as they were), 0 manifest lines dropped, 1 files removed"),
+        "{}",
+        text(&r)
+    );
+    assert!(!out.join(hdr_rel).exists());
+    for m in mine {
+        assert_eq!(std::fs::read(out.join(m)).unwrap(), png, "{m}");
+    }
+
+    // `dataset --force` with another configuration removes the old
+    // dataset's files (also one no line lists) and nothing of the user's.
+    plant(&out, hdr_rel, &depth);
+    let other = write_config(dir.path(), "o.toml", &tiny_config(&["roll05"], 1));
+    ok(&dataset(&other, &out, &["--force"]));
+    assert!(!seq.join("left/rgb/000000.png").exists());
+    assert!(!out.join(hdr_rel).exists());
+    for m in mine {
+        assert_eq!(std::fs::read(out.join(m)).unwrap(), png, "{m}");
+    }
+    let v = verify(&out, &[]);
+    ok(&v);
+    let (extra, kept) = extra_and_kept(&text(&v));
+    assert!(extra.is_empty(), "{}", text(&v));
+    assert_eq!(kept, mine.iter().map(|m| m.to_string()).collect());
+}
+
+#[test]
+fn other_layouts_files_of_a_planned_frame_are_the_datasets_and_only_those() {
+    let dir = tempfile::tempdir().unwrap();
+    let text_cfg = tiny_config(&["normal"], 2)
+        + "layouts = [\"native\", \"kitti\", \"stereocarla\", \"sceneflow\"]\n";
+    let cfg = write_config(dir.path(), "c.toml", &text_cfg);
+    let out = dir.path().join("out");
+    ok(&dataset(&cfg, &out, &[]));
+    // Frame 1 loses its line (as when a run is killed between its files and
+    // its line): every file it has in every layout is the dataset's.
+    let lines = lines_by_frame(&out);
+    let line1: serde_json::Value =
+        serde_json::from_str(&lines["town01/normal_clear/0000/000001"][0]).unwrap();
+    let files1: BTreeSet<String> = line1["files"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| f["path"].as_str().unwrap().to_string())
+        .collect();
+    assert!(files1.iter().any(|f| f.starts_with("stereocarla/")));
+    assert!(files1.iter().any(|f| f.starts_with("sceneflow/")));
+    assert!(files1.iter().any(|f| f.starts_with("kitti/")));
+    let manifest = out.join("manifest/shard-1-of-1.jsonl");
+    let line0 = &lines["town01/normal_clear/0000/000000"][0];
+    std::fs::write(&manifest, format!("{line0}\n")).unwrap();
+    // The user's, in the layouts' folders: other names, an unplanned frame,
+    // a temporary of such a file.
+    let mine = [
+        "kitti/baseline_054/image_2/mine.png",
+        "kitti/baseline_054/image_2/mine.png.tmp-42-0",
+        "kitti/baseline_054/image_2/town01_normal_clear_0000_000002.png",
+        "sceneflow/disparity/baseline_054/town01_normal_clear_clear/0000/left/000001.png",
+        "stereocarla/normal/town01/baseline_054/pose/0000_000001.txt",
+    ];
+    for m in mine {
+        plant(&out, m, m.as_bytes());
+    }
+
+    let v = verify(&out, &[]);
+    let t = text(&v);
+    assert_eq!(v.status.code(), Some(1), "{t}");
+    assert!(
+        t.contains("missing    town01/normal_clear/0000/000001"),
+        "{t}"
+    );
+    let (extra, kept) = extra_and_kept(&t);
+    assert_eq!(extra, files1, "{t}");
+    assert_eq!(kept, mine.iter().map(|m| m.to_string()).collect(), "{t}");
+
+    let r = verify(&out, &["--repair"]);
+    ok(&r);
+    assert!(text(&r).contains("re-rendering 1 frames"), "{}", text(&r));
+    for m in mine {
+        assert_eq!(std::fs::read(out.join(m)).unwrap(), m.as_bytes(), "{m}");
+    }
 }

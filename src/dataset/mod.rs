@@ -11,6 +11,7 @@ pub mod estimate;
 pub mod frame;
 pub mod layouts;
 pub mod manifest;
+pub mod ownership;
 pub mod plan;
 pub mod presets;
 pub mod progress;

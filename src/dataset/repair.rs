@@ -13,9 +13,10 @@ use std::io;
 use std::path::{Path, PathBuf};
 
 use super::manifest::{manifest_files, ManifestLine};
+use super::ownership::{is_bookkeeping, slash, Ownership};
 use super::plan::{plan, Job};
 use super::run::{walk_files, DatasetError};
-use super::verify::{dataset_config, is_bookkeeping, slash_path, Ownership, VerifyReport};
+use super::verify::{dataset_config, VerifyReport};
 use crate::output::{read_file, write_atomic, Access, OutputError};
 
 /// A repair planned but not begun.
@@ -133,20 +134,20 @@ pub fn finish(root: &Path, staged: &Staged) -> Result<Finished, DatasetError> {
         .filter(|j| !new.contains_key(*j))
         .collect();
     for rel in walk_files(root)? {
-        let slash = slash_path(&rel);
-        if is_bookkeeping(&rel) || listed.contains(&slash) || !owner.owns(&slash) {
+        let path = slash(&rel);
+        if is_bookkeeping(&rel) || listed.contains(&path) || !owner.owns(&path) {
             continue;
         }
         // A frame that was not rendered again keeps whatever it has.
         if owner
-            .planned_frame_file(&slash)
+            .frame_of(&path)
             .is_some_and(|j| unrendered.contains(&j))
         {
             continue;
         }
         let p = root.join(&rel);
         fs::remove_file(&p).map_err(|e| OutputError::wrap(&p, Access::Write, e))?;
-        done.removed.push(slash);
+        done.removed.push(path);
     }
     Ok(done)
 }

@@ -15,6 +15,7 @@ use super::manifest::{
     append_line, cut_torn_tail, latest_lines, read_manifests, DatasetMeta, DATASET_JSON,
     FAILURES_DIR, MANIFEST_DIR,
 };
+use super::ownership::{is_bookkeeping, slash, Ownership};
 use super::plan::{plan, Job};
 use super::progress::{Progress, RunSummary};
 use super::shard::Shard;
@@ -138,8 +139,8 @@ pub fn prepare_root(
                 root.display()
             )));
         }
-        if matches!(existing, Ok(Some(_))) {
-            remove_old_frames(root)?;
+        if let Ok(Some(old)) = &existing {
+            remove_old_frames(root, &old.config)?;
         }
         for dir in [MANIFEST_DIR, FAILURES_DIR] {
             let p = root.join(dir);
@@ -179,26 +180,18 @@ fn config_differences(old: &DatasetConfig, new: &DatasetConfig) -> Vec<String> {
         .collect()
 }
 
-/// Removes the frames of the dataset being replaced: every file its
-/// manifests list and every native-layout frame file (also of frames whose
-/// line was never written), then the directories that leaves empty. Files
-/// parallax did not write stay.
-fn remove_old_frames(root: &Path) -> Result<(), DatasetError> {
+/// Removes the files of the dataset of `old` being replaced: those its
+/// manifests list and every other file the `ownership` rule calls its own
+/// (also of frames whose line was never written), then the directories that
+/// leaves empty. Files parallax did not write stay.
+fn remove_old_frames(root: &Path, old: &DatasetConfig) -> Result<(), DatasetError> {
     let read = |e| OutputError::wrap(root, Access::Read, e);
-    let mut doomed: BTreeSet<PathBuf> = super::manifest::read_manifests(root)
-        .map_err(read)?
-        .into_iter()
-        .filter_map(|l| l.parsed.ok())
-        .flat_map(|l| l.files.into_iter().map(|f| PathBuf::from(f.path)))
-        .collect();
-    doomed.extend(
-        walk_files(root)
-            .map_err(read)?
-            .into_iter()
-            .filter(|rel| job_of_path(rel).is_some()),
-    );
+    let owner = ownership_of(root, old).map_err(read)?;
     let mut dirs = BTreeSet::new();
-    for rel in doomed {
+    for rel in walk_files(root).map_err(read)? {
+        if is_bookkeeping(&rel) || !owner.owns(&slash(&rel)) {
+            continue;
+        }
         let p = root.join(&rel);
         match fs::remove_file(&p) {
             Ok(()) => {}
@@ -218,25 +211,14 @@ fn remove_old_frames(root: &Path) -> Result<(), DatasetError> {
     Ok(())
 }
 
-/// The job a native-layout path below the root belongs to
-/// (`<town>/<config>_<weather>/<seq>/…/NNNNNN.ext…`).
-pub(crate) fn job_of_path(rel: &Path) -> Option<Job> {
-    let parts: Vec<String> = rel
-        .components()
-        .map(|c| c.as_os_str().to_string_lossy().into_owned())
+/// The ownership rule of the dataset of `config` below `root`, with the
+/// files its readable manifest lines name.
+fn ownership_of(root: &Path, config: &DatasetConfig) -> io::Result<Ownership> {
+    let lines: Vec<_> = read_manifests(root)?
+        .into_iter()
+        .filter_map(|l| l.parsed.ok())
         .collect();
-    if parts.len() < 4 {
-        return None;
-    }
-    let (config, weather) = parts[1].split_once('_')?;
-    let stem = parts.last()?.split('.').next()?;
-    Some(Job {
-        town: parts[0].clone(),
-        config: config.parse().ok()?,
-        weather: weather.parse().ok()?,
-        sequence: parts[2].parse().ok()?,
-        frame: stem.parse().ok()?,
-    })
+    Ok(Ownership::new(config, &lines))
 }
 
 /// Every file below `root` (relative paths), depth first, sorted.
@@ -259,16 +241,33 @@ pub fn walk_files(root: &Path) -> io::Result<Vec<PathBuf>> {
     Ok(out)
 }
 
-/// Removes temporary files a killed run left behind: those of this shard's
-/// jobs, and (for a one-shard run) every other one. Returns how many.
-fn sweep_temp_files(root: &Path, jobs: &BTreeSet<Job>, shard: Shard) -> io::Result<usize> {
+/// Removes temporary files of the dataset's (`ownership`) a killed run left
+/// behind: those of this shard's jobs, and (for a one-shard run) every
+/// other one. Returns how many.
+fn sweep_temp_files(
+    root: &Path,
+    config: &DatasetConfig,
+    jobs: &BTreeSet<Job>,
+    shard: Shard,
+) -> io::Result<usize> {
+    let temps: Vec<PathBuf> = walk_files(root)?
+        .into_iter()
+        .filter(|rel| {
+            let name = rel.file_name().map(|s| s.to_string_lossy().into_owned());
+            name.is_some_and(|n| is_temp_name(&n))
+        })
+        .collect();
+    if temps.is_empty() {
+        return Ok(0);
+    }
+    let owner = ownership_of(root, config)?;
     let mut n = 0;
-    for rel in walk_files(root)? {
-        let name = rel.file_name().map(|s| s.to_string_lossy().into_owned());
-        if !name.is_some_and(|n| is_temp_name(&n)) {
+    for rel in temps {
+        let path = slash(&rel);
+        if !owner.owns(&path) {
             continue;
         }
-        let ours = match job_of_path(&rel) {
+        let ours = match owner.frame_of(&path) {
             Some(job) => jobs.contains(&job),
             None => shard.count == 1,
         };
@@ -308,7 +307,7 @@ pub fn run_dataset(
         .filter(|j| opts.only.as_ref().is_none_or(|o| o.contains(j)))
         .collect();
     let job_set: BTreeSet<Job> = jobs.iter().cloned().collect();
-    let swept = sweep_temp_files(root, &job_set, opts.shard)?;
+    let swept = sweep_temp_files(root, config, &job_set, opts.shard)?;
     let manifest = root.join(MANIFEST_DIR).join(opts.shard.manifest_name());
     cut_torn_tail(&manifest)?;
     let existing = latest_lines(&read_manifests(root)?);
@@ -478,17 +477,6 @@ fn write_failures(root: &Path, shard: Shard, s: &RunSummary) -> Result<(), Datas
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn native_paths_map_back_to_their_job() {
-        let j = job_of_path(Path::new(
-            "town01/roll05_night/0002/left/rgb/000007.png.tmp-9-1",
-        ))
-        .unwrap();
-        assert_eq!(j.id(), "town01/roll05_night/0002/000007");
-        assert!(job_of_path(Path::new("dataset.json.tmp-1-2")).is_none());
-        assert!(job_of_path(Path::new("town01/bogus/0002/left/rgb/000007.png")).is_none());
-    }
 
     #[test]
     fn only_the_atomic_writers_names_are_temporary() {

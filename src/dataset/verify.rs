@@ -3,7 +3,7 @@
 //! manifest line, every file of every line exists with its size and SHA-256,
 //! no frame has two lines, no line names a file twice and none of the
 //! dataset's files lies outside the manifests. Files that are not the
-//! dataset's ([`Ownership`]) are listed as kept. `--repair` (module
+//! dataset's (module `ownership`) are listed as kept. `--repair` (module
 //! `repair`) re-renders exactly the missing, corrupted and duplicated frames.
 
 use std::collections::{BTreeMap, BTreeSet};
@@ -11,9 +11,10 @@ use std::fs;
 use std::io;
 use std::path::Path;
 
-use super::manifest::{read_manifests, ManifestLine, DATASET_JSON, FAILURES_DIR, MANIFEST_DIR};
+use super::manifest::{read_manifests, ManifestLine, DATASET_JSON};
+use super::ownership::{is_bookkeeping, slash, Ownership};
 use super::plan::{plan, Job};
-use super::run::{job_of_path, temp_base, walk_files, DatasetError};
+use super::run::{walk_files, DatasetError};
 
 /// What `verify` found.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -104,65 +105,6 @@ pub fn dataset_config(root: &Path) -> Result<super::config::DatasetConfig, Datas
     }
 }
 
-/// Which files below a root are the dataset's, hence removable by
-/// `--repair`: every path a parseable manifest line names (also lines that
-/// are dropped), every native-layout file of a planned frame
-/// (`<town>/<config>_<weather>/<seq>/…/NNNNNN.*`), and the temporary files of
-/// the atomic writers (`<name>.tmp-<pid>-<n>`, `<name>.tmp-link-<pid>`) of
-/// these, at the root or in a layout's directory. Everything else is the
-/// user's.
-pub struct Ownership {
-    planned: BTreeSet<Job>,
-    named: BTreeSet<String>,
-    layout_dirs: BTreeSet<String>,
-}
-
-impl Ownership {
-    /// The ownership rule of `config`'s dataset whose manifests hold `lines`.
-    pub fn new<'a>(
-        config: &super::config::DatasetConfig,
-        lines: impl IntoIterator<Item = &'a ManifestLine>,
-    ) -> Ownership {
-        Ownership {
-            planned: plan(config).into_iter().collect(),
-            named: lines
-                .into_iter()
-                .flat_map(|l| l.files.iter().map(|f| f.path.clone()))
-                .collect(),
-            layout_dirs: config.layouts.iter().cloned().collect(),
-        }
-    }
-
-    /// True when `rel` ('/'-separated, relative to the root) is the dataset's.
-    pub fn owns(&self, rel: &str) -> bool {
-        let (dir, name) = rel.rsplit_once('/').unwrap_or(("", rel));
-        let temp = temp_base(name);
-        let path = match (temp, dir) {
-            (Some(base), "") => base.to_string(),
-            (Some(base), _) => format!("{dir}/{base}"),
-            (None, _) => rel.to_string(),
-        };
-        if self.named.contains(&path) || self.planned_frame_file(&path).is_some() {
-            return true;
-        }
-        let top = rel.split('/').next().unwrap_or("");
-        temp.is_some() && (dir.is_empty() || self.layout_dirs.contains(top))
-    }
-
-    /// The planned frame a native-layout file `…/NNNNNN.ext` (temporary
-    /// suffix stripped) belongs to; a name with more (`000001.png.bak`) or
-    /// other stems is not a frame file.
-    pub fn planned_frame_file(&self, rel: &str) -> Option<Job> {
-        let (dir, name) = rel.rsplit_once('/')?;
-        let name = temp_base(name).unwrap_or(name);
-        let (stem, ext) = name.split_once('.')?;
-        if ext.contains('.') || !stem.bytes().all(|b| b.is_ascii_digit()) {
-            return None;
-        }
-        job_of_path(Path::new(&format!("{dir}/{name}"))).filter(|j| self.planned.contains(j))
-    }
-}
-
 /// Why a parsed manifest line describes no frame of the plan, if it does not.
 pub fn line_problem(line: &ManifestLine, planned: &BTreeSet<Job>) -> Option<String> {
     if !line.job().is_some_and(|j| planned.contains(&j)) {
@@ -173,26 +115,6 @@ pub fn line_problem(line: &ManifestLine, planned: &BTreeSet<Job>) -> Option<Stri
         .iter()
         .find(|f| !seen.insert(f.path.as_str()))
         .map(|f| format!("names {} twice", f.path))
-}
-
-/// True for the bookkeeping below a root (`dataset.json`, manifests, failure
-/// lists, layouts' split lists): never a frame's file.
-pub fn is_bookkeeping(rel: &Path) -> bool {
-    let first = rel.components().next().map(|c| c.as_os_str().to_owned());
-    let top = first.as_deref().and_then(|s| s.to_str()).unwrap_or("");
-    rel == Path::new(DATASET_JSON)
-        || top == MANIFEST_DIR
-        || top == FAILURES_DIR
-        || super::layouts::is_layout_index(rel)
-}
-
-/// A relative path '/'-separated, as manifests write it.
-pub fn slash_path(rel: &Path) -> String {
-    let parts: Vec<String> = rel
-        .components()
-        .map(|c| c.as_os_str().to_string_lossy().into_owned())
-        .collect();
-    parts.join("/")
 }
 
 /// Checks the dataset below `root` (every checksum).
@@ -250,14 +172,14 @@ pub fn verify_dataset(root: &Path) -> Result<VerifyReport, DatasetError> {
         }
     }
     for rel in walk_files(root)? {
-        let slash = slash_path(&rel);
-        if is_bookkeeping(&rel) || listed.contains(&slash) {
+        let path = slash(&rel);
+        if is_bookkeeping(&rel) || listed.contains(&path) {
             continue;
         }
-        if owner.owns(&slash) {
-            report.extra.push(slash);
+        if owner.owns(&path) {
+            report.extra.push(path);
         } else {
-            report.kept.push(slash);
+            report.kept.push(path);
         }
     }
     Ok(report)
@@ -269,67 +191,30 @@ mod tests {
     use crate::output::FileRecord;
 
     #[test]
-    fn ownership_covers_named_frame_and_temporary_files_only() {
+    fn a_line_must_name_a_planned_frame_and_each_file_once() {
         let text = "seed = 1\ntowns = [\"town01\"]\nconfigs = [\"normal\"]\n\
-                    weathers = [\"clear\"]\nframes_per_sequence = 2\n\
-                    layouts = [\"native\", \"kitti\"]\n";
+                    weathers = [\"clear\"]\nframes_per_sequence = 2\n";
         let config = super::super::parse_config(text, "t.toml").unwrap();
-        let job = plan(&config)[0].clone();
-        let line = ManifestLine {
-            town: job.town.clone(),
-            config: job.config.name().into(),
-            weather: job.weather.name().into(),
-            sequence: 0,
-            frame: 0,
-            town_frame: 0,
-            seed: 0,
-            files: vec![FileRecord {
-                path: "old/listed.bin".into(),
-                bytes: 1,
-                sha256: String::new(),
-            }],
-            render: super::super::manifest::RenderRecord {
-                spp: 1,
-                rays: 0,
-                seconds: 0.0,
-            },
-            disparity: Vec::new(),
-            seeds: None,
+        let file = FileRecord {
+            path: "town01/normal_clear/0000/left/rgb/000000.png".into(),
+            bytes: 1,
+            sha256: String::new(),
         };
-        let owner = Ownership::new(&config, [&line]);
-        let seq = "town01/normal_clear/0000";
-        for rel in [
-            "old/listed.bin",
-            "old/listed.bin.tmp-7-0",
-            &format!("{seq}/left/rgb/000001.png"),
-            &format!("{seq}/baseline_054/disp/000000.pfm.tmp-12-3"),
-            "dataset.json.tmp-5-1",
-            "kitti/baseline_054/image_2/x.png.tmp-link-9",
-        ] {
-            assert!(owner.owns(rel), "{rel} is the dataset's");
-        }
-        for rel in [
-            "notes.txt",
-            "old/other.bin",
-            "old/notes.tmp-old",
-            &format!("{seq}/left/rgb/stray.png"),
-            &format!("{seq}/left/rgb/000001.png.bak"),
-            // Frame 2 and sequence 1 are not planned; sceneflow is not written.
-            &format!("{seq}/left/rgb/000002.png"),
-            "town01/normal_clear/0001/left/rgb/000000.png",
-            "sceneflow/disparity/a.pfm.tmp-1-1",
-        ] {
-            assert!(!owner.owns(rel), "{rel} is not the dataset's");
-        }
-        let twice = ManifestLine {
-            files: vec![line.files[0].clone(), line.files[0].clone()],
-            ..line.clone()
-        };
+        let mut line = crate::dataset::ownership::tests::line_of(&plan(&config)[0], file.clone());
         let planned = plan(&config).into_iter().collect();
         assert_eq!(line_problem(&line, &planned), None);
+        let twice = ManifestLine {
+            files: vec![file.clone(), file],
+            ..line.clone()
+        };
         assert_eq!(
             line_problem(&twice, &planned).as_deref(),
-            Some("names old/listed.bin twice")
+            Some("names town01/normal_clear/0000/left/rgb/000000.png twice")
+        );
+        line.frame = 2;
+        assert_eq!(
+            line_problem(&line, &planned).as_deref(),
+            Some("names no frame of this dataset's plan")
         );
     }
 }

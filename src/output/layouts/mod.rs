@@ -163,6 +163,27 @@ pub fn left_truth_rel(kind: LayoutKind, key: &FrameKey, baseline_cm: f64) -> Opt
     }
 }
 
+/// Root-relative paths of every file [`write_layout_frame`] writes for one
+/// frame at `baselines_cm` (split lists aside; a path shared by baselines
+/// once); empty for native. Tells a layout's own files from others'.
+pub fn frame_files(kind: LayoutKind, key: &FrameKey, baselines_cm: &[f64]) -> Vec<String> {
+    let mut files = Vec::new();
+    for &cm in baselines_cm {
+        match kind {
+            LayoutKind::Native => {}
+            LayoutKind::Kitti => files.extend(kitti::sample_paths(key, cm)),
+            LayoutKind::Sceneflow => files.extend(sceneflow::sample_paths(key, cm)),
+            LayoutKind::Stereocarla => {
+                files.extend(stereocarla::sample_paths(key, cm));
+                files.push(stereocarla::pose_path(key, cm));
+            }
+        }
+    }
+    let mut seen = std::collections::BTreeSet::new();
+    files.retain(|f| seen.insert(f.clone()));
+    files
+}
+
 /// A root-relative path as a split-list entry (always `/`-separated).
 fn rel_str(parts: &[&str]) -> String {
     parts.join("/")

@@ -100,6 +100,15 @@ pub(super) fn sample_paths(key: &FrameKey, baseline_cm: f64) -> [String; 3] {
     ]
 }
 
+/// Root-relative pose file of a frame at one baseline, beside the baseline's
+/// depth folder: `<dir>/baseline_XXX/pose/<stem>.json`.
+pub(super) fn pose_path(key: &FrameKey, baseline_cm: f64) -> String {
+    let (dir, stem) = dir_and_stem(key);
+    let d: Vec<&str> = dir.iter().map(String::as_str).collect();
+    let b = baseline_dir_name(baseline_cm);
+    rel_str(&[d.as_slice(), &[&b, "pose", &format!("{stem}.json")]].concat())
+}
+
 /// Hard-links `src` to `dst` atomically (link to a temporary name, rename);
 /// copies through `write_atomic` when the file system refuses links.
 fn link_or_copy(src: &Path, dst: &Path) -> io::Result<()> {
@@ -156,12 +165,7 @@ pub(super) fn write_frame(
             Some(src) => link_or_copy(src, &depth)?,
         }
         written.push(depth.clone());
-        let pose_path = depth
-            .parent()
-            .and_then(Path::parent)
-            .map(|d| d.join("pose"))
-            .unwrap_or_default()
-            .join(depth.with_extension("json").file_name().unwrap_or_default());
+        let pose_path = root.join(pose_path(key, baseline_m * 100.0));
         let pose = PoseFile {
             baseline_m,
             width: meta.width,
