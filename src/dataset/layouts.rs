@@ -33,7 +33,8 @@ fn extra_kinds(kinds: &[String]) -> io::Result<Vec<LayoutKind>> {
         .collect()
 }
 
-fn frame_key(job: &Job) -> FrameKey {
+/// The layouts' key of a planned frame.
+pub(super) fn frame_key(job: &Job) -> FrameKey {
     FrameKey {
         town: job.town.clone(),
         config: job.config.name().to_string(),

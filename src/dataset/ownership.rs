@@ -18,7 +18,7 @@ use super::config::DatasetConfig;
 use super::manifest::{ManifestLine, DATASET_JSON, FAILURES_DIR, MANIFEST_DIR};
 use super::plan::{plan, Job};
 use super::run::temp_base;
-use crate::output::layouts::{frame_files, FrameKey, LayoutKind};
+use crate::output::layouts::{frame_files, LayoutKind};
 use crate::output::{baseline_dir_name, native_path, NativePath};
 
 /// The ownership rule of one dataset (see the module header).
@@ -47,16 +47,6 @@ fn path_hash(rel: &str) -> u64 {
     let mut h = DefaultHasher::new();
     rel.hash(&mut h);
     h.finish()
-}
-
-fn frame_key(job: &Job) -> FrameKey {
-    FrameKey {
-        town: job.town.clone(),
-        config: job.config.name().to_string(),
-        weather: job.weather.name().to_string(),
-        sequence: job.sequence,
-        frame: job.frame,
-    }
 }
 
 impl Ownership {
@@ -113,7 +103,7 @@ impl Ownership {
 
     /// Root-relative paths of `job`'s files in the other configured layouts.
     fn layout_files(&self, job: &Job) -> Vec<String> {
-        let key = frame_key(job);
+        let key = super::layouts::frame_key(job);
         self.layouts
             .iter()
             .flat_map(|&kind| {
