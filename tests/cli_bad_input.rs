@@ -376,7 +376,13 @@ fn bad_inputs_name_the_place_the_value_and_what_is_allowed() {
             "good.toml",
             GOOD.into(),
             &["render", "FILE", "-o", "OUT", "--spp", "4294967296"],
-            &["error: invalid value '4294967296' for '--spp <SPP>'", "0..=4294967295"],
+            &["error: invalid value '4294967296' for '--spp <SPP>'", "1..=65536"],
+        ),
+        row(
+            "good.toml",
+            GOOD.into(),
+            &["render", "FILE", "-o", "OUT", "--spp", "99999"],
+            &["error: invalid value '99999' for '--spp <SPP>'", "1..=65536"],
         ),
         row(
             "data.toml",

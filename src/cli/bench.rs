@@ -22,7 +22,7 @@ pub struct BenchArgs {
     #[arg(long, default_value_t = 2)]
     pub threads: usize,
     /// Samples per pixel of the path pass.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=crate::sampler::MAX_SPP as i64))]
     pub spp: u32,
     /// Maximum path depth.
     #[arg(long, default_value_t = 5)]

@@ -49,7 +49,7 @@ pub struct RenderArgs {
     #[arg(short, long)]
     pub output: PathBuf,
     /// Samples per pixel per view (overrides the scene).
-    #[arg(long)]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=crate::sampler::MAX_SPP as i64))]
     pub spp: Option<u32>,
     /// Image width in pixels (overrides the scene).
     #[arg(long)]
@@ -118,13 +118,7 @@ fn apply_overrides(loaded: &mut LoadedScene, a: &RenderArgs) -> Result<(), CliEr
         }
     };
     if let Some(v) = a.spp {
-        d.render.spp = positive("spp", v)?;
-        if v > crate::sampler::MAX_SPP {
-            return Err(CliError::input(format!(
-                "--spp must be at most {}",
-                crate::sampler::MAX_SPP
-            )));
-        }
+        d.render.spp = v; // clap checked 1..=MAX_SPP
     }
     if let Some(v) = a.max_depth {
         d.render.max_depth = positive("max-depth", v)?;
