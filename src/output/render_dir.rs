@@ -71,6 +71,7 @@ impl StagedDir {
         };
         staged.created = create_ancestors(&parent)
             .map_err(|(dir, e)| format!("cannot create {}: {e}", dir.display()))?;
+        sweep_abandoned_stagings(&parent, &name);
         staged.staging = create_unique(&parent, &format!(".{name}.partial"))
             .map_err(|e| format!("cannot write in {}: {e}", parent.display()))?;
         Ok(staged)
@@ -233,6 +234,43 @@ fn create_ancestors(dir: &Path) -> Result<Vec<PathBuf>, (PathBuf, io::Error)> {
 }
 
 /// Creates a new directory `<parent>/<prefix>-<pid>-<n>` (first free `n`).
+/// Removes `.NAME.partial-<pid>-<n>` directories of renders that were killed
+/// (their process is gone) before their frame was complete (no camera file,
+/// which is written last). A complete frame that a failed swap kept there is
+/// left for the user, as its message said.
+fn sweep_abandoned_stagings(parent: &Path, name: &str) {
+    let prefix = format!(".{name}.partial-");
+    let Ok(entries) = fs::read_dir(parent) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let file_name = entry.file_name();
+        let Some(pid) = file_name
+            .to_str()
+            .and_then(|n| n.strip_prefix(&prefix))
+            .and_then(|rest| rest.split_once('-'))
+            .and_then(|(pid, n)| n.parse::<u32>().ok().and(pid.parse::<i32>().ok()))
+        else {
+            continue;
+        };
+        let dir = entry.path();
+        if process_alive(pid) || dir.join("cameras").exists() {
+            continue;
+        }
+        let _ = fs::remove_dir_all(&dir);
+    }
+}
+
+/// Whether process `pid` exists (signal 0 probes without sending anything).
+fn process_alive(pid: i32) -> bool {
+    if pid <= 0 {
+        return true; // not a process id of ours: leave it
+    }
+    // SAFETY: kill with signal 0 only checks that `pid` exists.
+    let r = unsafe { libc::kill(pid, 0) };
+    r == 0 || io::Error::last_os_error().raw_os_error() != Some(libc::ESRCH)
+}
+
 fn create_unique(parent: &Path, prefix: &str) -> io::Result<PathBuf> {
     let pid = std::process::id();
     for n in 0..1000 {
@@ -256,6 +294,26 @@ mod tests {
     fn put(p: &Path) {
         fs::create_dir_all(p.parent().unwrap()).unwrap();
         fs::write(p, b"x").unwrap();
+    }
+
+    #[test]
+    fn a_killed_renders_incomplete_staging_is_swept_and_a_kept_frame_is_not() {
+        let dir = tempfile::tempdir().unwrap();
+        // Beyond any pid_max: no such process.
+        let dead = dir.path().join(".out.partial-2147483646-0");
+        put(&dead.join("left/rgb/000000.png"));
+        let kept = dir.path().join(".out.partial-2147483646-1");
+        put(&kept.join("cameras/000000.json"));
+        let live = dir
+            .path()
+            .join(format!(".out.partial-{}-7", std::process::id()));
+        put(&live.join("left/rgb/000000.png"));
+        let other = dir.path().join(".other.partial-2147483646-0");
+        put(&other.join("x"));
+        let staged = StagedDir::prepare(&dir.path().join("out")).unwrap();
+        assert!(!dead.exists());
+        assert!(kept.exists() && live.exists() && other.exists());
+        drop(staged);
     }
 
     fn names(dir: &Path) -> Vec<String> {
