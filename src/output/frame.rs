@@ -17,9 +17,11 @@ use crate::render::{FrameOutput, RenderSettings};
 use crate::scene::Scene;
 use crate::weather::WeatherParams;
 
-/// Per-frame metadata written to `cameras/NNNNNN.json`.
+/// A rig's cameras as every camera record writes them (a render's camera
+/// file, a town export's `.cameras.json`): size, K, the left pose and one
+/// entry per baseline.
 #[derive(Clone, Debug, Serialize)]
-pub struct CameraFile {
+pub struct RigCameras {
     /// Image width, pixels.
     pub width: u32,
     /// Image height, pixels.
@@ -32,6 +34,28 @@ pub struct CameraFile {
     pub left_pose: [[f64; 4]; 4],
     /// One entry per baseline.
     pub right: Vec<RightCamera>,
+}
+
+impl RigCameras {
+    /// The cameras of `rig`.
+    pub fn of(rig: &StereoRig) -> Self {
+        RigCameras {
+            width: rig.left.intrinsics.width,
+            height: rig.left.intrinsics.height,
+            k: rig.left.intrinsics.k_matrix(),
+            f_px: rig.left.intrinsics.f_px,
+            left_pose: rig.left.pose_matrix(),
+            right: right_cameras(rig),
+        }
+    }
+}
+
+/// Per-frame metadata written to `cameras/NNNNNN.json`.
+#[derive(Clone, Debug, Serialize)]
+pub struct CameraFile {
+    /// Size, K, left and right poses (flattened: the file's first keys).
+    #[serde(flatten)]
+    pub cameras: RigCameras,
     /// Exposure scale applied to linear radiance before the tone curve.
     pub exposure_scale: f32,
     /// Exposure in EV (log2 of the scale).
@@ -200,12 +224,7 @@ pub fn camera_file(
     weather: Option<&WeatherParams>,
 ) -> CameraFile {
     CameraFile {
-        width: rig.left.intrinsics.width,
-        height: rig.left.intrinsics.height,
-        k: rig.left.intrinsics.k_matrix(),
-        f_px: rig.left.intrinsics.f_px,
-        left_pose: rig.left.pose_matrix(),
-        right: right_cameras(rig),
+        cameras: RigCameras::of(rig),
         exposure_scale: out.exposure_scale,
         exposure_ev: out.exposure_scale.log2(),
         sun_direction_world: scene

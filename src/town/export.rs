@@ -19,7 +19,7 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 
 use crate::camera::StereoRig;
-use crate::output::frame::{right_cameras, FrameSeeds, RightCamera, TownFrameRecord, CONVENTIONS};
+use crate::output::frame::{FrameSeeds, RigCameras, TownFrameRecord, CONVENTIONS};
 use crate::scene::desc::{MaterialDesc, MaterialKindDesc};
 use crate::scene::semantic::class_name;
 use crate::scene::{LoadedScene, Scene};
@@ -39,19 +39,10 @@ pub struct ExportStats {
 /// render's camera file.
 #[derive(Clone, Debug, Serialize)]
 pub struct ExportCameras {
-    /// Image width, pixels.
-    pub width: u32,
-    /// Image height, pixels.
-    pub height: u32,
-    /// Intrinsic matrix K (row-major), pixels.
-    pub k: [[f64; 3]; 3],
-    /// Focal length, pixels.
-    pub f_px: f64,
-    /// World-from-camera pose of the left camera (row-major 4×4, OpenCV
-    /// camera frame), in the OBJ's world coordinates.
-    pub left_pose: [[f64; 4]; 4],
-    /// One entry per baseline.
-    pub right: Vec<RightCamera>,
+    /// Size, K, left and right poses, in the OBJ's world coordinates
+    /// (flattened, as in a camera file).
+    #[serde(flatten)]
+    pub cameras: RigCameras,
     /// The seeds of the geometry (town and traffic; nothing is sampled).
     pub seeds: FrameSeeds,
     /// The town description, town frame and camera configuration.
@@ -64,12 +55,7 @@ impl ExportCameras {
     /// The cameras of `rig` on the frame of `town` generated with `seed`.
     pub fn new(rig: &StereoRig, seed: u64, town: TownFrameRecord) -> Self {
         ExportCameras {
-            width: rig.left.intrinsics.width,
-            height: rig.left.intrinsics.height,
-            k: rig.left.intrinsics.k_matrix(),
-            f_px: rig.left.intrinsics.f_px,
-            left_pose: rig.left.pose_matrix(),
-            right: right_cameras(rig),
+            cameras: RigCameras::of(rig),
             seeds: FrameSeeds {
                 town: Some(seed),
                 traffic: Some(seed),

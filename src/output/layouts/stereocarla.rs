@@ -168,12 +168,16 @@ pub(super) fn write_frame(
         let pose_path = root.join(pose_path(key, baseline_m * 100.0));
         let pose = PoseFile {
             baseline_m,
-            width: meta.width,
-            height: meta.height,
-            f_px: meta.f_px,
-            k: meta.k,
-            left_pose: meta.left_pose,
-            right_pose: meta.right.get(b).map_or(meta.left_pose, |r| r.pose),
+            width: meta.cameras.width,
+            height: meta.cameras.height,
+            f_px: meta.cameras.f_px,
+            k: meta.cameras.k,
+            left_pose: meta.cameras.left_pose,
+            right_pose: meta
+                .cameras
+                .right
+                .get(b)
+                .map_or(meta.cameras.left_pose, |r| r.pose),
             conventions: meta.conventions,
         };
         write_json(&pose_path, &pose)?;
