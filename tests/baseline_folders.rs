@@ -4,37 +4,21 @@
 //! and the folder; and a baseline's folder is the one its centimetres round
 //! to, whichever way it is computed.
 
+mod common;
 mod dataset_common;
 
 use std::path::Path;
 
+use common::{camera_block, GREY_UNDER_SKY};
 use dataset_common::{dataset, parallax, text, tiny_config, write_config};
 
 /// A tiny lit scene with the given `camera.baselines_cm`.
 fn scene(baselines: &str) -> String {
     format!(
-        r#"
-[camera]
-width = 32
-height = 18
-position = [0.0, 0.0, 1.65]
-baselines_cm = {baselines}
-[render]
-spp = 1
-seed = 1
-[sky]
-kind = "constant"
-le = [1.0, 1.0, 1.0]
-[[material]]
-name = "grey"
-kind = "diffuse"
-albedo = [0.5, 0.5, 0.5]
-[[object]]
-kind = "box"
-size = [1.0, 1.0, 1.0]
-material = "grey"
-transform = {{ translate = [5.0, 0.0, 1.0] }}
-"#
+        "{}baselines_cm = {baselines}\n[render]\nspp = 1\nseed = 1\n{GREY_UNDER_SKY}\
+         [[object]]\nkind = \"box\"\nsize = [1.0, 1.0, 1.0]\nmaterial = \"grey\"\n\
+         transform = {{ translate = [5.0, 0.0, 1.0] }}\n",
+        camera_block(32, 18, [0.0, 0.0, 1.65])
     )
 }
 

@@ -2,21 +2,10 @@
 //! `Ke`, `Ni`, `d` and `Ns` are refused with the MTL file, line and key; good
 //! values still map to the materials they did.
 
+mod common;
+
 use parallax::scene::desc::MaterialKindDesc;
 use parallax::scene::load_scene;
-
-const SCENE: &str = r#"
-[camera]
-width = 16
-height = 9
-position = [0.0, 0.0, 1.5]
-[sky]
-kind = "constant"
-le = [1.0, 1.0, 1.0]
-[[object]]
-kind = "obj"
-file = "m.obj"
-"#;
 
 const OBJ: &str = "mtllib looks.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl paint\nf 1 2 3\n";
 
@@ -27,7 +16,7 @@ fn load(mtl: &str) -> Result<MaterialKindDesc, String> {
     std::fs::write(dir.path().join("m.obj"), OBJ).unwrap();
     std::fs::write(dir.path().join("looks.mtl"), mtl).unwrap();
     let path = dir.path().join("s.toml");
-    std::fs::write(&path, SCENE).unwrap();
+    std::fs::write(&path, common::obj_scene(None)).unwrap();
     let s = load_scene(&path).map_err(|e| e.to_string())?;
     Ok(s.objs["m.obj"].materials[0].kind.clone())
 }

@@ -2,34 +2,18 @@
 //! is triangulated inside its outline (areas sum to the polygon's), `l` and
 //! `p` elements never become triangles, and face errors name the OBJ line.
 
+mod common;
+
 use glam::DVec3;
 use parallax::scene::obj::ObjAsset;
 use parallax::scene::{load_scene, SceneError};
-
-const SCENE: &str = r#"
-[camera]
-width = 16
-height = 9
-position = [0.0, 0.0, 1.5]
-[sky]
-kind = "constant"
-le = [1.0, 1.0, 1.0]
-[[material]]
-name = "grey"
-kind = "diffuse"
-albedo = [0.5, 0.5, 0.5]
-[[object]]
-kind = "obj"
-file = "m.obj"
-material = "grey"
-"#;
 
 /// Loads a scene of the one OBJ `obj` (written as m.obj next to it).
 fn load(obj: &str) -> Result<ObjAsset, SceneError> {
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("m.obj"), obj).unwrap();
     let path = dir.path().join("s.toml");
-    std::fs::write(&path, SCENE).unwrap();
+    std::fs::write(&path, common::obj_scene(Some("grey"))).unwrap();
     load_scene(&path).map(|s| s.objs["m.obj"].clone())
 }
 

@@ -203,6 +203,16 @@ pub fn camera_block(width: u32, height: u32, position: [f64; 3]) -> String {
     )
 }
 
+/// A 16×9 scene of the one OBJ `m.obj` (beside the scene file) under
+/// [`GREY_UNDER_SKY`]; `material` replaces the OBJ's own MTL materials.
+pub fn obj_scene(material: Option<&str>) -> String {
+    let material = material.map_or(String::new(), |m| format!("material = \"{m}\"\n"));
+    format!(
+        "{}{GREY_UNDER_SKY}[[object]]\nkind = \"obj\"\nfile = \"m.obj\"\n{material}",
+        camera_block(16, 9, [0.0, 0.0, 1.5])
+    )
+}
+
 /// Mean and standard error of a sample.
 pub fn mean_stderr(v: &[f64]) -> (f64, f64) {
     let n = v.len() as f64;
