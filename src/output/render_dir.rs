@@ -233,7 +233,6 @@ fn create_ancestors(dir: &Path) -> Result<Vec<PathBuf>, (PathBuf, io::Error)> {
     Ok(created)
 }
 
-/// Creates a new directory `<parent>/<prefix>-<pid>-<n>` (first free `n`).
 /// Removes `.NAME.partial-<pid>-<n>` directories of renders that were killed
 /// (their process is gone) before their frame was complete (no camera file,
 /// which is written last). A complete frame that a failed swap kept there is
@@ -271,6 +270,7 @@ fn process_alive(pid: i32) -> bool {
     r == 0 || io::Error::last_os_error().raw_os_error() != Some(libc::ESRCH)
 }
 
+/// Creates a new directory `<parent>/<prefix>-<pid>-<n>` (first free `n`).
 fn create_unique(parent: &Path, prefix: &str) -> io::Result<PathBuf> {
     let pid = std::process::id();
     for n in 0..1000 {
