@@ -170,6 +170,29 @@ fn a_line_naming_one_file_twice_is_reported_and_repaired() {
     assert_eq!(only["files"].as_array().unwrap().len(), 17);
 }
 
+#[test]
+fn a_bad_line_beside_a_good_line_of_its_frame_is_dropped_by_repair() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = write_config(dir.path(), "c.toml", &tiny_config(&["normal"], 1));
+    let out = dir.path().join("out");
+    ok(&dataset(&cfg, &out, &[]));
+    let manifest = out.join("manifest/shard-1-of-1.jsonl");
+    let good = std::fs::read_to_string(&manifest).unwrap();
+    // A second line of the same frame that names one file twice: the frame
+    // stays whole by its good line, the bad line must go.
+    let mut line: serde_json::Value = serde_json::from_str(good.trim()).unwrap();
+    let list = line["files"].as_array_mut().unwrap();
+    list.push(list[0].clone());
+    std::fs::write(&manifest, format!("{good}{line}\n")).unwrap();
+    let v = verify(&out, &[]);
+    assert_eq!(v.status.code(), Some(1), "{}", text(&v));
+    assert!(text(&v).contains("twice"), "{}", text(&v));
+
+    ok(&verify(&out, &["--repair"]));
+    assert_eq!(std::fs::read_to_string(&manifest).unwrap(), good);
+    ok(&verify(&out, &[]));
+}
+
 /// The paths `verify` reports as `extra` and as `extra, kept`.
 fn extra_and_kept(report: &str) -> (BTreeSet<String>, BTreeSet<String>) {
     let mut extra = BTreeSet::new();

@@ -16,7 +16,7 @@ use super::manifest::{manifest_files, ManifestLine};
 use super::ownership::{is_bookkeeping, slash, Ownership};
 use super::plan::{plan, Job};
 use super::run::{walk_files, DatasetError};
-use super::verify::{dataset_config, VerifyReport};
+use super::verify::{dataset_config, line_problem, VerifyReport};
 use crate::output::{read_file, write_atomic, Access, OutputError};
 
 /// A repair planned but not begun.
@@ -112,8 +112,10 @@ pub fn finish(root: &Path, staged: &Staged) -> Result<Finished, DatasetError> {
     for (file, lines) in &manifests {
         let mut kept = String::new();
         for text in lines {
+            // A line verify calls bad goes, by verify's own rule.
             let keep = parse(text)
-                .and_then(|l| Some((l.job().filter(|j| planned.contains(j))?, l)))
+                .filter(|l| line_problem(l, &planned).is_none())
+                .and_then(|l| Some((l.job()?, l)))
                 .filter(|(job, _)| new.get(job).is_none_or(|n| *n == text.as_str()));
             match keep {
                 Some((_, line)) => {
