@@ -47,10 +47,10 @@ before the fill"
 
     /// `raw` (row-major, `w` wide) prepared for scoring: unchanged for
     /// `None`, background-interpolated for `Kitti`.
-    pub fn apply(self, w: usize, raw: &[f32]) -> Vec<f32> {
+    pub fn apply(self, w: usize, raw: &[f32]) -> std::borrow::Cow<'_, [f32]> {
         match self {
-            Fill::None => raw.to_vec(),
-            Fill::Kitti => interpolate_background(w, raw),
+            Fill::None => std::borrow::Cow::Borrowed(raw),
+            Fill::Kitti => std::borrow::Cow::Owned(interpolate_background(w, raw)),
         }
     }
 }

@@ -30,8 +30,10 @@ use --layout native for a `parallax render` directory",
             left_truth_rel(layout, &key, cm).unwrap_or_default()
         }
     };
-    let rel = match layout {
-        LayoutKind::Stereocarla => rel.replace("/depth/", "/disp/"),
+    // StereoCarla stores depth, not disparity: its mirror puts `disp` in
+    // place of the last folder, `depth` (a town or config may be named so too).
+    let rel = match (layout, rel.rsplit_once("/depth/")) {
+        (LayoutKind::Stereocarla, Some((dir, file))) => format!("{dir}/disp/{file}"),
         _ => rel,
     };
     Ok(PathBuf::from(rel).with_extension(""))

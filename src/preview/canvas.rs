@@ -54,16 +54,6 @@ impl Canvas {
         }
     }
 
-    /// Copies an RGB8 image of `w × h` to `(x, y)`.
-    pub fn blit(&mut self, x: usize, y: usize, w: usize, h: usize, rgb: &[u8]) {
-        for yy in 0..h {
-            for xx in 0..w {
-                let i = (yy * w + xx) * 3;
-                self.put(x + xx, y + yy, [rgb[i], rgb[i + 1], rgb[i + 2]]);
-            }
-        }
-    }
-
     /// Writes `s` with its top-left corner at `(x, y)`, 8 px per character
     /// (non-ASCII shows as `?`).
     pub fn text(&mut self, x: usize, y: usize, s: &str, c: [u8; 3]) {
