@@ -16,7 +16,7 @@ use super::config::DatasetConfig;
 use super::plan::Job;
 use crate::output::frame::FrameSeeds;
 use crate::output::{Access, FileRecord, OutputError};
-use crate::stats::DisparityHistogram;
+use crate::stats::is_valid_disparity;
 use crate::town::TownSource;
 
 /// Name of the dataset description at the root.
@@ -146,23 +146,28 @@ pub struct DisparityRecord {
 }
 
 impl DisparityRecord {
-    /// Statistics of the valid values of `disparity` (the rule and figures
-    /// of `stats`' histogram); zeros when none is valid.
+    /// Statistics of the valid values of `disparity` (`stats`' rule, in
+    /// one pass: no histogram is needed for these figures); zeros when none
+    /// is valid.
     pub fn of(baseline_cm: f64, disparity: &[f32]) -> DisparityRecord {
-        let mut h = DisparityHistogram::default();
-        disparity.iter().for_each(|&d| h.add(d));
-        let s = h.summary();
-        let (min_px, max_px, mean_px) = if s.pixels == 0 {
-            (0.0, 0.0, 0.0)
-        } else {
-            (s.min, s.max, s.mean)
-        };
+        let (mut n, mut sum) = (0u64, 0.0f64);
+        let (mut min_px, mut max_px) = (f64::INFINITY, f64::NEG_INFINITY);
+        for d in disparity.iter().filter(|&&d| is_valid_disparity(d)) {
+            let d = *d as f64;
+            n += 1;
+            sum += d;
+            min_px = min_px.min(d);
+            max_px = max_px.max(d);
+        }
+        if n == 0 {
+            (min_px, max_px) = (0.0, 0.0);
+        }
         DisparityRecord {
             baseline_cm,
-            valid_px: s.pixels,
+            valid_px: n,
             min_px,
             max_px,
-            mean_px,
+            mean_px: if n == 0 { 0.0 } else { sum / n as f64 },
         }
     }
 }
