@@ -81,8 +81,6 @@ pub struct Estimate {
     pub frames: u64,
     /// Frames in the shard.
     pub frames_in_shard: u64,
-    /// RGB images (left + one right per baseline, per frame).
-    pub images: u64,
     /// Files per frame in the native layout.
     pub files_per_frame: u64,
     /// Per class, in plan order.
@@ -176,7 +174,6 @@ pub fn estimate(
     Ok(Estimate {
         frames,
         frames_in_shard: classes.iter().map(|c| c.frames_in_shard).sum(),
-        images: frames * (1 + b),
         files_per_frame: 7 + 5 * b + hdr,
         seconds_per_frame: total / frames.max(1) as f64,
         cpu_seconds_per_frame: cpu / frames.max(1) as f64,
