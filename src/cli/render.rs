@@ -183,12 +183,11 @@ pub fn run(a: RenderArgs) -> Result<(), CliError> {
     origin.frame = a.sample_frame.unwrap_or(origin.frame);
     apply_overrides(&mut loaded, &a)?;
     let seed = loaded.desc.render.seed.unwrap_or_else(draw_seed);
-    let weather_seed = a.weather.map(|_| a.weather_seed.unwrap_or(seed));
-    origin.seeds.weather = weather_seed;
-    let mut weather = a
-        .weather
-        .zip(weather_seed)
-        .map(|(w, s)| crate::weather::draw_params(w, s));
+    let mut weather = a.weather.map(|w| {
+        let s = a.weather_seed.unwrap_or(seed);
+        origin.seeds.weather = Some(s);
+        crate::weather::draw_params(w, s)
+    });
     if let Some(p) = &weather {
         crate::weather::apply(&mut loaded.desc, p);
     }
@@ -217,11 +216,7 @@ impl Origin {
     fn town(t: &NamedTown, seed: u64, frame: u32, config: CameraConfig) -> Origin {
         Origin {
             frame,
-            seeds: FrameSeeds {
-                town: Some(seed),
-                traffic: Some(seed),
-                ..FrameSeeds::default()
-            },
+            seeds: FrameSeeds::town(seed),
             town: Some(t.source.frame_record(frame as u64, config)),
         }
     }
@@ -288,8 +283,9 @@ fn render_to(
     }
     pb.finish_and_clear();
     let mut meta = camera_file(&scene, &rig, &out, &settings, weather);
+    // camera_file recorded the sample seed; the rest is where the frame came from.
     meta.seeds = FrameSeeds {
-        samples: Some(seed),
+        samples: meta.seeds.samples,
         ..origin.seeds
     };
     meta.town = origin.town;

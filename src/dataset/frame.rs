@@ -62,8 +62,6 @@ pub struct RenderedFrame {
     pub meta: CameraFile,
     /// Seed of the frame's sample streams.
     pub seed: u64,
-    /// Every seed of the frame (town, traffic, weather, samples).
-    pub seeds: FrameSeeds,
     /// Town frame (time step) rendered.
     pub town_frame: u64,
 }
@@ -139,17 +137,15 @@ pub fn render_job(
     }
     let mut meta = camera_file(&scene, &rig, &out, &settings, Some(&weather));
     meta.seeds = FrameSeeds {
-        town: Some(t_seed),
-        traffic: Some(t_seed),
         weather: Some(w_seed),
-        samples: Some(seed),
+        samples: meta.seeds.samples,
+        ..FrameSeeds::town(t_seed)
     };
     meta.town = Some(town.source.frame_record(t_frame, job.config));
     Ok(RenderedFrame {
         rig,
         out,
         seed,
-        seeds: meta.seeds,
         meta,
         town_frame: t_frame,
     })
@@ -196,7 +192,7 @@ pub fn write_job(
         frame: job.frame,
         town_frame: r.town_frame,
         seed: r.seed,
-        seeds: Some(r.seeds),
+        seeds: Some(r.meta.seeds),
         files,
         render: RenderRecord {
             spp: config.spp,

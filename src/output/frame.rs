@@ -109,6 +109,18 @@ pub struct FrameSeeds {
     pub samples: Option<u64>,
 }
 
+impl FrameSeeds {
+    /// A town frame's geometry seeds: the town seed, which also drives its
+    /// traffic.
+    pub fn town(seed: u64) -> Self {
+        FrameSeeds {
+            town: Some(seed),
+            traffic: Some(seed),
+            ..FrameSeeds::default()
+        }
+    }
+}
+
 /// The town description and town frame a frame was generated from.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct TownFrameRecord {

@@ -56,11 +56,7 @@ impl ExportCameras {
     pub fn new(rig: &StereoRig, seed: u64, town: TownFrameRecord) -> Self {
         ExportCameras {
             cameras: RigCameras::of(rig),
-            seeds: FrameSeeds {
-                town: Some(seed),
-                traffic: Some(seed),
-                ..FrameSeeds::default()
-            },
+            seeds: FrameSeeds::town(seed),
             town,
             conventions: CONVENTIONS,
         }
