@@ -6,7 +6,7 @@
 //! writers give it (`<town>/<config>_<weather>/<SSSS>/<native path>`), or a
 //! file another configured layout writes for a planned frame
 //! (`<layout>/…`, `output::layouts::frame_files`), or a temporary of the
-//! atomic writers (`run::temp_base`) of any of these or of the bookkeeping.
+//! atomic writers (`output::temp_base`) of any of these or of the bookkeeping.
 //! Everything else is the user's and stays.
 
 use std::collections::{BTreeSet, HashMap};
@@ -17,8 +17,8 @@ use std::sync::OnceLock;
 use super::config::DatasetConfig;
 use super::manifest::{ManifestLine, DATASET_JSON, FAILURES_DIR, MANIFEST_DIR};
 use super::plan::{plan, Job};
-use super::run::temp_base;
 use crate::output::layouts::{frame_files, LayoutKind};
+use crate::output::temp_base;
 use crate::output::{baseline_dir_name, native_path, NativePath};
 
 /// The ownership rule of one dataset (see the module header).
@@ -137,10 +137,6 @@ impl Ownership {
         let mut parts = rel.splitn(4, '/');
         let seq = [parts.next()?, parts.next()?, parts.next()?].join("/");
         let rest = parts.next()?;
-        // `native_path` also takes a temporary's name; `rel` is past one.
-        if temp_base(rest.rsplit('/').next().unwrap_or(rest)).is_some() {
-            return None;
-        }
         let job = self.sequences.get(&seq)?;
         let NativePath::File { frame, .. } = native_path(Path::new(rest))? else {
             return None;

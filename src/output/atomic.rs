@@ -127,6 +127,20 @@ pub fn read_file(path: &Path) -> io::Result<Vec<u8>> {
     fs::read(path).map_err(|e| OutputError::wrap(path, Access::Read, e))
 }
 
+/// The name a temporary file of the atomic writers will be renamed to:
+/// `<name>.tmp-<pid>-<seq>` (`write_atomic`) or `<name>.tmp-link-<pid>`
+/// (a layout's hard link) give `<name>`; any other name gives `None`.
+pub fn temp_base(name: &str) -> Option<&str> {
+    let (base, tail) = name.rsplit_once(".tmp-")?;
+    let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
+    let ok = match tail.split_once('-') {
+        Some(("link", pid)) => digits(pid),
+        Some((pid, seq)) => digits(pid) && digits(seq),
+        None => false,
+    };
+    (ok && !base.is_empty()).then_some(base)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -97,14 +97,11 @@ const BASELINE_AOVS: [(&str, &str); 6] = [
 pub enum NativePath {
     /// One of the layout's folders (`left`, `left/rgb`, `baseline_054/occ`, …).
     Folder,
-    /// A file of frame `frame`; `camera` for the camera file
-    /// `cameras/NNNNNN.json` itself. The temporary file of an interrupted
-    /// atomic write (`NNNNNN.png.tmp-<pid>-<seq>`) counts as its frame's.
+    /// A file of frame `frame` (exactly `NNNNNN.<ext>`; a temporary of the
+    /// atomic writers is recognised by its `temp_base`).
     File {
         /// The frame the file belongs to.
         frame: u32,
-        /// Whether it is the frame's camera file.
-        camera: bool,
     },
 }
 
@@ -126,20 +123,14 @@ pub fn native_path(rel: &Path) -> Option<NativePath> {
     };
     match parts[..] {
         [_] => Some(NativePath::Folder),
-        ["cameras", file] => frame_file(file, "json").map(|(frame, tmp)| NativePath::File {
-            frame,
-            camera: !tmp,
-        }),
+        ["cameras", file] => frame_file(file, "json").map(|frame| NativePath::File { frame }),
         [_, aov] => aovs
             .iter()
             .any(|(a, _)| *a == aov)
             .then_some(NativePath::Folder),
         [_, aov, file] => {
             let (_, ext) = aovs.iter().find(|(a, _)| *a == aov)?;
-            frame_file(file, ext).map(|(frame, _)| NativePath::File {
-                frame,
-                camera: false,
-            })
+            frame_file(file, ext).map(|frame| NativePath::File { frame })
         }
         _ => None,
     }
@@ -163,26 +154,11 @@ fn is_baseline_dir(name: &str) -> bool {
         .is_some_and(|d| d.len() >= 3 && d.bytes().all(|b| b.is_ascii_digit()))
 }
 
-/// `NNNNNN.<ext>` (or its `.tmp-<pid>-<seq>` temporary): the frame and
-/// whether it is a temporary file.
-fn frame_file(name: &str, ext: &str) -> Option<(u32, bool)> {
+/// `NNNNNN.<ext>`: the frame.
+fn frame_file(name: &str, ext: &str) -> Option<u32> {
     let (stem, rest) = name.split_once('.')?;
     let frame: u32 = stem.parse().ok()?;
-    if frame_stem(frame) != stem {
-        return None;
-    }
-    let tmp = match rest.strip_prefix(ext)? {
-        "" => false,
-        t => {
-            let (pid, seq) = t.strip_prefix(".tmp-")?.split_once('-')?;
-            let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
-            if !(digits(pid) && digits(seq)) {
-                return None;
-            }
-            true
-        }
-    };
-    Some((frame, tmp))
+    (frame_stem(frame) == stem && rest == ext).then_some(frame)
 }
 
 /// Paths of the native layout below one sequence directory.
@@ -400,22 +376,16 @@ mod tests {
                     l.baseline_disp_right(f, b),
                     l.baseline_occ(f, b),
                 ] {
-                    let file = NativePath::File {
-                        frame: f,
-                        camera: false,
-                    };
+                    let file = NativePath::File { frame: f };
                     assert_eq!(native_path(&p), Some(file), "{}", p.display());
                     let mut tmp = p.clone().into_os_string();
                     tmp.push(".tmp-123-4");
-                    assert_eq!(native_path(Path::new(&tmp)), Some(file));
+                    assert_eq!(native_path(Path::new(&tmp)), None);
                     for dir in p.ancestors().skip(1).filter(|d| !d.as_os_str().is_empty()) {
                         assert_eq!(native_path(dir), Some(NativePath::Folder));
                     }
                 }
-                let cam = NativePath::File {
-                    frame: f,
-                    camera: true,
-                };
+                let cam = NativePath::File { frame: f };
                 assert_eq!(native_path(&l.camera_json(f)), Some(cam));
             }
         }

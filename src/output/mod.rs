@@ -18,7 +18,7 @@ mod render_dir;
 pub mod frame;
 pub mod layouts;
 
-pub use atomic::{read_file, write_atomic, Access, OutputError};
+pub use atomic::{read_file, temp_base, write_atomic, Access, OutputError};
 pub use exr_io::{read_exr_f32_gray, read_exr_rgb_f32, write_exr_f32_gray, write_exr_rgb_f32};
 pub use hash::{sha256_bytes, sha256_file, write_json, FileRecord};
 pub use image_io::{

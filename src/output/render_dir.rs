@@ -184,7 +184,14 @@ fn walk(dir: &Path, rel: &Path, frames: &mut Vec<u32>) -> Result<(), String> {
         // Symbolic links are never written by a render: refused like any
         // other foreign entry (replacing would not remove what they point to).
         let kind = entry.file_type().map_err(|e| e.to_string())?;
-        match native_path(&rel) {
+        // An interrupted atomic write's temporary file counts as the file it
+        // was for.
+        let name = entry.file_name();
+        let as_written = match name.to_str().and_then(crate::output::temp_base) {
+            Some(base) if kind.is_file() => rel.with_file_name(base),
+            _ => rel.clone(),
+        };
+        match native_path(&as_written) {
             Some(NativePath::Folder) if kind.is_dir() => walk(dir, &rel, frames)?,
             Some(NativePath::File { frame, .. }) if kind.is_file() => frames.push(frame),
             // `parallax preview DIR`'s pictures of this render: stale once it
