@@ -92,25 +92,26 @@ struct SunDisk {
     pmf: f32,
 }
 
-impl LightSet {
-    /// Collects every light of `scene`, local lights chosen by a light BVH.
-    pub fn build(scene: &Scene) -> Self {
-        Self::build_with(scene, LightSelection::Bvh)
-    }
+/// The lights of a scene as `LightSet::build_with` gathers them, before
+/// the selection tables are made.
+#[derive(Default)]
+struct Collected {
+    /// Sampled at every vertex.
+    distant: Vec<Entry>,
+    /// Selected one per vertex, with their selection weights (power) and
+    /// light-BVH bounds.
+    entries: Vec<Entry>,
+    weights: Vec<f32>,
+    bounds: Vec<LightBounds>,
+    /// Every sun, with its index among `entries` when it is not distant.
+    suns: Vec<(SunDisk, Option<usize>)>,
+}
 
-    /// Collects every light of `scene` with local lights chosen by `selection`.
-    pub fn build_with(scene: &Scene, selection: LightSelection) -> Self {
+impl Collected {
+    /// The scene's explicit lights: the first `room_for_suns` suns as
+    /// distant lights, every other light (further suns included) local.
+    fn add_explicit(&mut self, scene: &Scene, room_for_suns: usize) {
         let radius = scene_radius(scene);
-        let mut distant = Vec::new();
-        let mut entries = Vec::new();
-        let mut weights = Vec::new();
-        let mut bounds = Vec::new();
-        let mut suns = Vec::new();
-        let sky_emits = scene.sky.luminance_avg() > 0.0;
-        let has_sun = scene.lights.iter().any(|l| matches!(l, Light::Sun { .. }));
-        // Where NEE of the sky pays for its shadow ray (module docs).
-        let sky_sampled = sky_emits && (scene.medium.is_some() || !has_sun);
-        let room_for_suns = MAX_DISTANT - sky_sampled as usize;
         for light in &scene.lights {
             if let Light::Sun {
                 dir_to_sun,
@@ -118,18 +119,18 @@ impl LightSet {
                 irradiance,
             } = *light
             {
-                let in_distant = suns.len() < room_for_suns;
-                suns.push((
+                let in_distant = self.suns.len() < room_for_suns;
+                self.suns.push((
                     SunDisk {
                         axis: dir_to_sun,
                         cos_max: angular_radius_rad.cos(),
                         le: sun_radiance(irradiance, angular_radius_rad),
                         pmf: 1.0,
                     },
-                    (!in_distant).then_some(entries.len()),
+                    (!in_distant).then_some(self.entries.len()),
                 ));
                 if in_distant {
-                    distant.push(Entry::Sun(SunSampler::new(
+                    self.distant.push(Entry::Sun(SunSampler::new(
                         dir_to_sun,
                         angular_radius_rad,
                         irradiance,
@@ -137,13 +138,16 @@ impl LightSet {
                     continue;
                 }
             }
-            weights.push(power(light, radius));
-            bounds.push(explicit_bounds(light));
-            entries.push(Entry::Explicit(*light));
+            self.weights.push(power(light, radius));
+            self.bounds.push(explicit_bounds(light));
+            self.entries.push(Entry::Explicit(*light));
         }
-        if sky_sampled {
-            distant.push(Entry::Sky);
-        }
+    }
+
+    /// Every emissive triangle of a non-zero area as a local light; returns
+    /// per mesh the entry index of each triangle (`u32::MAX`: none; empty
+    /// for meshes without emission).
+    fn add_emissive_triangles(&mut self, scene: &Scene) -> Vec<Vec<u32>> {
         let mut tri_entry = vec![Vec::new(); scene.meshes.len()];
         for (g, mesh) in scene.meshes.iter().enumerate() {
             let emissive =
@@ -162,9 +166,10 @@ impl LightSet {
                 if area <= 0.0 || !n.is_finite() {
                     continue;
                 }
-                *slot = entries.len() as u32;
-                weights.push(std::f32::consts::PI * sides * area * luminance(mat.le));
-                bounds.push(LightBounds {
+                *slot = self.entries.len() as u32;
+                self.weights
+                    .push(std::f32::consts::PI * sides * area * luminance(mat.le));
+                self.bounds.push(LightBounds {
                     p_min: v[0].min(v[1]).min(v[2]),
                     p_max: v[0].max(v[1]).max(v[2]),
                     w: n,
@@ -173,7 +178,7 @@ impl LightSet {
                     cos_theta_e: 0.0,
                     two_sided: mat.two_sided_emission,
                 });
-                entries.push(Entry::Triangle {
+                self.entries.push(Entry::Triangle {
                     geom: g as u32,
                     prim: t as u32,
                     area,
@@ -181,6 +186,35 @@ impl LightSet {
             }
             tri_entry[g] = slots;
         }
+        tri_entry
+    }
+}
+
+impl LightSet {
+    /// Collects every light of `scene`, local lights chosen by a light BVH.
+    pub fn build(scene: &Scene) -> Self {
+        Self::build_with(scene, LightSelection::Bvh)
+    }
+
+    /// Collects every light of `scene` with local lights chosen by `selection`.
+    pub fn build_with(scene: &Scene, selection: LightSelection) -> Self {
+        let sky_emits = scene.sky.luminance_avg() > 0.0;
+        let has_sun = scene.lights.iter().any(|l| matches!(l, Light::Sun { .. }));
+        // Where NEE of the sky pays for its shadow ray (module docs).
+        let sky_sampled = sky_emits && (scene.medium.is_some() || !has_sun);
+        let mut c = Collected::default();
+        c.add_explicit(scene, MAX_DISTANT - sky_sampled as usize);
+        if sky_sampled {
+            c.distant.push(Entry::Sky);
+        }
+        let tri_entry = c.add_emissive_triangles(scene);
+        let Collected {
+            distant,
+            entries,
+            weights,
+            bounds,
+            suns,
+        } = c;
         let pmf = if selection == LightSelection::Uniform {
             vec![1.0 / weights.len().max(1) as f32; weights.len()]
         } else {
