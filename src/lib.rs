@@ -8,6 +8,7 @@ pub mod bench;
 pub mod camera;
 pub mod cli;
 pub mod dataset;
+pub mod denoise;
 pub mod eval;
 pub mod film;
 pub mod geometry;

@@ -1,4 +1,4 @@
-//! The fog in-scattering filter (`film::filter_fog`, `[medium]
+//! The fog in-scattering filter (`denoise::denoise_view`, `[medium]
 //! filter_inscatter`) through the whole renderer: it keeps the image mean,
 //! cuts per-pixel variance in an analytic furnace (conservative fog under a
 //! constant sky: every pixel's expected value is exactly 1), keeps a near/far
@@ -16,8 +16,8 @@ use common::{
 };
 use glam::Vec3;
 use parallax::accel::Backend;
-use parallax::film::{Film, FogLayer};
-use parallax::integrator::volpath::filter_view;
+use parallax::denoise::{denoise_view, ViewInputs};
+use parallax::film::Film;
 use parallax::integrator::RenderCamera;
 
 /// Conservative fog slab under a white sky: L = 1 in every direction.
@@ -176,7 +176,7 @@ fn filter_off_and_on_are_functions_of_the_samples() {
         "the fog lights the walls"
     );
     let cam = RenderCamera::new(&on.rig.left, on.scene.origin_world);
-    filter_view(&on.scene, &cam, &on.out.left.depth_z_f32(), &mut film, &fog);
+    denoise_view(&on.scene, &cam, &on.out.left.depth_z_f32(), &mut film, &fog);
     assert_eq!(on.out.images[0], film, "filter on is the filtered estimate");
     assert_ne!(on.out.images[0], off.out.images[0]);
 }
@@ -235,15 +235,15 @@ fn ground_body(albedo: [f64; 2]) -> String {
 
 /// The left view of `r` rebuilt at `spp` with seed `seed`, filtered with
 /// the fog component only (`rho` zeroed) and with both components.
-fn fog_only_and_both(r: &Rendered, spp: u32, seed: u64) -> (Film, Film, FogLayer) {
+fn fog_only_and_both(r: &Rendered, spp: u32, seed: u64) -> (Film, Film, ViewInputs) {
     let (film, fog) = rebuild_left(r, spp, seed, 8);
     let cam = RenderCamera::new(&r.rig.left, r.scene.origin_world);
     let depth = r.out.left.depth_z_f32();
     let mut fog_only = fog.clone();
     fog_only.rho.fill(Vec3::ZERO);
     let (mut a, mut b) = (film.clone(), film);
-    filter_view(&r.scene, &cam, &depth, &mut a, &fog_only);
-    filter_view(&r.scene, &cam, &depth, &mut b, &fog);
+    denoise_view(&r.scene, &cam, &depth, &mut a, &fog_only);
+    denoise_view(&r.scene, &cam, &depth, &mut b, &fog);
     (a, b, fog)
 }
 

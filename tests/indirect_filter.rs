@@ -16,8 +16,8 @@ use common::{
 };
 use glam::Vec3;
 use parallax::accel::Backend;
-use parallax::film::{filter_fog, Film, FogFilter, FogGuide, FogLayer};
-use parallax::integrator::volpath::filter_view;
+use parallax::denoise::{denoise_guided, denoise_view, DepthGuide, ViewInputs, Widths};
+use parallax::film::Film;
 use parallax::integrator::RenderCamera;
 use parallax::scene::Scene;
 
@@ -245,7 +245,7 @@ fn light_behind_glass_is_filtered_apart_from_light_beside_it() {
     // its own level up to the seam: mixed, the pixels beside the seam
     // would move toward the other's.
     let (w, h) = (32, 16);
-    let mut layer = FogLayer::new(w, h);
+    let mut layer = ViewInputs::new(w, h);
     let rho = Vec3::splat(0.5);
     layer.rho.fill(rho);
     for k in 0..w * h {
@@ -290,7 +290,7 @@ fn filter_off_and_on_are_functions_of_the_samples() {
     );
     assert_eq!(film, film_off, "the split does not change the samples");
     let cam = RenderCamera::new(&on.rig.left, on.scene.origin_world);
-    filter_view(
+    denoise_view(
         &on.scene,
         &cam,
         &on.out.left.depth_z_f32(),
@@ -342,7 +342,7 @@ fn scenes_with_a_medium_leave_indirect_light_to_the_fog_filter() {
 fn filter_one_hot_pixel(hot: f32) -> (Film, Film, usize) {
     let (w, h) = (32, 32);
     let centre = 16 * w + 16;
-    let mut layer = FogLayer::new(w, h);
+    let mut layer = ViewInputs::new(w, h);
     let rho = Vec3::splat(0.5);
     layer.rho.fill(rho);
     layer.l_surf.fill(rho);
@@ -354,7 +354,7 @@ fn filter_one_hot_pixel(hot: f32) -> (Film, Film, usize) {
 /// The film of a flat surface (depth 10 m, one normal) carrying `layer`'s
 /// light on the surface plus 0.25 of direct light, before and after
 /// filtering at σ = 4 px.
-fn filter_flat_surface(layer: &FogLayer) -> (Film, Film) {
+fn filter_flat_surface(layer: &ViewInputs) -> (Film, Film) {
     let (w, h) = (layer.width, layer.height);
     let mut film = Film::new(w, h);
     for (px, l) in film.rgb.iter_mut().zip(&layer.l_surf) {
@@ -362,17 +362,17 @@ fn filter_flat_surface(layer: &FogLayer) -> (Film, Film) {
     }
     let before = film.clone();
     let (depth, opacity, normal) = (vec![10.0; w * h], vec![0.0; w * h], vec![Vec3::Z; w * h]);
-    let guide = FogGuide {
+    let guide = DepthGuide {
         depth_z: &depth,
         opacity: &opacity,
         normal: &normal,
     };
-    let widths = FogFilter {
+    let widths = Widths {
         sigma_px: 4.0,
         sigma_opacity: 0.1,
         sigma_depth_rel: 0.3,
     };
-    filter_fog(&mut film, layer, &guide, &widths);
+    denoise_guided(&mut film, layer, &guide, &widths);
     (before, film)
 }
 

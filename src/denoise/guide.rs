@@ -1,16 +1,31 @@
-//! The fog filter's per-pixel guide from the ground-truth pass: opacity
-//! 1 − Tr of each pixel-centre ray up to its exact depth (the same ray and
-//! pixel-centre convention as `gt.rs`: u = i + 0.5, v = j + 0.5, camera
-//! z = depth_z), so the filter groups pixels by how much fog they look through;
-//! and pixel-centre normals from that depth, which keep the fog light on the
-//! first surface (`LiSample::l_surf`) from mixing across creases.
+//! The denoiser's per-pixel guide from the ground-truth pass ([`DepthGuide`]):
+//! the exact depth_z, opacity 1 − Tr of each pixel-centre ray up to that
+//! depth (the same ray and pixel-centre convention as `integrator/gt.rs`:
+//! u = i + 0.5, v = j + 0.5, camera z = depth_z), so the filter groups
+//! pixels by how much fog they look through; and pixel-centre normals from
+//! that depth, which keep the light on the first surface
+//! (`DenoiseSample::l_surf`) from mixing across creases. [`denoise_view`]
+//! builds it for a rendered view and denoises that view.
 
 use glam::Vec3;
 use rayon::prelude::*;
 
-use crate::film::{filter_fog, Film, FogFilter, FogGuide, FogLayer};
+use super::{denoise_guided, ViewInputs, Widths};
+use crate::film::Film;
 use crate::integrator::RenderCamera;
 use crate::scene::Scene;
+
+/// The view's ground truth that steers the filter, per pixel (row-major).
+#[derive(Clone, Copy, Debug)]
+pub struct DepthGuide<'a> {
+    /// Pixel-centre depth_z in metres (+inf or NaN: sky).
+    pub depth_z: &'a [f32],
+    /// Opacity 1 − Tr of the pixel-centre ray up to that depth, in [0, 1].
+    pub opacity: &'a [f32],
+    /// Unit pixel-centre normals in any one frame (zero: unknown or sky),
+    /// for the surface component; empty: depth alone steers it.
+    pub normal: &'a [Vec3],
+}
 
 /// Opacity 1 − Tr in [0, 1] of every pixel-centre ray of `cam` up to the
 /// pixel's `depth_z` (metres, row-major, +inf or NaN: the sky, Tr to
@@ -38,31 +53,31 @@ pub fn centre_opacity(scene: &Scene, cam: &RenderCamera, depth_z: &[f32]) -> Vec
         .collect()
 }
 
-/// Filters one rendered view's smooth light in place (`film::filter_fog`,
-/// both components: fog in-scattering, and the light on the first surface
-/// that `LiSample::l_surf` holds), guided by the view's exact pixel-centre
-/// `depth_z`, the opacity along those rays and the normals the depth
-/// implies. Widths: the fog filter's defaults for the view's size, or the
+/// Denoises one rendered view in place (both components of
+/// [`denoise_guided`]: fog in-scattering, and the light on the first
+/// surface that `DenoiseSample::l_surf` holds), guided by the view's exact
+/// pixel-centre `depth_z`, the opacity along those rays and the normals the
+/// depth implies. Widths: the fog defaults for the view's size, or the
 /// narrower indirect-light ones in a scene without a medium.
-pub fn filter_view(
+pub fn denoise_view(
     scene: &Scene,
     cam: &RenderCamera,
     depth_z: &[f32],
     film: &mut Film,
-    fog: &FogLayer,
+    inputs: &ViewInputs,
 ) {
     let opacity = centre_opacity(scene, cam, depth_z);
     let normal = centre_normals(cam, depth_z);
-    let guide = FogGuide {
+    let guide = DepthGuide {
         depth_z,
         opacity: &opacity,
         normal: &normal,
     };
     let widths = match scene.medium {
-        Some(_) => FogFilter::for_width(film.width),
-        None => FogFilter::indirect_for_width(film.width),
+        Some(_) => Widths::for_width(film.width),
+        None => Widths::indirect_for_width(film.width),
     };
-    filter_fog(film, fog, &guide, &widths);
+    denoise_guided(film, inputs, &guide, &widths);
 }
 
 /// Unit camera-space normals of the pixel-centre surfaces from `depth_z`

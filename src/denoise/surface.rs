@@ -1,14 +1,15 @@
-//! The second component of the fog filter: fog light on the first surface
-//! (`FogLayer::l_surf`, paths camera → Lambertian x1 → medium scatter).
+//! The second denoiser component: light on the first surface
+//! (`ViewInputs::l_surf`; with a medium, fog light: paths camera →
+//! Lambertian x1 → medium scatter).
 //! Its mean is rho·E with rho = throughput × albedo at x1 (texture included)
 //! and E the fog-scattered irradiance / π, smooth over a surface; per pixel
 //! Ẽ = Σw·l_surf / Σw·rho per channel and pixel = L − l_surf + rho·Ẽ,
 //! so texture and the first segment's Tr stay exact per pixel. Range
 //! weights: relative depth_z, the pixel-centre normal, never sky. The same
 //! component carries indirect light in medium-free scenes
-//! (`LiSample::l_surf`), on x1 or on the surface x1's glass and mirrors
+//! (`DenoiseSample::l_surf`), on x1 or on the surface x1's glass and mirrors
 //! show; pixels mix only with pixels whose share of the latter is alike
-//! (`FogLayer::behind_delta`). Fireflies (`FIREFLY_RATIO`) are left out of
+//! (`ViewInputs::behind_delta`). Fireflies (`FIREFLY_RATIO`) are left out of
 //! the sums and take their neighbours' estimate.
 
 use std::ops::{Add, Div, Mul};
@@ -16,15 +17,14 @@ use std::ops::{Add, Div, Mul};
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::{
-    atrous_levels, atrous_pass, ln_depth, soft_gaussian, Axis, FogFilter, FogGuide, FogLayer,
-};
+use super::atrous::{atrous_levels, atrous_pass, ln_depth, soft_gaussian, Axis};
+use super::{DepthGuide, ViewInputs, Widths};
 use crate::film::Film;
 
 /// Range σ on |Δn| between unit pixel-centre normals (about 17° at 1σ).
 const SIGMA_NORMAL: f32 = 0.3;
 
-/// 1/σ² on the step in `FogLayer::behind_delta` (σ = 0.15): a window's
+/// 1/σ² on the step in `ViewInputs::behind_delta` (σ = 0.15): a window's
 /// pixels, lit through glass, and the wall around it, at the same depth,
 /// stay apart.
 const INV_BEHIND2: f32 = 1.0 / (0.15 * 0.15);
@@ -43,17 +43,17 @@ const FIREFLY_RADIUS: usize = 2;
 /// Replaces `l_surf` in `film` by its filtered estimate (for a firefly,
 /// its neighbours'); pixels with no rho in their neighbourhood (per channel)
 /// keep their radiance.
-pub(super) fn filter_surface_fog(
+pub(super) fn filter_surface(
     film: &mut Film,
-    fog: &FogLayer,
-    guide: &FogGuide<'_>,
-    filter: &FogFilter,
+    fog: &ViewInputs,
+    guide: &DepthGuide<'_>,
+    filter: &Widths,
 ) {
     let (w, h) = (film.width, film.height);
     let n = w * h;
     assert!(
         fog.l_surf.len() == n && fog.rho.len() == n,
-        "surface fog layer size does not match the film"
+        "surface inputs' size does not match the film"
     );
     if fog.rho.iter().all(|&r| r == Vec3::ZERO) {
         return;
@@ -124,7 +124,7 @@ fn fireflies(l: &[Vec3], rho: &[Vec3], (w, h): (usize, usize)) -> Vec<bool> {
         .collect()
 }
 
-/// The filtered pair: fog light on the surface and its rho.
+/// The filtered pair: light on the surface and its rho.
 #[derive(Clone, Copy, Debug, Default)]
 struct Pair {
     l: Vec3,
@@ -168,7 +168,7 @@ struct SurfKey {
     ln_z: f32,
     /// Unit normal, zero when unknown.
     n: Vec3,
-    /// Share of samples split behind delta scatters (`FogLayer::behind_delta`).
+    /// Share of samples split behind delta scatters (`ViewInputs::behind_delta`).
     behind: f32,
 }
 

@@ -1,6 +1,6 @@
 //! Film: the per-view linear HDR radiance buffer, the frame's shared exposure,
-//! the fog in-scattering filter, optional sensor noise, the fixed tone curve to 8-bit sRGB, and the AOV
-//! vocabulary.
+//! optional sensor noise, the fixed tone curve to 8-bit sRGB, and the AOV
+//! vocabulary. (Its image-space denoising lives in `crate::denoise`.)
 //!
 //! Conventions: pixels are row-major, pixel (column i, row j) at `j * width + i`,
 //! row 0 at the top of the image. Radiance is linear, in the renderer's
@@ -11,7 +11,6 @@
 mod adaptation;
 mod aov;
 mod exposure;
-mod fog_filter;
 mod noise;
 mod tone;
 
@@ -23,7 +22,6 @@ pub use exposure::{
     auto_exposure, exposure_ev, log_average_luminance, luminance_rec709, EXPOSURE_EV_MAX,
     EXPOSURE_FLOOR_FRACTION, MIDDLE_GREY,
 };
-pub use fog_filter::{filter_fog, FogFilter, FogGuide, FogLayer};
 pub use noise::{apply_sensor_noise, NoiseKey, SensorNoise, BASE_ISO};
 pub use tone::{quantize_u8, srgb_oetf, tone_curve_aces, tonemap_to_srgb8};
 

@@ -1,15 +1,24 @@
-//! Integrators: the exact ground-truth pass (`gt`) and the path tracer (`path`).
+//! Integrators: the exact ground-truth pass (`gt`), the path tracer
+//! (`path`, and `volpath` in scenes with a medium) with the per-frame data
+//! its paths share (`context`: [`Shading`], [`PathContext`]), the parts of
+//! each sample the image-space denoiser needs (`denoise_parts`), and rain
+//! streaks (`rain`).
 //!
-//! Both consume a `RenderCamera` — a camera re-expressed in render space — so
+//! Both passes consume a `RenderCamera` — a camera re-expressed in render space — so
 //! neither ever sees world coordinates; only `texture` turns a hit back into
 //! a world position, so procedural albedo does not move with the rig.
 
+mod context;
+mod denoise_parts;
 pub mod gt;
 pub mod path;
 pub mod rain;
 pub mod texture;
 pub mod volpath;
 pub mod wet;
+
+pub use context::{PathContext, Shading};
+pub use denoise_parts::{DenoiseSample, DenoiseSum};
 
 use glam::{DMat3, DVec3, Vec3};
 

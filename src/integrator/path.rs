@@ -17,11 +17,15 @@ use glam::Vec3;
 use shaders_cpu::bsdf::Bsdf;
 use shaders_cpu::sampling::{power_heuristic, Frame};
 
+use super::denoise_parts::{DenoiseSample, DenoiseSum, SplitVertex};
+use super::PathContext;
 use crate::accel::{Accel, Hit, Ray};
-use crate::geometry::{FrontOrigin, SurfaceInteraction, SurfaceTable};
+use crate::geometry::{FrontOrigin, SurfaceInteraction};
 use crate::light::LightSet;
 use crate::sampler::SampleStream;
-use crate::scene::Scene;
+
+mod shadows;
+use shadows::PendingShadows;
 
 /// 4D sample sets per bounce: (BSDF u, BSDF v, lobe, roulette), two 2D
 /// samples for distant lights 0 and 1, (light choice, light u, light v,
@@ -39,76 +43,6 @@ const RR_START: u32 = 3;
 /// Shadow rays one vertex may leave pending: every distant light plus the
 /// sampled light.
 const MAX_SHADOW: usize = crate::light::MAX_DISTANT + 1;
-
-/// A vertex's NEE shadow rays, each with the contribution (throughput
-/// included) it adds to the path's radiance when unoccluded. Rays towards a
-/// directional light are marked coherent: a chunk of paths may trace those
-/// together in packets and record the answers (`set_occluded`) before the
-/// set is resolved.
-pub(super) struct PendingShadows {
-    len: usize,
-    items: [(Ray, Vec3); MAX_SHADOW],
-    /// Bit k: item k goes towards a directional light.
-    coherent: u8,
-    /// Bit k: item k's occlusion is already known ...
-    known: u8,
-    /// ... and bit k says whether it is occluded.
-    blocked: u8,
-}
-
-impl PendingShadows {
-    /// No pending shadow rays.
-    pub fn new() -> Self {
-        PendingShadows {
-            len: 0,
-            items: [(Ray::new(Vec3::ZERO, Vec3::Z), Vec3::ZERO); MAX_SHADOW],
-            coherent: 0,
-            known: 0,
-            blocked: 0,
-        }
-    }
-
-    fn push(&mut self, shadow: Ray, contribution: Vec3, coherent: bool) {
-        self.items[self.len] = (shadow, contribution);
-        self.coherent |= (coherent as u8) << self.len;
-        self.len += 1;
-    }
-
-    /// The coherent rays not yet answered, with their item index.
-    fn coherent_rays(&self) -> impl Iterator<Item = (usize, &Ray)> {
-        let todo = self.coherent & !self.known;
-        self.items[..self.len]
-            .iter()
-            .enumerate()
-            .filter(move |(k, _)| todo >> k & 1 != 0)
-            .map(|(k, (ray, _))| (k, ray))
-    }
-
-    /// Records whether item `k`'s shadow ray is occluded.
-    fn set_occluded(&mut self, k: usize, occluded: bool) {
-        self.known |= 1 << k;
-        self.blocked = self.blocked & !(1 << k) | (occluded as u8) << k;
-    }
-
-    /// Tests every pending shadow ray in order (unless already answered) and
-    /// adds the unoccluded contributions to `l`; leaves the set empty.
-    pub fn resolve(&mut self, accel: &impl Accel, l: &mut Vec3) {
-        for (k, (shadow, contribution)) in self.items[..self.len].iter().enumerate() {
-            let occluded = if self.known >> k & 1 != 0 {
-                self.blocked >> k & 1 != 0
-            } else {
-                accel.occluded(shadow)
-            };
-            if !occluded {
-                *l += *contribution;
-            }
-        }
-        self.len = 0;
-        self.coherent = 0;
-        self.known = 0;
-        self.blocked = 0;
-    }
-}
 
 /// A camera path stopped after its first surface vertex with that vertex's
 /// shadow rays untraced ([`PathContext::start_path`]), so that a chunk of
@@ -189,43 +123,6 @@ impl BounceSamples {
     }
 }
 
-/// Scene, accelerator and lights: what a path needs to see.
-pub struct PathContext<'a, A: Accel> {
-    /// The frame's scene.
-    pub scene: &'a Scene,
-    /// Its accelerator.
-    pub accel: &'a A,
-    /// Its lights.
-    pub lights: &'a LightSet,
-    /// Its triangles' compact hit records.
-    pub surfaces: &'a SurfaceTable,
-    /// Maximum number of scattering events.
-    pub max_depth: u32,
-    /// The sun as the medium's second in-scattering strategy
-    /// ([`super::volpath::SunLobe::find`], once per frame), if there is one.
-    pub sun_lobe: Option<super::volpath::SunLobe>,
-}
-
-impl<'a, A: Accel> PathContext<'a, A> {
-    /// The context of a frame's paths, its sun lobe found once here.
-    pub fn new(
-        scene: &'a Scene,
-        accel: &'a A,
-        lights: &'a LightSet,
-        surfaces: &'a SurfaceTable,
-        max_depth: u32,
-    ) -> Self {
-        PathContext {
-            scene,
-            accel,
-            lights,
-            surfaces,
-            max_depth,
-            sun_lobe: super::volpath::SunLobe::find(scene, lights),
-        }
-    }
-}
-
 /// What next-event estimation needs of a surface vertex: the interaction,
 /// its BSDF and shading frame, `wo` in that frame, and the origin its
 /// front-side rays share (every ray a reflecting vertex spawns leaves the
@@ -258,16 +155,8 @@ pub(super) struct PathState {
     pub prev_p: Vec3,
     /// Scattering events so far.
     pub bounces: u32,
-    /// Throughput × albedo at the split vertex, where the scene filters
-    /// indirect light and that vertex is Lambertian (else zero):
-    /// `LiSample::rho`. The split vertex is the first that is not a delta
-    /// scatter: x1, or what x1's mirrors show and its glass lets through.
-    pub rho: Vec3,
-    /// Whether the split vertex is still ahead (every vertex so far
-    /// scattered through a delta lobe, and no glass reflected).
-    pub split_ahead: bool,
-    /// Whether the split vertex came after delta scatters.
-    pub split_behind_delta: bool,
+    /// Where the denoised part of a surface path splits off.
+    pub split: SplitVertex,
 }
 
 impl PathState {
@@ -280,9 +169,7 @@ impl PathState {
             prev_delta: true,
             prev_p: o,
             bounces: 0,
-            rho: Vec3::ZERO,
-            split_ahead: true,
-            split_behind_delta: false,
+            split: SplitVertex::default(),
         }
     }
 
@@ -299,37 +186,15 @@ impl PathState {
     }
 }
 
-/// The radiance of one camera ray, split by the first event on it: `l_fog`
-/// is the part whose first event is a medium scatter before the first
-/// surface or the sky (smooth over the image, filtered by
-/// `film::filter_fog`); `l - l_fog` is what the surface or sky sends.
+/// The radiance of one camera ray and the parts of it the image-space
+/// denoiser treats (`crate::denoise`).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct LiSample {
     /// Total radiance (W·sr⁻¹·m⁻², linear RGB).
     pub l: Vec3,
-    /// Its first-medium-scatter part (zero without a scattering medium).
-    pub l_fog: Vec3,
-    /// Opacity 1 − Tr of the camera ray's first segment, in [0, 1] (zero
-    /// without a scattering medium): `l_fog / opacity` is the mean radiance
-    /// scattered toward the camera along that segment.
-    pub opacity: f32,
-    /// The part filtered over the first surface x1, when x1 is Lambertian:
-    /// with a fog filter, the light whose next event after x1 is a medium
-    /// scatter (fog light on the first surface); in a medium-free scene
-    /// that filters indirect light (`Scene::filter_indirect`), all the
-    /// light x1 reflects except its own emission and next-event estimates
-    /// (sky and indirect light). Zero otherwise.
-    pub l_surf: Vec3,
-    /// Throughput at x1 times x1's albedo (zero when x1 is missing or not
-    /// Lambertian, or nothing is filtered): `l_surf / rho` is the filtered
-    /// light's irradiance / π, smooth over a surface and free of texture.
-    /// In a medium-free scene the split vertex may lie behind x1's mirrors
-    /// and glass instead (`PathState::rho`).
-    pub rho: Vec3,
-    /// Whether the split vertex lies behind delta scatters (seen through
-    /// glass or in a mirror): the filter keeps such light apart from light
-    /// split at x1.
-    pub split_behind_delta: bool,
+    /// Its parts split by the first event on the ray (fog light, light on
+    /// the first surface) and what they are filtered against.
+    pub denoise: DenoiseSample,
 }
 
 /// Running sums of one pixel's samples, field by field.
@@ -337,27 +202,15 @@ pub struct LiSample {
 pub struct PixelSum {
     /// Σ `LiSample::l`.
     pub l: Vec3,
-    /// Σ `LiSample::l_fog`.
-    pub l_fog: Vec3,
-    /// Σ `LiSample::opacity`.
-    pub opacity: f32,
-    /// Σ `LiSample::l_surf`.
-    pub l_surf: Vec3,
-    /// Σ `LiSample::rho`.
-    pub rho: Vec3,
-    /// Samples split behind delta scatters (`LiSample::split_behind_delta`).
-    pub behind_delta: u32,
+    /// Σ `LiSample::denoise`.
+    pub denoise: DenoiseSum,
 }
 
 impl PixelSum {
     /// Adds one sample.
     pub fn add(&mut self, li: &LiSample) {
         self.l += li.l;
-        self.l_fog += li.l_fog;
-        self.opacity += li.opacity;
-        self.l_surf += li.l_surf;
-        self.rho += li.rho;
-        self.behind_delta += li.split_behind_delta as u32;
+        self.denoise.add(&li.denoise);
     }
 }
 
@@ -449,12 +302,14 @@ impl<A: Accel> PathContext<'_, A> {
             pending.resolve(self.accel, &mut st.l);
             return LiSample {
                 l: st.l,
-                rho: st.rho,
-                ..LiSample::default()
+                denoise: DenoiseSample {
+                    rho: st.split.rho,
+                    ..DenoiseSample::default()
+                },
             };
         };
         // The radiance once the first vertex's own light is in: what
-        // follows is its indirect part (`LiSample::l_surf`).
+        // follows is its indirect part (`DenoiseSample::l_surf`).
         let mut l_first = None;
         loop {
             *rays += 1;
@@ -468,7 +323,7 @@ impl<A: Accel> PathContext<'_, A> {
             }
             // The previous vertex's shadow rays, while the record loads.
             pending.resolve(self.accel, &mut st.l);
-            if st.rho != Vec3::ZERO {
+            if st.split.rho != Vec3::ZERO {
                 l_first.get_or_insert(st.l);
             }
             let Some(hit) = hit else {
@@ -492,10 +347,12 @@ impl<A: Accel> PathContext<'_, A> {
         let l_surf = l_first.map_or(Vec3::ZERO, |l_first| st.l - l_first);
         LiSample {
             l: st.l,
-            l_surf,
-            rho: st.rho,
-            split_behind_delta: st.split_behind_delta,
-            ..LiSample::default()
+            denoise: DenoiseSample {
+                l_surf,
+                rho: st.split.rho,
+                split_behind_delta: st.split.behind_delta,
+                ..DenoiseSample::default()
+            },
         }
     }
 
@@ -558,11 +415,11 @@ impl<A: Accel> PathContext<'_, A> {
             si.n_geo = -si.n_geo;
             si.n_shading = -si.n_shading;
         }
-        if st.split_ahead && !bsdf.is_delta() {
-            st.split_ahead = false;
+        if st.split.ahead && !bsdf.is_delta() {
+            st.split.ahead = false;
             if let (true, Bsdf::Lambert { albedo }) = (scene.filter_indirect, &bsdf) {
-                st.rho = st.beta * *albedo;
-                st.split_behind_delta = st.bounces > 0;
+                st.split.rho = st.beta * *albedo;
+                st.split.behind_delta = st.bounces > 0;
             }
         }
         let frame = Frame::from_z(si.n_shading);
@@ -592,8 +449,8 @@ impl<A: Accel> PathContext<'_, A> {
         }
         // Glass's reflection is not followed to a split vertex: its light
         // would be filtered with that of the refracted samples behind it.
-        if st.split_ahead && !is_two_sided(&bsdf) && bs.wi.z * vertex.wo_local.z > 0.0 {
-            st.split_ahead = false;
+        if st.split.ahead && !is_two_sided(&bsdf) && bs.wi.z * vertex.wo_local.z > 0.0 {
+            st.split.ahead = false;
         }
         let wi = frame.from_local(bs.wi);
         // Reflection-only surfaces must not send light through the geometry.

@@ -25,18 +25,20 @@
 //! lobe's at `LOBE_DIMS` + 2·bounce), apart from the surface dimensions, so
 //! surface vertices see the streams they see without a medium. Rain is not
 //! traced here: its streaks are composited per pixel (`rain.rs`).
-//! The result is split by the camera ray's first event (`LiSample`): what
-//! the first segment's in-scattering and a collision on it bring is `l_fog`,
-//! filtered in image space (`film::filter_fog`); renders that filter also
-//! split that first segment (`Strategies::split_first`) and mark the fog
-//! light on the first surface: what the segment after a Lambertian first
-//! vertex x1 brings by in-scattering or a collision (`surf_fog.rs`).
+//! The result is split by the camera ray's first event (`DenoiseSample`):
+//! what the first segment's in-scattering and a collision on it bring is
+//! `l_fog`, denoised in image space (`crate::denoise`); renders that filter
+//! also split that first segment (`Strategies::split_first`) and mark the
+//! fog light on the first surface: what the segment after a Lambertian
+//! first vertex x1 brings by in-scattering or a collision (`surf_fog.rs`).
+//! One segment's medium events are `segment.rs`.
 
 use glam::{Vec2, Vec3};
 use shaders_cpu::medium::{Equiangular, Medium};
 use shaders_cpu::sampling::power_heuristic;
 
-use super::path::{LiSample, PathContext, PathState};
+use super::path::{LiSample, PathState};
+use super::PathContext;
 use crate::accel::{Accel, Hit, Ray};
 use crate::light::LightSample;
 use crate::sampler::SampleStream;
@@ -46,12 +48,12 @@ const VOL_DIMS: u32 = 1 << 20;
 /// 4D sets per segment (five used; the spacing keeps the streams as they were).
 const VOL_DIMS_PER_BOUNCE: u32 = 16;
 
-mod guide;
+mod segment;
 mod surf_fog;
 #[cfg(test)]
 mod tests;
 
-pub use guide::{centre_normals, centre_opacity, filter_view};
+use segment::{SegmentEnd, SegmentSamples, VolState};
 
 /// First 4D set of the sun-lobe dimensions (two sets per bounce, above
 /// every segment's volume dimensions).
@@ -98,142 +100,43 @@ impl<A: Accel> PathContext<'_, A> {
     ) -> LiSample {
         let mut ray = ray;
         let mut known_hit = Some(first_hit);
-        let mut st = PathState::new(ray.o);
-        if let Some(beta) = surface_beta {
-            st.beta = beta;
-        }
-        // The split camera ray's surface part, traced apart after a collision.
-        let mut l_split = Vec3::ZERO;
         let scene = self.scene;
         let medium = scene.medium.as_ref();
         let sun_lobe = medium
             .filter(|m| strategies.sun_lobe && m.scatters())
             .and(self.sun_lobe);
-        // The last medium vertex's wo when it also drew a sun-lobe direction:
-        // this segment's sun NEE is then MIS-weighted against that strategy.
-        let mut lobe_wo: Option<Vec3> = None;
-        // The split of `LiSample`: radiance gathered when the camera ray's
-        // first segment passes its medium to the surface or sky (None while
-        // on it, and for good once it collides: then all is fog).
-        let mut l_fog_passed: Option<Vec3> = None;
-        let mut opacity = 0.0;
-        let mut surf_fog = surf_fog::SurfFog::default();
-        let mut rho_split = Vec3::ZERO;
-        let mut l_surf_split = Vec3::ZERO;
+        let mut vs = VolState::new(PathState::new(ray.o), strategies, sun_lobe);
+        if let Some(beta) = surface_beta {
+            vs.st.beta = beta;
+        }
         loop {
-            let first_segment = st.bounces == 0;
-            let after_x1 = surf_fog.segment_start(st.l);
+            let first_segment = vs.st.bounces == 0;
+            let after_x1 = vs.first.surf_fog.segment_start(vs.st.l);
             *rays += 1;
             let hit = match known_hit.take() {
                 Some(hit) => hit,
                 None => self.accel.intersect(&ray),
             };
-            let t_surf = hit.map_or(f32::INFINITY, |h| h.t);
-            stream.set_dimension(VOL_DIMS + st.bounces * VOL_DIMS_PER_BOUNCE);
-            // Distance and continuation direction share one 4D set, so they
-            // are stratified jointly across a pixel's samples: together they
-            // decide where the path goes (its escape to the sky is most of
-            // the foggy street's error); in separate padded sets they were
-            // paired at random (about 1.5 % lower RMSE at 16 spp).
-            let [u_ff, u_ph0, u_ph1, u_rr] = stream.next_4d();
-            let [u_eq, u_eq_sel, u_lx, u_ly] = stream.next_4d();
-            let [u_sel, u_ex, u_ey, _] = stream.next_4d();
-            let [a0, a1, a2, a3] = stream.next_4d();
-            let [b0, b1, b2, b3] = stream.next_4d();
-            let u_distant = [
-                Vec2::new(a0, a1),
-                Vec2::new(a2, a3),
-                Vec2::new(b0, b1),
-                Vec2::new(b2, b3),
-            ];
-
-            let t_end = t_surf;
+            let u = SegmentSamples::draw(stream, vs.st.bounces);
             let skip_medium = first_segment && surface_beta.is_some();
-
             if let Some(m) = medium.filter(|_| !skip_medium) {
-                if !m.scatters() {
-                    st.beta *= m.tr(ray.o, ray.d, t_end);
-                } else if let Some(seg) = InScatter::sample(m, &ray, t_end, u_ff) {
-                    // In-scattering along the whole segment, estimated at every
-                    // segment (not only at collisions): NEE at one point drawn
-                    // ∝ σ_t·Tr on the segment, weighted by (1 − Tr)·albedo.
-                    let p = ray.at(seg.t);
-                    let wo = -ray.d;
-                    if first_segment {
-                        opacity = 1.0 - seg.tr_seg;
-                    }
-                    if st.bounces < self.max_depth {
-                        let c = self.equiangular(
-                            m,
-                            &ray,
-                            t_end,
-                            seg.tr_seg,
-                            u_eq_sel,
-                            u_eq,
-                            Vec2::new(u_ex, u_ey),
-                            rays,
-                        );
-                        st.l += st.beta * c;
-                        let u_l = Vec2::new(u_lx, u_ly);
-                        let lobe_w = lobe_wo.zip(sun_lobe).map(|(wo_prev, sl)| {
-                            (
-                                sl.k,
-                                power_heuristic(
-                                    1.0,
-                                    m.phase.pdf(wo_prev, ray.d),
-                                    1.0,
-                                    sl.pdf(m, ray.d),
-                                ),
-                            )
-                        });
-                        let nee = self.medium_nee(
-                            m, &ray, t_end, seg.t, seg.pdf, p, wo, u_sel, u_l, &u_distant, lobe_w,
-                            rays,
-                        );
-                        st.l += st.beta * m.albedo * (nee * (1.0 - seg.tr_seg));
-                    }
-                    let split = first_segment && strategies.split_first;
-                    if split && seg.collided {
-                        // Both continuations: the surface's with its
-                        // expected weight Tr, the fog's as drawn.
-                        let beta_surf = st.beta * seg.tr_seg;
-                        let li = self.trace(ray, hit, stream, rays, strategies, Some(beta_surf));
-                        (l_split, rho_split, l_surf_split) = (li.l, li.rho, li.l_surf);
-                    } else if split {
-                        st.beta *= seg.tr_seg;
-                    }
-                    if seg.collided {
-                        if st.bounces == self.max_depth {
-                            break;
-                        }
-                        let ph = m.phase.sample(wo, Vec2::new(u_ph0, u_ph1));
-                        st.scatter(m, p, ph.pdf);
-                        lobe_wo = None;
-                        if let Some(sl) = sun_lobe.filter(|_| st.bounces < self.max_depth) {
-                            stream.set_dimension(LOBE_DIMS + 2 * st.bounces);
-                            let (u0, u1) = (stream.next_4d(), stream.next_4d());
-                            st.l += st.beta * self.sun_lobe_vertex(m, sl, p, wo, u0, u1, rays);
-                            lobe_wo = Some(wo);
-                        }
-                        let survives = if strategies.albedo_roulette {
-                            st.survives_albedo_roulette(m, u_rr)
-                        } else {
-                            st.survives_roulette(u_rr)
-                        };
-                        if ph.pdf <= 0.0 || !st.alive() || !survives {
-                            break;
-                        }
-                        ray = Ray::new(p, ph.wi);
+                let seg = (&ray, hit, &u);
+                match self.medium_segment(m, seg, &mut vs, stream, rays) {
+                    SegmentEnd::Passed => {}
+                    SegmentEnd::Scattered(next) => {
+                        ray = next;
                         continue;
                     }
+                    SegmentEnd::Ended => break,
                 }
             }
             if first_segment {
-                l_fog_passed = Some(st.l);
+                vs.first.l_fog_passed = Some(vs.st.l);
             }
             if after_x1 {
-                surf_fog.segment_passed(st.l);
+                vs.first.surf_fog.segment_passed(vs.st.l);
             }
+            let st = &mut vs.st;
             let Some(hit) = hit else {
                 st.l += st.beta
                     * self
@@ -241,24 +144,17 @@ impl<A: Accel> PathContext<'_, A> {
                         .escaped_at(scene, ray.o, ray.d, st.prev_pdf, st.prev_delta);
                 break;
             };
-            lobe_wo = None;
+            vs.lobe_wo = None;
             if st.bounces == 0 && strategies.split_first && st.bounces < self.max_depth {
                 let rho = self.first_lambert_albedo(&ray, &hit).map(|a| a * st.beta);
-                surf_fog.at_first_vertex(rho);
+                vs.first.surf_fog.at_first_vertex(rho);
             }
-            match self.surface_vertex(&ray, &hit, &mut st, stream, rays) {
+            match self.surface_vertex(&ray, &hit, st, stream, rays) {
                 Some(next) => ray = next,
                 None => break,
             }
         }
-        LiSample {
-            l: st.l + l_split,
-            l_fog: l_fog_passed.unwrap_or(st.l),
-            opacity,
-            l_surf: surf_fog.l_surf(st.l) + l_surf_split,
-            rho: surf_fog.rho + rho_split,
-            split_behind_delta: false,
-        }
+        vs.finish()
     }
 
     /// NEE from an in-scattering point `p` (ray parameter `t`, drawn with

@@ -7,13 +7,12 @@ pub mod towns;
 
 use std::path::Path;
 
-use parallax::accel::{build_accel, Accel, AnyAccel, Backend, ShadingAccel};
+use parallax::accel::{build_accel, Accel, AnyAccel, Backend};
 use parallax::camera::StereoRig;
-use parallax::film::{Film, FogLayer};
-use parallax::geometry::SurfaceTable;
-use parallax::integrator::path::{PathContext, PixelSum};
-use parallax::integrator::RenderCamera;
-use parallax::light::LightSet;
+use parallax::denoise::ViewInputs;
+use parallax::film::Film;
+use parallax::integrator::path::PixelSum;
+use parallax::integrator::{RenderCamera, Shading};
 use parallax::render::{render_frame, FrameOutput, RenderSettings};
 use parallax::sampler::{SampleStream, StreamKey};
 use parallax::scene::{build_scene, parse_scene_str, LoadedScene, Scene};
@@ -68,13 +67,11 @@ pub fn render(loaded: &LoadedScene, backend: Backend, spp: u32) -> Rendered {
 
 /// The left view of `r` rebuilt sample by sample from `PathContext::li`
 /// with the frame's streams (`spp`, `seed`, `max_depth`): the plain film and
-/// the image filter's layer (fog light, light on the first surface).
-pub fn rebuild_left(r: &Rendered, spp: u32, seed: u64, max_depth: u32) -> (Film, FogLayer) {
+/// the denoiser's inputs (fog light, light on the first surface).
+pub fn rebuild_left(r: &Rendered, spp: u32, seed: u64, max_depth: u32) -> (Film, ViewInputs) {
     let scene = &r.scene;
-    let lights = LightSet::build(scene);
-    let surfaces = SurfaceTable::build(scene);
-    let shading = ShadingAccel(&r.accel);
-    let ctx = PathContext::new(scene, &shading, &lights, &surfaces, max_depth);
+    let shading = Shading::new(scene, &r.accel);
+    let ctx = shading.context(max_depth);
     let cam = RenderCamera::new(&r.rig.left, scene.origin_world);
     let key = StreamKey {
         seed,
@@ -84,7 +81,7 @@ pub fn rebuild_left(r: &Rendered, spp: u32, seed: u64, max_depth: u32) -> (Film,
     let (wu, hu) = (r.rig.left.intrinsics.width, r.rig.left.intrinsics.height);
     let (w, h) = (wu as usize, hu as usize);
     let mut film = Film::new(w, h);
-    let mut fog = FogLayer::new(w, h);
+    let mut fog = ViewInputs::new(w, h);
     for j in 0..hu {
         for i in 0..wu {
             let mut sum = PixelSum::default();
@@ -92,7 +89,7 @@ pub fn rebuild_left(r: &Rendered, spp: u32, seed: u64, max_depth: u32) -> (Film,
             for s in 0..spp {
                 let mut stream = SampleStream::new(key, i, j, s);
                 let ray = cam.jittered_ray(i, j, &mut stream);
-                let li = ctx.li_from_hit(ray, shading.intersect(&ray), &mut stream, &mut rays);
+                let li = ctx.li_from_hit(ray, ctx.accel.intersect(&ray), &mut stream, &mut rays);
                 assert!(
                     li.l.is_finite(),
                     "non-finite sample {s} at pixel ({i}, {j})"
@@ -101,10 +98,8 @@ pub fn rebuild_left(r: &Rendered, spp: u32, seed: u64, max_depth: u32) -> (Film,
             }
             let k = j as usize * w + i as usize;
             let n = spp as f32;
-            (film.rgb[k], fog.l_fog[k], fog.opacity[k]) =
-                (sum.l / n, sum.l_fog / n, sum.opacity / n);
-            (fog.l_surf[k], fog.rho[k]) = (sum.l_surf / n, sum.rho / n);
-            fog.behind_delta[k] = sum.behind_delta as f32 / n;
+            film.rgb[k] = sum.l / n;
+            fog.set_mean(k, &sum.denoise, n);
         }
     }
     (film, fog)

@@ -4,11 +4,9 @@
 #![allow(dead_code)]
 
 use glam::Vec3;
-use parallax::accel::{build_accel, Backend, ShadingAccel};
+use parallax::accel::{build_accel, Backend};
 use parallax::camera::StereoRig;
-use parallax::geometry::SurfaceTable;
-use parallax::integrator::path::PathContext;
-use parallax::integrator::RenderCamera;
+use parallax::integrator::{RenderCamera, Shading};
 use parallax::light::{LightSelection, LightSet};
 use parallax::sampler::{SampleStream, StreamKey};
 use parallax::scene::{build_scene, LoadedScene, Scene};
@@ -67,10 +65,8 @@ pub fn render_left(
     let scene = &b.scene;
     let accel = build_accel(Backend::default_backend(), &scene.accel_geometry()).expect("accel");
     let t0 = std::time::Instant::now();
-    let lights = LightSet::build_with(scene, selection);
-    let surfaces = SurfaceTable::build(scene);
-    let shading = ShadingAccel(&accel);
-    let ctx = PathContext::new(scene, &shading, &lights, &surfaces, max_depth);
+    let shading = Shading::with_lights(scene, &accel, LightSet::build_with(scene, selection));
+    let ctx = shading.context(max_depth);
     let cam = RenderCamera::new(&b.rig.left, scene.origin_world);
     let (w, h) = (cam.intrinsics.width, cam.intrinsics.height);
     let key = StreamKey {

@@ -6,12 +6,9 @@ use std::path::Path;
 
 use glam::Vec3;
 
-use crate::accel::{build_accel, Accel, Backend, Ray, ShadingAccel};
+use crate::accel::{build_accel, Accel, Backend, Ray};
 use crate::camera::StereoRig;
-use crate::geometry::SurfaceTable;
-use crate::integrator::path::PathContext;
-use crate::integrator::RenderCamera;
-use crate::light::LightSet;
+use crate::integrator::{RenderCamera, Shading};
 use crate::sampler::{SampleStream, StreamKey};
 use crate::scene::{build_scene, load_scene};
 
@@ -22,10 +19,8 @@ fn batched_first_shadows_give_the_same_bits_as_path_by_path() {
     let rig = StereoRig::from_desc(&loaded.desc.camera);
     let scene = build_scene(&loaded, rig.left.center_world).expect("street builds");
     let accel = build_accel(Backend::default_backend(), &scene.accel_geometry()).expect("accel");
-    let shading = ShadingAccel(&accel);
-    let lights = LightSet::build(&scene);
-    let surfaces = SurfaceTable::build(&scene);
-    let ctx = PathContext::new(&scene, &shading, &lights, &surfaces, 5);
+    let shading = Shading::new(&scene, &accel);
+    let ctx = shading.context(5);
     let cam = RenderCamera::new(&rig.left, scene.origin_world);
     let key = StreamKey {
         seed: 5,
@@ -51,7 +46,7 @@ fn batched_first_shadows_give_the_same_bits_as_path_by_path() {
         .iter()
         .map(|px| {
             let ray = camera_ray(px);
-            ctx.li_from_hit(ray, shading.intersect(&ray), &mut stream(px), &mut 0)
+            ctx.li_from_hit(ray, ctx.accel.intersect(&ray), &mut stream(px), &mut 0)
                 .l
         })
         .collect();
@@ -62,7 +57,7 @@ fn batched_first_shadows_give_the_same_bits_as_path_by_path() {
         .zip(&mut streams)
         .map(|(px, st)| {
             let ray = camera_ray(px);
-            ctx.start_path(ray, shading.intersect(&ray), st, &mut 0)
+            ctx.start_path(ray, ctx.accel.intersect(&ray), st, &mut 0)
         })
         .collect();
     let (mut rays, mut slots) = (Vec::new(), Vec::new());
@@ -70,7 +65,7 @@ fn batched_first_shadows_give_the_same_bits_as_path_by_path() {
         start.collect_coherent(p, &mut rays, &mut slots);
     }
     let mut occluded = vec![false; rays.len()];
-    shading.occluded_batch(&rays, &mut occluded);
+    ctx.accel.occluded_batch(&rays, &mut occluded);
     let n_blocked = occluded.iter().filter(|&&o| o).count();
     // The street has sunlit and shadowed points: both answers occur.
     assert!(
@@ -80,7 +75,7 @@ fn batched_first_shadows_give_the_same_bits_as_path_by_path() {
     );
     for ((&(p, item), &o), ray) in slots.iter().zip(&occluded).zip(&rays) {
         // Packets answer as single rays do.
-        assert_eq!(o, shading.occluded(ray));
+        assert_eq!(o, ctx.accel.occluded(ray));
         starts[p as usize].set_occluded(item, o);
     }
     let batched: Vec<Vec3> = starts

@@ -1,13 +1,14 @@
-//! Bookkeeping of `LiSample::l_surf` (issue 4): the part of a split
+//! Bookkeeping of `DenoiseSample::l_surf` (issue 4): the part of a split
 //! camera sample whose first event is a Lambertian surface vertex x1 and
 //! whose next event is a medium scatter. Its mean is β(x1)·ρ(x1)·E_fog/π
 //! with E_fog the fog-scattered irradiance at x1, smooth over surfaces, so
-//! `film::filter_surface_fog` filters the ratio l_surf / (β·ρ).
+//! the denoiser (`crate::denoise`, its surface component) filters the
+//! ratio l_surf / (β·ρ).
 
 use glam::Vec3;
 
 use crate::accel::{Accel, Hit, Ray};
-use crate::integrator::path::PathContext;
+use crate::integrator::PathContext;
 use shaders_cpu::bsdf::Bsdf;
 
 /// The split's state along one path.

@@ -10,11 +10,9 @@ use glam::{DVec3, Vec3};
 use shaders_cpu::medium::{Density, HenyeyGreenstein, Medium};
 
 use crate::accel::{build_accel, Accel, Backend, Ray};
-use crate::geometry::SurfaceTable;
-use crate::integrator::path::PathContext;
 use crate::integrator::path::PathState;
 use crate::integrator::volpath::Strategies;
-use crate::light::LightSet;
+use crate::integrator::Shading;
 use crate::sampler::{SampleStream, StreamKey};
 use crate::scene::{build_scene, parse_scene_str};
 
@@ -51,9 +49,8 @@ fn samples(strategies: Strategies, dirs: &[Vec3], n: u32) -> Vec<Vec<f64>> {
     let loaded = parse_scene_str(SCENE, &path).expect("scene parses");
     let scene = build_scene(&loaded, DVec3::ZERO).expect("scene builds");
     let accel = build_accel(Backend::Bvh, &scene.accel_geometry()).expect("accel builds");
-    let lights = LightSet::build(&scene);
-    let surfaces = SurfaceTable::build(&scene);
-    let ctx = PathContext::new(&scene, &accel, &lights, &surfaces, 4);
+    let shading = Shading::new(&scene, &accel);
+    let ctx = shading.context(4);
     let key = StreamKey {
         seed: 7,
         frame: 0,
