@@ -29,7 +29,7 @@ pub struct DenoiseSample {
     /// Lambertian, or nothing is filtered): `l_surf / rho` is the filtered
     /// light's irradiance / π, smooth over a surface and free of texture.
     /// In a medium-free scene the split vertex may lie behind x1's mirrors
-    /// and glass instead ([`SplitVertex`]).
+    /// and glass instead (`SplitVertex`).
     pub rho: Vec3,
     /// Whether the split vertex lies behind delta scatters (seen through
     /// glass or in a mirror): the filter keeps such light apart from light
@@ -84,5 +84,37 @@ impl Default for SplitVertex {
             ahead: true,
             behind_delta: false,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sums_add_every_part_and_count_samples_split_behind_delta() {
+        let a = DenoiseSample {
+            l_fog: Vec3::new(1.0, 2.0, 3.0),
+            opacity: 0.25,
+            l_surf: Vec3::splat(0.5),
+            rho: Vec3::new(0.25, 0.5, 0.75),
+            split_behind_delta: true,
+        };
+        let b = DenoiseSample {
+            l_fog: Vec3::splat(1.0),
+            opacity: 0.5,
+            l_surf: Vec3::splat(0.25),
+            rho: Vec3::splat(0.5),
+            split_behind_delta: false,
+        };
+        let mut sum = DenoiseSum::default();
+        for s in [a, b, a] {
+            sum.add(&s);
+        }
+        assert_eq!(sum.l_fog, Vec3::new(3.0, 5.0, 7.0));
+        assert_eq!(sum.opacity, 1.0);
+        assert_eq!(sum.l_surf, Vec3::splat(1.25));
+        assert_eq!(sum.rho, Vec3::new(1.0, 1.5, 2.0));
+        assert_eq!(sum.behind_delta, 2);
     }
 }

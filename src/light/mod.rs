@@ -1,6 +1,10 @@
 //! Lights: the sun (a directional light with the sun's angular size), point and
 //! spot lights, and emissive triangles found from materials; light selection
-//! for next-event estimation.
+//! for next-event estimation. This module owns the light types and their
+//! emission (here), the frame's sky and its sun or moon (`sky.rs`), the set
+//! next-event estimation samples and how it picks a light (`set.rs`, with
+//! `entry.rs` per light, `bvh.rs` for many local lights and `fog_sky.rs`
+//! for the sky seen through fog).
 //!
 //! Directions are render space (= world orientation, z up). Sampling returns
 //! radiance arriving at the shading point and a pdf per solid angle.
