@@ -6,6 +6,13 @@
 //! does (jitter, noise) can touch it. Views: 0 = left, 1 + b = right camera of
 //! baseline b; each has its own sample stream.
 
+pub mod recipe;
+
+pub use recipe::{
+    draw_seed, BuiltScene, FrameOrigin, FrameRecipe, FrameRender, FrameSource, FrameSpec,
+    Overrides, PreparedFrame, RecipeError, WeatherChoice,
+};
+
 use std::time::Instant;
 
 use glam::Vec3;
