@@ -125,7 +125,6 @@ impl RenderArgs {
             sensor_noise_iso: self.sensor_noise,
             filter: !self.no_filter,
             backend: self.backend,
-            shading_twin: true,
         }
     }
 }

@@ -125,7 +125,6 @@ pub fn render_job(
         sensor_noise_iso: None,
         filter: config.filter,
         backend,
-        shading_twin: true,
     };
     let recipe = FrameRecipe::new(source, &spec).map_err(|e| e.to_string())?;
     let prepared = recipe.prepare().map_err(|e| e.to_string())?;
