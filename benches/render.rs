@@ -5,22 +5,31 @@
 //! Mrays/s and the ratios to raw traversal.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use parallax::accel::{build_accel, Backend};
 use parallax::camera::StereoRig;
-use parallax::render::{render_frame, RenderSettings};
-use parallax::scene::{build_scene, load_scene};
+use parallax::render::{render_frame, FrameRecipe, FrameSource, FrameSpec, Overrides};
+use parallax::scene::load_scene;
 
 fn street(c: &mut Criterion) {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/street.toml");
-    let mut loaded = load_scene(std::path::Path::new(path)).expect("street.toml loads");
-    loaded.desc.camera.width = 400;
-    loaded.desc.camera.height = 225;
-    let rig = StereoRig::from_desc(&loaded.desc.camera);
-    let filtered = build_scene(&loaded, rig.left.center_world).expect("street builds");
-    loaded.desc.turn_image_filters_off();
-    let scene = build_scene(&loaded, rig.left.center_world).expect("street builds");
-    let accel = build_accel(Backend::default_backend(), &scene.accel_geometry()).expect("accel");
-    let gt = RenderSettings {
+    let loaded = load_scene(std::path::Path::new(path)).expect("street.toml loads");
+    // The street at 400×225, with its image filters and without.
+    let recipe = |filter| {
+        let spec = FrameSpec {
+            overrides: Overrides {
+                width: Some(400),
+                height: Some(225),
+                ..Overrides::default()
+            },
+            filter,
+            ..FrameSpec::default()
+        };
+        FrameRecipe::new(FrameSource::scene(loaded.clone()), &spec).expect("street recipe")
+    };
+    let (filtered, plain) = (recipe(true), recipe(false));
+    let filtered = filtered.prepare().expect("street builds");
+    let plain = plain.prepare().expect("street builds");
+    let (scene, accel, rig) = (&plain.built.scene, &plain.built.accel, &plain.rig);
+    let gt = parallax::render::RenderSettings {
         spp: 0,
         max_depth: 5,
         seed: 1,
@@ -29,18 +38,18 @@ fn street(c: &mut Criterion) {
     let mut group = c.benchmark_group("street_400x225");
     group.sample_size(10);
     group.bench_function("gt_pass_all_baselines", |b| {
-        b.iter(|| render_frame(&scene, &accel, &rig, &gt, &|_, _| {}))
+        b.iter(|| render_frame(scene, accel, rig, &gt, &|_, _| {}))
     });
     let left_only = StereoRig {
         left: rig.left,
         baselines_m: Vec::new(),
     };
-    let path = RenderSettings { spp: 1, ..gt };
+    let path = parallax::render::RenderSettings { spp: 1, ..gt };
     group.bench_function("path_left_1spp_depth5", |b| {
-        b.iter(|| render_frame(&scene, &accel, &left_only, &path, &|_, _| {}))
+        b.iter(|| render_frame(scene, accel, &left_only, &path, &|_, _| {}))
     });
     group.bench_function("path_left_1spp_depth5_filtered", |b| {
-        b.iter(|| render_frame(&filtered, &accel, &left_only, &path, &|_, _| {}))
+        b.iter(|| render_frame(&filtered.built.scene, accel, &left_only, &path, &|_, _| {}))
     });
     group.finish();
 }

@@ -181,14 +181,15 @@ fn bad_town_files_are_rejected_naming_the_field() {
 
 #[test]
 fn town01_river_lies_under_a_bridge_on_every_street() {
-    use parallax::accel::{build_accel, Accel, Backend, Ray};
+    use parallax::accel::{Accel, Backend, Ray};
+    use parallax::render::BuiltScene;
     use parallax::town::layout::Layout;
     let desc = town("town01");
     let layout = Layout::new(&desc);
     let band = layout.river_band().expect("town01 has a river");
     let loaded = load_town_frame(&desc, 0, 0, CameraConfig::Normal, Path::new("t.toml")).unwrap();
-    let scene = build_scene(&loaded, DVec3::ZERO).unwrap();
-    let accel = build_accel(Backend::default_backend(), &scene.accel_geometry()).unwrap();
+    let BuiltScene { scene, accel, .. } =
+        BuiltScene::build(&loaded, DVec3::ZERO, Backend::default_backend()).unwrap();
     let y = band.center()[1];
     // Straight down from 10 m: (t, class) of the first hit.
     let down = |x: f64| {
@@ -216,7 +217,8 @@ fn town01_river_lies_under_a_bridge_on_every_street() {
 
 #[test]
 fn town03_roundabout_has_ring_road_island_and_sidewalk_and_traffic_keeps_to_the_ring() {
-    use parallax::accel::{build_accel, Accel, Backend, Ray};
+    use parallax::accel::{Accel, Backend, Ray};
+    use parallax::render::BuiltScene;
     use parallax::town::layout::Layout;
     let desc = town("town03");
     let layout = Layout::new(&desc);
@@ -224,8 +226,8 @@ fn town03_roundabout_has_ring_road_island_and_sidewalk_and_traffic_keeps_to_the_
     assert_eq!(c, [270.0, 180.0]);
     let (r_in, r_out) = layout.roundabout_radii();
     let loaded = load_town_frame(&desc, 0, 0, CameraConfig::Normal, Path::new("t.toml")).unwrap();
-    let scene = build_scene(&loaded, DVec3::ZERO).unwrap();
-    let accel = build_accel(Backend::default_backend(), &scene.accel_geometry()).unwrap();
+    let BuiltScene { scene, accel, .. } =
+        BuiltScene::build(&loaded, DVec3::ZERO, Backend::default_backend()).unwrap();
     // Straight down from 10 m at (radius, angle) about the centre.
     let down = |r: f64, deg: f64| {
         let (x, y) = (

@@ -8,10 +8,11 @@
 //! from the commit before it, checked equal by OBJ export).
 
 use glam::{DMat3, DVec3, Vec3};
-use parallax::accel::{build_accel, Accel, Backend, Ray};
+use parallax::accel::{Accel, Backend, Ray};
+use parallax::render::BuiltScene;
 use parallax::scene::desc::ShapeDesc;
 use parallax::scene::semantic::class_id;
-use parallax::scene::{build_scene, Scene};
+use parallax::scene::{build_scene, LoadedScene, Scene};
 use parallax::town::grade::{body_rotation_deg, Grade, MAX_GRADE};
 use parallax::town::layout::Layout;
 use parallax::town::routes::{routes, Turns};
@@ -32,16 +33,20 @@ fn graded() -> (TownDesc, Grade) {
     (desc, g)
 }
 
-/// The static scene of a town frame (no vehicles or pedestrians), built
-/// around `origin`.
-fn static_scene(desc: &TownDesc, name: &str, origin: DVec3) -> Scene {
+/// The static frame of a town (no vehicles or pedestrians).
+fn static_frame(desc: &TownDesc, name: &str) -> LoadedScene {
     let mut loaded =
         load_town_frame(desc, SEED, 0, CameraConfig::Normal, &town_file(name)).expect("town loads");
     loaded
         .desc
         .objects
         .retain(|o| !matches!(o.semantic.as_deref(), Some("vehicle" | "pedestrian")));
-    build_scene(&loaded, origin).unwrap()
+    loaded
+}
+
+/// The static scene of a town frame, built around `origin`.
+fn static_scene(desc: &TownDesc, name: &str, origin: DVec3) -> Scene {
+    build_scene(&static_frame(desc, name), origin).unwrap()
 }
 
 #[test]
@@ -98,8 +103,9 @@ fn rays_down_hit_the_road_at_the_field_height_under_routes_and_vehicles() {
     let (desc, g) = graded();
     let l = Layout::new(&desc);
     let origin = DVec3::new(500.0, 250.0, 0.0);
-    let scene = static_scene(&desc, "town04", origin);
-    let accel = build_accel(Backend::default_backend(), &scene.accel_geometry()).unwrap();
+    let static_town = static_frame(&desc, "town04");
+    let BuiltScene { scene, accel, .. } =
+        BuiltScene::build(&static_town, origin, Backend::default_backend()).unwrap();
     let (road, mark) = (class_id("road").unwrap(), class_id("lane_marking").unwrap());
     // (class id, world z) of the first surface below (x, y), from 1.5 m
     // above the field (under the street lights' arms).

@@ -19,11 +19,12 @@
 //! - labels: every hit pixel has a class other than "other".
 
 use glam::{DMat3, DVec3};
-use parallax::accel::{build_accel, Accel, Backend, Hit, Ray};
+use parallax::accel::{Accel, Backend, Hit, Ray};
 use parallax::integrator::gt::exact_t;
 use parallax::integrator::RenderCamera;
+use parallax::render::BuiltScene;
 use parallax::scene::semantic::class_id;
-use parallax::scene::{build_scene, Scene};
+use parallax::scene::Scene;
 use parallax::town::grade::Grade;
 use parallax::town::rig::CAMERA_FORWARD_M;
 use parallax::town::{frame_at, load_town_frame, CameraConfig, VehiclePose, CONFIGS};
@@ -124,8 +125,8 @@ fn town_ground_truth_is_exact_in_every_camera_configuration() {
         // One build per town, centred on the normal rig; every configuration
         // sits within 10 m of it.
         let origin = DVec3::from(loaded.desc.camera.position);
-        let scene = build_scene(&loaded, origin).unwrap();
-        let accel = build_accel(Backend::default_backend(), &scene.accel_geometry()).unwrap();
+        let BuiltScene { scene, accel, .. } =
+            BuiltScene::build(&loaded, origin, Backend::default_backend()).unwrap();
         let ego = frame_at(&desc, seed, frame).ego;
         let grade = Grade::new(&desc, seed);
         assert_eq!(grade.is_some(), desc.road_grade_m > 0.0, "{name}");

@@ -8,8 +8,8 @@
 //! (hashes pinned before the change).
 
 use glam::{DVec3, Vec3};
-use parallax::accel::{build_accel, Accel, Backend, Ray};
-use parallax::scene::build_scene;
+use parallax::accel::{Accel, Backend, Ray};
+use parallax::render::BuiltScene;
 use parallax::scene::semantic::class_id;
 use parallax::town::grade::Grade;
 use parallax::town::layout::Layout;
@@ -218,8 +218,8 @@ fn town04_curves_are_asphalt_with_nothing_on_them_and_the_cut_corners_are_ground
         .objects
         .retain(|o| !matches!(o.semantic.as_deref(), Some("vehicle" | "pedestrian")));
     let origin = DVec3::new(500.0, 250.0, 0.0);
-    let scene = build_scene(&loaded, origin).unwrap();
-    let accel = build_accel(Backend::default_backend(), &scene.accel_geometry()).unwrap();
+    let BuiltScene { scene, accel, .. } =
+        BuiltScene::build(&loaded, origin, Backend::default_backend()).unwrap();
     let grade = Grade::new(&desc, 3);
     let ground = |p: [f64; 2]| grade.map_or(0.0, |g| g.height_m(p[0], p[1]));
     // (class id, height above the ground field) of the first surface below

@@ -8,8 +8,8 @@
 //! overlapping; bad `overpass` keys are rejected.
 
 use glam::{DVec3, Vec3};
-use parallax::accel::{build_accel, Accel, Backend, Ray};
-use parallax::scene::build_scene;
+use parallax::accel::{Accel, Backend, Ray};
+use parallax::render::BuiltScene;
 use parallax::scene::semantic::class_id;
 use parallax::town::layout::{Layout, Rect};
 use parallax::town::overpass::{Overpass, CLEARANCE_M, TOP_M};
@@ -34,8 +34,8 @@ fn vertical_ray_at_the_crossing_hits_deck_then_highway_with_clearance() {
         .objects
         .retain(|ob| !matches!(ob.semantic.as_deref(), Some("vehicle" | "pedestrian")));
     let origin = DVec3::new(o.x_m, 0.0, 0.0);
-    let scene = build_scene(&loaded, origin).unwrap();
-    let accel = build_accel(Backend::default_backend(), &scene.accel_geometry()).unwrap();
+    let BuiltScene { scene, accel, .. } =
+        BuiltScene::build(&loaded, origin, Backend::default_backend()).unwrap();
     let (road, building) = (class_id("road").unwrap(), class_id("building").unwrap());
     // Every surface along a ray down from 30 m at (x, y): (class, z).
     let column = |x: f64, y: f64| {
@@ -237,8 +237,8 @@ fn ground_truth_on_the_bridge_lies_on_its_planes() {
     )
     .expect("town06 loads");
     let origin = DVec3::from(loaded.desc.camera.position);
-    let scene = build_scene(&loaded, origin).unwrap();
-    let accel = build_accel(Backend::default_backend(), &scene.accel_geometry()).unwrap();
+    let BuiltScene { scene, accel, .. } =
+        BuiltScene::build(&loaded, origin, Backend::default_backend()).unwrap();
     let building = class_id("building").unwrap();
     let ego = frame_at(&desc, seed, frame).ego;
     let east = o.x_m + HALF_WIDTH_M + PARAPET_M.0;

@@ -8,7 +8,8 @@
 use std::path::Path;
 
 use glam::DVec3;
-use parallax::accel::{build_accel, Accel, Backend, Ray};
+use parallax::accel::{Accel, Backend, Ray};
+use parallax::render::BuiltScene;
 use parallax::scene::build_scene;
 use parallax::scene::desc::ShapeDesc;
 use parallax::scene::semantic::class_id;
@@ -78,8 +79,8 @@ fn ramp_surface_joins_the_highway_edge_without_gaps() {
     let desc = town("town06");
     let l = Layout::new(&desc);
     let loaded = load_town_frame(&desc, 3, 0, CameraConfig::Normal, Path::new("t.toml")).unwrap();
-    let scene = build_scene(&loaded, DVec3::ZERO).unwrap();
-    let accel = build_accel(Backend::default_backend(), &scene.accel_geometry()).unwrap();
+    let BuiltScene { scene, accel, .. } =
+        BuiltScene::build(&loaded, DVec3::ZERO, Backend::default_backend()).unwrap();
     let (road, paint) = (class_id("road").unwrap(), class_id("lane_marking").unwrap());
     let mut checked = 0;
     for s in ramp_sites(&desc, &l) {

@@ -12,13 +12,11 @@ pub mod scene;
 pub use raw::{raw_throughput, Rate, RawThroughput};
 pub use scene::{bench_scene_from_obj, ObjCamera};
 
-use std::time::Instant;
-
-use crate::accel::{build_accel, Backend};
+use crate::accel::Backend;
 use crate::camera::StereoRig;
-use crate::render::{render_frame, RenderSettings};
+use crate::render::{render_frame, BuiltScene, RecipeError, RenderSettings};
 use crate::scene::load::SceneErrorKind;
-use crate::scene::{build_scene, LoadedScene, SceneError};
+use crate::scene::{LoadedScene, SceneError};
 use clock::{Span, Stopwatch};
 
 /// What one bench run measured.
@@ -78,25 +76,28 @@ const MIN_GT_S: f64 = 1.0;
 /// Runs every measurement on `loaded` (must be called inside the thread pool to measure).
 pub fn run_bench(loaded: &LoadedScene, s: &BenchSettings) -> Result<BenchReport, SceneError> {
     let rig = StereoRig::from_desc(&loaded.desc.camera);
-    let t = Instant::now();
-    let mut scene = build_scene(loaded, rig.left.center_world)?;
-    let scene_build_s = t.elapsed().as_secs_f64();
+    let mut built =
+        BuiltScene::build_with(loaded, rig.left.center_world, s.backend, s.shading_twin).map_err(
+            |e| match e {
+                RecipeError::Scene(e) => e,
+                e => SceneError::at(&loaded.path, SceneErrorKind::Resource, "", e.to_string()),
+            },
+        )?;
     // The path figures are the path tracer's: image-space filtering is
-    // post-processing that none of the renderers compared with does.
-    (scene.filter_indirect, scene.filter_inscatter) = (false, false);
-    let t = Instant::now();
-    let accel = build_bench_accel(s, &scene.accel_geometry())
-        .map_err(|e| SceneError::at(&loaded.path, SceneErrorKind::Resource, "", e.to_string()))?;
-    let accel_build_s = t.elapsed().as_secs_f64();
+    // post-processing that none of the renderers compared with does (the
+    // flags do not touch the geometry, so the built scene is switched).
+    (built.scene.filter_indirect, built.scene.filter_inscatter) = (false, false);
+    let (scene, accel) = (&built.scene, &built.accel);
+    let (scene_build_s, accel_build_s) = (built.scene_seconds, built.accel_seconds);
     #[cfg(feature = "embree")]
-    let embree_commit_s = match &accel {
+    let embree_commit_s = match accel {
         crate::accel::AnyAccel::Embree(e) => Some(e.build_seconds()),
         _ => None,
     };
     #[cfg(not(feature = "embree"))]
     let embree_commit_s = None;
     let rounds = (0..s.rounds.max(1))
-        .map(|_| measure_round(&scene, &accel, &rig, s))
+        .map(|_| measure_round(scene, accel, &rig, s))
         .collect();
     use crate::accel::Accel;
     Ok(BenchReport {
@@ -154,19 +155,6 @@ fn measure_round(
         path: phase_span(t.stop(), path.stats.path_seconds),
         raw,
     }
-}
-
-/// The backend's accelerator, Embree without its twin if so asked.
-fn build_bench_accel(
-    s: &BenchSettings,
-    geo: &crate::accel::AccelGeometry,
-) -> Result<crate::accel::AnyAccel, crate::accel::AccelError> {
-    #[cfg(feature = "embree")]
-    if s.backend == Backend::Embree && !s.shading_twin {
-        return crate::accel::EmbreeAccel::build_with(geo, false)
-            .map(crate::accel::AnyAccel::Embree);
-    }
-    build_accel(s.backend, geo)
 }
 
 /// The span of a phase of `wall_s` seconds inside a call measured as `call`,

@@ -8,17 +8,14 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use super::{parse_baselines, show, thread_pool, CliError};
-use crate::accel::{build_accel, Accel, Backend};
-use crate::camera::StereoRig;
-use crate::film::apply_sensor_noise;
-use crate::output::frame::{
-    camera_file, write_native_frame, FrameSeeds, TownFrameRecord, WriteOptions,
-};
+use crate::accel::{Accel, Backend};
+use crate::output::frame::{write_native_frame, WriteOptions};
 use crate::output::StagedDir;
-use crate::render::{render_frame, RenderSettings};
-use crate::scene::desc::SensorNoiseDesc;
-use crate::scene::{build_scene, load_scene, LoadedScene};
-use crate::town::{CameraConfig, NamedTown};
+use crate::render::{
+    draw_seed, FrameRecipe, FrameRender, FrameSource, FrameSpec, Overrides, RecipeError,
+    WeatherChoice,
+};
+use crate::scene::load_scene;
 
 /// Arguments of `parallax render`.
 #[derive(Args, Debug)]
@@ -107,48 +104,41 @@ pub struct RenderArgs {
     pub no_filter: bool,
 }
 
-/// Applies command-line overrides to the loaded description and validates them.
-fn apply_overrides(loaded: &mut LoadedScene, a: &RenderArgs) -> Result<(), CliError> {
-    let d = &mut loaded.desc;
-    let positive = |name: &str, v: u32| {
-        if v == 0 {
-            Err(CliError::input(format!("--{name} must be at least 1")))
-        } else {
-            Ok(v)
+impl RenderArgs {
+    /// The recipe's overrides and choices named on the command line.
+    fn spec(&self, frame: u32) -> FrameSpec {
+        FrameSpec {
+            overrides: Overrides {
+                spp: self.spp, // clap checked 1..=MAX_SPP
+                max_depth: self.max_depth,
+                width: self.width,
+                height: self.height,
+                baselines_cm: self.baselines.as_ref().map(|b| b.0.clone()),
+                hfov_deg: self.hfov,
+                seed: self.sample_seed.or(self.seed),
+            },
+            frame,
+            weather: self.weather.map(|preset| WeatherChoice {
+                preset,
+                seed: self.weather_seed,
+            }),
+            sensor_noise_iso: self.sensor_noise,
+            filter: !self.no_filter,
+            backend: self.backend,
         }
-    };
-    if let Some(v) = a.spp {
-        d.render.spp = v; // clap checked 1..=MAX_SPP
     }
-    if let Some(v) = a.max_depth {
-        d.render.max_depth = positive("max-depth", v)?;
-    }
-    if let Some(v) = a.width {
-        d.camera.width = positive("width", v)?;
-    }
-    if let Some(v) = a.height {
-        d.camera.height = positive("height", v)?;
-    }
-    if let Some(b) = &a.baselines {
-        d.camera.baselines_cm = b.0.clone();
-    }
-    if let Some(h) = a.hfov {
-        d.camera.hfov_deg = h;
-    }
-    if let Some(s) = a.sample_seed.or(a.seed) {
-        d.render.seed = Some(s);
-    }
-    crate::scene::validate::check_rig(&loaded.desc.camera, &loaded.path)
-        .map_err(|e| CliError::input(format!("with the command-line overrides: {e}")))
 }
 
-/// A seed for runs that named none; recorded in the outputs (STYLE.md rule 7).
-pub(super) fn draw_seed() -> u64 {
-    let nanos = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map(|d| d.as_nanos() as u64)
-        .unwrap_or(0);
-    crate::sampler::mix64(nanos ^ std::process::id() as u64)
+/// A recipe error as the command line reports it: the override's flag, the
+/// overrides as the rig's context.
+pub(super) fn recipe_error(e: RecipeError) -> CliError {
+    match e {
+        RecipeError::Zero(name) => CliError::input(format!("--{name} must be at least 1")),
+        RecipeError::Rig(e) => CliError::input(format!("with the command-line overrides: {e}")),
+        RecipeError::SensorNoise(e) => CliError::input(format!("--sensor-noise: {e}")),
+        RecipeError::Scene(e) => CliError::input(e.to_string()),
+        RecipeError::Accel(e) => CliError::failure(e.to_string()),
+    }
 }
 
 fn progress_bar(total: u64) -> ProgressBar {
@@ -164,135 +154,43 @@ fn progress_bar(total: u64) -> ProgressBar {
 
 /// Runs `parallax render`.
 pub fn run(a: RenderArgs) -> Result<(), CliError> {
-    let (mut loaded, mut origin) = match (&a.town, &a.scene) {
+    let (source, frame) = match (&a.town, &a.scene) {
         (Some(name), _) => {
             let t =
                 crate::town::load_named_town(name, a.scenes.as_deref()).map_err(CliError::input)?;
             let seed = a.seed.unwrap_or_else(draw_seed);
-            let loaded =
-                crate::town::load_town_frame(&t.desc, seed, a.frame as u64, a.config, &t.path)
-                    .map_err(|e| CliError::input(e.to_string()))?;
-            (loaded, Origin::town(&t, seed, a.frame, a.config))
+            let source = FrameSource::town(&t, seed, a.frame as u64, a.config)
+                .map_err(|e| CliError::input(e.to_string()))?;
+            (source, a.frame)
         }
         (None, Some(scene)) => (
-            load_scene(scene).map_err(|e| CliError::input(e.to_string()))?,
-            Origin::default(),
+            FrameSource::scene(load_scene(scene).map_err(|e| CliError::input(e.to_string()))?),
+            0,
         ),
         (None, None) => return Err(CliError::input("give a SCENE file or --town NAME")),
     };
-    origin.frame = a.sample_frame.unwrap_or(origin.frame);
-    apply_overrides(&mut loaded, &a)?;
-    let seed = loaded.desc.render.seed.unwrap_or_else(draw_seed);
-    let mut weather = a.weather.map(|w| {
-        let s = a.weather_seed.unwrap_or(seed);
-        origin.seeds.weather = Some(s);
-        crate::weather::draw_params(w, s)
-    });
-    if let Some(p) = &weather {
-        crate::weather::apply(&mut loaded.desc, p);
-    }
-    if a.no_filter {
-        loaded.desc.turn_image_filters_off();
-    }
-    let noise = sensor_noise(a.sensor_noise, weather.as_mut())?;
+    let recipe =
+        FrameRecipe::new(source, &a.spec(a.sample_frame.unwrap_or(frame))).map_err(recipe_error)?;
     // Before any render work: refuse a foreign directory, prove it writable.
     let staged = StagedDir::prepare(&a.output)
         .map_err(|e| CliError::input(format!("--output {}: {e}", show(&a.output))))?;
     let pool = thread_pool(a.threads)?;
-    pool.install(|| render_to(&loaded, &a, staged, seed, weather.as_ref(), noise, origin))
-}
-
-/// What the camera file records of where the frame came from.
-#[derive(Default)]
-struct Origin {
-    /// Frame index: the output files' number and the sample streams' frame key.
-    frame: u32,
-    seeds: FrameSeeds,
-    town: Option<TownFrameRecord>,
-}
-
-impl Origin {
-    /// A town frame generated with `seed`.
-    fn town(t: &NamedTown, seed: u64, frame: u32, config: CameraConfig) -> Origin {
-        Origin {
-            frame,
-            seeds: FrameSeeds::town(seed),
-            town: Some(t.source.frame_record(frame as u64, config)),
-        }
-    }
-}
-
-/// The frame's sensor noise: `--sensor-noise ISO` (0 = none) over the
-/// weather preset's; the choice is written back into the weather parameters
-/// so the camera file records what was applied.
-fn sensor_noise(
-    iso: Option<f64>,
-    weather: Option<&mut crate::weather::WeatherParams>,
-) -> Result<Option<SensorNoiseDesc>, CliError> {
-    let preset = weather.as_ref().and_then(|p| p.sensor_noise);
-    let noise = match iso {
-        Some(0.0) => None,
-        Some(iso) => {
-            let d = SensorNoiseDesc::at_iso(iso);
-            d.check()
-                .map_err(|e| CliError::input(format!("--sensor-noise: {e}")))?;
-            Some(d)
-        }
-        None => preset,
-    };
-    if let Some(p) = weather {
-        p.sensor_noise = noise;
-    }
-    Ok(noise)
+    pool.install(|| render_to(&recipe, &a, staged))
 }
 
 /// Renders the frame into `staged` and swaps it in as `a.output`.
-fn render_to(
-    loaded: &LoadedScene,
-    a: &RenderArgs,
-    staged: StagedDir,
-    seed: u64,
-    weather: Option<&crate::weather::WeatherParams>,
-    noise: Option<SensorNoiseDesc>,
-    origin: Origin,
-) -> Result<(), CliError> {
+fn render_to(recipe: &FrameRecipe, a: &RenderArgs, staged: StagedDir) -> Result<(), CliError> {
     let started = Instant::now();
-    let frame = origin.frame;
-    let rig = StereoRig::from_desc(&loaded.desc.camera);
-    let scene =
-        build_scene(loaded, rig.left.center_world).map_err(|e| CliError::input(e.to_string()))?;
-    let t_build = Instant::now();
-    let accel = build_accel(a.backend, &scene.accel_geometry())
-        .map_err(|e| CliError::failure(e.to_string()))?;
-    let build_s = t_build.elapsed().as_secs_f64();
-    let settings = RenderSettings {
-        spp: loaded.desc.render.spp,
-        max_depth: loaded.desc.render.max_depth,
-        seed,
-        frame,
-    };
-    let n_views = 1 + rig.baselines_m.len();
+    let prepared = recipe.prepare().map_err(recipe_error)?;
+    let n_views = 1 + prepared.rig.baselines_m.len();
     let pb = progress_bar(n_views as u64);
-    pb.set_message(format!("{} tris", scene.triangle_count()));
-    let mut out = render_frame(&scene, &accel, &rig, &settings, &|done, _| {
-        pb.set_position(done as u64)
-    });
-    if let Some(noise) = noise {
-        let scale = out.exposure_scale;
-        apply_sensor_noise(&mut out.images, &noise.model(), scale, seed, frame);
-    }
+    pb.set_message(format!("{} tris", prepared.built.scene.triangle_count()));
+    let FrameRender { out, meta } = prepared.render(&|done, _| pb.set_position(done as u64));
     pb.finish_and_clear();
-    let mut meta = camera_file(&scene, &rig, &out, &settings, weather);
-    // camera_file recorded the sample seed; the rest is where the frame came from.
-    meta.seeds = FrameSeeds {
-        samples: meta.seeds.samples,
-        ..origin.seeds
-    };
-    meta.town = origin.town;
     write_native_frame(
         staged.path(),
-        frame,
-        &rig,
+        recipe.settings.frame,
+        &prepared.rig,
         &out,
         meta,
         WriteOptions { hdr: a.hdr },
@@ -308,8 +206,8 @@ fn render_to(
         &a.output,
         &out.stats,
         started.elapsed().as_secs_f64(),
-        build_s,
-        accel.backend_name(),
+        prepared.built.accel_seconds,
+        prepared.built.accel.backend_name(),
     );
     Ok(())
 }

@@ -9,12 +9,12 @@ use std::time::Instant;
 
 use clap::Args;
 
+use super::render::recipe_error;
 use super::{parse_baselines, show, thread_pool, CliError};
-use crate::accel::{build_accel, Accel, Backend};
-use crate::camera::StereoRig;
-use crate::scene::build_scene;
+use crate::accel::{Accel, Backend};
+use crate::render::{draw_seed, FrameRecipe, FrameSource, FrameSpec, Overrides};
 use crate::town::export::{write_cameras, ExportCameras};
-use crate::town::{load_named_town, load_town_frame, CameraConfig};
+use crate::town::{load_named_town, CameraConfig};
 
 /// Arguments of `parallax town`.
 #[derive(Args, Debug)]
@@ -64,25 +64,17 @@ pub struct TownArgs {
 /// Runs `parallax town`.
 pub fn run(a: TownArgs) -> Result<(), CliError> {
     let town = load_named_town(&a.name, a.scenes.as_deref()).map_err(CliError::input)?;
-    let seed = a.seed.unwrap_or_else(super::render::draw_seed);
+    let seed = a.seed.unwrap_or_else(draw_seed);
     let pool = thread_pool(a.threads)?;
     pool.install(|| {
         let t0 = Instant::now();
-        let mut loaded = load_town_frame(&town.desc, seed, a.frame, a.config, &town.path)
+        let source = FrameSource::town(&town, seed, a.frame, a.config)
             .map_err(|e| CliError::input(e.to_string()))?;
-        override_rig(&mut loaded.desc.camera, &a)?;
-        crate::scene::validate::check_rig(&loaded.desc.camera, &town.path)
-            .map_err(|e| CliError::input(format!("with the command-line overrides: {e}")))?;
+        let recipe = FrameRecipe::new(source, &a.spec()).map_err(recipe_error)?;
         let gen_s = t0.elapsed().as_secs_f64();
-        let rig = StereoRig::from_desc(&loaded.desc.camera);
-        let t1 = Instant::now();
-        let scene = build_scene(&loaded, rig.left.center_world)
-            .map_err(|e| CliError::input(e.to_string()))?;
-        let scene_s = t1.elapsed().as_secs_f64();
-        let t2 = Instant::now();
-        let accel = build_accel(a.backend, &scene.accel_geometry())
-            .map_err(|e| CliError::failure(e.to_string()))?;
-        let accel_s = t2.elapsed().as_secs_f64();
+        let prepared = recipe.prepare().map_err(recipe_error)?;
+        let (loaded, built) = (&recipe.loaded, &prepared.built);
+        let (scene_s, accel_s) = (built.scene_seconds, built.accel_seconds);
         println!(
             "{} seed {} frame {} ({}): {} objects, {} meshes, {} triangles; generate {:.2} s, scene {:.2} s, accel {:.2} s ({}), total {:.2} s",
             town.desc.name,
@@ -90,18 +82,19 @@ pub fn run(a: TownArgs) -> Result<(), CliError> {
             a.frame,
             a.config,
             loaded.desc.objects.len(),
-            scene.meshes.len(),
-            scene.triangle_count(),
+            built.scene.meshes.len(),
+            built.scene.triangle_count(),
             gen_s,
             scene_s,
             accel_s,
-            accel.backend_name(),
+            built.accel.backend_name(),
             gen_s + scene_s + accel_s
         );
         if let Some(obj) = &a.export {
-            let stats = crate::town::export::write_obj(&loaded, &scene, obj)
+            let stats = crate::town::export::write_obj(loaded, &built.scene, obj)
                 .map_err(|e| CliError::failure(format!("--export {}: {e}", show(obj))))?;
-            let cameras = ExportCameras::new(&rig, seed, town.source.frame_record(a.frame, a.config));
+            let record = town.source.frame_record(a.frame, a.config);
+            let cameras = ExportCameras::new(&prepared.rig, seed, record);
             let cam_path = write_cameras(obj, &cameras)
                 .map_err(|e| CliError::failure(format!("--export {}: {e}", show(obj))))?;
             println!(
@@ -117,18 +110,20 @@ pub fn run(a: TownArgs) -> Result<(), CliError> {
     })
 }
 
-/// Applies --width, --height, --hfov and --baselines to the town's rig.
-fn override_rig(rig: &mut crate::scene::desc::RigDesc, a: &TownArgs) -> Result<(), CliError> {
-    for (name, v) in [("width", a.width), ("height", a.height)] {
-        if v == Some(0) {
-            return Err(CliError::input(format!("--{name} must be at least 1")));
+impl TownArgs {
+    /// The frame's recipe: the town's own render settings under the rig
+    /// overrides (nothing is rendered).
+    fn spec(&self) -> FrameSpec {
+        FrameSpec {
+            overrides: Overrides {
+                width: self.width,
+                height: self.height,
+                baselines_cm: self.baselines.as_ref().map(|b| b.0.clone()),
+                hfov_deg: self.hfov,
+                ..Overrides::default()
+            },
+            backend: self.backend,
+            ..FrameSpec::default()
         }
     }
-    rig.width = a.width.unwrap_or(rig.width);
-    rig.height = a.height.unwrap_or(rig.height);
-    rig.hfov_deg = a.hfov.unwrap_or(rig.hfov_deg);
-    if let Some(b) = &a.baselines {
-        rig.baselines_cm = b.0.clone();
-    }
-    Ok(())
 }

@@ -1,7 +1,8 @@
 //! One job, rendered and written: the town frame seen from the job's camera
 //! configuration under the sequence's weather, at the configuration's
-//! resolution and quality (the same steps as `parallax render --town`), then
-//! every file written atomically and described by a manifest line.
+//! resolution and quality (the frame recipe `render::recipe`, as `parallax
+//! render --town` follows it), then every file written atomically and
+//! described by a manifest line.
 
 use std::collections::BTreeMap;
 use std::io;
@@ -11,14 +12,14 @@ use super::config::DatasetConfig;
 use super::layouts::write_extra_layouts;
 use super::manifest::{DisparityRecord, ManifestLine, RenderRecord};
 use super::plan::{frame_seed, sequence_seed, town_frame, town_seed, Job};
-use crate::accel::{build_accel, Backend};
+use crate::accel::Backend;
 use crate::camera::StereoRig;
-use crate::film::apply_sensor_noise;
-use crate::output::frame::{camera_file, write_native_frame, CameraFile, FrameSeeds, WriteOptions};
+use crate::output::frame::{write_native_frame, CameraFile, WriteOptions};
 use crate::output::FileRecord;
-use crate::render::{render_frame, FrameOutput, RenderSettings};
-use crate::scene::build_scene;
-use crate::town::{load_named_town, load_town_frame, NamedTown, TownSource};
+use crate::render::{
+    FrameOutput, FrameRecipe, FrameRender, FrameSource, FrameSpec, Overrides, WeatherChoice,
+};
+use crate::town::{load_named_town, NamedTown, TownSource};
 
 /// The town descriptions a configuration names, loaded once.
 pub struct Towns {
@@ -98,54 +99,40 @@ pub fn render_job(
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<RenderedFrame, String> {
     let town = towns.get(&job.town)?;
-    let path = &town.path;
     let t_frame = town_frame(config, job);
     let t_seed = town_seed(config.seed, &job.town);
-    let mut loaded = load_town_frame(&town.desc, t_seed, t_frame, job.config, path)
-        .map_err(|e| e.to_string())?;
-    let seed = frame_seed(config.seed, job);
-    let w_seed = sequence_seed(config.seed, &job.town, job.weather, job.sequence);
-    {
-        let d = &mut loaded.desc;
-        d.camera.width = quality.width;
-        d.camera.height = quality.height;
-        d.camera.hfov_deg = config.hfov_deg;
-        d.camera.baselines_cm = config.baselines_cm.clone();
-        d.render.spp = quality.spp;
-        d.render.max_depth = config.max_depth;
-        d.render.seed = Some(seed);
-    }
-    crate::scene::validate::check_rig(&loaded.desc.camera, path).map_err(|e| e.to_string())?;
-    let weather = crate::weather::draw_params(job.weather, w_seed);
-    crate::weather::apply(&mut loaded.desc, &weather);
-    if !config.filter {
-        loaded.desc.turn_image_filters_off();
-    }
-    let rig = StereoRig::from_desc(&loaded.desc.camera);
-    let scene = build_scene(&loaded, rig.left.center_world).map_err(|e| e.to_string())?;
-    let accel = build_accel(backend, &scene.accel_geometry()).map_err(|e| e.to_string())?;
-    let settings = RenderSettings {
-        spp: quality.spp,
-        max_depth: config.max_depth,
-        seed,
+    let source = FrameSource::town(town, t_seed, t_frame, job.config).map_err(|e| e.to_string())?;
+    let spec = FrameSpec {
+        overrides: Overrides {
+            spp: Some(quality.spp),
+            max_depth: Some(config.max_depth),
+            width: Some(quality.width),
+            height: Some(quality.height),
+            baselines_cm: Some(config.baselines_cm.clone()),
+            hfov_deg: Some(config.hfov_deg),
+            seed: Some(frame_seed(config.seed, job)),
+        },
         frame: job.frame,
+        weather: Some(WeatherChoice {
+            preset: job.weather,
+            seed: Some(sequence_seed(
+                config.seed,
+                &job.town,
+                job.weather,
+                job.sequence,
+            )),
+        }),
+        sensor_noise_iso: None,
+        filter: config.filter,
+        backend,
     };
-    let mut out = render_frame(&scene, &accel, &rig, &settings, progress);
-    if let Some(noise) = &weather.sensor_noise {
-        let scale = out.exposure_scale;
-        apply_sensor_noise(&mut out.images, &noise.model(), scale, seed, job.frame);
-    }
-    let mut meta = camera_file(&scene, &rig, &out, &settings, Some(&weather));
-    meta.seeds = FrameSeeds {
-        weather: Some(w_seed),
-        samples: meta.seeds.samples,
-        ..FrameSeeds::town(t_seed)
-    };
-    meta.town = Some(town.source.frame_record(t_frame, job.config));
+    let recipe = FrameRecipe::new(source, &spec).map_err(|e| e.to_string())?;
+    let prepared = recipe.prepare().map_err(|e| e.to_string())?;
+    let FrameRender { out, meta } = prepared.render(progress);
     Ok(RenderedFrame {
-        rig,
+        rig: prepared.rig,
         out,
-        seed,
+        seed: recipe.settings.seed,
         meta,
         town_frame: t_frame,
     })

@@ -10,6 +10,12 @@
 //! baseline b; each has its own sample stream.
 
 mod view;
+pub mod recipe;
+
+pub use recipe::{
+    draw_seed, BuiltScene, FrameOrigin, FrameRecipe, FrameRender, FrameSource, FrameSpec,
+    Overrides, PreparedFrame, RecipeError, WeatherChoice,
+};
 
 use std::time::Instant;
 

@@ -7,15 +7,17 @@ pub mod towns;
 
 use std::path::Path;
 
-use parallax::accel::{build_accel, Accel, AnyAccel, Backend};
+use parallax::accel::{Accel, AnyAccel, Backend};
 use parallax::camera::StereoRig;
 use parallax::denoise::ViewInputs;
 use parallax::film::Film;
 use parallax::integrator::path::PixelSum;
 use parallax::integrator::{RenderCamera, Shading};
-use parallax::render::{render_frame, FrameOutput, RenderSettings};
+use parallax::render::{
+    BuiltScene, FrameOutput, FrameRecipe, FrameSource, FrameSpec, Overrides, PreparedFrame,
+};
 use parallax::sampler::{SampleStream, StreamKey};
-use parallax::scene::{build_scene, parse_scene_str, LoadedScene, Scene};
+use parallax::scene::{parse_scene_str, LoadedScene, Scene};
 
 /// Parses an inline scene (OBJ paths resolve against `tests/`).
 pub fn scene_from_toml(text: &str) -> LoadedScene {
@@ -44,16 +46,20 @@ pub fn level_right_centre(c_left: glam::DVec3, b: f64) -> glam::DVec3 {
 
 /// Builds and renders `loaded` with `spp` samples (0 = ground truth only).
 pub fn render(loaded: &LoadedScene, backend: Backend, spp: u32) -> Rendered {
-    let rig = StereoRig::from_desc(&loaded.desc.camera);
-    let scene = build_scene(loaded, rig.left.center_world).expect("scene builds");
-    let accel = build_accel(backend, &scene.accel_geometry()).expect("accel builds");
-    let settings = RenderSettings {
-        spp,
-        max_depth: loaded.desc.render.max_depth,
-        seed: loaded.desc.render.seed.unwrap_or(1),
-        frame: 0,
+    let spec = FrameSpec {
+        overrides: Overrides {
+            spp: Some(spp),
+            seed: Some(loaded.desc.render.seed.unwrap_or(1)),
+            ..Overrides::default()
+        },
+        backend,
+        ..FrameSpec::default()
     };
-    let out = render_frame(&scene, &accel, &rig, &settings, &|_, _| {});
+    let recipe = FrameRecipe::new(FrameSource::scene(loaded.clone()), &spec).expect("recipe");
+    let prepared = recipe.prepare().expect("scene builds");
+    let out = prepared.render(&|_, _| {}).out;
+    let PreparedFrame { rig, built, .. } = prepared;
+    let BuiltScene { scene, accel, .. } = built;
     // Every test scene must render without a NaN or infinite sample (the
     // renderer drops them from the pixel means, which would hide the bug).
     assert_eq!(out.stats.non_finite_samples, 0, "non-finite samples");

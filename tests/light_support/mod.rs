@@ -4,12 +4,13 @@
 #![allow(dead_code)]
 
 use glam::Vec3;
-use parallax::accel::{build_accel, Backend};
+use parallax::accel::{AnyAccel, Backend};
 use parallax::camera::StereoRig;
 use parallax::integrator::{RenderCamera, Shading};
 use parallax::light::{LightSelection, LightSet};
+use parallax::render::BuiltScene;
 use parallax::sampler::{SampleStream, StreamKey};
-use parallax::scene::{build_scene, LoadedScene, Scene};
+use parallax::scene::{LoadedScene, Scene};
 use rayon::prelude::*;
 
 /// Per-pixel luminance mean and variance of the mean, plus seconds spent.
@@ -40,17 +41,20 @@ impl Pass {
     }
 }
 
-/// A built scene and its rig.
+/// A built scene, its accelerator and its rig.
 pub struct Built {
     pub scene: Scene,
+    pub accel: AnyAccel,
     pub rig: StereoRig,
 }
 
 /// Builds `loaded` around its left camera.
 pub fn build(loaded: &LoadedScene) -> Built {
     let rig = StereoRig::from_desc(&loaded.desc.camera);
-    let scene = build_scene(loaded, rig.left.center_world).expect("scene builds");
-    Built { scene, rig }
+    let BuiltScene { scene, accel, .. } =
+        BuiltScene::build(loaded, rig.left.center_world, Backend::default_backend())
+            .expect("scene builds");
+    Built { scene, accel, rig }
 }
 
 /// Path-traces the left view with `spp` samples, local lights chosen by
@@ -63,9 +67,8 @@ pub fn render_left(
     seed: u64,
 ) -> Pass {
     let scene = &b.scene;
-    let accel = build_accel(Backend::default_backend(), &scene.accel_geometry()).expect("accel");
     let t0 = std::time::Instant::now();
-    let shading = Shading::with_lights(scene, &accel, LightSet::build_with(scene, selection));
+    let shading = Shading::with_lights(scene, &b.accel, LightSet::build_with(scene, selection));
     let ctx = shading.context(max_depth);
     let cam = RenderCamera::new(&b.rig.left, scene.origin_world);
     let (w, h) = (cam.intrinsics.width, cam.intrinsics.height);
