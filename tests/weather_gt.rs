@@ -8,7 +8,7 @@ mod common;
 use std::path::Path;
 
 use parallax::accel::Backend;
-use parallax::film::{MASK_MIRROR, MASK_RAIN};
+use parallax::scene::mask_bits::{MIRROR as MASK_MIRROR, RAIN as MASK_RAIN};
 use parallax::scene::load_scene;
 use parallax::weather::{apply, draw_params, Weather};
 

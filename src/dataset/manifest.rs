@@ -15,6 +15,7 @@ use serde::{Deserialize, Serialize};
 use super::config::DatasetConfig;
 use super::plan::Job;
 use crate::output::frame::FrameSeeds;
+use crate::output::layouts::LayoutKind;
 use crate::output::{Access, FileRecord, OutputError};
 use crate::stats::is_valid_disparity;
 use crate::town::TownSource;
@@ -43,7 +44,7 @@ pub struct DatasetMeta {
     /// Baselines in centimetres, in rig order.
     pub baselines_cm: Vec<f64>,
     /// Layouts written.
-    pub layouts: Vec<String>,
+    pub layouts: Vec<LayoutKind>,
     /// The town descriptions the frames were generated from, in the
     /// configuration's order: source (`built-in` or path) and SHA-256 of
     /// the text. Absent in datasets of older versions.

@@ -12,11 +12,13 @@ mod exr_io;
 mod hash;
 mod image_io;
 mod layout;
+mod native;
 mod pfm;
 mod render_dir;
 
 pub mod frame;
 pub mod layouts;
+pub mod registry;
 
 pub use atomic::{read_file, temp_base, write_atomic, Access, OutputError};
 pub use exr_io::{read_exr_f32_gray, read_exr_rgb_f32, write_exr_f32_gray, write_exr_rgb_f32};
@@ -27,7 +29,9 @@ pub use image_io::{
 };
 pub use layout::{
     baseline_dir_name, check_baseline_dirs, frame_stem, is_preview_file, native_path, NativeLayout,
-    NativePath, SharedBaselineDir, PREVIEW_DIR,
+    NativePath, SharedBaselineDir, CAMERAS_DIR, LEFT_DIR, PREVIEW_DIR,
 };
+pub use native::{map_pixels, write_map, MapPixels};
+pub use registry::{Map, MapSpec, MAPS};
 pub use pfm::{decode_pfm_gray, encode_pfm_gray, read_pfm_gray, write_pfm_gray};
 pub use render_dir::StagedDir;
