@@ -184,7 +184,7 @@ fn dry_run(config: &DatasetConfig, a: &DatasetArgs, shard: Shard) -> Result<(), 
         );
     };
     let cal =
-        ds::calibrate::calibrate(config, &towns, a.backend, &note).map_err(CliError::failure)?;
+        ds::calibrate::calibrate(config, &towns, a.backend, q, &note).map_err(CliError::failure)?;
     let e =
         ds::estimate::estimate(config, &cal.costs, shard, threads).map_err(CliError::failure)?;
     println!(

@@ -223,6 +223,8 @@ pub struct ReadLine {
     pub file: PathBuf,
     /// 1-based line number.
     pub line_no: usize,
+    /// The line as written (without its newline).
+    pub text: String,
     /// The parsed line, or why it does not parse (torn or edited).
     pub parsed: Result<ManifestLine, String>,
 }
@@ -255,6 +257,7 @@ pub fn read_manifests(root: &Path) -> io::Result<Vec<ReadLine>> {
             out.push(ReadLine {
                 file: file.clone(),
                 line_no: i + 1,
+                text: line.to_string(),
                 parsed: serde_json::from_str(line).map_err(|e| e.to_string()),
             });
         }

@@ -15,6 +15,8 @@ pub mod ownership;
 pub mod plan;
 pub mod presets;
 pub mod progress;
+#[cfg(test)]
+mod registry_walk;
 pub mod repair;
 pub mod run;
 pub mod shard;

@@ -8,7 +8,7 @@
 use std::fmt;
 use std::path::{Component, Path, PathBuf};
 
-use super::registry::{maps_in, Map};
+use super::registry::{maps_in, Map, CAMERAS_DIR, LEFT_DIR};
 
 /// Six-digit zero-padded frame stem: frame 7 → "000007".
 pub fn frame_stem(frame: u32) -> String {
@@ -72,11 +72,6 @@ pub fn check_baseline_dirs(baselines_cm: &[f64]) -> Result<(), SharedBaselineDir
     }
     Ok(())
 }
-
-/// The folder of the left view's maps.
-pub const LEFT_DIR: &str = "left";
-/// The folder of the per-frame camera files.
-pub const CAMERAS_DIR: &str = "cameras";
 
 /// What a path below a sequence directory is in the native layout.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

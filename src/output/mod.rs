@@ -29,9 +29,9 @@ pub use image_io::{
 };
 pub use layout::{
     baseline_dir_name, check_baseline_dirs, frame_stem, is_preview_file, native_path, NativeLayout,
-    NativePath, SharedBaselineDir, CAMERAS_DIR, LEFT_DIR, PREVIEW_DIR,
+    NativePath, SharedBaselineDir, PREVIEW_DIR,
 };
 pub use native::{map_pixels, write_map, MapPixels};
-pub use registry::{Map, MapSpec, MAPS};
+pub use registry::{Map, MapSpec, CAMERAS_DIR, LEFT_DIR, MAPS};
 pub use pfm::{decode_pfm_gray, encode_pfm_gray, read_pfm_gray, write_pfm_gray};
 pub use render_dir::StagedDir;

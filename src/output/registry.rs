@@ -202,6 +202,12 @@ pub const MAPS: [MapSpec; 13] = [
     },
 ];
 
+/// The folder of the left view's maps (`left/<folder>/`); per-baseline
+/// maps go to `baseline_XXX/<folder>/` (`output::baseline_dir_name`).
+pub const LEFT_DIR: &str = "left";
+/// The folder of the per-frame camera files (`cameras/NNNNNN.json`).
+pub const CAMERAS_DIR: &str = "cameras";
+
 /// Occlusion map value of a left pixel visible in the right view.
 pub const OCCLUSION_VISIBLE: u8 = 0;
 /// Occlusion map value of a left pixel occluded in (or outside) the right view.
