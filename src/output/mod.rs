@@ -1,4 +1,7 @@
-//! File writers and readers for every output format, all writes atomic.
+//! What a frame writes and how: the output registry (`registry`: every
+//! map declared once), the native layout's paths (`layout`) and writer
+//! (`frame`, `native`), the other layouts (`layouts`), and file writers and
+//! readers for every output format, all writes atomic.
 //!
 //! Every writer encodes into memory, then [`write_atomic`] writes
 //! `<name>.tmp-<pid>-<seq>` in the target directory, fsyncs it and renames it
