@@ -157,7 +157,12 @@ fn dry_run(config: &DatasetConfig, a: &DatasetArgs, shard: Shard) -> Result<(), 
         config.height,
         config.spp,
         config.baselines_cm,
-        config.layouts.iter().map(|k| k.name()).collect::<Vec<_>>().join(", ")
+        config
+            .layouts
+            .iter()
+            .map(|k| k.name())
+            .collect::<Vec<_>>()
+            .join(", ")
     );
     let threads = rayon::current_num_threads();
     let t0 = Instant::now();

@@ -372,6 +372,9 @@ mod tests {
         );
         let twice = format!("{MINIMAL}layouts = [\"kitti\", \"native\", \"kitti\"]\n");
         let e = parse_config(&twice, "c.toml").unwrap_err();
-        assert_eq!(e.to_string(), "c.toml: key 'layouts[2]': 'kitti' is listed twice");
+        assert_eq!(
+            e.to_string(),
+            "c.toml: key 'layouts[2]': 'kitti' is listed twice"
+        );
     }
 }

@@ -79,7 +79,9 @@ pub fn is_layout_index(rel: &Path) -> bool {
     let mut parts = rel.components().map(|c| c.as_os_str().to_string_lossy());
     match (parts.next(), parts.next()) {
         (Some(layout), Some(dir)) => {
-            let extra = layout.parse().is_ok_and(|k: LayoutKind| k != LayoutKind::Native);
+            let extra = layout
+                .parse()
+                .is_ok_and(|k: LayoutKind| k != LayoutKind::Native);
             extra && dir == SPLITS_DIR
         }
         _ => false,

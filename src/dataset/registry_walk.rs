@@ -105,7 +105,12 @@ fn every_declared_map_is_written_recognised_owned_and_verified() {
         };
         for cm in baselines {
             let p = layout.path(spec.map, 0, cm);
-            assert!(written.contains(&p), "{}: {} not written", spec.name, p.display());
+            assert!(
+                written.contains(&p),
+                "{}: {} not written",
+                spec.name,
+                p.display()
+            );
             let rel = p.strip_prefix(&seq).unwrap();
             let file = Some(NativePath::File { frame: 0 });
             assert_eq!(native_path(rel), file, "{}", spec.name);

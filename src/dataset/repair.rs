@@ -77,7 +77,10 @@ pub fn finish(root: &Path, staged: &Staged) -> Result<Finished, DatasetError> {
             }
         }
     }
-    let owner = Ownership::new(&config, manifests.iter().filter_map(|l| l.parsed.as_ref().ok()));
+    let owner = Ownership::new(
+        &config,
+        manifests.iter().filter_map(|l| l.parsed.as_ref().ok()),
+    );
     let mut done = Finished {
         replaced: new.len(),
         not_rendered: staged.redo.len() - new.len(),

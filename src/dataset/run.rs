@@ -11,8 +11,8 @@ use std::time::Instant;
 use super::config::DatasetConfig;
 use super::frame::{frame_complete, render_job, write_job, Quality, Towns};
 use super::manifest::{
-    append_line, cut_torn_tail, latest_lines, read_manifests, ManifestLine, ReadLine, FAILURES_DIR,
-    MANIFEST_DIR,
+    append_line, cut_torn_tail, latest_lines, read_manifests, ManifestLine, ReadLine, RenderRecord,
+    FAILURES_DIR, MANIFEST_DIR,
 };
 use super::ownership::{slash, Ownership};
 use super::plan::{plan, Job};
@@ -20,8 +20,8 @@ use super::progress::{Progress, RunSummary};
 use super::shard::Shard;
 use super::signals::StopGuard;
 use crate::accel::Backend;
-use crate::render::RenderStats;
 use crate::output::{write_atomic, Access, OutputError};
+use crate::render::RenderStats;
 
 /// A dataset error: bad input (exit 2) or a failure while running (exit 1).
 #[derive(Debug)]
@@ -199,7 +199,8 @@ pub fn run_dataset(
         if let Some(line) = start.existing.get(job).filter(|_| opts.only.is_none()) {
             if frame_complete(&opts.root, line, opts.check_hashes) {
                 s.skipped += 1;
-                run.progress.frame(k as u64 + 1, job, "complete, skipped", &s);
+                run.progress
+                    .frame(k as u64 + 1, job, "complete, skipped", &s);
                 continue;
             }
         }
@@ -277,8 +278,9 @@ fn start_run(
 
 /// What one attempt at a frame came to.
 enum Attempt {
-    /// Rendered and written: its manifest line and render statistics.
-    Written(ManifestLine, RenderStats),
+    /// Rendered and written: its manifest line's render record and the
+    /// render's statistics.
+    Written(RenderRecord, RenderStats),
     /// The render failed.
     RenderFailed(String),
     /// Writing the files or the line failed.
@@ -311,10 +313,10 @@ impl Run<'_> {
                 }
             };
             match self.attempt(k, job) {
-                Attempt::Written(line, stats) => {
+                Attempt::Written(record, stats) => {
                     s.done += 1;
-                    s.rays += line.render.rays;
-                    s.frame_seconds += line.render.seconds;
+                    s.rays += record.rays;
+                    s.frame_seconds += record.seconds;
                     s.trace_seconds += stats.gt_seconds + stats.path_seconds;
                     self.progress.frame(k as u64 + 1, job, "written", s);
                     if let Some(warning) = stats.non_finite_warning() {
@@ -343,7 +345,14 @@ impl Run<'_> {
         let t0 = Instant::now();
         let cb = |done: usize, _: usize| self.progress.views(k as u64, done);
         let config = self.config;
-        let r = render_job(config, self.towns, job, Quality::of(config), self.opts.backend, &cb);
+        let r = render_job(
+            config,
+            self.towns,
+            job,
+            Quality::of(config),
+            self.opts.backend,
+            &cb,
+        );
         let r = match r {
             Ok(r) => r,
             Err(e) => return Attempt::RenderFailed(e),
@@ -353,14 +362,13 @@ impl Run<'_> {
         }
         let _held = self.stop.write_lock();
         let root = self.opts.root.as_path();
-        let written = write_job(root, config, job, &r, t0.elapsed().as_secs_f64()).and_then(
-            |mut line| {
+        let written =
+            write_job(root, config, job, &r, t0.elapsed().as_secs_f64()).and_then(|mut line| {
                 line.render.seconds = t0.elapsed().as_secs_f64();
                 append_line(&self.manifest, &line).map(|_| line)
-            },
-        );
+            });
         match written {
-            Ok(line) => Attempt::Written(line, r.out.stats),
+            Ok(line) => Attempt::Written(line.render, r.out.stats),
             Err(e) => Attempt::WriteFailed(e),
         }
     }

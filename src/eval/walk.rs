@@ -35,7 +35,9 @@ impl GtImage {
             .and_then(Path::parent)
             .unwrap_or(Path::new(""));
         let occ = Map::Occlusion.spec();
-        base.join(occ.folder).join(stem).with_extension(occ.format.ext())
+        base.join(occ.folder)
+            .join(stem)
+            .with_extension(occ.format.ext())
     }
 
     /// The dataset frame of this image, `None` unless the path is

@@ -178,8 +178,8 @@ pub fn write_native_frame(
     for kind in [Kind::Truth, Kind::Image] {
         let folders = std::iter::once(None).chain((0..rig.baselines_m.len()).map(Some));
         for baseline in folders {
-            let maps = maps_in(baseline.is_some())
-                .filter(|m| m.kind == kind && (opts.hdr || !m.hdr_only));
+            let maps =
+                maps_in(baseline.is_some()).filter(|m| m.kind == kind && (opts.hdr || !m.hdr_only));
             for spec in maps {
                 let Some(pixels) = map_pixels(spec.map, out, baseline.unwrap_or(0)) else {
                     continue;

@@ -204,7 +204,10 @@ mod tests {
     #[test]
     fn native_paths_match_dataset_md() {
         let l = NativeLayout::new("/seq");
-        assert_eq!(l.path(Map::LeftRgb, 0, None), PathBuf::from("/seq/left/rgb/000000.png"));
+        assert_eq!(
+            l.path(Map::LeftRgb, 0, None),
+            PathBuf::from("/seq/left/rgb/000000.png")
+        );
         assert_eq!(
             l.path(Map::Depth, 12, None),
             PathBuf::from("/seq/left/depth/000012.exr")
@@ -225,7 +228,10 @@ mod tests {
             l.path(Map::Instance, 1, None),
             PathBuf::from("/seq/left/instance/000001.png")
         );
-        assert_eq!(l.path(Map::Mask, 1, None), PathBuf::from("/seq/left/mask/000001.png"));
+        assert_eq!(
+            l.path(Map::Mask, 1, None),
+            PathBuf::from("/seq/left/mask/000001.png")
+        );
         assert_eq!(
             l.path(Map::RightRgb, 3, Some(54.0)),
             PathBuf::from("/seq/baseline_054/rgb/000003.png")

@@ -35,6 +35,6 @@ pub use layout::{
     NativePath, SharedBaselineDir, PREVIEW_DIR,
 };
 pub use native::{map_pixels, write_map, MapPixels};
-pub use registry::{Map, MapSpec, CAMERAS_DIR, LEFT_DIR, MAPS};
 pub use pfm::{decode_pfm_gray, encode_pfm_gray, read_pfm_gray, write_pfm_gray};
+pub use registry::{Map, MapSpec, CAMERAS_DIR, LEFT_DIR, MAPS};
 pub use render_dir::StagedDir;

@@ -250,7 +250,10 @@ mod tests {
         // GROUND_TRUTH.md: bit 0 sky, bit 1 rain, bit 2 transparent, bit 3
         // mirror; defined once, where scene building sets them.
         use crate::scene::mask_bits::{MIRROR, RAIN, SKY, TRANSPARENT};
-        assert_eq!([SKY, RAIN, TRANSPARENT, MIRROR], [0b0001, 0b0010, 0b0100, 0b1000]);
+        assert_eq!(
+            [SKY, RAIN, TRANSPARENT, MIRROR],
+            [0b0001, 0b0010, 0b0100, 0b1000]
+        );
         assert_eq!((OCCLUSION_VISIBLE, OCCLUSION_OCCLUDED), (0, 255));
     }
 

@@ -23,11 +23,11 @@ use canvas::Canvas;
 use colormap::{instance_colour, mask_colour, semantic_colour, MASK_COLOURS};
 use maps::{palette_map, scalar_map, Scale};
 
+use crate::output::registry::OCCLUSION_VISIBLE;
 use crate::output::{
     frame_stem, read_exr_f32_gray, read_pfm_gray, read_png_gray16, read_png_gray8, read_png_rgb8,
     Access, Map, NativeLayout, OutputError, LEFT_DIR,
 };
-use crate::output::registry::OCCLUSION_VISIBLE;
 use crate::scene::semantic::class_name;
 
 /// The colour occluded pixels are blended with (half and half).
