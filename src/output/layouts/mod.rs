@@ -32,7 +32,7 @@ pub use stereocarla::{
 
 /// A file layout of a dataset (DATASET.md, layouts). Names are lowercase,
 /// also in TOML and JSON.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum LayoutKind {
     /// Lossless PNG/EXR/PFM, every ground-truth map (`output::frame`).
@@ -256,7 +256,15 @@ mod tests {
             assert_eq!(k.to_string().parse::<LayoutKind>().unwrap(), k);
             let json = serde_json::to_string(&k).unwrap();
             assert_eq!(json, format!("\"{k}\""));
+            assert_eq!(serde_json::from_str::<LayoutKind>(&json).unwrap(), k);
         }
+        let e = serde_json::from_str::<LayoutKind>("\"coco\"").unwrap_err();
+        assert!(
+            e.to_string().starts_with(
+                "unknown layout 'coco' (one of native, stereocarla, kitti, sceneflow)"
+            ),
+            "{e}"
+        );
         assert!("KITTI".parse::<LayoutKind>().is_err());
     }
 
