@@ -287,7 +287,7 @@ fn native_layout_files_round_trip_through_writers() {
     let dir = tempfile::tempdir().unwrap();
     let layout = NativeLayout::new(dir.path());
     let disp = [0.0f32, 12.5, 3318.0, 0.25];
-    write_pfm_gray(&layout.baseline_disp(42, 54.0), 2, 2, &disp).unwrap();
+    write_pfm_gray(&layout.path(Map::Disparity, 42, Some(54.0)), 2, 2, &disp).unwrap();
     let (_, _, back) = read_pfm_gray(&dir.path().join("baseline_054/disp/000042.pfm")).unwrap();
     assert_eq!(back, disp);
 }

@@ -8,8 +8,8 @@ mod common;
 use std::path::Path;
 
 use parallax::accel::Backend;
-use parallax::film::{MASK_MIRROR, MASK_RAIN};
 use parallax::scene::load_scene;
+use parallax::scene::mask_bits::{MIRROR as MASK_MIRROR, RAIN as MASK_RAIN};
 use parallax::weather::{apply, draw_params, Weather};
 
 fn street_frame(weather: Option<Weather>) -> common::Rendered {

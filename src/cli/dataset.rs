@@ -157,7 +157,12 @@ fn dry_run(config: &DatasetConfig, a: &DatasetArgs, shard: Shard) -> Result<(), 
         config.height,
         config.spp,
         config.baselines_cm,
-        config.layouts.join(", ")
+        config
+            .layouts
+            .iter()
+            .map(|k| k.name())
+            .collect::<Vec<_>>()
+            .join(", ")
     );
     let threads = rayon::current_num_threads();
     let t0 = Instant::now();
@@ -184,7 +189,7 @@ fn dry_run(config: &DatasetConfig, a: &DatasetArgs, shard: Shard) -> Result<(), 
         );
     };
     let cal =
-        ds::calibrate::calibrate(config, &towns, a.backend, &note).map_err(CliError::failure)?;
+        ds::calibrate::calibrate(config, &towns, a.backend, q, &note).map_err(CliError::failure)?;
     let e =
         ds::estimate::estimate(config, &cal.costs, shard, threads).map_err(CliError::failure)?;
     println!(

@@ -68,24 +68,23 @@ pub fn calibration_quality(config: &DatasetConfig, classes: usize) -> Quality {
     }
 }
 
-/// What the calibration measured, and on what.
+/// What the calibration measured.
 pub struct Calibration {
     /// Per class, in plan order.
     pub costs: Vec<ClassCost>,
-    /// The calibration frames' size and spp.
-    pub quality: Quality,
 }
 
-/// Renders one calibration frame per class of `config` and returns the
+/// Renders one calibration frame per class of `config` at `quality` (the
+/// caller's [`calibration_quality`], computed once) and returns the
 /// classes' costs; `note` is told about each class as it is measured.
 pub fn calibrate(
     config: &DatasetConfig,
     towns: &Towns,
     backend: Backend,
+    quality: Quality,
     note: &dyn Fn(&ClassCost),
 ) -> Result<Calibration, String> {
     let mix = class_mix(config, Shard::ALL);
-    let quality = calibration_quality(config, mix.len());
     let ((town, weather), _, _) = mix.first().ok_or("the plan is empty")?;
     // The first class at INTERCEPT_SPP_FACTOR × the spp: the path pass's
     // per-pixel share (image filter, per-pixel set-up), which one spp
@@ -118,7 +117,7 @@ pub fn calibrate(
         note(&cost);
         costs.push(cost);
     }
-    Ok(Calibration { costs, quality })
+    Ok(Calibration { costs })
 }
 
 /// A mark set by the progress callback: CPU seconds and the instant.

@@ -10,11 +10,9 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+use crate::output::layouts::LayoutKind;
 use crate::town::CameraConfig;
 use crate::weather::Weather;
-
-/// Layout names a configuration may select (DATASET.md, layouts).
-pub const LAYOUTS: [&str; 4] = ["native", "stereocarla", "kitti", "sceneflow"];
 
 /// A dataset configuration. Field docs are the config-file manual.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -61,7 +59,7 @@ pub struct DatasetConfig {
     pub max_depth: u32,
     /// Layouts to write: native, stereocarla, kitti, sceneflow (default: native).
     #[serde(default = "default_layouts")]
-    pub layouts: Vec<String>,
+    pub layouts: Vec<LayoutKind>,
     /// Also write linear HDR radiance EXRs in the native layout (default false).
     #[serde(default)]
     pub hdr: bool,
@@ -107,8 +105,8 @@ fn default_spp() -> u32 {
 fn default_max_depth() -> u32 {
     5
 }
-fn default_layouts() -> Vec<String> {
-    vec!["native".into()]
+fn default_layouts() -> Vec<LayoutKind> {
+    vec![LayoutKind::Native]
 }
 
 /// A configuration error naming the file and the key.
@@ -176,63 +174,86 @@ pub fn parse_config(text: &str, file: &str) -> Result<DatasetConfig, ConfigError
     Ok(config)
 }
 
+/// A failed check: the key path and what is wrong.
+type Check = Result<(), (String, String)>;
+
+/// Fails with `message` at `key`.
+fn fail(key: impl Into<String>, message: impl Into<String>) -> Check {
+    Err((key.into(), message.into()))
+}
+
 impl DatasetConfig {
     /// Checks every value; the error names `file` and the key.
     pub fn validate(&self, file: &str) -> Result<(), ConfigError> {
-        let err = |key: String, message: String| ConfigError {
-            file: file.to_string(),
-            key,
-            message,
-        };
-        let nonempty = |key: &str, n: usize| {
+        self.check_lists_nonempty()
+            .and_then(|_| self.check_names())
+            .and_then(|_| self.check_baselines())
+            .and_then(|_| self.check_counts())
+            .and_then(|_| self.check_hfov())
+            .and_then(|_| self.check_no_duplicates())
+            .map_err(|(key, message)| ConfigError {
+                file: file.to_string(),
+                key,
+                message,
+            })
+    }
+
+    /// Every list names at least one value.
+    fn check_lists_nonempty(&self) -> Check {
+        for (key, n) in [
+            ("towns", self.towns.len()),
+            ("configs", self.configs.len()),
+            ("weathers", self.weathers.len()),
+            ("baselines_cm", self.baselines_cm.len()),
+            ("layouts", self.layouts.len()),
+        ] {
             if n == 0 {
-                Err(err(key.into(), "must list at least one value".into()))
-            } else {
-                Ok(())
+                return fail(key, "must list at least one value");
             }
-        };
-        nonempty("towns", self.towns.len())?;
-        nonempty("configs", self.configs.len())?;
-        nonempty("weathers", self.weathers.len())?;
-        nonempty("baselines_cm", self.baselines_cm.len())?;
-        nonempty("layouts", self.layouts.len())?;
+        }
+        Ok(())
+    }
+
+    /// Town names are file-name safe; configurations and weathers exist.
+    fn check_names(&self) -> Check {
         for (i, t) in self.towns.iter().enumerate() {
             let ok = !t.is_empty()
                 && t.chars()
                     .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
             if !ok {
-                return Err(err(
+                return fail(
                     format!("towns[{i}]"),
                     format!("'{t}' is not a town name (letters, digits, '_', '-')"),
-                ));
+                );
             }
         }
         for (i, c) in self.configs.iter().enumerate() {
             c.parse::<CameraConfig>()
-                .map_err(|m| err(format!("configs[{i}]"), m))?;
+                .map_err(|m| (format!("configs[{i}]"), m))?;
         }
         for (i, w) in self.weathers.iter().enumerate() {
             w.parse::<Weather>()
-                .map_err(|m| err(format!("weathers[{i}]"), m))?;
+                .map_err(|m| (format!("weathers[{i}]"), m))?;
         }
+        Ok(())
+    }
+
+    /// Baselines are positive and each gets a folder of its own.
+    fn check_baselines(&self) -> Check {
         for (i, b) in self.baselines_cm.iter().enumerate() {
             if !(b.is_finite() && *b > 0.0) {
-                return Err(err(
+                return fail(
                     format!("baselines_cm[{i}]"),
                     format!("{b} must be a positive number of centimetres"),
-                ));
+                );
             }
         }
         crate::output::check_baseline_dirs(&self.baselines_cm)
-            .map_err(|e| err(format!("baselines_cm[{}]", e.index), e.to_string()))?;
-        for (i, l) in self.layouts.iter().enumerate() {
-            if !LAYOUTS.contains(&l.as_str()) {
-                return Err(err(
-                    format!("layouts[{i}]"),
-                    format!("unknown layout '{l}' (one of {})", LAYOUTS.join(", ")),
-                ));
-            }
-        }
+            .map_err(|e| (format!("baselines_cm[{}]", e.index), e.to_string()))
+    }
+
+    /// Counts and sizes are at least 1 and within their limits.
+    fn check_counts(&self) -> Check {
         for (key, v) in [
             ("sequences", self.sequences),
             ("frames_per_sequence", self.frames_per_sequence),
@@ -243,40 +264,49 @@ impl DatasetConfig {
             ("max_depth", self.max_depth),
         ] {
             if v == 0 {
-                return Err(err(key.into(), "must be at least 1".into()));
+                return fail(key, "must be at least 1");
             }
         }
         if self.spp > crate::sampler::MAX_SPP {
-            return Err(err(
-                "spp".into(),
+            return fail(
+                "spp",
                 format!("must be at most {}", crate::sampler::MAX_SPP),
-            ));
+            );
         }
         if self.frames_per_sequence > 999_999 {
-            return Err(err(
-                "frames_per_sequence".into(),
-                "must be at most 999999 (six-digit frame names)".into(),
-            ));
+            return fail(
+                "frames_per_sequence",
+                "must be at most 999999 (six-digit frame names)",
+            );
         }
+        Ok(())
+    }
+
+    /// The field of view lies in (0, 180) degrees.
+    fn check_hfov(&self) -> Check {
         if !(self.hfov_deg > 0.0 && self.hfov_deg < 180.0) {
-            return Err(err(
-                "hfov_deg".into(),
+            return fail(
+                "hfov_deg",
                 format!("{} must lie in (0, 180)", self.hfov_deg),
-            ));
+            );
         }
-        let dup = |key: &str, v: &[String]| {
+        Ok(())
+    }
+
+    /// No list names a value twice.
+    fn check_no_duplicates(&self) -> Check {
+        fn dup<T: PartialEq + std::fmt::Display>(key: &str, v: &[T]) -> Check {
             for (i, a) in v.iter().enumerate() {
                 if v[..i].contains(a) {
-                    return Err(err(format!("{key}[{i}]"), format!("'{a}' is listed twice")));
+                    return fail(format!("{key}[{i}]"), format!("'{a}' is listed twice"));
                 }
             }
             Ok(())
-        };
+        }
         dup("towns", &self.towns)?;
         dup("configs", &self.configs)?;
         dup("weathers", &self.weathers)?;
-        dup("layouts", &self.layouts)?;
-        Ok(())
+        dup("layouts", &self.layouts)
     }
 
     /// The camera configurations, parsed (valid after `validate`).
@@ -308,7 +338,7 @@ mod tests {
             (c.width, c.height, c.sequences, c.stride),
             (1600, 900, 1, 10)
         );
-        assert_eq!(c.layouts, vec!["native".to_string()]);
+        assert_eq!(c.layouts, vec![LayoutKind::Native]);
     }
 
     #[test]
@@ -336,5 +366,15 @@ mod tests {
         assert_eq!(parse_config(&text, "c.toml").unwrap().layouts.len(), 4);
         let e = parse_config(&format!("{MINIMAL}layouts = [\"coco\"]\n"), "c.toml").unwrap_err();
         assert_eq!(e.key, "layouts[0]");
+        assert_eq!(
+            e.to_string(),
+            "c.toml: key 'layouts[0]': unknown layout 'coco' (one of native, stereocarla, kitti, sceneflow)"
+        );
+        let twice = format!("{MINIMAL}layouts = [\"kitti\", \"native\", \"kitti\"]\n");
+        let e = parse_config(&twice, "c.toml").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "c.toml: key 'layouts[2]': 'kitti' is listed twice"
+        );
     }
 }

@@ -20,17 +20,9 @@ use crate::render::FrameOutput;
 /// Directory holding a layout's split lists, below the layout's own root.
 const SPLITS_DIR: &str = "splits";
 
-/// The layouts of `kinds` other than `native`, parsed (names were validated
-/// with the configuration).
-fn extra_kinds(kinds: &[String]) -> io::Result<Vec<LayoutKind>> {
-    kinds
-        .iter()
-        .filter(|k| k.as_str() != "native")
-        .map(|k| {
-            k.parse::<LayoutKind>()
-                .map_err(|e| io::Error::new(io::ErrorKind::InvalidInput, e.to_string()))
-        })
-        .collect()
+/// The layouts of `kinds` other than `native`.
+pub(super) fn extra_kinds(kinds: &[LayoutKind]) -> impl Iterator<Item = LayoutKind> + '_ {
+    kinds.iter().copied().filter(|k| *k != LayoutKind::Native)
 }
 
 /// The layouts' key of a planned frame.
@@ -47,7 +39,7 @@ pub(super) fn frame_key(job: &Job) -> FrameKey {
 /// Writes `job`'s frame in every layout of `kinds` other than `native` below
 /// `root/<layout>/`; returns the paths written (all below `root`).
 pub fn write_extra_layouts(
-    kinds: &[String],
+    kinds: &[LayoutKind],
     root: &Path,
     job: &Job,
     rig: &StereoRig,
@@ -55,7 +47,7 @@ pub fn write_extra_layouts(
     meta: &CameraFile,
 ) -> io::Result<Vec<PathBuf>> {
     let mut written = Vec::new();
-    for kind in extra_kinds(kinds)? {
+    for kind in extra_kinds(kinds) {
         let layout_root = root.join(kind.name());
         written.extend(write_layout_frame(
             kind,
@@ -71,7 +63,7 @@ pub fn write_extra_layouts(
 
 /// Writes the split lists of every non-native layout for the whole plan.
 pub fn write_layout_indexes(root: &Path, config: &DatasetConfig) -> io::Result<()> {
-    let kinds = extra_kinds(&config.layouts)?;
+    let kinds: Vec<LayoutKind> = extra_kinds(&config.layouts).collect();
     if kinds.is_empty() {
         return Ok(());
     }
@@ -87,7 +79,10 @@ pub fn is_layout_index(rel: &Path) -> bool {
     let mut parts = rel.components().map(|c| c.as_os_str().to_string_lossy());
     match (parts.next(), parts.next()) {
         (Some(layout), Some(dir)) => {
-            layout != "native" && layout.parse::<LayoutKind>().is_ok() && dir == SPLITS_DIR
+            let extra = layout
+                .parse()
+                .is_ok_and(|k: LayoutKind| k != LayoutKind::Native);
+            extra && dir == SPLITS_DIR
         }
         _ => false,
     }

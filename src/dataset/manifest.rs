@@ -15,6 +15,7 @@ use serde::{Deserialize, Serialize};
 use super::config::DatasetConfig;
 use super::plan::Job;
 use crate::output::frame::FrameSeeds;
+use crate::output::layouts::LayoutKind;
 use crate::output::{Access, FileRecord, OutputError};
 use crate::stats::is_valid_disparity;
 use crate::town::TownSource;
@@ -43,7 +44,7 @@ pub struct DatasetMeta {
     /// Baselines in centimetres, in rig order.
     pub baselines_cm: Vec<f64>,
     /// Layouts written.
-    pub layouts: Vec<String>,
+    pub layouts: Vec<LayoutKind>,
     /// The town descriptions the frames were generated from, in the
     /// configuration's order: source (`built-in` or path) and SHA-256 of
     /// the text. Absent in datasets of older versions.
@@ -222,6 +223,8 @@ pub struct ReadLine {
     pub file: PathBuf,
     /// 1-based line number.
     pub line_no: usize,
+    /// The line as written (without its newline).
+    pub text: String,
     /// The parsed line, or why it does not parse (torn or edited).
     pub parsed: Result<ManifestLine, String>,
 }
@@ -254,6 +257,7 @@ pub fn read_manifests(root: &Path) -> io::Result<Vec<ReadLine>> {
             out.push(ReadLine {
                 file: file.clone(),
                 line_no: i + 1,
+                text: line.to_string(),
                 parsed: serde_json::from_str(line).map_err(|e| e.to_string()),
             });
         }

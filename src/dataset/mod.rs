@@ -1,6 +1,7 @@
 //! Dataset generation at scale (DESIGN.md "Scale", DATASET.md): a
 //! configuration (`config`, `presets`) becomes a job list that is a pure
-//! function of it (`plan`), split by `shard`; `run` renders and writes each
+//! function of it (`plan`), split by `shard`; `root` prepares the root;
+//! `run` renders and writes each
 //! frame whole (`frame`), appending a manifest line (`manifest`) and skipping
 //! complete frames on resume; `verify` proves a root whole and `repair`
 //! mends it; `progress` and `signals` make long runs observable and stoppable.
@@ -15,7 +16,10 @@ pub mod ownership;
 pub mod plan;
 pub mod presets;
 pub mod progress;
+#[cfg(test)]
+mod registry_walk;
 pub mod repair;
+pub mod root;
 pub mod run;
 pub mod shard;
 pub mod signals;

@@ -60,13 +60,7 @@ impl Ownership {
             .iter()
             .map(|j| (slash(&j.sequence_dir()), j.clone()))
             .collect();
-        // Layout names were validated with the configuration.
-        let layouts: Vec<LayoutKind> = config
-            .layouts
-            .iter()
-            .filter_map(|k| k.parse().ok())
-            .filter(|k| *k != LayoutKind::Native)
-            .collect();
+        let layouts = super::layouts::extra_kinds(&config.layouts).collect();
         Ownership {
             planned: jobs.iter().cloned().collect(),
             sequences,

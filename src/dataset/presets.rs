@@ -3,6 +3,7 @@
 //! frames: computable and shardable, not meant for one machine).
 
 use super::config::DatasetConfig;
+use crate::output::layouts::LayoutKind;
 
 /// Names accepted by `--preset`.
 pub const PRESETS: [&str; 2] = ["demo", "stereocarla"];
@@ -36,7 +37,7 @@ pub fn demo() -> DatasetConfig {
         hfov_deg: 60.0,
         spp: 4,
         max_depth: 3,
-        layouts: vec!["native".into()],
+        layouts: vec![LayoutKind::Native],
         hdr: false,
         filter: true,
     }
@@ -65,7 +66,7 @@ pub fn stereocarla() -> DatasetConfig {
         hfov_deg: 60.0,
         spp: 64,
         max_depth: 5,
-        layouts: vec!["native".into()],
+        layouts: vec![LayoutKind::Native],
         hdr: false,
         filter: true,
     }

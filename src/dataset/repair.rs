@@ -9,15 +9,14 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::fs;
-use std::io;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use super::manifest::{manifest_files, ManifestLine};
+use super::manifest::{read_manifests, ManifestLine};
 use super::ownership::{is_bookkeeping, slash, Ownership};
 use super::plan::{plan, Job};
 use super::run::{walk_files, DatasetError};
 use super::verify::{dataset_config, line_problem, VerifyReport};
-use crate::output::{read_file, write_atomic, Access, OutputError};
+use crate::output::{write_atomic, Access, OutputError};
 
 /// A repair planned but not begun.
 #[derive(Clone, Debug)]
@@ -41,26 +40,6 @@ pub struct Finished {
     pub removed: Vec<String>,
 }
 
-/// Every manifest file with its lines (blank lines left out).
-fn manifest_texts(root: &Path) -> io::Result<Vec<(PathBuf, Vec<String>)>> {
-    manifest_files(root)?
-        .into_iter()
-        .map(|file| {
-            let text = String::from_utf8_lossy(&read_file(&file)?).into_owned();
-            let lines = text
-                .lines()
-                .filter(|l| !l.trim().is_empty())
-                .map(str::to_string)
-                .collect();
-            Ok((file, lines))
-        })
-        .collect()
-}
-
-fn parse(line: &str) -> Option<ManifestLine> {
-    serde_json::from_str(line).ok()
-}
-
 /// Plans the repair of what `report` found; reads only.
 pub fn stage(root: &Path, report: &VerifyReport) -> Result<Staged, DatasetError> {
     let config = dataset_config(root)?;
@@ -70,12 +49,10 @@ pub fn stage(root: &Path, report: &VerifyReport) -> Result<Staged, DatasetError>
         .filter(|j| ids.contains(&j.id()))
         .collect();
     let mut old: BTreeMap<Job, BTreeSet<String>> = BTreeMap::new();
-    for (_, lines) in manifest_texts(root)? {
-        for text in lines {
-            if let Some(job) = parse(&text).and_then(|l| l.job()) {
-                if redo.contains(&job) {
-                    old.entry(job).or_default().insert(text);
-                }
+    for l in read_manifests(root)? {
+        if let Some(job) = l.parsed.ok().and_then(|p| p.job()) {
+            if redo.contains(&job) {
+                old.entry(job).or_default().insert(l.text);
             }
         }
     }
@@ -89,45 +66,49 @@ pub fn stage(root: &Path, report: &VerifyReport) -> Result<Staged, DatasetError>
 pub fn finish(root: &Path, staged: &Staged) -> Result<Finished, DatasetError> {
     let config = dataset_config(root)?;
     let planned: BTreeSet<Job> = plan(&config).into_iter().collect();
-    let manifests = manifest_texts(root)?;
+    let manifests = read_manifests(root)?;
     // The newest line of each frame to redo that was not there before.
     let mut new: BTreeMap<Job, &str> = BTreeMap::new();
-    let mut parsed = Vec::new();
-    for text in manifests.iter().flat_map(|(_, lines)| lines) {
-        let Some(line) = parse(text) else { continue };
-        if let Some(job) = line.job().filter(|j| staged.redo.contains(j)) {
-            if !staged.old.get(&job).is_some_and(|o| o.contains(text)) {
-                new.insert(job, text);
+    for l in &manifests {
+        let job = l.parsed.as_ref().ok().and_then(ManifestLine::job);
+        if let Some(job) = job.filter(|j| staged.redo.contains(j)) {
+            if !staged.old.get(&job).is_some_and(|o| o.contains(&l.text)) {
+                new.insert(job, &l.text);
             }
         }
-        parsed.push(line);
     }
-    let owner = Ownership::new(&config, &parsed);
+    let owner = Ownership::new(
+        &config,
+        manifests.iter().filter_map(|l| l.parsed.as_ref().ok()),
+    );
     let mut done = Finished {
         replaced: new.len(),
         not_rendered: staged.redo.len() - new.len(),
         ..Finished::default()
     };
     let mut listed = BTreeSet::new();
-    for (file, lines) in &manifests {
+    for lines in manifests.chunk_by(|a, b| a.file == b.file) {
         let mut kept = String::new();
-        for text in lines {
+        for l in lines {
             // A line verify calls bad goes, by verify's own rule.
-            let keep = parse(text)
-                .filter(|l| line_problem(l, &planned).is_none())
-                .and_then(|l| Some((l.job()?, l)))
-                .filter(|(job, _)| new.get(job).is_none_or(|n| *n == text.as_str()));
+            let keep = l
+                .parsed
+                .as_ref()
+                .ok()
+                .filter(|p| line_problem(p, &planned).is_none())
+                .and_then(|p| Some((p.job()?, p)))
+                .filter(|(job, _)| new.get(job).is_none_or(|n| *n == l.text));
             match keep {
                 Some((_, line)) => {
-                    listed.extend(line.files.into_iter().map(|f| f.path));
-                    kept.push_str(text);
+                    listed.extend(line.files.iter().map(|f| f.path.clone()));
+                    kept.push_str(&l.text);
                     kept.push('\n');
                 }
                 None => done.lines_dropped += 1,
             }
         }
         if kept.lines().count() != lines.len() {
-            write_atomic(file, kept.as_bytes())?;
+            write_atomic(&lines[0].file, kept.as_bytes())?;
         }
     }
     let unrendered: BTreeSet<&Job> = staged

@@ -1,9 +1,8 @@
-//! The dataset loop: prepare the root (refuse a different configuration),
-//! sweep temporary files left by a killed run, skip complete frames, render
+//! The dataset loop: prepare the root (module `root`), sweep temporary files left by a killed run, skip complete frames, render
 //! the rest with one retry, write each frame whole and append its manifest
 //! line, and list failures. Resume is simply running the same command again.
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 use std::fs;
 use std::io;
 use std::path::{Path, PathBuf};
@@ -12,16 +11,17 @@ use std::time::Instant;
 use super::config::DatasetConfig;
 use super::frame::{frame_complete, render_job, write_job, Quality, Towns};
 use super::manifest::{
-    append_line, cut_torn_tail, latest_lines, read_manifests, DatasetMeta, DATASET_JSON,
+    append_line, cut_torn_tail, latest_lines, read_manifests, ManifestLine, ReadLine, RenderRecord,
     FAILURES_DIR, MANIFEST_DIR,
 };
-use super::ownership::{is_bookkeeping, slash, Ownership};
+use super::ownership::{slash, Ownership};
 use super::plan::{plan, Job};
 use super::progress::{Progress, RunSummary};
 use super::shard::Shard;
 use super::signals::StopGuard;
 use crate::accel::Backend;
-use crate::output::{write_atomic, write_json, Access, OutputError};
+use crate::output::{write_atomic, Access, OutputError};
+use crate::render::RenderStats;
 
 /// A dataset error: bad input (exit 2) or a failure while running (exit 1).
 #[derive(Debug)]
@@ -82,131 +82,15 @@ pub fn is_temp_name(name: &str) -> bool {
     temp_base(name).is_some()
 }
 
-/// Creates the root, refuses a different configuration or town descriptions
-/// (or foreign files) in a non-empty root unless `force`, and writes
-/// `dataset.json`.
-pub fn prepare_root(
-    root: &Path,
-    config: &DatasetConfig,
-    towns: &[crate::town::TownSource],
-    force: bool,
-) -> Result<(), DatasetError> {
-    if root.is_file() {
-        return Err(DatasetError::input(format!(
-            "{}: is a file, expected a directory",
-            root.display()
-        )));
-    }
-    fs::create_dir_all(root).map_err(|e| OutputError::wrap(root, Access::Write, e))?;
-    let meta = DatasetMeta::new(config, towns.to_vec());
-    let existing = super::manifest::read_meta(root);
-    let towns_differ = match &existing {
-        Ok(Some(m)) if m.config == meta.config => m.check_towns(towns).err(),
-        _ => None,
-    };
-    let nonempty = fs::read_dir(root)
-        .map_err(|e| OutputError::wrap(root, Access::Read, e))?
-        .filter_map(|e| e.ok())
-        .any(|e| !is_temp_name(&e.file_name().to_string_lossy()));
-    let same =
-        matches!(&existing, Ok(Some(m)) if m.config == meta.config) && towns_differ.is_none();
-    if nonempty && !same {
-        let why = match (&existing, towns_differ) {
-            (_, Some(towns)) => format!("holds a dataset of other town descriptions: {towns}"),
-            (Ok(Some(old)), _) => format!(
-                "holds a dataset of a different configuration ({})",
-                config_differences(&old.config, config).join("; ")
-            ),
-            (Ok(None), _) => "is not empty and holds no dataset.json".into(),
-            (Err(_), _) => "holds an unreadable dataset.json".into(),
-        };
-        if !force {
-            return Err(DatasetError::input(format!(
-                "{}: {why}; choose another directory or pass --force to start over \
-                 (the old dataset's frames and manifests are removed)",
-                root.display()
-            )));
-        }
-        if let Ok(Some(old)) = &existing {
-            remove_old_frames(root, &old.config)?;
-        }
-        for dir in [MANIFEST_DIR, FAILURES_DIR] {
-            let p = root.join(dir);
-            if p.exists() {
-                fs::remove_dir_all(&p).map_err(|e| OutputError::wrap(&p, Access::Write, e))?;
-            }
-        }
-    }
-    // A resume leaves an identical dataset.json as it is (bytes and mtime).
-    if !matches!(&existing, Ok(Some(m)) if *m == meta) {
-        write_json(&root.join(DATASET_JSON), &meta)?;
-    }
-    Ok(())
-}
-
-/// The configuration keys whose values differ, each as
-/// `key = <old> in dataset.json, <new> in the new configuration` (compact JSON).
-fn config_differences(old: &DatasetConfig, new: &DatasetConfig) -> Vec<String> {
-    use serde_json::{Map, Value};
-    let object = |c: &DatasetConfig| match serde_json::to_value(c) {
-        Ok(Value::Object(m)) => m,
-        _ => Map::new(),
-    };
-    let (a, b) = (object(old), object(new));
-    // A key left out when serialized holds its default.
-    let show = |v: Option<&Value>| v.map_or_else(|| "its default".to_string(), Value::to_string);
-    let keys: BTreeSet<&String> = a.keys().chain(b.keys()).collect();
-    keys.into_iter()
-        .filter(|k| a.get(*k) != b.get(*k))
-        .map(|k| {
-            format!(
-                "{k} = {} in {DATASET_JSON}, {} in the new configuration",
-                show(a.get(k)),
-                show(b.get(k))
-            )
-        })
-        .collect()
-}
-
-/// Removes the files of the dataset of `old` being replaced: those its
-/// manifests list and every other file the `ownership` rule calls its own
-/// (also of frames whose line was never written), then the directories that
-/// leaves empty. Files parallax did not write stay.
-fn remove_old_frames(root: &Path, old: &DatasetConfig) -> Result<(), DatasetError> {
-    let read = |e| OutputError::wrap(root, Access::Read, e);
-    let owner = ownership_of(root, old).map_err(read)?;
-    let mut dirs = BTreeSet::new();
-    for rel in walk_files(root).map_err(read)? {
-        if is_bookkeeping(&rel) || !owner.owns(&slash(&rel)) {
-            continue;
-        }
-        let p = root.join(&rel);
-        match fs::remove_file(&p) {
-            Ok(()) => {}
-            Err(e) if e.kind() == io::ErrorKind::NotFound => continue,
-            Err(e) => return Err(OutputError::wrap(&p, Access::Write, e).into()),
-        }
-        let parents = rel
-            .ancestors()
-            .skip(1)
-            .filter(|a| !a.as_os_str().is_empty());
-        dirs.extend(parents.map(Path::to_path_buf));
-    }
-    // Deepest first; a directory still holding anything stays.
-    for dir in dirs.iter().rev() {
-        let _ = fs::remove_dir(root.join(dir));
-    }
-    Ok(())
-}
-
 /// The ownership rule of the dataset of `config` below `root`, with the
 /// files its readable manifest lines name.
-fn ownership_of(root: &Path, config: &DatasetConfig) -> io::Result<Ownership> {
-    let lines: Vec<_> = read_manifests(root)?
-        .into_iter()
-        .filter_map(|l| l.parsed.ok())
-        .collect();
-    Ok(Ownership::new(config, &lines))
+pub(super) fn ownership_of(root: &Path, config: &DatasetConfig) -> io::Result<Ownership> {
+    Ok(ownership_from(config, &read_manifests(root)?))
+}
+
+/// The ownership rule of `config`'s dataset whose manifests hold `lines`.
+fn ownership_from(config: &DatasetConfig, lines: &[ReadLine]) -> Ownership {
+    Ownership::new(config, lines.iter().filter_map(|l| l.parsed.as_ref().ok()))
 }
 
 /// Every file below `root` (relative paths), depth first, sorted.
@@ -235,6 +119,7 @@ pub fn walk_files(root: &Path) -> io::Result<Vec<PathBuf>> {
 fn sweep_temp_files(
     root: &Path,
     config: &DatasetConfig,
+    lines: &[ReadLine],
     jobs: &BTreeSet<Job>,
     shard: Shard,
 ) -> io::Result<usize> {
@@ -248,7 +133,7 @@ fn sweep_temp_files(
     if temps.is_empty() {
         return Ok(0);
     }
-    let owner = ownership_of(root, config)?;
+    let owner = ownership_from(config, lines);
     let mut n = 0;
     for rel in temps {
         let path = slash(&rel);
@@ -285,28 +170,22 @@ pub fn run_dataset(
 ) -> Result<RunSummary, DatasetError> {
     let started = Instant::now();
     let towns = Towns::load(config, opts.scenes.as_deref()).map_err(DatasetError::input)?;
-    prepare_root(&opts.root, config, &towns.sources(config), opts.force)?;
-    let root = opts.root.as_path();
-    let jobs: Vec<Job> = plan(config)
-        .into_iter()
-        .enumerate()
-        .filter(|(i, _)| opts.shard.owns(*i))
-        .map(|(_, j)| j)
-        .filter(|j| opts.only.as_ref().is_none_or(|o| o.contains(j)))
-        .collect();
-    let job_set: BTreeSet<Job> = jobs.iter().cloned().collect();
-    let swept = sweep_temp_files(root, config, &job_set, opts.shard)?;
-    let manifest = root.join(MANIFEST_DIR).join(opts.shard.manifest_name());
-    cut_torn_tail(&manifest)?;
-    let existing = latest_lines(&read_manifests(root)?);
-    super::layouts::write_layout_indexes(root, config)
-        .map_err(|e| DatasetError::failure(e.to_string()))?;
-
+    super::root::prepare_root(&opts.root, config, &towns.sources(config), opts.force)?;
+    let jobs = shard_jobs(config, opts);
+    let start = start_run(config, opts, &jobs)?;
     let views = 1 + config.baselines_cm.len();
-    let progress = Progress::new(jobs.len() as u64, views as u64);
-    if swept > 0 {
-        progress.note(&format!(
-            "removed {swept} temporary files of an interrupted run"
+    let run = Run {
+        config,
+        towns: &towns,
+        opts,
+        stop,
+        manifest: start.manifest,
+        progress: Progress::new(jobs.len() as u64, views as u64),
+    };
+    if start.swept > 0 {
+        run.progress.note(&format!(
+            "removed {} temporary files of an interrupted run",
+            start.swept
         ));
     }
     let mut s = RunSummary::default();
@@ -317,86 +196,182 @@ pub fn run_dataset(
             break;
         }
         // A repair renders its frames whatever their old lines say.
-        if let Some(line) = existing.get(job).filter(|_| opts.only.is_none()) {
-            if frame_complete(root, line, opts.check_hashes) {
+        if let Some(line) = start.existing.get(job).filter(|_| opts.only.is_none()) {
+            if frame_complete(&opts.root, line, opts.check_hashes) {
                 s.skipped += 1;
-                progress.frame(k as u64 + 1, job, "complete, skipped", &s);
+                run.progress
+                    .frame(k as u64 + 1, job, "complete, skipped", &s);
                 continue;
             }
         }
-        let mut last_err = None;
-        for attempt in 0..2 {
-            let t0 = Instant::now();
-            let cb = |done: usize, _: usize| progress.views(k as u64, done);
-            let r = render_job(config, &towns, job, Quality::of(config), opts.backend, &cb);
-            let r = match r {
-                Ok(r) => r,
-                Err(e) => {
-                    if attempt == 0 {
-                        progress.note(&format!("{}: {e}; retrying once", job.id()));
-                    }
-                    last_err = Some((e, false));
-                    continue;
-                }
-            };
-            if stop.stopped() {
-                // Abandon the frame: nothing of it has been written.
-                last_err = None;
-                break;
+        match run.frame(k, job, &mut s) {
+            Ok(true) if start.existing.contains_key(job) => {
+                superseded.insert(job.clone());
             }
-            let _held = stop.write_lock();
-            let written = write_job(root, config, job, &r, t0.elapsed().as_secs_f64()).and_then(
-                |mut line| {
-                    line.render.seconds = t0.elapsed().as_secs_f64();
-                    append_line(&manifest, &line).map(|_| line)
-                },
-            );
-            match written {
-                Ok(line) => {
-                    if existing.contains_key(job) {
-                        superseded.insert(job.clone());
-                    }
-                    s.done += 1;
-                    s.rays += line.render.rays;
-                    s.frame_seconds += line.render.seconds;
-                    s.trace_seconds += r.out.stats.gt_seconds + r.out.stats.path_seconds;
-                    progress.frame(k as u64 + 1, job, "written", &s);
-                    if let Some(warning) = r.out.stats.non_finite_warning() {
-                        progress.note(&format!("{}: {warning}", job.id()));
-                    }
-                    last_err = None;
+            Ok(_) => {}
+            Err((e, fatal)) => {
+                run.progress.note(&format!("FAILED {}: {e}", job.id()));
+                s.failed.push((job.id(), e));
+                if fatal {
+                    run.progress.note("stopping: the output cannot be written");
                     break;
                 }
-                Err(e) => {
-                    let fatal = is_fatal(&e);
-                    last_err = Some((e.to_string(), fatal));
-                    if attempt == 0 {
-                        progress.note(&format!("{}: {e}; retrying once", job.id()));
-                    }
-                }
-            }
-        }
-        if let Some((e, fatal)) = last_err {
-            progress.note(&format!("FAILED {}: {e}", job.id()));
-            s.failed.push((job.id(), e));
-            if fatal {
-                progress.note("stopping: the output cannot be written");
-                break;
             }
         }
     }
-    progress.finish();
+    run.progress.finish();
     // A repair drops old lines itself (module `repair`), after every frame.
     if opts.only.is_none() {
-        drop_superseded_lines(&manifest, &superseded)?;
+        drop_superseded_lines(&run.manifest, &superseded)?;
     }
-    write_failures(root, opts.shard, &s)?;
+    write_failures(&opts.root, opts.shard, &s)?;
     eprintln!(
         "shard {}: {}",
         opts.shard,
         s.line(started.elapsed().as_secs_f64())
     );
     Ok(s)
+}
+
+/// The jobs of `opts.shard` (only those of `opts.only`, if given), in plan order.
+fn shard_jobs(config: &DatasetConfig, opts: &RunOptions) -> Vec<Job> {
+    plan(config)
+        .into_iter()
+        .enumerate()
+        .filter(|(i, _)| opts.shard.owns(*i))
+        .map(|(_, j)| j)
+        .filter(|j| opts.only.as_ref().is_none_or(|o| o.contains(j)))
+        .collect()
+}
+
+/// What a run finds at its start.
+struct RunStart {
+    /// This shard's manifest.
+    manifest: PathBuf,
+    /// The last manifest line of every frame (any shard's).
+    existing: BTreeMap<Job, ManifestLine>,
+    /// Temporary files of an interrupted run removed.
+    swept: usize,
+}
+
+/// Cuts a torn line off this shard's manifest, reads the manifests (once),
+/// sweeps the temporaries of `jobs` and writes the layouts' split lists.
+fn start_run(
+    config: &DatasetConfig,
+    opts: &RunOptions,
+    jobs: &[Job],
+) -> Result<RunStart, DatasetError> {
+    let root = opts.root.as_path();
+    let manifest = root.join(MANIFEST_DIR).join(opts.shard.manifest_name());
+    cut_torn_tail(&manifest)?;
+    let lines = read_manifests(root)?;
+    let job_set: BTreeSet<Job> = jobs.iter().cloned().collect();
+    let swept = sweep_temp_files(root, config, &lines, &job_set, opts.shard)?;
+    super::layouts::write_layout_indexes(root, config)
+        .map_err(|e| DatasetError::failure(e.to_string()))?;
+    Ok(RunStart {
+        manifest,
+        existing: latest_lines(&lines),
+        swept,
+    })
+}
+
+/// What one attempt at a frame came to.
+enum Attempt {
+    /// Rendered and written: its manifest line's render record and the
+    /// render's statistics.
+    Written(RenderRecord, RenderStats),
+    /// The render failed.
+    RenderFailed(String),
+    /// Writing the files or the line failed.
+    WriteFailed(io::Error),
+    /// A stop came during the render: nothing of the frame was written.
+    Stopped,
+}
+
+/// One shard's run over its jobs.
+struct Run<'a> {
+    config: &'a DatasetConfig,
+    towns: &'a Towns,
+    opts: &'a RunOptions,
+    stop: &'a StopGuard,
+    manifest: PathBuf,
+    progress: Progress,
+}
+
+impl Run<'_> {
+    /// Renders and writes frame `k` (`job`) with one retry: `Ok(true)` when
+    /// written, `Ok(false)` when abandoned for a stop, else the last error
+    /// and whether it is fatal for the run.
+    fn frame(&self, k: usize, job: &Job, s: &mut RunSummary) -> Result<bool, (String, bool)> {
+        let mut last_err = (String::new(), false);
+        for attempt in 0..2 {
+            let retry = |e: &dyn std::fmt::Display| {
+                if attempt == 0 {
+                    self.progress
+                        .note(&format!("{}: {e}; retrying once", job.id()));
+                }
+            };
+            match self.attempt(k, job) {
+                Attempt::Written(record, stats) => {
+                    s.done += 1;
+                    s.rays += record.rays;
+                    s.frame_seconds += record.seconds;
+                    s.trace_seconds += stats.gt_seconds + stats.path_seconds;
+                    self.progress.frame(k as u64 + 1, job, "written", s);
+                    if let Some(warning) = stats.non_finite_warning() {
+                        self.progress.note(&format!("{}: {warning}", job.id()));
+                    }
+                    return Ok(true);
+                }
+                Attempt::Stopped => return Ok(false),
+                Attempt::RenderFailed(e) => {
+                    retry(&e);
+                    last_err = (e, false);
+                }
+                Attempt::WriteFailed(e) => {
+                    let fatal = is_fatal(&e);
+                    last_err = (e.to_string(), fatal);
+                    retry(&e);
+                }
+            }
+        }
+        Err(last_err)
+    }
+
+    /// Renders frame `k` (`job`) once and, unless stopped, writes its files
+    /// and appends its manifest line (holding off a stop meanwhile).
+    fn attempt(&self, k: usize, job: &Job) -> Attempt {
+        let t0 = Instant::now();
+        let cb = |done: usize, _: usize| self.progress.views(k as u64, done);
+        let config = self.config;
+        let r = render_job(
+            config,
+            self.towns,
+            job,
+            Quality::of(config),
+            self.opts.backend,
+            &cb,
+        );
+        let r = match r {
+            Ok(r) => r,
+            Err(e) => return Attempt::RenderFailed(e),
+        };
+        if self.stop.stopped() {
+            return Attempt::Stopped;
+        }
+        let _held = self.stop.write_lock();
+        let root = self.opts.root.as_path();
+        let written =
+            write_job(root, config, job, &r, t0.elapsed().as_secs_f64()).and_then(|mut line| {
+                line.render.seconds = t0.elapsed().as_secs_f64();
+                append_line(&self.manifest, &line).map(|_| line)
+            });
+        match written {
+            Ok(line) => Attempt::Written(line.render, r.out.stats),
+            Err(e) => Attempt::WriteFailed(e),
+        }
+    }
 }
 
 /// Drops from this shard's manifest every line of `jobs` but the last, so a

@@ -8,7 +8,7 @@ use std::io;
 use std::path::{Path, PathBuf};
 
 use crate::output::layouts::FrameKey;
-use crate::output::{Access, OutputError};
+use crate::output::{Access, Map, OutputError};
 
 /// One ground-truth disparity image of a native tree.
 #[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
@@ -34,7 +34,10 @@ impl GtImage {
             .parent()
             .and_then(Path::parent)
             .unwrap_or(Path::new(""));
-        base.join("occ").join(stem).with_extension("png")
+        let occ = Map::Occlusion.spec();
+        base.join(occ.folder)
+            .join(stem)
+            .with_extension(occ.format.ext())
     }
 
     /// The dataset frame of this image, `None` unless the path is
@@ -52,7 +55,7 @@ impl GtImage {
             config: self.config.clone(),
             weather: self.weather.clone(),
             sequence: seq.parse().ok()?,
-            frame: file.strip_suffix(".pfm")?.parse().ok()?,
+            frame: Path::new(file).file_stem()?.to_str()?.parse().ok()?,
         })
     }
 
@@ -78,10 +81,11 @@ impl GtImage {
 fn is_disparity(rel: &Path) -> bool {
     let names: Vec<&str> = rel.iter().filter_map(|c| c.to_str()).collect();
     let n = names.len();
+    let disp = Map::Disparity.spec();
     n >= 3
-        && names[n - 2] == "disp"
+        && names[n - 2] == disp.folder
         && names[n - 3].starts_with("baseline_")
-        && names[n - 1].ends_with(".pfm")
+        && names[n - 1].ends_with(&format!(".{}", disp.format.ext()))
         && !crate::dataset::run::is_temp_name(names[n - 1])
 }
 

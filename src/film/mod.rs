@@ -1,6 +1,7 @@
 //! Film: the per-view linear HDR radiance buffer, the frame's shared exposure,
-//! optional sensor noise, the fixed tone curve to 8-bit sRGB, and the AOV
-//! vocabulary. (Its image-space denoising lives in `crate::denoise`.)
+//! optional sensor noise and the fixed tone curve to 8-bit sRGB. (Its
+//! image-space denoising lives in `crate::denoise`; the maps a frame writes
+//! are declared in `output::registry`.)
 //!
 //! Conventions: pixels are row-major, pixel (column i, row j) at `j * width + i`,
 //! row 0 at the top of the image. Radiance is linear, in the renderer's
@@ -9,15 +10,11 @@
 //! view, so a surface has the same brightness in both images (GROUND_TRUTH.md).
 
 mod adaptation;
-mod aov;
 mod exposure;
 mod noise;
 mod tone;
 
 pub use adaptation::{adaptation_factor, frame_exposure, CD_M2_PER_UNIT, DAYLIGHT_CD_M2};
-pub use aov::{
-    Aov, MASK_MIRROR, MASK_RAIN, MASK_SKY, MASK_TRANSPARENT, OCCLUSION_OCCLUDED, OCCLUSION_VISIBLE,
-};
 pub use exposure::{
     auto_exposure, exposure_ev, log_average_luminance, luminance_rec709, EXPOSURE_EV_MAX,
     EXPOSURE_FLOOR_FRACTION, MIDDLE_GREY,

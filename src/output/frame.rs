@@ -6,12 +6,9 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use super::{
-    write_exr_f32_gray, write_exr_rgb_f32, write_json, write_pfm_gray, write_png_gray16,
-    write_png_gray8, write_png_rgb8, NativeLayout,
-};
+use super::registry::{maps_in, Kind};
+use super::{map_pixels, write_json, write_map, NativeLayout};
 use crate::camera::StereoRig;
-use crate::film::tonemap_to_srgb8;
 use crate::light::Light;
 use crate::render::{FrameOutput, RenderSettings};
 use crate::scene::Scene;
@@ -160,7 +157,10 @@ pub struct WriteOptions {
     pub hdr: bool,
 }
 
-/// Writes every file of `out` for frame `frame` below `root`; returns the paths written.
+/// Writes every file of `out` for frame `frame` below `root`; returns the
+/// paths written. Walks the registry: every ground-truth map, then the
+/// images, each first in `left/` then per baseline; HDR maps only with
+/// `opts.hdr`, images only when the frame has them (spp ≥ 1).
 pub fn write_native_frame(
     root: &Path,
     frame: u32,
@@ -175,55 +175,25 @@ pub fn write_native_frame(
         rig.left.intrinsics.height as usize,
     );
     let mut written = Vec::new();
-    let mut put = |p: PathBuf, r: std::io::Result<()>| -> std::io::Result<()> {
-        r?;
-        written.push(p);
-        Ok(())
-    };
-    let depth = out.left.depth_z_f32();
-    let p = layout.left_depth(frame);
-    put(p.clone(), write_exr_f32_gray(&p, w, h, &depth))?;
-    let p = layout.left_normal(frame);
-    put(
-        p.clone(),
-        write_exr_rgb_f32(&p, w, h, &out.left.normal_world),
-    )?;
-    let p = layout.left_semantic(frame);
-    put(p.clone(), write_png_gray8(&p, w, h, &out.left.semantic))?;
-    let p = layout.left_instance(frame);
-    put(p.clone(), write_png_gray16(&p, w, h, &out.left.instance))?;
-    let p = layout.left_mask(frame);
-    put(p.clone(), write_png_gray8(&p, w, h, &out.left.mask))?;
-    for (b, gt) in out.baselines.iter().enumerate() {
-        let cm = rig.baselines_m[b] * 100.0;
-        let p = layout.baseline_disp(frame, cm);
-        put(p.clone(), write_pfm_gray(&p, w, h, &gt.disparity_left))?;
-        let p = layout.baseline_depth_right(frame, cm);
-        put(p.clone(), write_exr_f32_gray(&p, w, h, &gt.depth_right))?;
-        let p = layout.baseline_disp_right(frame, cm);
-        put(p.clone(), write_pfm_gray(&p, w, h, &gt.disparity_right))?;
-        let p = layout.baseline_occ(frame, cm);
-        put(p.clone(), write_png_gray8(&p, w, h, &gt.occlusion))?;
-    }
-    for (view, film) in out.images.iter().enumerate() {
-        let srgb = tonemap_to_srgb8(film, out.exposure_scale);
-        let p = if view == 0 {
-            layout.left_rgb(frame)
-        } else {
-            layout.baseline_rgb(frame, rig.baselines_m[view - 1] * 100.0)
-        };
-        put(p.clone(), write_png_rgb8(&p, w, h, &srgb))?;
-        if opts.hdr {
-            let p = if view == 0 {
-                layout.left_rgb_hdr(frame)
-            } else {
-                layout.baseline_rgb_hdr(frame, rig.baselines_m[view - 1] * 100.0)
-            };
-            put(p.clone(), write_exr_rgb_f32(&p, w, h, &film.rgb))?;
+    for kind in [Kind::Truth, Kind::Image] {
+        let folders = std::iter::once(None).chain((0..rig.baselines_m.len()).map(Some));
+        for baseline in folders {
+            let maps =
+                maps_in(baseline.is_some()).filter(|m| m.kind == kind && (opts.hdr || !m.hdr_only));
+            for spec in maps {
+                let Some(pixels) = map_pixels(spec.map, out, baseline.unwrap_or(0)) else {
+                    continue;
+                };
+                let cm = baseline.map(|b| rig.baselines_m[b] * 100.0);
+                let p = layout.path(spec.map, frame, cm);
+                write_map(&p, w, h, spec.format, &pixels)?;
+                written.push(p);
+            }
         }
     }
     let p = layout.camera_json(frame);
-    put(p.clone(), write_json(&p, &meta))?;
+    write_json(&p, &meta)?;
+    written.push(p);
     Ok(written)
 }
 

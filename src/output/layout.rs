@@ -8,6 +8,8 @@
 use std::fmt;
 use std::path::{Component, Path, PathBuf};
 
+use super::registry::{maps_in, Map, CAMERAS_DIR, LEFT_DIR};
+
 /// Six-digit zero-padded frame stem: frame 7 → "000007".
 pub fn frame_stem(frame: u32) -> String {
     format!("{frame:06}")
@@ -71,27 +73,6 @@ pub fn check_baseline_dirs(baselines_cm: &[f64]) -> Result<(), SharedBaselineDir
     Ok(())
 }
 
-/// AOV folders below `left/` and their files' extension.
-const LEFT_AOVS: [(&str, &str); 7] = [
-    ("rgb", "png"),
-    ("rgb_hdr", "exr"),
-    ("depth", "exr"),
-    ("normal", "exr"),
-    ("semantic", "png"),
-    ("instance", "png"),
-    ("mask", "png"),
-];
-
-/// AOV folders below `baseline_XXX/` and their files' extension.
-const BASELINE_AOVS: [(&str, &str); 6] = [
-    ("rgb", "png"),
-    ("rgb_hdr", "exr"),
-    ("disp", "pfm"),
-    ("depth_right", "exr"),
-    ("disp_right", "pfm"),
-    ("occ", "png"),
-];
-
 /// What a path below a sequence directory is in the native layout.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum NativePath {
@@ -115,22 +96,23 @@ pub fn native_path(rel: &Path) -> Option<NativePath> {
             _ => return None,
         }
     }
-    let aovs: &[(&str, &str)] = match *parts.first()? {
-        "left" => &LEFT_AOVS,
-        "cameras" => &[],
-        top if is_baseline_dir(top) => &BASELINE_AOVS,
+    let per_baseline = match *parts.first()? {
+        LEFT_DIR => Some(false),
+        CAMERAS_DIR => None,
+        top if is_baseline_dir(top) => Some(true),
         _ => return None,
+    };
+    let ext_of = |folder: &str| -> Option<&'static str> {
+        maps_in(per_baseline?)
+            .find(|m| m.folder == folder)
+            .map(|m| m.format.ext())
     };
     match parts[..] {
         [_] => Some(NativePath::Folder),
-        ["cameras", file] => frame_file(file, "json").map(|frame| NativePath::File { frame }),
-        [_, aov] => aovs
-            .iter()
-            .any(|(a, _)| *a == aov)
-            .then_some(NativePath::Folder),
-        [_, aov, file] => {
-            let (_, ext) = aovs.iter().find(|(a, _)| *a == aov)?;
-            frame_file(file, ext).map(|frame| NativePath::File { frame })
+        [CAMERAS_DIR, file] => frame_file(file, "json").map(|frame| NativePath::File { frame }),
+        [_, folder] => ext_of(folder).map(|_| NativePath::Folder),
+        [_, folder, file] => {
+            frame_file(file, ext_of(folder)?).map(|frame| NativePath::File { frame })
         }
         _ => None,
     }
@@ -174,87 +156,37 @@ impl NativeLayout {
         NativeLayout { root: root.into() }
     }
 
-    fn file(&self, dir: &[&str], frame: u32, ext: &str) -> PathBuf {
-        let mut p = self.root.clone();
-        for d in dir {
-            p.push(d);
-        }
-        p.push(format!("{}.{ext}", frame_stem(frame)));
-        p
+    /// The file of `map` for frame `frame`: `left/<folder>/NNNNNN.<ext>`,
+    /// or `baseline_XXX/<folder>/NNNNNN.<ext>` for a per-baseline map of the
+    /// baseline `baseline_cm` (ignored for the others). Precondition: a
+    /// per-baseline map comes with its baseline.
+    pub fn path(&self, map: Map, frame: u32, baseline_cm: Option<f64>) -> PathBuf {
+        let top = if map.spec().per_baseline {
+            let cm = baseline_cm.expect("a per-baseline map needs its baseline");
+            baseline_dir_name(cm)
+        } else {
+            LEFT_DIR.to_string()
+        };
+        self.path_in(&top, map, frame)
     }
 
-    fn baseline_file(&self, baseline_cm: f64, aov: &str, frame: u32, ext: &str) -> PathBuf {
-        self.file(&[&baseline_dir_name(baseline_cm), aov], frame, ext)
+    /// The file of `map` for frame `frame` below the folder `top` of the
+    /// root (`left`, or a baseline folder as found on disk).
+    pub fn path_in(&self, top: &str, map: Map, frame: u32) -> PathBuf {
+        self.map_dir(top, map)
+            .join(format!("{}.{}", frame_stem(frame), map.spec().format.ext()))
     }
 
-    /// `left/rgb/NNNNNN.png`: 8-bit sRGB left image.
-    pub fn left_rgb(&self, frame: u32) -> PathBuf {
-        self.file(&["left", "rgb"], frame, "png")
-    }
-
-    /// `left/rgb_hdr/NNNNNN.exr`: optional linear radiance of the left view.
-    pub fn left_rgb_hdr(&self, frame: u32) -> PathBuf {
-        self.file(&["left", "rgb_hdr"], frame, "exr")
-    }
-
-    /// `left/depth/NNNNNN.exr`: float32 depth_z in metres, +inf for sky.
-    pub fn left_depth(&self, frame: u32) -> PathBuf {
-        self.file(&["left", "depth"], frame, "exr")
-    }
-
-    /// `left/normal/NNNNNN.exr`: world-space unit normals.
-    pub fn left_normal(&self, frame: u32) -> PathBuf {
-        self.file(&["left", "normal"], frame, "exr")
-    }
-
-    /// `left/semantic/NNNNNN.png`: 8-bit class ids.
-    pub fn left_semantic(&self, frame: u32) -> PathBuf {
-        self.file(&["left", "semantic"], frame, "png")
-    }
-
-    /// `left/instance/NNNNNN.png`: 16-bit instance ids (0 = none).
-    pub fn left_instance(&self, frame: u32) -> PathBuf {
-        self.file(&["left", "instance"], frame, "png")
-    }
-
-    /// `left/mask/NNNNNN.png`: 8-bit mask bits (sky, rain, transparent, mirror).
-    pub fn left_mask(&self, frame: u32) -> PathBuf {
-        self.file(&["left", "mask"], frame, "png")
-    }
-
-    /// `baseline_XXX/rgb/NNNNNN.png`: the right image for this baseline.
-    pub fn baseline_rgb(&self, frame: u32, baseline_cm: f64) -> PathBuf {
-        self.baseline_file(baseline_cm, "rgb", frame, "png")
-    }
-
-    /// `baseline_XXX/rgb_hdr/NNNNNN.exr`: the right image's linear radiance (optional).
-    pub fn baseline_rgb_hdr(&self, frame: u32, baseline_cm: f64) -> PathBuf {
-        self.baseline_file(baseline_cm, "rgb_hdr", frame, "exr")
-    }
-
-    /// `baseline_XXX/disp/NNNNNN.pfm`: left-view disparity, float32 px.
-    pub fn baseline_disp(&self, frame: u32, baseline_cm: f64) -> PathBuf {
-        self.baseline_file(baseline_cm, "disp", frame, "pfm")
-    }
-
-    /// `baseline_XXX/depth_right/NNNNNN.exr`: right-view depth_z in metres.
-    pub fn baseline_depth_right(&self, frame: u32, baseline_cm: f64) -> PathBuf {
-        self.baseline_file(baseline_cm, "depth_right", frame, "exr")
-    }
-
-    /// `baseline_XXX/disp_right/NNNNNN.pfm`: right-view disparity, float32 px.
-    pub fn baseline_disp_right(&self, frame: u32, baseline_cm: f64) -> PathBuf {
-        self.baseline_file(baseline_cm, "disp_right", frame, "pfm")
-    }
-
-    /// `baseline_XXX/occ/NNNNNN.png`: left-view occlusion mask, 255 = occluded.
-    pub fn baseline_occ(&self, frame: u32, baseline_cm: f64) -> PathBuf {
-        self.baseline_file(baseline_cm, "occ", frame, "png")
+    /// The folder of `map`'s files below the folder `top` of the root.
+    pub fn map_dir(&self, top: &str, map: Map) -> PathBuf {
+        self.root.join(top).join(map.spec().folder)
     }
 
     /// `cameras/NNNNNN.json`: K, poses, weather, sun, exposure, seed.
     pub fn camera_json(&self, frame: u32) -> PathBuf {
-        self.file(&["cameras"], frame, "json")
+        self.root
+            .join(CAMERAS_DIR)
+            .join(format!("{}.json", frame_stem(frame)))
     }
 
     /// The root as a path (for relative paths in manifests).
@@ -267,49 +199,61 @@ impl NativeLayout {
 mod tests {
     use super::*;
 
+    use crate::output::registry::MAPS;
+
     #[test]
     fn native_paths_match_dataset_md() {
         let l = NativeLayout::new("/seq");
-        assert_eq!(l.left_rgb(0), PathBuf::from("/seq/left/rgb/000000.png"));
         assert_eq!(
-            l.left_depth(12),
+            l.path(Map::LeftRgb, 0, None),
+            PathBuf::from("/seq/left/rgb/000000.png")
+        );
+        assert_eq!(
+            l.path(Map::Depth, 12, None),
             PathBuf::from("/seq/left/depth/000012.exr")
         );
         assert_eq!(
-            l.left_rgb_hdr(1),
+            l.path(Map::LeftRgbHdr, 1, None),
             PathBuf::from("/seq/left/rgb_hdr/000001.exr")
         );
         assert_eq!(
-            l.left_normal(1),
+            l.path(Map::Normal, 1, None),
             PathBuf::from("/seq/left/normal/000001.exr")
         );
         assert_eq!(
-            l.left_semantic(1),
+            l.path(Map::Semantic, 1, None),
             PathBuf::from("/seq/left/semantic/000001.png")
         );
         assert_eq!(
-            l.left_instance(1),
+            l.path(Map::Instance, 1, None),
             PathBuf::from("/seq/left/instance/000001.png")
         );
-        assert_eq!(l.left_mask(1), PathBuf::from("/seq/left/mask/000001.png"));
         assert_eq!(
-            l.baseline_rgb(3, 54.0),
+            l.path(Map::Mask, 1, None),
+            PathBuf::from("/seq/left/mask/000001.png")
+        );
+        assert_eq!(
+            l.path(Map::RightRgb, 3, Some(54.0)),
             PathBuf::from("/seq/baseline_054/rgb/000003.png")
         );
         assert_eq!(
-            l.baseline_disp(3, 10.0),
+            l.path(Map::RightRgbHdr, 3, Some(54.0)),
+            PathBuf::from("/seq/baseline_054/rgb_hdr/000003.exr")
+        );
+        assert_eq!(
+            l.path(Map::Disparity, 3, Some(10.0)),
             PathBuf::from("/seq/baseline_010/disp/000003.pfm")
         );
         assert_eq!(
-            l.baseline_depth_right(3, 300.0),
+            l.path(Map::RightDepth, 3, Some(300.0)),
             PathBuf::from("/seq/baseline_300/depth_right/000003.exr")
         );
         assert_eq!(
-            l.baseline_disp_right(3, 100.0),
+            l.path(Map::RightDisparity, 3, Some(100.0)),
             PathBuf::from("/seq/baseline_100/disp_right/000003.pfm")
         );
         assert_eq!(
-            l.baseline_occ(3, 200.0),
+            l.path(Map::Occlusion, 3, Some(200.0)),
             PathBuf::from("/seq/baseline_200/occ/000003.png")
         );
         assert_eq!(
@@ -361,21 +305,7 @@ mod tests {
         let l = NativeLayout::new("");
         for b in [10.0, 54.0, 1234.0] {
             for f in [0, 7, 1_000_000] {
-                for p in [
-                    l.left_rgb(f),
-                    l.left_rgb_hdr(f),
-                    l.left_depth(f),
-                    l.left_normal(f),
-                    l.left_semantic(f),
-                    l.left_instance(f),
-                    l.left_mask(f),
-                    l.baseline_rgb(f, b),
-                    l.baseline_rgb_hdr(f, b),
-                    l.baseline_disp(f, b),
-                    l.baseline_depth_right(f, b),
-                    l.baseline_disp_right(f, b),
-                    l.baseline_occ(f, b),
-                ] {
+                for p in MAPS.iter().map(|m| l.path(m.map, f, Some(b))) {
                     let file = NativePath::File { frame: f };
                     assert_eq!(native_path(&p), Some(file), "{}", p.display());
                     let mut tmp = p.clone().into_os_string();

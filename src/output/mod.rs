@@ -1,4 +1,7 @@
-//! File writers and readers for every output format, all writes atomic.
+//! What a frame writes and how: the output registry (`registry`: every
+//! map declared once), the native layout's paths (`layout`) and writer
+//! (`frame`, `native`), the other layouts (`layouts`), and file writers and
+//! readers for every output format, all writes atomic.
 //!
 //! Every writer encodes into memory, then [`write_atomic`] writes
 //! `<name>.tmp-<pid>-<seq>` in the target directory, fsyncs it and renames it
@@ -12,11 +15,13 @@ mod exr_io;
 mod hash;
 mod image_io;
 mod layout;
+mod native;
 mod pfm;
 mod render_dir;
 
 pub mod frame;
 pub mod layouts;
+pub mod registry;
 
 pub use atomic::{read_file, temp_base, write_atomic, Access, OutputError};
 pub use exr_io::{read_exr_f32_gray, read_exr_rgb_f32, write_exr_f32_gray, write_exr_rgb_f32};
@@ -29,5 +34,7 @@ pub use layout::{
     baseline_dir_name, check_baseline_dirs, frame_stem, is_preview_file, native_path, NativeLayout,
     NativePath, SharedBaselineDir, PREVIEW_DIR,
 };
+pub use native::{map_pixels, write_map, MapPixels};
 pub use pfm::{decode_pfm_gray, encode_pfm_gray, read_pfm_gray, write_pfm_gray};
+pub use registry::{Map, MapSpec, CAMERAS_DIR, LEFT_DIR, MAPS};
 pub use render_dir::StagedDir;

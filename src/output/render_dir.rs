@@ -260,7 +260,7 @@ fn sweep_abandoned_stagings(parent: &Path, name: &str) {
             continue;
         };
         let dir = entry.path();
-        if process_alive(pid) || dir.join("cameras").exists() {
+        if process_alive(pid) || dir.join(super::CAMERAS_DIR).exists() {
             continue;
         }
         let _ = fs::remove_dir_all(&dir);

@@ -2,7 +2,7 @@
 //! fit of Ruofei Du), the CARLA/Cityscapes palette for semantic classes, a
 //! hashed palette for instance ids and one colour per mask bit.
 
-use crate::film::{MASK_MIRROR, MASK_RAIN, MASK_SKY, MASK_TRANSPARENT};
+use crate::scene::mask_bits::{MIRROR, RAIN, SKY, TRANSPARENT};
 
 /// Colour of invalid pixels in every colour-coded map (sky, no value).
 pub const INVALID: [u8; 3] = [0, 0, 0];
@@ -80,10 +80,10 @@ pub fn instance_colour(id: u16) -> [u8; 3] {
 
 /// The mask bits with their names and colours.
 pub const MASK_COLOURS: [(u8, &str, [u8; 3]); 4] = [
-    (MASK_SKY, "sky", [70, 130, 180]),
-    (MASK_RAIN, "rain", [0, 255, 255]),
-    (MASK_TRANSPARENT, "transparent", [255, 200, 0]),
-    (MASK_MIRROR, "mirror", [255, 0, 255]),
+    (SKY, "sky", [70, 130, 180]),
+    (RAIN, "rain", [0, 255, 255]),
+    (TRANSPARENT, "transparent", [255, 200, 0]),
+    (MIRROR, "mirror", [255, 0, 255]),
 ];
 
 /// The colour of a mask value: the mean of its set bits' colours, black for none.
@@ -114,6 +114,6 @@ mod tests {
         assert_eq!(semantic_colour(13), [70, 130, 180]);
         assert_eq!(instance_colour(0), INVALID);
         assert_ne!(instance_colour(1), instance_colour(2));
-        assert_eq!(mask_colour(MASK_SKY | MASK_MIRROR), [162, 65, 217]);
+        assert_eq!(mask_colour(SKY | MIRROR), [162, 65, 217]);
     }
 }

@@ -23,9 +23,10 @@ use canvas::Canvas;
 use colormap::{instance_colour, mask_colour, semantic_colour, MASK_COLOURS};
 use maps::{palette_map, scalar_map, Scale};
 
+use crate::output::registry::OCCLUSION_VISIBLE;
 use crate::output::{
     frame_stem, read_exr_f32_gray, read_pfm_gray, read_png_gray16, read_png_gray8, read_png_rgb8,
-    Access, NativeLayout, OutputError,
+    Access, Map, NativeLayout, OutputError, LEFT_DIR,
 };
 use crate::scene::semantic::class_name;
 
@@ -90,7 +91,7 @@ fn same_size(path: &Path, got: (usize, usize), want: (usize, usize)) -> io::Resu
 /// The smallest frame index with a depth map in `dir/left/depth/` (the
 /// default frame); an error naming the directory when there is none.
 pub fn first_frame(dir: &Path) -> io::Result<u32> {
-    let depth_dir = dir.join("left").join("depth");
+    let depth_dir = NativeLayout::new(dir).map_dir(LEFT_DIR, Map::Depth);
     let none = || {
         bad(
             &depth_dir,
@@ -102,7 +103,9 @@ pub fn first_frame(dir: &Path) -> io::Result<u32> {
         .filter_map(|e| e.ok())
         .filter_map(|e| {
             let name = e.file_name().to_string_lossy().into_owned();
-            name.strip_suffix(".exr")?.parse::<u32>().ok()
+            let (stem, ext) = name.split_once('.')?;
+            (ext == Map::Depth.spec().format.ext()).then_some(())?;
+            stem.parse::<u32>().ok()
         })
         .min()
         .ok_or_else(none)
@@ -118,7 +121,7 @@ pub fn read_frame(dir: &Path, frame: u32) -> io::Result<FrameMaps> {
         ));
     }
     let l = NativeLayout::new(dir);
-    let depth_path = l.left_depth(frame);
+    let depth_path = l.path(Map::Depth, frame, None);
     if !depth_path.is_file() {
         return Err(bad(
             &depth_path,
@@ -127,16 +130,16 @@ pub fn read_frame(dir: &Path, frame: u32) -> io::Result<FrameMaps> {
     }
     let (w, h, depth) = read_exr_f32_gray(&depth_path)?;
     let check = |p: &Path, got: (usize, usize)| same_size(p, got, (w, h));
-    let p = l.left_semantic(frame);
+    let p = l.path(Map::Semantic, frame, None);
     let (sw, sh, semantic) = read_png_gray8(&p)?;
     check(&p, (sw, sh))?;
-    let p = l.left_instance(frame);
+    let p = l.path(Map::Instance, frame, None);
     let (iw, ih, instance) = read_png_gray16(&p)?;
     check(&p, (iw, ih))?;
-    let p = l.left_mask(frame);
+    let p = l.path(Map::Mask, frame, None);
     let (mw, mh, mask) = read_png_gray8(&p)?;
     check(&p, (mw, mh))?;
-    let p = l.left_rgb(frame);
+    let p = l.path(Map::LeftRgb, frame, None);
     let left_rgb = if p.is_file() {
         let (rw, rh, rgb) = read_png_rgb8(&p)?;
         check(&p, (rw, rh))?;
@@ -149,16 +152,15 @@ pub fn read_frame(dir: &Path, frame: u32) -> io::Result<FrameMaps> {
     let mut names: Vec<String> = entries
         .filter_map(|e| e.ok())
         .map(|e| e.file_name().to_string_lossy().into_owned())
-        .filter(|n| n.starts_with("baseline_") && dir.join(n).join("disp").is_dir())
+        .filter(|n| n.starts_with("baseline_") && l.map_dir(n, Map::Disparity).is_dir())
         .collect();
     names.sort();
     let mut baselines = Vec::new();
     for name in names {
-        let base = dir.join(&name);
-        let p = base.join("disp").join(format!("{stem}.pfm"));
+        let p = l.path_in(&name, Map::Disparity, frame);
         let (dw, dh, disparity) = read_pfm_gray(&p)?;
         check(&p, (dw, dh))?;
-        let p = base.join("occ").join(format!("{stem}.png"));
+        let p = l.path_in(&name, Map::Occlusion, frame);
         let (ow, oh, occlusion) = read_png_gray8(&p)?;
         check(&p, (ow, oh))?;
         baselines.push(BaselineMaps {
@@ -187,7 +189,7 @@ pub fn occlusion_overlay(left_rgb: &[u8], occlusion: &[u8]) -> Vec<u8> {
         .zip(occlusion)
         .flat_map(|(c, &o)| {
             let c = [c[0], c[1], c[2]];
-            if o == 0 {
+            if o == OCCLUSION_VISIBLE {
                 c
             } else {
                 [0, 1, 2].map(|k| ((c[k] as u16 + OCC_TINT[k] as u16) / 2) as u8)

@@ -30,8 +30,9 @@ pub use stereocarla::{
     decode_stereocarla_depth, encode_stereocarla_depth, STEREOCARLA_VALID_MAX_PX,
 };
 
-/// A file layout of a dataset (DATASET.md, layouts). Names are lowercase.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+/// A file layout of a dataset (DATASET.md, layouts). Names are lowercase,
+/// also in TOML and JSON.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum LayoutKind {
     /// Lossless PNG/EXR/PFM, every ground-truth map (`output::frame`).
@@ -67,6 +68,23 @@ impl LayoutKind {
 impl fmt::Display for LayoutKind {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
+    }
+}
+
+/// A configuration's layout name: the name, or an error listing the names.
+impl<'de> Deserialize<'de> for LayoutKind {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let name = String::deserialize(d)?;
+        LayoutKind::ALL
+            .into_iter()
+            .find(|k| k.name() == name)
+            .ok_or_else(|| {
+                let names: Vec<&str> = LayoutKind::ALL.iter().map(|k| k.name()).collect();
+                serde::de::Error::custom(format!(
+                    "unknown layout '{name}' (one of {})",
+                    names.join(", ")
+                ))
+            })
     }
 }
 
@@ -238,7 +256,15 @@ mod tests {
             assert_eq!(k.to_string().parse::<LayoutKind>().unwrap(), k);
             let json = serde_json::to_string(&k).unwrap();
             assert_eq!(json, format!("\"{k}\""));
+            assert_eq!(serde_json::from_str::<LayoutKind>(&json).unwrap(), k);
         }
+        let e = serde_json::from_str::<LayoutKind>("\"coco\"").unwrap_err();
+        assert!(
+            e.to_string().starts_with(
+                "unknown layout 'coco' (one of native, stereocarla, kitti, sceneflow)"
+            ),
+            "{e}"
+        );
         assert!("KITTI".parse::<LayoutKind>().is_err());
     }
 

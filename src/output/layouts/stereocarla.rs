@@ -87,26 +87,27 @@ fn dir_and_stem(key: &FrameKey) -> (Vec<String>, String) {
     }
 }
 
-/// Root-relative `[left, right, depth]` of a frame at one baseline.
-pub(super) fn sample_paths(key: &FrameKey, baseline_cm: f64) -> [String; 3] {
+/// Root-relative `<dir>/<top>/<folder>/<stem>.<ext>` of a frame.
+fn sample_path(key: &FrameKey, top: &str, folder: &str, ext: &str) -> String {
     let (dir, stem) = dir_and_stem(key);
     let d: Vec<&str> = dir.iter().map(String::as_str).collect();
+    rel_str(&[d.as_slice(), &[top, folder, &format!("{stem}.{ext}")]].concat())
+}
+
+/// Root-relative `[left, right, depth]` of a frame at one baseline.
+pub(super) fn sample_paths(key: &FrameKey, baseline_cm: f64) -> [String; 3] {
     let b = baseline_dir_name(baseline_cm);
-    let join = |tail: &[&str]| rel_str(&[d.as_slice(), tail].concat());
     [
-        join(&["left", "rgb", &format!("{stem}.jpg")]),
-        join(&[&b, "rgb", &format!("{stem}.jpg")]),
-        join(&[&b, "depth", &format!("{stem}.png")]),
+        sample_path(key, "left", "rgb", "jpg"),
+        sample_path(key, &b, "rgb", "jpg"),
+        sample_path(key, &b, "depth", "png"),
     ]
 }
 
 /// Root-relative pose file of a frame at one baseline, beside the baseline's
 /// depth folder: `<dir>/baseline_XXX/pose/<stem>.json`.
 pub(super) fn pose_path(key: &FrameKey, baseline_cm: f64) -> String {
-    let (dir, stem) = dir_and_stem(key);
-    let d: Vec<&str> = dir.iter().map(String::as_str).collect();
-    let b = baseline_dir_name(baseline_cm);
-    rel_str(&[d.as_slice(), &[&b, "pose", &format!("{stem}.json")]].concat())
+    sample_path(key, &baseline_dir_name(baseline_cm), "pose", "json")
 }
 
 /// Hard-links `src` to `dst` atomically (link to a temporary name, rename);
