@@ -9,7 +9,7 @@ use std::fs;
 use std::path::Path;
 
 use common::cli::parallax_status;
-use common::{camera_block, GREY_UNDER_SKY};
+use common::fixtures::analytic_text;
 use parallax::output::{read_exr_f32_gray, read_pfm_gray, read_png_gray8, read_png_rgb8};
 use parallax::preview::colormap::{semantic_colour, turbo, INVALID};
 use parallax::preview::maps::zoom_for;
@@ -20,12 +20,7 @@ const H: usize = 18;
 
 /// Renders the tiny scene with baselines 54 and 300 cm into `dir/render`.
 fn tiny_render(dir: &Path) -> std::path::PathBuf {
-    let text = format!(
-        "{}baselines_cm = [54.0, 300.0]\n[render]\nspp = 1\nseed = 3\n{GREY_UNDER_SKY}\
-[[object]]\nkind = \"quad\"\nsize = [1000.0, 1000.0]\nmaterial = \"grey\"\n\
-[[object]]\nkind = \"box\"\nsize = [2.0, 2.0, 2.0]\nmaterial = \"grey\"\ntransform = {{ translate = [6.0, 0.5, 1.0] }}\n",
-        camera_block(W as u32, H as u32, [0.0, 0.0, 1.65])
-    );
+    let text = analytic_text("box_on_ground", (W as u32, H as u32), &[54.0, 300.0]);
     let scene = dir.join("scene.toml");
     fs::write(&scene, text).unwrap();
     let out = dir.join("render");

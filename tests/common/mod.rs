@@ -8,6 +8,7 @@
 pub mod boxes;
 pub mod cli;
 pub mod dataset;
+pub mod fixtures;
 pub mod light;
 pub mod readback;
 pub mod towns;

@@ -7,7 +7,8 @@ use crate::common;
 
 use std::path::Path;
 
-use common::{camera_block, render, scene_from_toml, GREY_UNDER_SKY};
+use common::fixtures::analytic_text;
+use common::{render, scene_from_toml};
 use parallax::accel::Backend;
 use parallax::eval::{evaluate, EvalOptions, EvalReport, Fill};
 use parallax::output::frame::camera_file;
@@ -105,12 +106,7 @@ fn every_layout_mirror_is_found_and_scored_as_the_native_one() {
 
 #[test]
 fn layouts_written_by_parallax_are_found_by_their_mirrors() {
-    let text = format!(
-        "{}baselines_cm = [10.0, 54.0]\n[render]\nspp = 1\nseed = 3\n{GREY_UNDER_SKY}\
-[[object]]\nkind = \"quad\"\nsize = [1000.0, 1000.0]\nmaterial = \"grey\"\n\
-[[object]]\nkind = \"box\"\nsize = [2.0, 2.0, 2.0]\nmaterial = \"grey\"\ntransform = {{ translate = [6.0, 0.5, 1.0] }}\n",
-        camera_block(32, 18, [0.0, 0.0, 1.65])
-    );
+    let text = analytic_text("box_on_ground", (32, 18), &[10.0, 54.0]);
     let r = render(&scene_from_toml(&text), Backend::Bvh, 1);
     let (w, h) = (r.out.left.width as usize, r.out.left.height as usize);
     let settings = parallax::render::RenderSettings {

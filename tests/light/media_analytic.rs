@@ -7,7 +7,7 @@
 //! fog's forward lobe (g = 0.85) against quadrature. Expected values are
 //! averaged over each pixel's footprint. The single-scatter cases render
 //! with the fog filter off and check each band of rows as well as the
-//! whole image (the filter's own mean is tested in `fog_filter.rs`; the
+//! whole image (the filter's own mean is tested in `denoise/fog.rs`; the
 //! furnace keeps it on).
 
 use crate::common;

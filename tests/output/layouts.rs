@@ -17,8 +17,9 @@ use crate::common;
 use std::fs;
 use std::path::Path;
 
+use common::fixtures::analytic_text;
 use common::readback::{pfm, png_gray16, rgb8, same};
-use common::{camera_block, render, scene_from_toml, Rendered, GREY_UNDER_SKY};
+use common::{render, scene_from_toml, Rendered};
 use parallax::accel::Backend;
 use parallax::output::frame::{camera_file, write_native_frame, WriteOptions};
 use parallax::output::layouts::{
@@ -28,12 +29,7 @@ use parallax::output::layouts::{
 use parallax::output::{read_jpeg_rgb8, read_pfm_gray, read_png_gray16, read_png_rgb8};
 
 fn tiny_frame() -> Rendered {
-    let text = format!(
-        "{}baselines_cm = [10.0, 54.0, 300.0]\n[render]\nspp = 1\nseed = 3\n{GREY_UNDER_SKY}\
-[[object]]\nkind = \"quad\"\nsize = [1000.0, 1000.0]\nmaterial = \"grey\"\n\
-[[object]]\nkind = \"box\"\nsize = [2.0, 2.0, 2.0]\nmaterial = \"grey\"\ntransform = {{ translate = [6.0, 0.5, 1.0] }}\n",
-        camera_block(64, 36, [0.0, 0.0, 1.65])
-    );
+    let text = analytic_text("box_on_ground", (64, 36), &[10.0, 54.0, 300.0]);
     render(&scene_from_toml(&text), Backend::Bvh, 1)
 }
 

@@ -56,7 +56,7 @@ fn scene_files(dir: &Path, out: &mut Vec<PathBuf>) {
         if path.is_dir() {
             scene_files(&path, out);
         } else if path.extension().is_some_and(|e| e == "toml")
-            // Town parameter files are not scenes (tests/town_*.rs cover them).
+            // Town parameter files are not scenes (tests/town/ covers them).
             && !path.file_name().is_some_and(|n| n.to_string_lossy().starts_with("town"))
         {
             out.push(path);
@@ -574,4 +574,14 @@ fn analytic_scene_comments_match_the_built_geometry() {
     }
     assert_eq!(depth_z("road_plane.toml", 0.0, 1e-4), None);
     assert_eq!(depth_z("road_plane.toml", 0.0, -0.1), None);
+    // Box on ground: the cube's front face x = 5 for a ∈ [−0.3, 0.1] and
+    // b ∈ [−0.07, 0.33], the ground at 1.65 / b elsewhere below the horizon.
+    for (a, b) in [(0.0, 0.0), (-0.29, 0.32), (0.09, -0.06)] {
+        close(depth_z("box_on_ground.toml", a, b), 5.0);
+    }
+    for (a, b) in [(0.3, 0.1), (-0.4, 0.05), (0.0, 0.34), (0.2, 0.004)] {
+        close(depth_z("box_on_ground.toml", a, b), 1.65 / b);
+    }
+    assert_eq!(depth_z("box_on_ground.toml", 0.0, -0.08), None);
+    assert_eq!(depth_z("box_on_ground.toml", 0.2, 0.003), None);
 }

@@ -79,7 +79,7 @@ fn expected_dir(world_from_camera: DMat3, (w, h): (u32, u32), i: u32, j: u32) ->
 /// direction; a draped piece (sides ≤ 5 m, `drape::STEP_M`) split into
 /// right triangles (circumradius ≤ 5·√2/2 m) interpolates it within
 /// A·k²/2 · R²/2 = 1.5 mm for town04 (A = 8 m, λ = 800 m); 3 mm (as in
-/// tests/town_loop.rs) leaves room for f32 depth at ~100 m.
+/// tests/town/highway_loop.rs) leaves room for f32 depth at ~100 m.
 const GRADED_ROAD_TOL_M: f64 = 3e-3;
 
 /// Ray parameter along `d` from `o` (render space) of the plane of the
