@@ -174,7 +174,7 @@ fn cloud_shadow_survives_render_space_rounding() {
     // (render origins 1 km apart), as the renderer rebuilds it: rounding in
     // render space must not move the shadow. (That the renderer passes world
     // positions at all is checked through its light set in
-    // `tests/sky_physical_furnace.rs`.)
+    // `tests/light/sky_physical_furnace.rs`.)
     let mut shadowed = 0;
     for k in 0..2000 {
         let p_world = DVec3::new(37.0 * k as f64, -11.0 * k as f64, 0.1 * (k % 7) as f64);

@@ -1,7 +1,15 @@
-//! Shared set-up for integration tests: inline scenes, one-call frame renders.
+//! Shared set-up for integration tests: inline scenes, one-call frame renders,
+//! and (in submodules) the real binary, dataset trees, light passes, towns.
+//! Every test binary (tests/SUBJECT/main.rs) includes this module with
+//! `#[path = "../common/mod.rs"] mod common;`.
+// Each binary uses a subset of the helpers; the rest would warn as dead code.
 #![allow(dead_code)]
 
 pub mod boxes;
+pub mod cli;
+pub mod dataset;
+pub mod fixtures;
+pub mod light;
 pub mod readback;
 pub mod towns;
 

@@ -1,0 +1,14 @@
+//! The command line through the real binary: bad input, any working
+//! directory, `render -o` over an existing directory, filters off,
+//! `preview`, `stats` and `bench`.
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod any_directory;
+mod bad_input;
+mod bench;
+mod filter;
+mod preview;
+mod render_output_dir;
+mod stats;

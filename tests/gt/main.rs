@@ -1,0 +1,13 @@
+//! Ground truth: exact depth, disparity and occlusion on analytic boxes and
+//! the street, untouched by weather and rain, and frames that are a pure
+//! function of (scene, seed, frame).
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod determinism;
+mod exactness;
+mod occlusion;
+mod rain;
+mod street;
+mod weather;

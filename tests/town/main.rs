@@ -1,0 +1,19 @@
+//! The procedural towns: generation, terrain, grades, highway loop, ramps,
+//! overpass, traffic and signals, ground truth of town frames, OBJ export and
+//! the town command line.
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod cli;
+mod export;
+mod generation;
+mod grade;
+mod gt;
+mod highway_loop;
+mod overpass;
+mod ramps;
+mod signals;
+mod terrain;
+mod traffic;
+mod traffic_motion;

@@ -1,0 +1,450 @@
+//! Traffic signals over one full clock cycle of frames: every head lights
+//! exactly one lamp, an emitter at signal luminance that the light sampler
+//! picks up; the lit colour is the clock's phase (read from the clock rate
+//! G′(t), not from the signal code); under red no vehicle of a clock route
+//! moves or stands past its stop line; approaches the ring drives never show
+//! red; lamps are deterministic per frame, and a town with another speed
+//! (another clock, not the cached plan) shows its own phases while the
+//! original keeps its own.
+
+use std::path::Path;
+
+use glam::DVec3;
+use parallax::light::LightSet;
+use parallax::scene::build_scene;
+use parallax::scene::desc::{MaterialDesc, MaterialKindDesc, ObjectDesc, PrefabDesc, ShapeDesc};
+use parallax::town::layout::Layout;
+use parallax::town::materials::town_materials;
+use parallax::town::props::{street_prefabs, LENS_SLOTS};
+use parallax::town::routes::{RouteKind, STOP_LINE_AT_M};
+use parallax::town::signals::{self, Approach, Lamp, Signal, SignalSite};
+use parallax::town::traffic::{Plan, Schedule, VehiclePose};
+use parallax::town::{
+    frame_at, load_town_frame, static_objects, town_scene, CameraConfig, TownDesc,
+};
+
+use crate::common;
+use common::towns::town;
+
+/// A plain grid (town02: 5 × 5 blocks, one lane) and a two-lane grid with
+/// a roundabout (town03).
+const SIGNAL_TOWNS: [&str; 2] = ["town02", "town03"];
+const SEED: u64 = 11;
+
+/// Frames 0 ..= one clock cycle (plus one, to see each frame's successor).
+fn cycle_frames(desc: &TownDesc) -> u64 {
+    (Plan::new(desc).schedule.cycle_s() * desc.fps).ceil() as u64 + 2
+}
+
+/// The traffic-light instances of a town's static objects.
+fn traffic_lights(desc: &TownDesc) -> Vec<ObjectDesc> {
+    static_objects(desc, SEED)
+        .into_iter()
+        .filter(
+            |o| matches!(&o.shape, ShapeDesc::Instance { prefab, .. } if prefab == signals::PREFAB),
+        )
+        .collect()
+}
+
+/// The town's materials and the traffic-light prefab.
+struct Library {
+    materials: Vec<MaterialDesc>,
+    prefab: PrefabDesc,
+}
+
+impl Library {
+    fn new(desc: &TownDesc) -> Self {
+        let prefab = street_prefabs()
+            .into_iter()
+            .find(|p| p.name == signals::PREFAB)
+            .expect("traffic-light prefab");
+        Library {
+            materials: town_materials(desc),
+            prefab,
+        }
+    }
+}
+
+/// Per head of one traffic-light instance (grouped by the lens's local y),
+/// the lamps whose resolved material emits.
+fn lit_per_head(lib: &Library, o: &ObjectDesc) -> Vec<Vec<Lamp>> {
+    let ShapeDesc::Instance { material_map, .. } = &o.shape else {
+        panic!("not an instance");
+    };
+    let materials = &lib.materials;
+    let mut heads: Vec<(f64, Vec<Lamp>)> = Vec::new();
+    for part in &lib.prefab.objects {
+        let slot = part.material.as_deref().unwrap_or_default();
+        let Some(k) = LENS_SLOTS.iter().position(|s| *s == slot) else {
+            continue;
+        };
+        let name = material_map.get(slot).map_or(slot, String::as_str);
+        let m = materials
+            .iter()
+            .find(|m| m.name == name)
+            .unwrap_or_else(|| panic!("material {name} missing"));
+        let emits = matches!(m.kind, MaterialKindDesc::Emissive { radiance, .. } if radiance.iter().any(|&x| x > 0.0));
+        let y = part.transform.translate.expect("lens placed")[1];
+        let head = match heads.iter().position(|(hy, _)| (hy - y).abs() < 1e-9) {
+            Some(h) => h,
+            None => {
+                heads.push((y, Vec::new()));
+                heads.len() - 1
+            }
+        };
+        if emits {
+            heads[head].1.push(Lamp::ALL[k]);
+        }
+    }
+    heads.into_iter().map(|(_, lit)| lit).collect()
+}
+
+/// Clock rate G′ just after `t` and whether it is falling (finite
+/// differences of `Schedule::driven_s`, step 1 ms: on a ramp of a few
+/// seconds the rate changes by ~4·10⁻⁴ per step).
+fn clock_rate(s: &Schedule, t: f64) -> (f64, bool) {
+    let h = 1e-3;
+    let r0 = (s.driven_s(t + h) - s.driven_s(t)) / h;
+    let r1 = (s.driven_s(t + 2.0 * h) - s.driven_s(t + h)) / h;
+    (r0, r1 < r0 - 1e-5)
+}
+
+/// The lamp a clock-following head must show at time `t`, with the clock's
+/// rate: red while everything stands, amber while it slows, green otherwise.
+fn clock_lamp(s: &Schedule, t: f64) -> (Lamp, f64) {
+    let (rate, falling) = clock_rate(s, t);
+    let lamp = if rate < 1e-9 {
+        Lamp::Red
+    } else if falling {
+        Lamp::Amber
+    } else {
+        Lamp::Green
+    };
+    (lamp, rate)
+}
+
+/// Where the front of `v` is along the approach of `site`, metres past the
+/// junction's near edge (negative before it), if `v` heads the site's way
+/// on its side of the road with its centre up to 25 m before that edge
+/// (not inside the junction, where turning vehicles leave on other roads).
+fn front_on_approach(l: &Layout, site: &SignalSite, v: &VehiclePose) -> Option<f64> {
+    let d = site.dir();
+    let c = site.centre(l);
+    let hw = l.road_w_m / 2.0;
+    let h = v.heading_deg.to_radians();
+    if (h.cos() - d[0]).abs() > 1e-3 || (h.sin() - d[1]).abs() > 1e-3 {
+        return None;
+    }
+    let rel = [v.position[0] - c[0], v.position[1] - c[1]];
+    let a = rel[0] * d[0] + rel[1] * d[1];
+    let lat = rel[0] * d[1] - rel[1] * d[0];
+    let front = a + hw + v.body.footprint_m()[0] / 2.0;
+    (lat > 0.0 && lat < hw && a > -hw - 25.0 && a < -hw).then_some(front)
+}
+
+fn is_block(plan: &Plan, v: &VehiclePose) -> bool {
+    matches!(plan.routes[v.route].route.kind, RouteKind::Block { .. })
+}
+
+#[test]
+fn every_head_lights_exactly_one_lamp_in_every_frame_of_a_cycle() {
+    for name in SIGNAL_TOWNS {
+        let desc = town(name);
+        let lights = traffic_lights(&desc);
+        let lib = Library::new(&desc);
+        assert!(lights.len() >= 8, "{name}: {} traffic lights", lights.len());
+        let mut seen = Vec::new();
+        for k in 0..cycle_frames(&desc) {
+            let mut frame = lights.clone();
+            signals::set_lamps(&desc, k, &mut frame);
+            for o in &frame {
+                let heads = lit_per_head(&lib, o);
+                assert_eq!(heads.len(), 2, "{name}: two heads per pole");
+                for lit in heads {
+                    assert_eq!(lit.len(), 1, "{name} frame {k}: lit {lit:?}");
+                    seen.push(lit[0]);
+                }
+            }
+        }
+        for lamp in Lamp::ALL {
+            assert!(seen.contains(&lamp), "{name}: {lamp:?} never lit");
+        }
+        // Without the frame's lamps (static objects) every lens is dark.
+        assert!(lights
+            .iter()
+            .all(|o| lit_per_head(&lib, o).iter().all(Vec::is_empty)));
+    }
+}
+
+#[test]
+fn the_generated_frame_carries_the_lamps_of_its_signals() {
+    let desc = town("town02");
+    let l = Layout::new(&desc);
+    let s = &Plan::new(&desc).schedule;
+    // One frame in each phase: drive, ramp down, stand.
+    for t in [s.go_s / 2.0, s.go_s + s.ramp_s / 2.0, s.moving_s() + 1.0] {
+        let k = (t * desc.fps).round() as u64;
+        let scene = town_scene(&desc, SEED, k, CameraConfig::Normal);
+        let want: Vec<Signal> = signals::signals_at(&desc, k);
+        let mut n = 0;
+        for o in &scene.objects {
+            let ShapeDesc::Instance {
+                prefab,
+                material_map,
+            } = &o.shape
+            else {
+                continue;
+            };
+            if prefab != signals::PREFAB {
+                continue;
+            }
+            n += 1;
+            let at = o.transform.translate.unwrap();
+            let heading = o.transform.rotate_deg.map_or(0.0, |r| r[2]);
+            let sig = want
+                .iter()
+                .find(|g| {
+                    (g.site.at[0] - at[0]).abs() < 1e-9
+                        && (g.site.at[1] - at[1]).abs() < 1e-9
+                        && (g.site.heading_deg - heading).abs() < 1e-9
+                })
+                .expect("every traffic light is a signal site");
+            assert_eq!(material_map.len(), 1);
+            assert_eq!(
+                material_map.get(sig.lamp.slot()).map(String::as_str),
+                Some(sig.lamp.lit())
+            );
+        }
+        assert_eq!(
+            n,
+            signals::signal_sites(&l).len(),
+            "no roundabout: all sites"
+        );
+    }
+}
+
+#[test]
+fn lit_colour_is_the_clock_phase() {
+    for name in SIGNAL_TOWNS {
+        let desc = town(name);
+        let plan = Plan::new(&desc);
+        // Checks per phase (red, amber, green): each must occur.
+        let mut checked = [0usize; 3];
+        for k in 0..cycle_frames(&desc) {
+            let t = k as f64 / desc.fps;
+            let (want, rate) = clock_lamp(&plan.schedule, t);
+            for g in signals::signals_at(&desc, k) {
+                if g.approach != Approach::Free {
+                    assert_eq!(g.lamp, want, "{name} frame {k}: rate {rate}");
+                    checked[want as usize] += 1;
+                }
+            }
+        }
+        assert!(
+            checked.iter().all(|&n| n > 0),
+            "{name}: clock signals checked under red, amber, green: {checked:?}"
+        );
+    }
+}
+
+#[test]
+fn under_red_no_clock_vehicle_moves_or_stands_past_its_stop_line() {
+    for name in SIGNAL_TOWNS {
+        let desc = town(name);
+        let l = Layout::new(&desc);
+        let plan = Plan::new(&desc);
+        let n = cycle_frames(&desc);
+        let frames: Vec<_> = (0..n).map(|k| frame_at(&desc, SEED, k)).collect();
+        let (mut at_line, mut through_green) = (0, 0);
+        for k in 0..n as usize - 1 {
+            let sigs = signals::signals_at(&desc, k as u64);
+            let all = |f: usize| -> Vec<VehiclePose> {
+                let f = &frames[f];
+                std::iter::once(f.ego.clone())
+                    .chain(f.vehicles.iter().cloned())
+                    .collect()
+            };
+            let (now, next) = (all(k), all(k + 1));
+            let red_next = signals::signals_at(&desc, k as u64 + 1);
+            for (g, g_next) in sigs.iter().zip(&red_next) {
+                if g.approach != Approach::Clock {
+                    continue;
+                }
+                for v in now.iter().filter(|v| is_block(&plan, v)) {
+                    let Some(front) = front_on_approach(&l, &g.site, v) else {
+                        continue;
+                    };
+                    let past = front > -STOP_LINE_AT_M + 0.06;
+                    match g.lamp {
+                        Lamp::Red => {
+                            assert!(
+                                !past,
+                                "{name} frame {k}: {} past the stop line at {front} m",
+                                v.id
+                            );
+                            let later = next.iter().find(|w| w.id == v.id).unwrap();
+                            if g_next.lamp == Lamp::Red {
+                                assert_eq!(
+                                    later.position, v.position,
+                                    "{name} frame {k}: {} moves under red",
+                                    v.id
+                                );
+                            }
+                            at_line += usize::from((front + STOP_LINE_AT_M).abs() < 0.1);
+                        }
+                        Lamp::Green => through_green += usize::from(past),
+                        Lamp::Amber => {}
+                    }
+                }
+            }
+        }
+        // Lead vehicles wait at stop lines under red; others drive through on green.
+        assert!(at_line > 0, "{name}: nobody waited at a red light");
+        assert!(through_green > 0, "{name}: nobody drove through on green");
+    }
+}
+
+#[test]
+fn ring_approaches_never_show_red() {
+    for name in SIGNAL_TOWNS {
+        let desc = town(name);
+        let l = Layout::new(&desc);
+        let sites = signals::signal_sites(&l);
+        let plan = Plan::new(&desc);
+        let (mut ring_seen, mut block_seen) = (0, 0);
+        for k in 0..cycle_frames(&desc) {
+            let sigs = signals::signals_at(&desc, k);
+            // The ring drives the outer y-roads' outer lanes: southbound at
+            // x = 0, northbound at the east edge; nobody comes in from the stubs.
+            let count = |a: Approach| sigs.iter().filter(|g| g.approach == a).count();
+            assert_eq!(count(Approach::Free), 2 * (l.ny - 1), "{name}");
+            assert_eq!(count(Approach::Empty), 2 * (l.ny - 1), "{name}");
+            assert_eq!(count(Approach::Clock), sites.len() - 4 * (l.ny - 1));
+            for g in &sigs {
+                if g.approach == Approach::Free {
+                    assert_eq!(g.lamp, Lamp::Green, "{name} frame {k}");
+                }
+            }
+            // Independently of the route geometry: every vehicle on an
+            // approach is of the kind the signal expects.
+            let f = frame_at(&desc, SEED, k);
+            for v in std::iter::once(&f.ego).chain(&f.vehicles) {
+                for g in &sigs {
+                    if front_on_approach(&l, &g.site, v).is_none() {
+                        continue;
+                    }
+                    if is_block(&plan, v) {
+                        assert_eq!(
+                            g.approach,
+                            Approach::Clock,
+                            "{name} frame {k}: {} {:?}",
+                            v.route,
+                            g.site
+                        );
+                        block_seen += 1;
+                    } else {
+                        assert_eq!((g.approach, g.lamp), (Approach::Free, Lamp::Green));
+                        ring_seen += 1;
+                    }
+                }
+            }
+        }
+        assert!(
+            ring_seen > 0 && block_seen > 0,
+            "{name}: {ring_seen} {block_seen}"
+        );
+    }
+}
+
+#[test]
+fn lamps_are_deterministic_and_another_speed_gets_its_own_clock() {
+    let desc = town("town03");
+    // Determinism: frame 5000 alone and within a sequence agree.
+    let alone = signals::signals_at(&desc, 5000);
+    let seq: Vec<_> = (4990..=5000)
+        .map(|k| signals::signals_at(&desc, k))
+        .collect();
+    assert_eq!(seq[10], alone);
+    assert_eq!(signals::signals_at(&desc, 5000), alone);
+    // The clock comes from the plan cached per description. With town03's
+    // cached, town03 at 20 km/h (same name) must run its own clock: its
+    // lamps follow its own phases (clock rate of its own schedule, whose
+    // speed is 20/3.6 m/s), differ from town03's in some frame, and
+    // town03's lamps stay as they were.
+    let original: Vec<Vec<Signal>> = (0..cycle_frames(&desc))
+        .map(|k| signals::signals_at(&desc, k))
+        .collect();
+    let text = std::fs::read_to_string(common::towns::town_file("town03")).unwrap();
+    let slow = text.replace("speed_kmh = 40.0", "speed_kmh = 20.0");
+    assert_ne!(slow, text);
+    let slow = parallax::town::parse_town_str(&slow, Path::new("town03.toml")).unwrap();
+    let slow_plan = Plan::new(&slow);
+    assert_eq!(slow_plan.schedule.speed_mps, 20.0 / 3.6);
+    let (mut differ, mut slow_checked) = (0, 0);
+    for (k, orig) in original.iter().enumerate() {
+        let t = k as f64 / slow.fps;
+        let (want, rate) = clock_lamp(&slow_plan.schedule, t);
+        let sigs = signals::signals_at(&slow, k as u64);
+        for g in sigs.iter().filter(|g| g.approach != Approach::Free) {
+            assert_eq!(g.lamp, want, "slow town03 frame {k}: rate {rate}");
+            slow_checked += 1;
+        }
+        differ += usize::from(sigs != *orig);
+    }
+    assert!(
+        slow_checked > 0,
+        "slow town03: no clock-following signal checked"
+    );
+    assert!(differ > 0, "a slower town03 shows town03's cached lamps");
+    for (k, orig) in original.iter().enumerate() {
+        assert_eq!(&signals::signals_at(&desc, k as u64), orig, "frame {k}");
+    }
+    let mut a = traffic_lights(&desc);
+    let mut b = a.clone();
+    signals::set_lamps(&desc, 4321, &mut a);
+    signals::set_lamps(&desc, 4321, &mut b);
+    assert_eq!(a, b);
+    // Setting twice replaces the lamp, it does not add a second one.
+    signals::set_lamps(&desc, 4321 + 50, &mut b);
+    signals::set_lamps(&desc, 4321, &mut b);
+    assert_eq!(a, b);
+}
+
+#[test]
+fn lit_lenses_are_emitters_at_signal_luminance_in_the_light_set() {
+    let desc = town("town02");
+    let luminance = |c: [f64; 3]| 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+    let materials = town_materials(&desc);
+    for lamp in Lamp::ALL {
+        let lit = materials.iter().find(|m| m.name == lamp.lit()).unwrap();
+        let MaterialKindDesc::Emissive { radiance, .. } = lit.kind else {
+            panic!("{} is not an emitter", lamp.lit());
+        };
+        // One radiance unit is ~100 cd/m²: 6400 cd/m² ± 5 %.
+        assert!((luminance(radiance) - 64.0).abs() < 3.2, "{lamp:?}");
+        let dark = materials.iter().find(|m| m.name == lamp.slot()).unwrap();
+        assert!(!matches!(dark.kind, MaterialKindDesc::Emissive { .. }));
+    }
+    // The light set of a built frame holds one more emitter per lit lens
+    // triangle: 2 heads × 12 triangles per traffic light.
+    let s = &Plan::new(&desc).schedule;
+    let k = ((s.moving_s() + 1.0) * desc.fps).round() as u64;
+    let loaded = load_town_frame(&desc, SEED, k, CameraConfig::Normal, Path::new("t.toml"))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let mut dark = loaded.clone();
+    let mut lights = 0;
+    for o in &mut dark.desc.objects {
+        if let ShapeDesc::Instance {
+            prefab,
+            material_map,
+        } = &mut o.shape
+        {
+            if prefab == signals::PREFAB {
+                material_map.clear();
+                lights += 1;
+            }
+        }
+    }
+    let count = |ls| LightSet::build(&build_scene(ls, DVec3::ZERO).unwrap()).len();
+    assert_eq!(count(&loaded) - count(&dark), lights * 24);
+}
