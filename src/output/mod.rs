@@ -25,9 +25,9 @@ pub use image_io::{
     read_jpeg_rgb8, read_png_gray16, read_png_gray8, read_png_rgb8, write_jpeg_rgb8,
     write_png_gray16, write_png_gray8, write_png_rgb8,
 };
+pub use crate::camera::{baseline_dir_name, check_baseline_dirs, SharedBaselineDir};
 pub use layout::{
-    baseline_dir_name, check_baseline_dirs, frame_stem, is_preview_file, native_path, NativeLayout,
-    NativePath, SharedBaselineDir, PREVIEW_DIR,
+    frame_stem, is_preview_file, native_path, NativeLayout, NativePath, PREVIEW_DIR,
 };
 pub use pfm::{decode_pfm_gray, encode_pfm_gray, read_pfm_gray, write_pfm_gray};
 pub use render_dir::StagedDir;

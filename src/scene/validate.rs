@@ -66,7 +66,7 @@ impl V<'_> {
             0.0,
             MAX_COORD_M * 100.0,
         )?;
-        crate::output::check_baseline_dirs(&rig.baselines_cm)
+        crate::camera::check_baseline_dirs(&rig.baselines_cm)
             .map_err(|e| self.err(format!("camera.baselines_cm[{}]", e.index), e.to_string()))?;
         self.coord("camera.position", &rig.position)?;
         self.finite("camera.yaw_deg", &[rig.yaw_deg])?;

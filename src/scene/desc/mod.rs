@@ -9,6 +9,7 @@ mod light;
 mod material;
 mod medium;
 mod object;
+mod rig;
 mod sensor;
 mod wetness;
 
@@ -19,7 +20,7 @@ pub use material::{
 };
 pub use medium::{build_medium, build_rain, MediumDesc, MediumKindDesc, RainDesc};
 pub use object::{ObjectDesc, PrefabDesc, RepeatDesc, ScaleDesc, ShapeDesc, TransformDesc};
-pub use sensor::SensorNoiseDesc;
+pub use sensor::{SensorNoise, SensorNoiseDesc};
 pub use wetness::WetnessDesc;
 
 use serde::{Deserialize, Serialize};
