@@ -13,6 +13,7 @@ pub mod film;
 pub mod geometry;
 pub mod integrator;
 pub mod light;
+pub mod material;
 pub mod output;
 pub mod preview;
 pub mod render;

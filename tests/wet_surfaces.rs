@@ -9,7 +9,7 @@ mod common;
 use common::{camera_block, render, scene_from_toml, Rendered};
 use parallax::accel::Backend;
 use parallax::integrator::gt::view_gt;
-use parallax::integrator::wet::{internal_reflectance, WATER_IOR};
+use parallax::material::wet::{internal_reflectance, WATER_IOR};
 use parallax::integrator::RenderCamera;
 use parallax::scene::mask_bits;
 use parallax::weather::{apply, draw_params, Weather};

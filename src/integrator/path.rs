@@ -18,10 +18,10 @@ use shaders_cpu::bsdf::Bsdf;
 use shaders_cpu::sampling::{power_heuristic, Frame};
 
 use crate::accel::{Accel, Hit, Ray};
-use crate::geometry::{FrontOrigin, SurfaceInteraction, SurfaceTable};
+use crate::geometry::{FrontOrigin, SurfaceInteraction};
 use crate::light::LightSet;
 use crate::sampler::SampleStream;
-use crate::scene::Scene;
+use crate::scene::{Scene, SurfaceTable};
 
 /// 4D sample sets per bounce: (BSDF u, BSDF v, lobe, roulette), two 2D
 /// samples for distant lights 0 and 1, (light choice, light u, light v,
@@ -552,8 +552,7 @@ impl<A: Accel> PathContext<'_, A> {
         if st.bounces == self.max_depth {
             return None;
         }
-        let textured = super::texture::textured_bsdf(scene, mat, si.p, si.n_geo, st.prev_delta);
-        let bsdf = super::wet::wet_bsdf(scene, &si, wo, textured);
+        let bsdf = scene.shading().bsdf(&si, wo, st.prev_delta);
         if is_two_sided(&bsdf) && !front {
             si.n_geo = -si.n_geo;
             si.n_shading = -si.n_shading;

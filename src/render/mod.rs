@@ -14,7 +14,7 @@ use rayon::prelude::*;
 use crate::accel::{Accel, ShadingAccel};
 use crate::camera::StereoRig;
 use crate::film::{Film, FogLayer};
-use crate::geometry::SurfaceTable;
+use crate::scene::SurfaceTable;
 use crate::integrator::gt::{occlusion_mask, view_gt, ViewGt};
 use crate::integrator::path::{PathContext, PathStart, PixelSum};
 use crate::integrator::rain;

@@ -10,7 +10,7 @@ use std::path::Path;
 use parallax::accel::{build_accel, Accel, AnyAccel, Backend, ShadingAccel};
 use parallax::camera::StereoRig;
 use parallax::film::{Film, FogLayer};
-use parallax::geometry::SurfaceTable;
+use parallax::scene::SurfaceTable;
 use parallax::integrator::path::{PathContext, PixelSum};
 use parallax::integrator::RenderCamera;
 use parallax::light::LightSet;

@@ -6,7 +6,7 @@
 use glam::Vec3;
 use parallax::accel::{build_accel, Backend, ShadingAccel};
 use parallax::camera::StereoRig;
-use parallax::geometry::SurfaceTable;
+use parallax::scene::SurfaceTable;
 use parallax::integrator::path::PathContext;
 use parallax::integrator::RenderCamera;
 use parallax::light::{LightSelection, LightSet};

@@ -8,7 +8,7 @@ use glam::Vec3;
 
 use crate::accel::{build_accel, Accel, Backend, Ray, ShadingAccel};
 use crate::camera::StereoRig;
-use crate::geometry::SurfaceTable;
+use crate::scene::SurfaceTable;
 use crate::integrator::path::PathContext;
 use crate::integrator::RenderCamera;
 use crate::light::LightSet;

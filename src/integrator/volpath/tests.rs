@@ -10,7 +10,7 @@ use glam::{DVec3, Vec3};
 use shaders_cpu::medium::{Density, HenyeyGreenstein, Medium};
 
 use crate::accel::{build_accel, Accel, Backend, Ray};
-use crate::geometry::SurfaceTable;
+use crate::scene::SurfaceTable;
 use crate::integrator::path::PathContext;
 use crate::integrator::path::PathState;
 use crate::integrator::volpath::Strategies;

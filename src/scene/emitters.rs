@@ -1,6 +1,8 @@
-//! Builds the frame's sky from its description, with the light its source
-//! brings: the physical sky's sun, or the night sky's moon, as a distant disk
-//! whose irradiance is the atmosphere's (top-of-atmosphere × transmittance).
+//! The emitters a `Scene` stores, as data: explicit lights (`Light`, built
+//! from `[[light]]` in render space) and the frame's sky, with the light its
+//! source brings: the physical sky's sun, or the night sky's moon, as a
+//! distant disk whose irradiance is the atmosphere's (top-of-atmosphere ×
+//! transmittance). Sampling them is `light`'s job.
 //!
 //! World directions, z up; degrees from the description, radians inside.
 
@@ -8,9 +10,63 @@ use glam::{DVec3, Vec3};
 use shaders_cpu::sky::atmosphere::{Atmosphere, SOLAR_IRRADIANCE, SUN_ANGULAR_RADIUS_RAD};
 use shaders_cpu::sky::{CloudLayer, NightGlow, OvercastSky, PhysicalSky, PhysicalSkyParams, Sky};
 
-use super::Light;
-use crate::scene::build::dir_from_elevation_azimuth;
-use crate::scene::desc::SkyDesc;
+use super::desc::{LightDesc, SceneDesc, SkyDesc};
+
+/// An explicit light source.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Light {
+    /// Distant sun: a uniform disk of angular radius `angular_radius_rad`
+    /// around `dir_to_sun`, delivering `irradiance` (W·m⁻² on a surface facing it).
+    Sun {
+        /// Unit vector towards the sun's centre.
+        dir_to_sun: Vec3,
+        /// Angular radius of the disk (the sun's is 0.004654 rad = 0.2666°).
+        angular_radius_rad: f32,
+        /// RGB irradiance on a surface perpendicular to `dir_to_sun`.
+        irradiance: Vec3,
+    },
+    /// Isotropic point light.
+    Point {
+        /// Position, render space.
+        p: Vec3,
+        /// Radiant intensity, W·sr⁻¹ per RGB channel.
+        intensity: Vec3,
+    },
+    /// Spot light with a smooth falloff between the inner and outer cones.
+    Spot {
+        /// Position, render space.
+        p: Vec3,
+        /// Unit axis of the cone.
+        dir: Vec3,
+        /// Radiant intensity on the axis, W·sr⁻¹.
+        intensity: Vec3,
+        /// Cosine of the full-intensity half-angle.
+        cos_inner: f32,
+        /// Cosine of the cut-off half-angle.
+        cos_outer: f32,
+    },
+}
+
+/// The explicit lights of `desc` in render space around `origin_world`, then
+/// its sky and the sky's disk light (if its source is up).
+pub fn build_emitters(desc: &SceneDesc, origin_world: DVec3) -> (Vec<Light>, Sky) {
+    let (sky, sky_light) = build_sky(desc.sky.as_ref(), origin_world);
+    let lights = desc
+        .lights
+        .iter()
+        .map(|l| build_light(l, origin_world))
+        .chain(sky_light)
+        .collect();
+    (lights, sky)
+}
+
+/// Unit vector towards a direction given by elevation above the horizon and
+/// azimuth counter-clockwise from +x (world z up).
+pub fn dir_from_elevation_azimuth(elevation_deg: f64, azimuth_deg: f64) -> DVec3 {
+    let (e, a) = (elevation_deg.to_radians(), azimuth_deg.to_radians());
+    DVec3::new(e.cos() * a.cos(), e.cos() * a.sin(), e.sin())
+}
+
 
 /// Full-moon irradiance relative to the sun's (both outside the atmosphere).
 pub const MOON_TO_SUN: f64 = 2.5e-6;
@@ -122,4 +178,41 @@ fn source_sky(params: PhysicalSkyParams, angular_radius_rad: f32) -> (Sky, Optio
         irradiance,
     });
     (Sky::Physical(Box::new(sky)), light)
+}
+
+/// One `[[light]]` in render space (positions relative to `origin_world`).
+fn build_light(l: &LightDesc, origin_world: DVec3) -> Light {
+    let p_render = |p: &[f64; 3]| (DVec3::from(*p) - origin_world).as_vec3();
+    match l {
+        LightDesc::Sun {
+            elevation_deg,
+            azimuth_deg,
+            irradiance,
+            angular_diameter_deg,
+        } => Light::Sun {
+            dir_to_sun: dir_from_elevation_azimuth(*elevation_deg, *azimuth_deg).as_vec3(),
+            angular_radius_rad: (angular_diameter_deg / 2.0).to_radians() as f32,
+            irradiance: v3(*irradiance),
+        },
+        LightDesc::Point {
+            position,
+            intensity,
+        } => Light::Point {
+            p: p_render(position),
+            intensity: v3(*intensity),
+        },
+        LightDesc::Spot {
+            position,
+            direction,
+            intensity,
+            inner_deg,
+            outer_deg,
+        } => Light::Spot {
+            p: p_render(position),
+            dir: DVec3::from(*direction).normalize().as_vec3(),
+            intensity: v3(*intensity),
+            cos_inner: inner_deg.to_radians().cos() as f32,
+            cos_outer: outer_deg.to_radians().cos() as f32,
+        },
+    }
 }
