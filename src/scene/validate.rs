@@ -15,7 +15,8 @@ use super::desc::{
 use super::load::{SceneError, SceneErrorKind as K};
 use super::mesh::MAX_COORD_M;
 use super::obj::{count_triangles, load_obj, ObjAsset};
-use super::ranges::{num, V};
+use super::desc::num;
+use super::ranges::V;
 use super::semantic::{class_id, CLASSES};
 
 /// Largest accepted image, pixels (64 megapixels).

@@ -8,6 +8,7 @@
 mod light;
 mod material;
 mod medium;
+mod num;
 mod object;
 mod rig;
 mod sensor;
@@ -18,6 +19,7 @@ pub use material::{
     conductor_eta_k, ConductorPreset, MaskFlag, MaterialDesc, MaterialKindDesc, TextureDesc,
     TextureKindDesc,
 };
+pub use num::num;
 pub use medium::{build_medium, build_rain, MediumDesc, MediumKindDesc, RainDesc};
 pub use object::{ObjectDesc, PrefabDesc, RepeatDesc, ScaleDesc, ShapeDesc, TransformDesc};
 pub use sensor::{SensorNoise, SensorNoiseDesc};
