@@ -63,7 +63,13 @@ fn layer_of_file(rel: &Path) -> Option<String> {
 fn imports(source: &str) -> Vec<(usize, String)> {
     let code: String = source
         .lines()
-        .map(|l| if l.trim_start().starts_with("//") { "" } else { l })
+        .map(|l| {
+            if l.trim_start().starts_with("//") {
+                ""
+            } else {
+                l
+            }
+        })
         .collect::<Vec<_>>()
         .join("\n");
     let line_of = |at: usize| code[..at].matches('\n').count() + 1;
@@ -185,7 +191,10 @@ fn imports_name_the_layers_of_paths_groups_and_descriptions() {
         layer_of_file(Path::new("scene/desc/rig.rs")).as_deref(),
         Some("scene::desc")
     );
-    assert_eq!(layer_of_file(Path::new("weather.rs")).as_deref(), Some("weather"));
+    assert_eq!(
+        layer_of_file(Path::new("weather.rs")).as_deref(),
+        Some("weather")
+    );
     assert_eq!(layer_of_file(Path::new("lib.rs")), None);
     // The table's order is the rule: scene::desc under camera is an upward use.
     assert!(rank("camera") < rank("scene::desc") && rank("scene::desc") < rank("scene"));

@@ -12,8 +12,8 @@
 //! fixed pattern of each sensor (view), so it does not depend on the frame.
 
 use super::Film;
-pub use crate::scene::desc::SensorNoise;
 use crate::sampler::{hash_words, mix64};
+pub use crate::scene::desc::SensorNoise;
 
 /// ISO at which an exposed value of 1.0 fills the full well.
 pub const BASE_ISO: f32 = 100.0;

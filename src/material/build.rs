@@ -6,7 +6,9 @@ use glam::{DVec3, Vec3};
 use shaders_cpu::bsdf::{Bsdf, CoatBase};
 
 use super::{mask_bits, Material};
-use crate::scene::desc::{conductor_eta_k, ConductorPreset, MaskFlag, MaterialDesc, MaterialKindDesc};
+use crate::scene::desc::{
+    conductor_eta_k, ConductorPreset, MaskFlag, MaterialDesc, MaterialKindDesc,
+};
 
 /// Perceptual roughness below which a conductor counts as a mirror in the mask.
 pub const MIRROR_ROUGHNESS: f64 = 0.1;
@@ -47,9 +49,12 @@ pub fn build_material(m: &MaterialDesc) -> Material {
 /// The BSDF, emission and kind-implied mask bits of a material kind.
 fn resolve_kind(kind: &MaterialKindDesc) -> Resolved {
     match kind {
-        MaterialKindDesc::Diffuse { albedo } => {
-            Resolved::surface(Bsdf::Lambert { albedo: v3(*albedo) }, 0)
-        }
+        MaterialKindDesc::Diffuse { albedo } => Resolved::surface(
+            Bsdf::Lambert {
+                albedo: v3(*albedo),
+            },
+            0,
+        ),
         MaterialKindDesc::Conductor {
             preset,
             eta,

@@ -78,6 +78,11 @@ impl Shading<'_> {
     /// ([`mask_at`]).
     #[inline]
     pub fn mask(&self, si: &SurfaceInteraction, ray_d: Vec3) -> u8 {
-        mask_at(&self.materials[si.material as usize], self.wetness, si, ray_d)
+        mask_at(
+            &self.materials[si.material as usize],
+            self.wetness,
+            si,
+            ray_d,
+        )
     }
 }

@@ -14,7 +14,6 @@ use rayon::prelude::*;
 use crate::accel::{Accel, ShadingAccel};
 use crate::camera::StereoRig;
 use crate::film::{Film, FogLayer};
-use crate::scene::SurfaceTable;
 use crate::integrator::gt::{occlusion_mask, view_gt, ViewGt};
 use crate::integrator::path::{PathContext, PathStart, PixelSum};
 use crate::integrator::rain;
@@ -22,6 +21,7 @@ use crate::integrator::RenderCamera;
 use crate::light::LightSet;
 use crate::sampler::{SampleStream, StreamKey};
 use crate::scene::Scene;
+use crate::scene::SurfaceTable;
 
 /// What to render.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -35,10 +35,7 @@ pub fn build_scene(scene: &LoadedScene, origin_world: DVec3) -> Result<Scene, Sc
         filter_inscatter: filters_inscatter(desc),
         filter_indirect: desc.render.filter_indirect && desc.medium.is_none(),
         rain: desc.rain.as_ref().map(|r| build_rain(r, origin_world)),
-        wetness: desc
-            .wetness
-            .as_ref()
-            .map(|w| Wetness::new(w, origin_world)),
+        wetness: desc.wetness.as_ref().map(|w| Wetness::new(w, origin_world)),
     })
 }
 

@@ -67,7 +67,6 @@ pub fn dir_from_elevation_azimuth(elevation_deg: f64, azimuth_deg: f64) -> DVec3
     DVec3::new(e.cos() * a.cos(), e.cos() * a.sin(), e.sin())
 }
 
-
 /// Full-moon irradiance relative to the sun's (both outside the atmosphere).
 pub const MOON_TO_SUN: f64 = 2.5e-6;
 /// Angular radius of the moon, rad (0.259°).

@@ -10,12 +10,12 @@ use std::path::Path;
 use parallax::accel::{build_accel, Accel, AnyAccel, Backend, ShadingAccel};
 use parallax::camera::StereoRig;
 use parallax::film::{Film, FogLayer};
-use parallax::scene::SurfaceTable;
 use parallax::integrator::path::{PathContext, PixelSum};
 use parallax::integrator::RenderCamera;
 use parallax::light::LightSet;
 use parallax::render::{render_frame, FrameOutput, RenderSettings};
 use parallax::sampler::{SampleStream, StreamKey};
+use parallax::scene::SurfaceTable;
 use parallax::scene::{build_scene, parse_scene_str, LoadedScene, Scene};
 
 /// Parses an inline scene (OBJ paths resolve against `tests/`).

@@ -6,11 +6,11 @@
 use glam::Vec3;
 use parallax::accel::{build_accel, Backend, ShadingAccel};
 use parallax::camera::StereoRig;
-use parallax::scene::SurfaceTable;
 use parallax::integrator::path::PathContext;
 use parallax::integrator::RenderCamera;
 use parallax::light::{LightSelection, LightSet};
 use parallax::sampler::{SampleStream, StreamKey};
+use parallax::scene::SurfaceTable;
 use parallax::scene::{build_scene, LoadedScene, Scene};
 use rayon::prelude::*;
 

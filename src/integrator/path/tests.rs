@@ -8,11 +8,11 @@ use glam::Vec3;
 
 use crate::accel::{build_accel, Accel, Backend, Ray, ShadingAccel};
 use crate::camera::StereoRig;
-use crate::scene::SurfaceTable;
 use crate::integrator::path::PathContext;
 use crate::integrator::RenderCamera;
 use crate::light::LightSet;
 use crate::sampler::{SampleStream, StreamKey};
+use crate::scene::SurfaceTable;
 use crate::scene::{build_scene, load_scene};
 
 #[test]

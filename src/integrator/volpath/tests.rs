@@ -10,12 +10,12 @@ use glam::{DVec3, Vec3};
 use shaders_cpu::medium::{Density, HenyeyGreenstein, Medium};
 
 use crate::accel::{build_accel, Accel, Backend, Ray};
-use crate::scene::SurfaceTable;
 use crate::integrator::path::PathContext;
 use crate::integrator::path::PathState;
 use crate::integrator::volpath::Strategies;
 use crate::light::LightSet;
 use crate::sampler::{SampleStream, StreamKey};
+use crate::scene::SurfaceTable;
 use crate::scene::{build_scene, parse_scene_str};
 
 const SCENE: &str = r#"

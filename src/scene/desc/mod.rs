@@ -19,8 +19,8 @@ pub use material::{
     conductor_eta_k, ConductorPreset, MaskFlag, MaterialDesc, MaterialKindDesc, TextureDesc,
     TextureKindDesc,
 };
-pub use num::num;
 pub use medium::{build_medium, build_rain, MediumDesc, MediumKindDesc, RainDesc};
+pub use num::num;
 pub use object::{ObjectDesc, PrefabDesc, RepeatDesc, ScaleDesc, ShapeDesc, TransformDesc};
 pub use sensor::{SensorNoise, SensorNoiseDesc};
 pub use wetness::WetnessDesc;

@@ -8,7 +8,6 @@
 
 use serde::{Deserialize, Serialize};
 
-
 /// Parameters of the sensor model (EMVA 1288 terms, in electrons).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SensorNoise {
