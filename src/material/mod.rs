@@ -86,3 +86,96 @@ impl Shading<'_> {
         )
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::wet::WATER_IOR;
+    use super::*;
+    use crate::scene::desc::{TextureDesc, TextureKindDesc, WetnessDesc};
+
+    /// A textured asphalt road material (nominal albedo 0.2).
+    fn road() -> Material {
+        let texture = TextureDesc {
+            kind: TextureKindDesc::Asphalt,
+            scale: 1.0,
+            seed: 3,
+        };
+        Material {
+            name: "road".into(),
+            bsdf: Bsdf::Lambert {
+                albedo: Vec3::splat(0.2),
+            },
+            le: Vec3::ZERO,
+            two_sided_emission: false,
+            mask: 0,
+            texture: Some(texture.build()),
+        }
+    }
+
+    /// An up-facing hit at render-space `p` on material 0 of class `semantic`.
+    fn hit(p: Vec3, semantic: u8) -> SurfaceInteraction {
+        SurfaceInteraction {
+            p,
+            p_error: Vec3::ZERO,
+            n_geo: Vec3::Z,
+            n_shading: Vec3::Z,
+            uv: glam::Vec2::ZERO,
+            material: 0,
+            semantic,
+            instance: 0,
+        }
+    }
+
+    #[test]
+    fn shading_textures_seen_hits_at_their_world_point_then_wets_them() {
+        let materials = [road()];
+        let origin = DVec3::new(1000.0, -20.0, 0.5);
+        let dry = Shading {
+            materials: &materials,
+            wetness: None,
+            origin_world: origin,
+        };
+        let wo = Vec3::new(0.3, 0.0, 1.0).normalize();
+        let mut textured = 0;
+        for k in 0..32 {
+            let si = hit(Vec3::new(0.37 * k as f32, 0.11 * k as f32, 0.0), 1);
+            let p_world = origin + si.p.as_dvec3();
+            let albedo = textured_albedo(&materials[0], p_world, si.n_geo);
+            // Seen: the texture at the world point; after a diffuse bounce
+            // the nominal albedo.
+            assert_eq!(dry.bsdf(&si, wo, true), Bsdf::Lambert { albedo });
+            assert_eq!(dry.bsdf(&si, wo, false), materials[0].bsdf);
+            assert_eq!(dry.mask(&si, -wo), 0);
+            textured += usize::from(albedo != Vec3::splat(0.2));
+        }
+        assert!(textured > 16, "texture changed {textured} of 32 albedos");
+
+        // Soaked with puddles everywhere: a road hit becomes smooth water
+        // over the soaked textured base and carries the mirror bit; a class
+        // that does not get wet (0) keeps its textured BSDF.
+        let desc = WetnessDesc {
+            wetness: 1.0,
+            puddle_cover: 1.0,
+            puddle_scale_m: 4.0,
+            seed: 1,
+        };
+        let w = Wetness::new(&desc, origin);
+        let wet = Shading {
+            wetness: Some(&w),
+            ..dry
+        };
+        let si = hit(Vec3::new(2.5, -1.25, 0.0), 1);
+        let seen = dry.bsdf(&si, wo, true);
+        assert_eq!(wet.bsdf(&si, wo, true), wet_bsdf(Some(&w), &si, wo, seen));
+        assert!(
+            matches!(wet.bsdf(&si, wo, true), Bsdf::Coated { eta, alpha, .. } if eta == WATER_IOR && alpha == 0.0)
+        );
+        assert_eq!(wet.mask(&si, -wo), mask_bits::MIRROR);
+        let dry_class = hit(si.p, 0);
+        assert_eq!(
+            wet.bsdf(&dry_class, wo, true),
+            dry.bsdf(&dry_class, wo, true)
+        );
+        assert_eq!(wet.mask(&dry_class, -wo), 0);
+    }
+}

@@ -4,6 +4,12 @@
 //! Units: metres, degrees in files (radians inside), world frame right-handed
 //! with z up. Positions are f64 so a scene may sit far from the origin.
 //! Families live in `object.rs`, `material.rs` and `light.rs` (lights and sky).
+//!
+//! Descriptions sit below the built scene (and below camera users, weather,
+//! accel and material): besides the format they own only what a description
+//! turns into on its own — the rig (`rig`: `StereoRig::from_desc`), the
+//! sensor-noise parameters (`SensorNoise`), media and rain (`medium`) — and
+//! `num`, the compact numbers of their messages.
 
 mod light;
 mod material;
