@@ -221,7 +221,7 @@ pub fn view_gt(scene: &Scene, accel: &impl Accel, cam: &RenderCamera, labels: bo
                 normal[k] = si.n_shading * facing;
                 sem[k] = si.semantic;
                 inst[k] = si.instance;
-                mask[k] = scene.shading().mask(&si, ray.d);
+                mask[k] = scene.material_view().mask(&si, ray.d);
             });
         },
     );

@@ -1,8 +1,8 @@
 //! Integrators: the exact ground-truth pass (`gt`) and the path tracer (`path`).
 //!
 //! Both consume a `RenderCamera` — a camera re-expressed in render space — so
-//! neither ever sees world coordinates; only `material::texture` turns a hit
-//! back into a world position, so procedural albedo does not move with the rig.
+//! neither ever sees world coordinates; only `texture` turns a hit back into
+//! a world position, so procedural albedo does not move with the rig.
 
 pub mod gt;
 pub mod path;

@@ -552,7 +552,7 @@ impl<A: Accel> PathContext<'_, A> {
         if st.bounces == self.max_depth {
             return None;
         }
-        let bsdf = scene.shading().bsdf(&si, wo, st.prev_delta);
+        let bsdf = scene.material_view().bsdf(&si, wo, st.prev_delta);
         if is_two_sided(&bsdf) && !front {
             si.n_geo = -si.n_geo;
             si.n_shading = -si.n_shading;

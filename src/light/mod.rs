@@ -3,8 +3,7 @@
 //! for next-event estimation.
 //!
 //! Directions are render space (= world orientation, z up). Sampling returns
-//! radiance arriving at the shading point and a pdf per solid angle. The
-//! `Light` data and the sky are built with the scene (`scene::emitters`).
+//! radiance arriving at the shading point and a pdf per solid angle.
 
 use glam::Vec3;
 

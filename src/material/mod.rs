@@ -1,12 +1,12 @@
 //! Materials: what a surface is made of and what that makes of light at a
 //! hit. Owns the resolved `Material` (built from its description by
 //! `build`), the GT mask bits a material carries, procedural texturing
-//! (`texture`), wet surfaces and puddles (`wet`), and `Shading`, the one
+//! (`texture`), wet surfaces and puddles (`wet`), and `MaterialView`, the one
 //! place where a hit's material becomes the BSDF and mask bits the
 //! integrators use.
 //!
 //! Materials sit below the scene: nothing here reads a `Scene`; a scene
-//! lends its materials, wetness and render origin as a `Shading`.
+//! lends its materials, wetness and render origin as a `MaterialView`.
 
 pub mod build;
 pub mod texture;
@@ -54,7 +54,7 @@ pub struct Material {
 /// `SurfaceInteraction::material`), its wetness and the world position of
 /// its render origin (textures are functions of world position).
 #[derive(Clone, Copy, Debug)]
-pub struct Shading<'a> {
+pub struct MaterialView<'a> {
     /// The frame's materials.
     pub materials: &'a [Material],
     /// Wet surfaces and puddles (None: dry).
@@ -63,7 +63,7 @@ pub struct Shading<'a> {
     pub origin_world: DVec3,
 }
 
-impl Shading<'_> {
+impl MaterialView<'_> {
     /// The BSDF at `si` seen from `wo` (pointing away from the surface): the
     /// material's, textured when `seen` ([`textured_bsdf`]), then wetted
     /// ([`wet_bsdf`]).
@@ -130,7 +130,7 @@ mod tests {
     fn shading_textures_seen_hits_at_their_world_point_then_wets_them() {
         let materials = [road()];
         let origin = DVec3::new(1000.0, -20.0, 0.5);
-        let dry = Shading {
+        let dry = MaterialView {
             materials: &materials,
             wetness: None,
             origin_world: origin,
@@ -160,7 +160,7 @@ mod tests {
             seed: 1,
         };
         let w = Wetness::new(&desc, origin);
-        let wet = Shading {
+        let wet = MaterialView {
             wetness: Some(&w),
             ..dry
         };

@@ -3,11 +3,11 @@
 //! (`hash_words`, `mix64`) and a keyed scalar stream (`rng::Rng`, used by the
 //! town generator and the weather draw).
 //!
-//! Pixel streams are keyed by
-//! (seed, frame, view, pixel, sample index, dimension), as pbrt-v4's
-//! `StartPixelSample` does: a pixel's samples never depend on which thread or
-//! tile rendered it, and every view gets an independent stream so noise is not
-//! correlated between left and right images.
+//! Pixel streams are keyed by (seed, frame, view, pixel, sample index,
+//! dimension), as pbrt-v4's `StartPixelSample` does: a pixel's samples never
+//! depend on which thread or tile rendered it, and every view gets an
+//! independent stream so noise is not correlated between left and right
+//! images.
 //!
 //! Each request draws a 4D point of Owen-scrambled Sobol (Burley 2020, via
 //! `sobol_burley`) with its own scramble seed per request: the "padded"

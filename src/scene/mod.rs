@@ -49,7 +49,7 @@ use glam::{DVec3, Vec2, Vec3, Vec4};
 use shaders_cpu::sky::Sky;
 
 use crate::accel::{AccelGeometry, TriMeshRef};
-use crate::material::{Shading, Wetness};
+use crate::material::{MaterialView, Wetness};
 
 /// A triangle mesh in render space.
 #[derive(Clone, Debug, Default)]
@@ -138,8 +138,8 @@ impl Scene {
 
     /// What shading reads of this scene: materials, wetness, render origin.
     #[inline]
-    pub fn shading(&self) -> Shading<'_> {
-        Shading {
+    pub fn material_view(&self) -> MaterialView<'_> {
+        MaterialView {
             materials: &self.materials,
             wetness: self.wetness.as_ref(),
             origin_world: self.origin_world,

@@ -62,7 +62,7 @@ impl<A: Accel> PathContext<'_, A> {
     pub(super) fn first_lambert_albedo(&self, ray: &Ray, hit: &Hit) -> Option<Vec3> {
         let scene = self.scene;
         let si = self.surfaces.interaction(scene, ray, hit);
-        match scene.shading().bsdf(&si, -ray.d, true) {
+        match scene.material_view().bsdf(&si, -ray.d, true) {
             Bsdf::Lambert { albedo } => Some(albedo),
             _ => None,
         }
