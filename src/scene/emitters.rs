@@ -215,3 +215,43 @@ fn build_light(l: &LightDesc, origin_world: DVec3) -> Light {
         },
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A scene with one point light at world (10, 2, 5) under a physical sky
+    /// whose sun stands at `sun_elevation_deg`.
+    fn desc(sun_elevation_deg: f64) -> SceneDesc {
+        toml::from_str(&format!(
+            "[camera]\nposition = [0.0, 0.0, 1.6]\n\
+             [sky]\nkind = \"physical\"\nsun_elevation_deg = {sun_elevation_deg}\n\
+             sun_azimuth_deg = 90.0\nturbidity = 3.0\nground_albedo = 0.2\n\
+             [[light]]\nkind = \"point\"\nposition = [10.0, 2.0, 5.0]\nintensity = [1.0, 2.0, 3.0]\n"
+        ))
+        .expect("test scene parses")
+    }
+
+    #[test]
+    fn explicit_lights_come_first_in_render_space_then_the_sky_sun_while_it_is_up() {
+        let origin = DVec3::new(4.0, -1.0, 1.0);
+        let (lights, sky) = build_emitters(&desc(30.0), origin);
+        assert!(matches!(sky, Sky::Physical(_)));
+        assert_eq!(lights.len(), 2, "{lights:?}");
+        assert_eq!(
+            lights[0],
+            Light::Point {
+                p: Vec3::new(6.0, 3.0, 4.0),
+                intensity: Vec3::new(1.0, 2.0, 3.0),
+            }
+        );
+        let Light::Sun { dir_to_sun, .. } = lights[1] else {
+            panic!("the sky's sun comes last: {lights:?}");
+        };
+        // Elevation 30°, azimuth 90°: towards +y, half-way up.
+        assert!((dir_to_sun - Vec3::new(0.0, 0.866_025_4, 0.5)).length() < 1e-6);
+        // Once the sun has set, the sky brings no disk light.
+        let (lights, _) = build_emitters(&desc(-10.0), origin);
+        assert_eq!(lights.len(), 1, "{lights:?}");
+    }
+}
