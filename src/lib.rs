@@ -1,5 +1,6 @@
 //! parallax: a CPU path tracer for synthetic stereo driving datasets with exact
-//! ground truth. See `../shared/DESIGN.md` for the map of modules.
+//! ground truth. See `../shared/DESIGN.md` for the map of modules; their
+//! layering (which module may use which) is the table in `layers.rs`.
 
 #![warn(missing_docs)]
 
@@ -14,6 +15,7 @@ pub mod film;
 pub mod geometry;
 pub mod integrator;
 pub mod light;
+pub mod material;
 pub mod output;
 pub mod preview;
 pub mod render;
@@ -22,3 +24,6 @@ pub mod scene;
 pub mod stats;
 pub mod town;
 pub mod weather;
+
+#[cfg(test)]
+mod layers;

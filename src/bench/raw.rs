@@ -8,9 +8,9 @@ use rayon::prelude::*;
 use super::clock::{Span, Stopwatch};
 use crate::accel::{Accel, Hit, Ray, ShadingAccel};
 use crate::camera::StereoRig;
-use crate::geometry::surface_interaction;
 use crate::integrator::RenderCamera;
 use crate::sampler::mix64;
+use crate::scene::surface_interaction;
 use crate::scene::Scene;
 
 /// Raw traversal rates, Mrays/s: the watertight queries ground truth uses,

@@ -4,11 +4,15 @@
 //! z up, metres. Pixel (i, j) has its centre at (i + 0.5, j + 0.5) and the ray
 //! through image point (u, v) has camera-frame direction ((u−cx)/f, (v−cy)/f, 1),
 //! so the ray parameter of a hit along that (unnormalised) direction IS depth_z.
-//! Cameras are pure geometry: they own no film.
+//! Cameras are pure geometry: they own no film and read no description (the
+//! scene description builds its rig from plain values). Also the rig's
+//! baseline-folder rule (`baseline`).
 
+mod baseline;
 mod rig;
 
-pub use rig::StereoRig;
+pub use baseline::{baseline_dir_name, check_baseline_dirs, SharedBaselineDir};
+pub use rig::{world_from_camera_rotation, StereoRig};
 
 use glam::{DMat3, DVec2, DVec3};
 

@@ -5,7 +5,6 @@
 use glam::{DMat3, DVec3};
 
 use super::{Camera, Intrinsics};
-use crate::scene::desc::RigDesc;
 
 /// A rectified stereo rig with one left camera and one right camera per baseline.
 #[derive(Clone, Debug, PartialEq)]
@@ -32,22 +31,22 @@ pub fn world_from_camera_rotation(yaw_rad: f64, pitch_rad: f64, roll_rad: f64) -
 }
 
 impl StereoRig {
-    /// Builds the rig of a description (validated upstream).
-    pub fn from_desc(desc: &RigDesc) -> Self {
-        let intrinsics = Intrinsics::from_hfov(desc.width, desc.height, desc.hfov_deg.to_radians());
+    /// A rig whose left camera has `intrinsics`, sits at `center_world` and
+    /// is turned by heading `yaw_rad`, downward pitch `pitch_rad` and roll
+    /// `roll_rad` ([`world_from_camera_rotation`]); one right camera per
+    /// baseline (metres, in order) along the left camera's x axis.
+    pub fn new(
+        intrinsics: Intrinsics,
+        center_world: DVec3,
+        [yaw_rad, pitch_rad, roll_rad]: [f64; 3],
+        baselines_m: Vec<f64>,
+    ) -> Self {
         let left = Camera {
             intrinsics,
-            world_from_camera: world_from_camera_rotation(
-                desc.yaw_deg.to_radians(),
-                desc.pitch_deg.to_radians(),
-                desc.roll_deg.to_radians(),
-            ),
-            center_world: DVec3::from_array(desc.position),
+            world_from_camera: world_from_camera_rotation(yaw_rad, pitch_rad, roll_rad),
+            center_world,
         };
-        StereoRig {
-            left,
-            baselines_m: desc.baselines_cm.iter().map(|cm| cm / 100.0).collect(),
-        }
+        StereoRig { left, baselines_m }
     }
 
     /// The right camera for baseline `index`.
@@ -71,22 +70,20 @@ impl StereoRig {
 mod tests {
     use super::*;
 
-    fn desc(yaw: f64, pitch: f64, roll: f64) -> RigDesc {
-        RigDesc {
-            width: 1600,
-            height: 900,
-            hfov_deg: 60.0,
-            baselines_cm: vec![10.0, 54.0],
-            position: [1.0, 2.0, 1.65],
-            yaw_deg: yaw,
-            pitch_deg: pitch,
-            roll_deg: roll,
-        }
+    /// The rig of a 1600×900, 60° camera at (1, 2, 1.65) with baselines
+    /// 10 and 54 cm, turned by the given angles in degrees.
+    fn rig(yaw: f64, pitch: f64, roll: f64) -> StereoRig {
+        StereoRig::new(
+            Intrinsics::from_hfov(1600, 900, 60f64.to_radians()),
+            DVec3::new(1.0, 2.0, 1.65),
+            [yaw, pitch, roll].map(f64::to_radians),
+            vec![0.10, 0.54],
+        )
     }
 
     #[test]
     fn level_rig_looks_along_x_with_z_up() {
-        let rig = StereoRig::from_desc(&desc(0.0, 0.0, 0.0));
+        let rig = rig(0.0, 0.0, 0.0);
         let r = rig.left.world_from_camera;
         assert!((r.z_axis - DVec3::X).length() < 1e-12);
         assert!((r.y_axis - DVec3::NEG_Z).length() < 1e-12);
@@ -97,7 +94,7 @@ mod tests {
 
     #[test]
     fn pitch_tilts_forward_down_and_roll_keeps_baseline_on_rig_x() {
-        let rig = StereoRig::from_desc(&desc(30.0, 30.0, 15.0));
+        let rig = rig(30.0, 30.0, 15.0);
         let r = rig.left.world_from_camera;
         assert!((r.z_axis.z - (-0.5)).abs() < 1e-12, "30° down");
         assert!((r.determinant() - 1.0).abs() < 1e-12);
@@ -111,7 +108,7 @@ mod tests {
 
     #[test]
     fn positive_roll_turns_image_x_towards_image_down() {
-        let rig = StereoRig::from_desc(&desc(0.0, 0.0, 10.0));
+        let rig = rig(0.0, 0.0, 10.0);
         // Image x axis tilts towards world −z (down) on the right side.
         assert!(rig.left.world_from_camera.x_axis.z < 0.0);
     }

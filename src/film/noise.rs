@@ -13,6 +13,7 @@
 
 use super::Film;
 use crate::sampler::{hash_words, mix64};
+pub use crate::scene::desc::SensorNoise;
 
 /// ISO at which an exposed value of 1.0 fills the full well.
 pub const BASE_ISO: f32 = 100.0;
@@ -20,19 +21,6 @@ pub const BASE_ISO: f32 = 100.0;
 /// Stream tags (apart from every other stream of the renderer).
 const SHOT_TAG: u64 = 0x5345_4e53_4f52_0001;
 const PRNU_TAG: u64 = 0x5345_4e53_4f52_0002;
-
-/// Parameters of the sensor model (EMVA 1288 terms, in electrons).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SensorNoise {
-    /// Sensitivity, ISO (> 0); higher means fewer electrons per exposed unit.
-    pub iso: f32,
-    /// Full-well capacity in electrons (> 0): the charge of exposed value 1.0 at `BASE_ISO`.
-    pub full_well_e: f32,
-    /// Read noise σ in electrons (≥ 0), Gaussian, signal-independent.
-    pub read_noise_e: f32,
-    /// PRNU: relative σ of the per-photosite gain (≥ 0, e.g. 0.005).
-    pub prnu: f32,
-}
 
 /// Which frame and view a noise draw belongs to (the render's stream key).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -1,19 +1,19 @@
-//! Rays and robust ray origins in render space.
+//! Rays and robust ray origins in render space: `Ray`, exact ray–primitive
+//! distances, f32 error bounds and offsets, and `SurfaceInteraction` (a
+//! surface point and the rays leaving it). Geometry reads nothing above it:
+//! the scene turns accelerator hits into interactions.
 //!
 //! Render space is world space translated so that the frame's reference camera
 //! sits at the origin (STYLE.md rule 6): positions there are small, so f32
 //! traversal keeps its precision kilometres from the world origin.
 
 mod exact;
-mod huge;
 mod interaction;
 mod offset;
-mod table;
 
 pub use exact::{ray_plane_t, ray_sphere_t};
-pub use interaction::{surface_interaction, FrontOrigin, SurfaceInteraction};
+pub use interaction::{FrontOrigin, SurfaceInteraction};
 pub use offset::{gamma, offset_ray_origin, position_error};
-pub use table::SurfaceTable;
 
 use glam::Vec3;
 

@@ -4,9 +4,9 @@
 //! [`PathContext`], with the sun lobe found once.
 
 use crate::accel::{Accel, ShadingAccel};
-use crate::geometry::SurfaceTable;
 use crate::light::LightSet;
 use crate::scene::Scene;
+use crate::scene::SurfaceTable;
 
 use super::volpath::SunLobe;
 

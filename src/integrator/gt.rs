@@ -13,8 +13,8 @@ use rayon::prelude::*;
 
 use super::{CentreDirs, RenderCamera};
 use crate::accel::{Accel, Hit, Ray};
-use crate::geometry::{ray_plane_t, ray_sphere_t, surface_interaction};
-use crate::scene::{mask_bits, Scene};
+use crate::geometry::{ray_plane_t, ray_sphere_t};
+use crate::scene::{mask_bits, surface_interaction, Scene};
 
 /// Semantic class id of sky pixels (the class table in `scene::semantic`).
 pub const SKY_CLASS: u8 = 13;
@@ -221,7 +221,7 @@ pub fn view_gt(scene: &Scene, accel: &impl Accel, cam: &RenderCamera, labels: bo
                 normal[k] = si.n_shading * facing;
                 sem[k] = si.semantic;
                 inst[k] = si.instance;
-                mask[k] = super::wet::mask_at(scene, &si, ray.d);
+                mask[k] = scene.material_view().mask(&si, ray.d);
             });
         },
     );

@@ -13,9 +13,7 @@ mod denoise_parts;
 pub mod gt;
 pub mod path;
 pub mod rain;
-pub mod texture;
 pub mod volpath;
-pub mod wet;
 
 pub use context::{PathContext, Shading};
 pub use denoise_parts::{DenoiseSample, DenoiseSum};

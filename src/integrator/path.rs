@@ -409,8 +409,7 @@ impl<A: Accel> PathContext<'_, A> {
         if st.bounces == self.max_depth {
             return None;
         }
-        let textured = super::texture::textured_bsdf(scene, mat, si.p, si.n_geo, st.prev_delta);
-        let bsdf = super::wet::wet_bsdf(scene, &si, wo, textured);
+        let bsdf = scene.material_view().bsdf(&si, wo, st.prev_delta);
         if is_two_sided(&bsdf) && !front {
             si.n_geo = -si.n_geo;
             si.n_shading = -si.n_shading;

@@ -23,6 +23,7 @@ pub mod frame;
 pub mod layouts;
 pub mod registry;
 
+pub use crate::camera::{baseline_dir_name, check_baseline_dirs, SharedBaselineDir};
 pub use atomic::{read_file, temp_base, write_atomic, Access, OutputError};
 pub use exr_io::{read_exr_f32_gray, read_exr_rgb_f32, write_exr_f32_gray, write_exr_rgb_f32};
 pub use hash::{sha256_bytes, sha256_file, write_json, FileRecord};
@@ -30,10 +31,7 @@ pub use image_io::{
     read_jpeg_rgb8, read_png_gray16, read_png_gray8, read_png_rgb8, write_jpeg_rgb8,
     write_png_gray16, write_png_gray8, write_png_rgb8,
 };
-pub use layout::{
-    baseline_dir_name, check_baseline_dirs, frame_stem, is_preview_file, native_path, NativeLayout,
-    NativePath, SharedBaselineDir, PREVIEW_DIR,
-};
+pub use layout::{frame_stem, is_preview_file, native_path, NativeLayout, NativePath, PREVIEW_DIR};
 pub use native::{map_pixels, write_map, MapPixels};
 pub use pfm::{decode_pfm_gray, encode_pfm_gray, read_pfm_gray, write_pfm_gray};
 pub use registry::{Map, MapSpec, CAMERAS_DIR, LEFT_DIR, MAPS};

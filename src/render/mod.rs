@@ -9,8 +9,8 @@
 //! does (jitter, noise) can touch it. Views: 0 = left, 1 + b = right camera of
 //! baseline b; each has its own sample stream.
 
-mod view;
 pub mod recipe;
+mod view;
 
 pub use recipe::{
     draw_seed, BuiltScene, FrameOrigin, FrameRecipe, FrameRender, FrameSource, FrameSpec,

@@ -1,8 +1,13 @@
-//! Deterministic low-discrepancy sample streams keyed by
-//! (seed, frame, view, pixel, sample index, dimension), as pbrt-v4's
-//! `StartPixelSample` does: a pixel's samples never depend on which thread or
-//! tile rendered it, and every view gets an independent stream so noise is not
-//! correlated between left and right images.
+//! Deterministic randomness, the bottom layer: low-discrepancy pixel sample
+//! streams (this file), the word hashes every other stream is keyed by
+//! (`hash_words`, `mix64`) and a keyed scalar stream (`rng::Rng`, used by the
+//! town generator and the weather draw).
+//!
+//! Pixel streams are keyed by (seed, frame, view, pixel, sample index,
+//! dimension), as pbrt-v4's `StartPixelSample` does: a pixel's samples never
+//! depend on which thread or tile rendered it, and every view gets an
+//! independent stream so noise is not correlated between left and right
+//! images.
 //!
 //! Each request draws a 4D point of Owen-scrambled Sobol (Burley 2020, via
 //! `sobol_burley`) with its own scramble seed per request: the "padded"
@@ -18,6 +23,8 @@
 //! shuffled index (about eight data-dependent branches) is replaced by two
 //! 256-entry tables: Sobol points are XORs of one direction vector per set
 //! index bit, so the 16-bit index splits into its two bytes.
+
+pub mod rng;
 
 use std::sync::LazyLock;
 

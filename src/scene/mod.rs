@@ -1,7 +1,14 @@
 //! Scenes: serde descriptions (`desc`), validation with file and key-path
-//! errors (`load`), and the immutable, render-space `Scene` built from them
-//! (`build`), with OBJ import (`obj`), primitive tessellation (`mesh`),
-//! prefab checks (`prefab`), placement (`transform`) and semantic classes.
+//! errors (`load`, `validate`), and the immutable, render-space `Scene` built
+//! from them (`build`): shapes (`shapes`, with OBJ import `obj`, primitive
+//! tessellation `mesh`, prefab checks `prefab`, placement `transform`),
+//! materials (built by `material`), emitters as data (`emitters`) and
+//! semantic classes. Also what turns an accelerator hit on a scene into a
+//! `SurfaceInteraction` (`surface`, and its cache `SurfaceTable`).
+//!
+//! The scene depends only on descriptions, geometry, the camera rig, the
+//! accelerator's input and hit types, materials and the sampler; sampling
+//! its lights is `light`'s job, shading it the integrators'.
 //!
 //! A `Scene` is built once per frame around a render origin (the frame's left
 //! camera centre, world coordinates, f64): every position in it is
@@ -10,6 +17,8 @@
 
 pub mod build;
 pub mod desc;
+pub mod emitters;
+mod huge;
 pub mod load;
 pub mod mesh;
 mod mtl_check;
@@ -20,49 +29,27 @@ pub mod prefab;
 mod ranges;
 mod resolve;
 pub mod semantic;
+mod shapes;
+mod surface;
+mod table;
 pub mod transform;
 pub mod validate;
 mod walk;
 
 pub use build::build_scene;
 pub use desc::{serialize_scene, SceneDesc};
+pub use emitters::Light;
 pub use load::{load_scene, parse_scene_str, LoadedScene, SceneError, SceneErrorKind};
+pub use surface::surface_interaction;
+pub use table::SurfaceTable;
+// Materials are built below the scene; a scene stores them.
+pub use crate::material::{mask_bits, Material};
 
 use glam::{DVec3, Vec2, Vec3, Vec4};
-use shaders_cpu::bsdf::Bsdf;
 use shaders_cpu::sky::Sky;
 
 use crate::accel::{AccelGeometry, TriMeshRef};
-use crate::light::Light;
-
-/// Mask bits of GROUND_TRUTH.md carried by a material.
-pub mod mask_bits {
-    /// Bit 0: sky (no surface hit).
-    pub const SKY: u8 = 1;
-    /// Bit 1: covered by rain particles.
-    pub const RAIN: u8 = 2;
-    /// Bit 2: transparent surface (glass, water).
-    pub const TRANSPARENT: u8 = 4;
-    /// Bit 3: mirror-like surface (puddle, chrome).
-    pub const MIRROR: u8 = 8;
-}
-
-/// A resolved material: how a surface scatters and emits.
-#[derive(Clone, Debug)]
-pub struct Material {
-    /// Name from the description (unique).
-    pub name: String,
-    /// Scattering model, evaluated in the local shading frame.
-    pub bsdf: Bsdf,
-    /// Emitted radiance (W·m⁻²·sr⁻¹ per RGB channel), zero if not emissive.
-    pub le: Vec3,
-    /// Whether emission leaves both faces (otherwise only the geometric front).
-    pub two_sided_emission: bool,
-    /// GT mask bits this surface sets (`mask_bits::TRANSPARENT`, `MIRROR`).
-    pub mask: u8,
-    /// Procedural albedo variation of a Lambertian `bsdf` (world position).
-    pub texture: Option<shaders_cpu::texture::Texture>,
-}
+use crate::material::{MaterialView, Wetness};
 
 /// A triangle mesh in render space.
 #[derive(Clone, Debug, Default)]
@@ -130,7 +117,7 @@ pub struct Scene {
     /// renderer (`Rain { seed, ..rain }`). None: no rain.
     pub rain: Option<shaders_cpu::medium::Rain>,
     /// Wet surfaces and puddles (None: dry).
-    pub wetness: Option<crate::integrator::wet::Wetness>,
+    pub wetness: Option<Wetness>,
 }
 
 impl Scene {
@@ -146,6 +133,16 @@ impl Scene {
                 })
                 .collect(),
             spheres: &self.spheres_f32,
+        }
+    }
+
+    /// What shading reads of this scene: materials, wetness, render origin.
+    #[inline]
+    pub fn material_view(&self) -> MaterialView<'_> {
+        MaterialView {
+            materials: &self.materials,
+            wetness: self.wetness.as_ref(),
+            origin_world: self.origin_world,
         }
     }
 

@@ -1,20 +1,13 @@
 //! The value checks of scene validation, each naming the scene file and the
 //! key path: finite, positive, in a range, within the coordinate limit.
-//! Numbers in messages are printed compactly (`1e308`, not 309 digits).
+//! Numbers in messages are printed compactly (`desc::num`: `1e308`, not
+//! 309 digits).
 
 use std::path::Path;
 
+use super::desc::num;
 use super::load::{SceneError, SceneErrorKind};
 use super::mesh::MAX_COORD_M;
-
-/// A number for a message: plain when moderate, exponent form when huge or tiny.
-pub fn num(x: f64) -> String {
-    if x.is_finite() && x != 0.0 && !(1e-4..1e7).contains(&x.abs()) {
-        format!("{x:e}")
-    } else {
-        format!("{x}")
-    }
-}
 
 /// Checks of values of one scene file.
 pub(super) struct V<'a> {
@@ -72,20 +65,5 @@ impl V<'_> {
     pub fn length(&self, key: &str, v: &[f64]) -> Result<(), SceneError> {
         self.positive(key, v)?;
         self.coord(key, v)
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::num;
-
-    #[test]
-    fn numbers_print_compactly() {
-        assert_eq!(num(f64::MAX), "1.7976931348623157e308");
-        assert_eq!(num(1e308), "1e308");
-        assert_eq!(num(-2.5e-9), "-2.5e-9");
-        assert_eq!(num(1.5), "1.5");
-        assert_eq!(num(-90.0), "-90");
-        assert_eq!(num(0.0), "0");
     }
 }

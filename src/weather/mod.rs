@@ -14,11 +14,11 @@ use std::str::FromStr;
 
 use serde::{Deserialize, Serialize};
 
+use crate::sampler::rng::Rng;
 use crate::scene::desc::{
     LightDesc, MediumDesc, MediumKindDesc, RainDesc, SceneDesc, SensorNoiseDesc, SkyDesc,
     WetnessDesc,
 };
-use crate::town::rng::Rng;
 
 /// Opacity factor of the storm's streaks: their physical coverage (≤ 4 %)
 /// leaves them invisible at a 10 ms exposure; ×8 makes them read as the

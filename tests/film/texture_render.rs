@@ -7,7 +7,7 @@ use crate::common;
 use common::{render, scene_from_toml};
 use glam::{DVec3, Vec3};
 use parallax::accel::Backend;
-use parallax::integrator::texture::{textured_albedo, textured_bsdf};
+use parallax::material::{textured_albedo, textured_bsdf};
 use parallax::scene::build_scene;
 use shaders_cpu::bsdf::Bsdf;
 
@@ -56,8 +56,8 @@ fn texture_depends_on_world_position_not_render_origin() {
             let n = if i % 2 == 0 { Vec3::Z } else { Vec3::Y };
             let albedo =
                 |s: &parallax::scene::Scene, m: &parallax::scene::Material| match textured_bsdf(
-                    s,
                     m,
+                    s.origin_world,
                     (p_world - s.origin_world).as_vec3(),
                     n,
                     true,

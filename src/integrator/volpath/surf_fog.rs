@@ -63,9 +63,7 @@ impl<A: Accel> PathContext<'_, A> {
     pub(super) fn first_lambert_albedo(&self, ray: &Ray, hit: &Hit) -> Option<Vec3> {
         let scene = self.scene;
         let si = self.surfaces.interaction(scene, ray, hit);
-        let mat = &scene.materials[si.material as usize];
-        let textured = super::super::texture::textured_bsdf(scene, mat, si.p, si.n_geo, true);
-        match super::super::wet::wet_bsdf(scene, &si, -ray.d, textured) {
+        match scene.material_view().bsdf(&si, -ray.d, true) {
             Bsdf::Lambert { albedo } => Some(albedo),
             _ => None,
         }

@@ -125,7 +125,7 @@ fn in_range(key: &str, v: f64, lo: f64, hi: f64, lo_open: bool) -> Result<(), Ke
     if ok {
         Ok(())
     } else {
-        use crate::scene::ranges::num;
+        use super::num;
         let allowed = match (hi == f64::MAX, lo_open) {
             (true, true) => format!("> {}", num(lo)),
             (true, false) => format!("≥ {}", num(lo)),

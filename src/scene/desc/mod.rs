@@ -4,11 +4,19 @@
 //! Units: metres, degrees in files (radians inside), world frame right-handed
 //! with z up. Positions are f64 so a scene may sit far from the origin.
 //! Families live in `object.rs`, `material.rs` and `light.rs` (lights and sky).
+//!
+//! Descriptions sit below the built scene (and below camera users, weather,
+//! accel and material): besides the format they own only what a description
+//! turns into on its own — the rig (`rig`: `StereoRig::from_desc`), the
+//! sensor-noise parameters (`SensorNoise`), media and rain (`medium`) — and
+//! `num`, the compact numbers of their messages.
 
 mod light;
 mod material;
 mod medium;
+mod num;
 mod object;
+mod rig;
 mod sensor;
 mod wetness;
 
@@ -18,8 +26,9 @@ pub use material::{
     TextureKindDesc,
 };
 pub use medium::{build_medium, build_rain, MediumDesc, MediumKindDesc, RainDesc};
+pub use num::num;
 pub use object::{ObjectDesc, PrefabDesc, RepeatDesc, ScaleDesc, ShapeDesc, TransformDesc};
-pub use sensor::SensorNoiseDesc;
+pub use sensor::{SensorNoise, SensorNoiseDesc};
 pub use wetness::WetnessDesc;
 
 use serde::{Deserialize, Serialize};

@@ -1,12 +1,25 @@
 //! `SensorNoiseDesc`: the camera sensor's noise model as scene/weather data
 //! (ISO, full well, read noise, PRNU; EMVA 1288 terms), recorded in the
 //! frame's camera file. Absent means a noiseless sensor (the default).
+//! Also `SensorNoise`, the model's parameters as the film applies them
+//! (`film::noise` draws the noise).
 //!
 //! Units: electrons for charges, ISO for sensitivity; see `film::noise`.
 
 use serde::{Deserialize, Serialize};
 
-use crate::film::SensorNoise;
+/// Parameters of the sensor model (EMVA 1288 terms, in electrons).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SensorNoise {
+    /// Sensitivity, ISO (> 0); higher means fewer electrons per exposed unit.
+    pub iso: f32,
+    /// Full-well capacity in electrons (> 0): the charge of exposed value 1.0 at `BASE_ISO`.
+    pub full_well_e: f32,
+    /// Read noise σ in electrons (≥ 0), Gaussian, signal-independent.
+    pub read_noise_e: f32,
+    /// PRNU: relative σ of the per-photosite gain (≥ 0, e.g. 0.005).
+    pub prnu: f32,
+}
 
 /// Camera sensor noise, e.g. `sensor_noise = { iso = 800 }`.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]

@@ -4,7 +4,7 @@
 //! and terrain surfaces get a darkened albedo under a water film, and a
 //! world-space (x, y) noise mask turns part of the road and sidewalk into
 //! smooth water. Depth and disparity never change; puddles set the mask's
-//! mirror bit. The shading lives in `integrator::wet`.
+//! mirror bit. The shading lives in `material::wet`.
 
 use serde::{Deserialize, Serialize};
 

@@ -18,10 +18,10 @@ use glam::{DVec3, Vec3};
 use shaders_cpu::bsdf::fresnel::fr_dielectric;
 use shaders_cpu::bsdf::{Bsdf, CoatBase};
 
+use super::{mask_bits, Material};
 use crate::geometry::SurfaceInteraction;
 use crate::sampler::hash_words;
 use crate::scene::desc::WetnessDesc;
-use crate::scene::{mask_bits, Scene};
 
 /// Index of refraction of water.
 pub const WATER_IOR: f32 = 1.33;
@@ -176,9 +176,9 @@ fn state(w: &Wetness, si: &SurfaceInteraction, wo: Vec3) -> WetState {
 /// The BSDF at a hit after wetness: `bsdf` itself when the scene is dry or
 /// the surface is not an exposed, up-facing road/marking/sidewalk/terrain;
 /// else a water film over the darkened base, or a smooth puddle. `wo` points
-/// away from the surface (towards the viewer).
-pub fn wet_bsdf(scene: &Scene, si: &SurfaceInteraction, wo: Vec3, bsdf: Bsdf) -> Bsdf {
-    let Some(w) = &scene.wetness else {
+/// away from the surface (towards the viewer); `wetness` is the frame's.
+pub fn wet_bsdf(wetness: Option<&Wetness>, si: &SurfaceInteraction, wo: Vec3, bsdf: Bsdf) -> Bsdf {
+    let Some(w) = wetness else {
         return bsdf;
     };
     let base = match bsdf {
@@ -210,11 +210,17 @@ pub fn wet_bsdf(scene: &Scene, si: &SurfaceInteraction, wo: Vec3, bsdf: Bsdf) ->
     }
 }
 
-/// The GT mask bits of a hit: the material's, plus `mask_bits::MIRROR` on a
-/// puddle. `ray_d` is the camera ray's direction.
-pub fn mask_at(scene: &Scene, si: &SurfaceInteraction, ray_d: Vec3) -> u8 {
-    let bits = scene.materials[si.material as usize].mask;
-    match &scene.wetness {
+/// The GT mask bits of a hit on `material`: the material's, plus
+/// `mask_bits::MIRROR` on a puddle of the frame's `wetness`. `ray_d` is the
+/// camera ray's direction.
+pub fn mask_at(
+    material: &Material,
+    wetness: Option<&Wetness>,
+    si: &SurfaceInteraction,
+    ray_d: Vec3,
+) -> u8 {
+    let bits = material.mask;
+    match wetness {
         Some(w) if matches!(state(w, si, -ray_d), WetState::Puddle) => bits | mask_bits::MIRROR,
         _ => bits,
     }

@@ -11,10 +11,10 @@
 use glam::Vec3;
 
 use super::huge::HugeArray;
-use super::interaction::{sphere_interaction, triangle_interaction};
-use super::{Ray, SurfaceInteraction};
+use super::surface::{sphere_interaction, triangle_interaction};
+use super::Scene;
 use crate::accel::Hit;
-use crate::scene::Scene;
+use crate::geometry::{Ray, SurfaceInteraction};
 
 #[cfg(doc)]
 use super::surface_interaction;
@@ -111,8 +111,7 @@ mod tests {
     use super::*;
     use crate::accel::{build_accel, Accel, Backend};
     use crate::camera::StereoRig;
-    use crate::geometry::surface_interaction;
-    use crate::scene::{build_scene, load_scene};
+    use crate::scene::{build_scene, load_scene, surface_interaction};
 
     #[test]
     fn table_interaction_equals_surface_interaction_bit_for_bit() {
