@@ -6,7 +6,8 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use parallax::camera::StereoRig;
-use parallax::render::{render_frame, FrameRecipe, FrameSource, FrameSpec, Overrides};
+use parallax::render::recipe::{FrameRecipe, FrameSource, FrameSpec, Overrides};
+use parallax::render::render_frame;
 use parallax::scene::load_scene;
 
 fn street(c: &mut Criterion) {

@@ -4,7 +4,8 @@
 //!
 //! `scene::desc` (the descriptions) is its own layer below `scene` (the
 //! built scene), so that camera, weather, accel and material can sit
-//! between the two.
+//! between the two; `render::recipe` (the frame recipe) is its own layer
+//! above `render` (the passes), `output` and `town`.
 
 use std::path::Path;
 
@@ -22,11 +23,17 @@ const LAYERS: &[&[&str]] = &[
     &["light"],
     &["integrator"],
     &["denoise"],
-    // Peers until their cycle is broken: the frame recipe (render) reads town
-    // and output, output records render's frame data, town writes files.
-    &["render", "output", "town"],
-    // Peers until their cycle is broken: dataset ↔ stats ↔ eval.
-    &["preview", "dataset", "eval", "stats"],
+    // The frame passes (`render`) sit below the writers and the towns; the
+    // frame recipe (`render::recipe`) above both, as it reads a town and
+    // makes the camera record.
+    &["render"],
+    &["output"],
+    &["town"],
+    &["render::recipe"],
+    &["preview"],
+    &["eval"],
+    &["stats"],
+    &["dataset"],
     &["bench"],
     &["cli"],
 ];
@@ -42,6 +49,7 @@ fn layer_of_path(path: &str) -> String {
     let first = parts.next().unwrap_or_default();
     match (first, parts.next()) {
         ("scene", Some("desc")) => "scene::desc".to_string(),
+        ("render", Some("recipe")) => "render::recipe".to_string(),
         _ => first.to_string(),
     }
 }
@@ -54,6 +62,7 @@ fn layer_of_file(rel: &Path) -> Option<String> {
         // The crate roots, and this table (its test texts name every layer).
         ["lib.rs" | "main.rs" | "layers.rs"] | [] => None,
         ["scene", "desc", ..] => Some("scene::desc".to_string()),
+        ["render", "recipe", ..] => Some("render::recipe".to_string()),
         [first, ..] => Some(first.trim_end_matches(".rs").to_string()),
     }
 }

@@ -14,7 +14,8 @@ pub use scene::{bench_scene_from_obj, ObjCamera};
 
 use crate::accel::Backend;
 use crate::camera::StereoRig;
-use crate::render::{render_frame, BuiltScene, RecipeError, RenderSettings};
+use crate::render::recipe::{BuiltScene, RecipeError};
+use crate::render::{render_frame, RenderSettings};
 use crate::scene::load::SceneErrorKind;
 use crate::scene::{LoadedScene, SceneError};
 use clock::{Span, Stopwatch};

@@ -11,7 +11,7 @@ use super::{parse_baselines, show, thread_pool, CliError};
 use crate::accel::{Accel, Backend};
 use crate::output::frame::{write_native_frame, WriteOptions};
 use crate::output::StagedDir;
-use crate::render::{
+use crate::render::recipe::{
     draw_seed, FrameRecipe, FrameRender, FrameSource, FrameSpec, Overrides, RecipeError,
     WeatherChoice,
 };

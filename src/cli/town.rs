@@ -12,7 +12,7 @@ use clap::Args;
 use super::render::recipe_error;
 use super::{parse_baselines, show, thread_pool, CliError};
 use crate::accel::{Accel, Backend};
-use crate::render::{draw_seed, FrameRecipe, FrameSource, FrameSpec, Overrides};
+use crate::render::recipe::{draw_seed, FrameRecipe, FrameSource, FrameSpec, Overrides};
 use crate::town::export::{write_cameras, ExportCameras};
 use crate::town::{load_named_town, CameraConfig};
 

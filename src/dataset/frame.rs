@@ -16,9 +16,10 @@ use crate::accel::Backend;
 use crate::camera::StereoRig;
 use crate::output::frame::{write_native_frame, CameraFile, WriteOptions};
 use crate::output::FileRecord;
-use crate::render::{
-    FrameOutput, FrameRecipe, FrameRender, FrameSource, FrameSpec, Overrides, WeatherChoice,
+use crate::render::recipe::{
+    FrameRecipe, FrameRender, FrameSource, FrameSpec, Overrides, WeatherChoice,
 };
+use crate::render::FrameOutput;
 use crate::town::{load_named_town, NamedTown, TownSource};
 
 /// The town descriptions a configuration names, loaded once.

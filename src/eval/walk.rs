@@ -86,7 +86,7 @@ fn is_disparity(rel: &Path) -> bool {
         && names[n - 2] == disp.folder
         && names[n - 3].starts_with("baseline_")
         && names[n - 1].ends_with(&format!(".{}", disp.format.ext()))
-        && !crate::dataset::run::is_temp_name(names[n - 1])
+        && crate::output::temp_base(names[n - 1]).is_none()
 }
 
 fn group_of(rel: &Path) -> GtImage {

@@ -12,11 +12,6 @@
 pub mod recipe;
 mod view;
 
-pub use recipe::{
-    draw_seed, BuiltScene, FrameOrigin, FrameRecipe, FrameRender, FrameSource, FrameSpec,
-    Overrides, PreparedFrame, RecipeError, WeatherChoice,
-};
-
 use std::time::Instant;
 
 use shaders_cpu::medium::Rain;

@@ -7,7 +7,7 @@ use parallax::accel::{AnyAccel, Backend};
 use parallax::camera::StereoRig;
 use parallax::integrator::{RenderCamera, Shading};
 use parallax::light::{LightSelection, LightSet};
-use parallax::render::BuiltScene;
+use parallax::render::recipe::BuiltScene;
 use parallax::sampler::{SampleStream, StreamKey};
 use parallax::scene::{LoadedScene, Scene};
 use rayon::prelude::*;

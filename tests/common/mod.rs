@@ -21,9 +21,10 @@ use parallax::denoise::ViewInputs;
 use parallax::film::Film;
 use parallax::integrator::path::PixelSum;
 use parallax::integrator::{RenderCamera, Shading};
-use parallax::render::{
-    BuiltScene, FrameOutput, FrameRecipe, FrameSource, FrameSpec, Overrides, PreparedFrame,
+use parallax::render::recipe::{
+    BuiltScene, FrameRecipe, FrameSource, FrameSpec, Overrides, PreparedFrame,
 };
+use parallax::render::FrameOutput;
 use parallax::sampler::{SampleStream, StreamKey};
 use parallax::scene::{parse_scene_str, LoadedScene, Scene};
 

@@ -182,7 +182,7 @@ fn bad_town_files_are_rejected_naming_the_field() {
 #[test]
 fn town01_river_lies_under_a_bridge_on_every_street() {
     use parallax::accel::{Accel, Backend, Ray};
-    use parallax::render::BuiltScene;
+    use parallax::render::recipe::BuiltScene;
     use parallax::town::layout::Layout;
     let desc = town("town01");
     let layout = Layout::new(&desc);
@@ -218,7 +218,7 @@ fn town01_river_lies_under_a_bridge_on_every_street() {
 #[test]
 fn town03_roundabout_has_ring_road_island_and_sidewalk_and_traffic_keeps_to_the_ring() {
     use parallax::accel::{Accel, Backend, Ray};
-    use parallax::render::BuiltScene;
+    use parallax::render::recipe::BuiltScene;
     use parallax::town::layout::Layout;
     let desc = town("town03");
     let layout = Layout::new(&desc);

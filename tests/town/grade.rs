@@ -9,7 +9,7 @@
 
 use glam::{DMat3, DVec3, Vec3};
 use parallax::accel::{Accel, Backend, Ray};
-use parallax::render::BuiltScene;
+use parallax::render::recipe::BuiltScene;
 use parallax::scene::desc::ShapeDesc;
 use parallax::scene::semantic::class_id;
 use parallax::scene::{build_scene, LoadedScene, Scene};

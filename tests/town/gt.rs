@@ -22,7 +22,7 @@ use glam::{DMat3, DVec3};
 use parallax::accel::{Accel, Backend, Hit, Ray};
 use parallax::integrator::gt::exact_t;
 use parallax::integrator::RenderCamera;
-use parallax::render::BuiltScene;
+use parallax::render::recipe::BuiltScene;
 use parallax::scene::semantic::class_id;
 use parallax::scene::Scene;
 use parallax::town::grade::Grade;

@@ -9,7 +9,7 @@
 
 use glam::{DVec3, Vec3};
 use parallax::accel::{Accel, Backend, Ray};
-use parallax::render::BuiltScene;
+use parallax::render::recipe::BuiltScene;
 use parallax::scene::semantic::class_id;
 use parallax::town::grade::Grade;
 use parallax::town::layout::Layout;

@@ -9,7 +9,7 @@ use std::path::Path;
 
 use glam::DVec3;
 use parallax::accel::{Accel, Backend, Ray};
-use parallax::render::BuiltScene;
+use parallax::render::recipe::BuiltScene;
 use parallax::scene::build_scene;
 use parallax::scene::desc::ShapeDesc;
 use parallax::scene::semantic::class_id;
