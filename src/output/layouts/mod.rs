@@ -95,7 +95,12 @@ impl FromStr for LayoutKind {
             .into_iter()
             .find(|k| k.name() == s)
             .ok_or_else(|| {
-                format!("unknown layout '{s}' (expected native, stereocarla, kitti or sceneflow)")
+                let names: Vec<&str> = LayoutKind::ALL.iter().map(|k| k.name()).collect();
+                let (last, rest) = names.split_last().expect("layouts exist");
+                format!(
+                    "unknown layout '{s}' (expected {} or {last})",
+                    rest.join(", ")
+                )
             })
     }
 }
