@@ -4,11 +4,11 @@
 //! camera file, with the same ground truth; a dataset with `filter = false`
 //! does the same, and one with the default writes filtered images.
 
-use crate::common::dataset as dataset_common;
+use crate::common::dataset;
 
 use std::path::Path;
 
-use dataset_common::{dataset, ok, parallax, tiny_config, write_config};
+use dataset::{dataset, ok, parallax, tiny_config, write_config};
 
 /// `parallax render scenes/street.toml` at 64×36, 2 spp, one baseline,
 /// seed 4, plus `extra`, into `out`.

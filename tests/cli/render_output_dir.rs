@@ -3,14 +3,14 @@
 //! is replaced whole, and stays whole if the new render is interrupted; an
 //! unusable DIR is refused before any render work; `--help` names frame K.
 
-use crate::common::dataset as dataset_common;
+use crate::common::dataset;
 
 use std::collections::BTreeMap;
 use std::path::Path;
 use std::process::{Output, Stdio};
 use std::time::{Duration, Instant};
 
-use dataset_common::{parallax, text, walk};
+use dataset::{parallax, text, walk};
 
 /// Every entry below `root` with its bytes (empty for folders).
 fn tree(root: &Path) -> BTreeMap<String, Vec<u8>> {

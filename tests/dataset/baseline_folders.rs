@@ -5,12 +5,12 @@
 //! to, whichever way it is computed.
 
 use crate::common;
-use crate::common::dataset as dataset_common;
+use crate::common::dataset;
 
 use std::path::Path;
 
 use common::{camera_block, GREY_UNDER_SKY};
-use dataset_common::{dataset, parallax, text, tiny_config, write_config};
+use dataset::{dataset, parallax, text, tiny_config, write_config};
 
 /// A tiny lit scene with the given `camera.baselines_cm`.
 fn scene(baselines: &str) -> String {

@@ -2,9 +2,9 @@
 //! and the plan's (town, weather) mix, the calibration's size, and
 //! `dataset --preset demo --dry-run` through the real binary.
 
-use crate::common::dataset as dataset_common;
+use crate::common::dataset;
 
-use dataset_common::*;
+use dataset::*;
 use parallax::dataset::calibrate::calibration_quality;
 use parallax::dataset::estimate::{calibration_job, class_mix, estimate, ClassCost};
 use parallax::dataset::{parse_config, presets, Shard};

@@ -4,9 +4,9 @@
 //! tampering is detected and repaired; a different configuration is refused
 //! naming the keys; config errors name the file and key.
 
-use crate::common::dataset as dataset_common;
+use crate::common::dataset;
 
-use dataset_common::*;
+use dataset::*;
 
 #[test]
 fn run_verifies_whole_and_second_run_skips_every_frame() {

@@ -4,13 +4,13 @@
 //! stops cleanly and promptly (at most the frame being written finishes),
 //! with no partial frame and no temporary file.
 
-use crate::common::dataset as dataset_common;
+use crate::common::dataset;
 
 use std::path::Path;
 use std::process::{Child, Stdio};
 use std::time::{Duration, Instant};
 
-use dataset_common::*;
+use dataset::*;
 
 fn spawn(cfg: &Path, out: &Path) -> Child {
     let s = scenes();

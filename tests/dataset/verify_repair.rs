@@ -7,12 +7,12 @@
 //! `dataset --force`; the other layouts' files of a planned frame are the
 //! dataset's.
 
-use crate::common::dataset as dataset_common;
+use crate::common::dataset;
 
 use std::collections::BTreeSet;
 use std::path::Path;
 
-use dataset_common::*;
+use dataset::*;
 
 #[test]
 fn repair_re_renders_only_the_damaged_frame_and_keeps_the_users_files() {

@@ -4,7 +4,7 @@
 //! BVH as with uniform selection (both unbiased; MIS at emitter hits uses the
 //! recomputed pmf, so a mismatch would show as bias).
 
-use crate::common::light as light_support;
+use crate::common::light;
 
 use glam::Vec3;
 use parallax::light::bvh::{LightBounds, LightBvh};
@@ -226,7 +226,7 @@ transform = {{ translate = [{x:?}, {y:?}, {z:?}], rotate_deg = [180.0, 0.0, 0.0]
 
 #[test]
 fn light_set_pmf_is_consistent_on_many_emitters() {
-    let b = light_support::build(&many_emitters_scene());
+    let b = light::build(&many_emitters_scene());
     let set = LightSet::build(&b.scene);
     assert_eq!(set.len(), 2 * 32 * 32 + 1);
     let mut rng = Rng(23);
@@ -247,9 +247,9 @@ fn light_set_pmf_is_consistent_on_many_emitters() {
 
 #[test]
 fn bvh_and_uniform_selection_render_the_same_mean_image() {
-    let b = light_support::build(&many_emitters_scene());
-    let bvh = light_support::render_left(&b, LightSelection::Bvh, 64, 2, 1);
-    let uni = light_support::render_left(&b, LightSelection::Uniform, 64, 2, 2);
+    let b = light::build(&many_emitters_scene());
+    let bvh = light::render_left(&b, LightSelection::Bvh, 64, 2, 1);
+    let uni = light::render_left(&b, LightSelection::Uniform, 64, 2, 2);
     let ((mb, sb), (mu, su)) = (bvh.image_mean(), uni.image_mean());
     let z = (mb - mu).abs() / (sb * sb + su * su).sqrt();
     eprintln!("bvh {mb:.5} ± {sb:.5}, uniform {mu:.5} ± {su:.5}, z = {z:.2}");

@@ -5,7 +5,7 @@
 //! not a pass/fail check beyond the BVH beating uniform selection; run with
 //! `cargo test --release --test light_noise_town -- --ignored --nocapture`.
 
-use crate::common::light as light_support;
+use crate::common::light;
 
 use std::path::Path;
 
@@ -25,11 +25,11 @@ fn bvh_selection_lowers_noise_on_night_town() {
     apply(&mut loaded.desc, &draw_params(Weather::Night, seed));
     loaded.desc.camera.width = w;
     loaded.desc.camera.height = h;
-    let b = light_support::build(&loaded);
+    let b = light::build(&loaded);
     let depth = loaded.desc.render.max_depth;
     // Uniform selection for the reference: a bias in the BVH's selection
     // must not make the BVH's own pass look closer to it.
-    let reference = light_support::render_left(&b, LightSelection::Uniform, spp_ref, depth, 99);
+    let reference = light::render_left(&b, LightSelection::Uniform, spp_ref, depth, 99);
     let ref_noise =
         (reference.var_of_mean.iter().sum::<f64>() / reference.mean.len() as f64).sqrt();
     let mean = reference.image_mean().0;
@@ -45,7 +45,7 @@ mean luminance {mean:.5}, its own rms noise {ref_noise:.5}, {:.1} s",
         ("power+uniform", LightSelection::Power),
         ("uniform", LightSelection::Uniform),
     ] {
-        let pass = light_support::render_left(&b, sel, spp, depth, seed);
+        let pass = light::render_left(&b, sel, spp, depth, seed);
         let e = pass.rmse(&reference.mean);
         eprintln!(
             "| {name} | {spp} | {e:.5} | {:.3} | {:.1} |",
