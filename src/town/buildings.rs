@@ -411,3 +411,136 @@ fn normal_out(deg: f64) -> [f64; 2] {
     let a = deg.to_radians();
     [a.sin().round(), -a.cos().round()]
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn town01() -> TownDesc {
+        crate::town::source::load_named_town("town01", None)
+            .unwrap()
+            .desc
+    }
+
+    const ID: Label = Label {
+        class: "building",
+        instance: 1001,
+    };
+
+    #[test]
+    fn floors_stay_in_their_range_and_most_buildings_are_short() {
+        let mut desc = town01();
+        (desc.floors, desc.tower_floors) = ([2, 6], [10, 30]);
+        for (tower, [lo, hi]) in [(false, [2, 6]), (true, [10, 30])] {
+            let mut r = Rng::new(&[1, 2]);
+            let n: Vec<u32> = (0..2000)
+                .map(|_| floor_count(&desc, tower, &mut r))
+                .collect();
+            assert_eq!(n.iter().min(), Some(&lo), "tower {tower}");
+            assert_eq!(n.iter().max(), Some(&hi), "tower {tower}");
+            // u^1.6 has mean 1/2.6: the mean lies well below the midpoint.
+            let mean = n.iter().sum::<u32>() as f64 / n.len() as f64;
+            let skewed = (lo + hi) as f64 / 2.0 - 0.1 * (hi - lo) as f64;
+            assert!(mean < skewed, "tower {tower}: mean {mean} ≥ {skewed}");
+        }
+    }
+
+    #[test]
+    fn a_shallow_lot_holds_one_south_row_and_a_deep_lot_one_row_per_street() {
+        let mut r = Rng::new(&[3]);
+        let shallow = Rect {
+            min: [0.0, 0.0],
+            max: [50.0, 20.0],
+        };
+        assert_eq!(lot_rows(&shallow, &mut r), vec![(0.0, 20.0, true)]);
+        for (deep, gap) in [(60.0, 24.0), (24.0, 2.0)] {
+            let lot = Rect {
+                min: [0.0, 10.0],
+                max: [50.0, 10.0 + deep],
+            };
+            for _ in 0..50 {
+                let rows = lot_rows(&lot, &mut r);
+                let [(s0, s1, south), (n0, n1, north_faces_south)] = rows[..] else {
+                    panic!("{deep} m deep: {rows:?}");
+                };
+                assert!(south && !north_faces_south);
+                assert_eq!((s0, n1), (10.0, 10.0 + deep));
+                for d in [s1 - s0, n1 - n0] {
+                    assert!(d <= 18.0 && d >= 10.0_f64.min(deep / 2.0 - 1.0), "{d}");
+                }
+                assert!(n0 - s1 >= gap - 1e-9, "rows {rows:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn facade_windows_fill_the_wall_and_lit_runs_stay_in_their_row() {
+        // A 10 m wall facing −y centred at (20, 5): two columns 3 m apart
+        // ((10 − 1.5) / 3 = 2.8), rows on floors 1, 2 and 3.
+        let (c, len) = ([20.0, 5.0], 10.0);
+        let mut out = Vec::new();
+        let mut dark = Rng::new(&[7]);
+        facade_windows(c, 0.0, len, 1..4, (&mut dark, 0.0), ID, &mut out);
+        assert_eq!(out.len(), 1);
+        let counts: Vec<u32> = out[0].repeat.iter().map(|r| r.count).collect();
+        assert_eq!(counts, vec![2, 3]);
+        assert_eq!(out[0].repeat[0].offset, [3.0, 0.0, 0.0]);
+        assert_eq!(out[0].transform.translate, Some([18.5, 5.0, FLOOR_M + 1.7]));
+        // Every row lit: one run per row, at its height, inside the columns.
+        let mut out = Vec::new();
+        let mut lit = Rng::new(&[7]);
+        facade_windows(c, 0.0, len, 1..4, (&mut lit, 1.0), ID, &mut out);
+        assert_eq!(out.len(), 4);
+        for (row, o) in (1..4).zip(&out[1..]) {
+            let t = o.transform.translate.unwrap();
+            assert_eq!(t[2], row as f64 * FLOOR_M + 1.7);
+            let run = o.repeat.first().map_or(1, |r| r.count);
+            assert!(
+                t[0] >= 18.5 && t[0] + 3.0 * (run - 1) as f64 <= 21.5,
+                "{t:?} × {run}"
+            );
+        }
+        // No rows (a one-floor front) or a wall too short for a column: nothing.
+        for (rows, len) in [(1..1, 10.0), (0..3, 4.0)] {
+            let mut out = Vec::new();
+            facade_windows(c, 0.0, len, rows, (&mut lit, 1.0), ID, &mut out);
+            assert!(out.is_empty(), "{len} m: {out:?}");
+        }
+    }
+
+    #[test]
+    fn shop_windows_stand_only_on_a_long_front_with_glass_before_the_interior() {
+        let front = |len: f64| {
+            let mut out = Vec::new();
+            shop_front([0.0, 5.0], 0.0, len, ID, &mut out);
+            out
+        };
+        let long = front(20.0);
+        let names: Vec<&str> = long
+            .iter()
+            .map(|o| o.material.as_deref().unwrap())
+            .collect();
+        assert_eq!(
+            names,
+            [
+                "door",
+                "glass",
+                "interior",
+                "glass",
+                "interior",
+                "window_frame"
+            ]
+        );
+        // Heading 0: the wall faces −y, so the glass lies further out (lower y).
+        let y = |o: &ObjectDesc| o.transform.translate.unwrap()[1];
+        assert!(y(&long[1]) < y(&long[2]) && y(&long[2]) < 5.0);
+        // The canopy stands 0.6 m out over the door.
+        assert!((y(&long[5]) - 4.4).abs() < 1e-12);
+        let short = front(6.0);
+        let names: Vec<&str> = short
+            .iter()
+            .map(|o| o.material.as_deref().unwrap())
+            .collect();
+        assert_eq!(names, ["door", "window_frame"]);
+    }
+}
