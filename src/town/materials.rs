@@ -350,3 +350,48 @@ pub fn town_sun(desc: &TownDesc) -> LightDesc {
         angular_diameter_deg: 0.533,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::town::props::LENS_SLOTS;
+
+    #[test]
+    fn names_are_unique_every_palette_and_prefab_material_is_defined_and_the_ground_follows_the_terrain(
+    ) {
+        let mut desc = crate::town::source::load_named_town("town01", None)
+            .unwrap()
+            .desc;
+        let mut grounds = Vec::new();
+        for terrain in [TerrainKind::Grass, TerrainKind::Dry, TerrainKind::Field] {
+            desc.terrain = terrain;
+            let all = town_materials(&desc);
+            let names: Vec<&str> = all.iter().map(|m| m.name.as_str()).collect();
+            let mut unique = names.clone();
+            unique.sort_unstable();
+            unique.dedup();
+            assert_eq!(unique.len(), names.len(), "{names:?}");
+            let lit: Vec<String> = LENS_SLOTS.iter().map(|s| format!("{s}_lit")).collect();
+            let palettes = WALLS
+                .iter()
+                .chain(TOWER_FRAMES)
+                .chain(PAINTS)
+                .chain(&LENS_SLOTS);
+            for name in palettes.copied().chain(lit.iter().map(String::as_str)) {
+                assert!(names.contains(&name), "{name} missing");
+            }
+            // Every prefab part's material but the per-instance slots.
+            let prefabs = crate::town::props::street_prefabs()
+                .into_iter()
+                .chain(crate::town::vehicles::vehicle_prefabs());
+            for o in prefabs.flat_map(|p| p.objects) {
+                let m = o.material.unwrap();
+                let slot = ["car_paint", "shirt"].contains(&m.as_str());
+                assert!(slot || names.contains(&m.as_str()), "{m} missing");
+            }
+            let ground = all.iter().find(|m| m.name == "ground").unwrap();
+            grounds.push(ground.kind.clone());
+        }
+        assert!(grounds[0] != grounds[1] && grounds[1] != grounds[2] && grounds[0] != grounds[2]);
+    }
+}
