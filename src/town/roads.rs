@@ -524,3 +524,6 @@ fn junction_objects(l: &Layout, i: usize, j: usize, out: &mut Vec<ObjectDesc>) {
         out.push(walk_piece(l, [x - hw, w0.min(w1)], [x + hw, w0.max(w1)]));
     }
 }
+
+#[cfg(test)]
+mod tests;
