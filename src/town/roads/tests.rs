@@ -30,8 +30,11 @@ fn materials(o: &[ObjectDesc]) -> Vec<&str> {
     o.iter().map(|o| o.material.as_deref().unwrap()).collect()
 }
 
-/// Centre, size and repeat (count, offset) of a box.
-fn boxed(o: &ObjectDesc) -> ([f64; 3], [f64; 3], Vec<(u32, [f64; 3])>) {
+/// Repeat levels of an object: (count, offset).
+type Levels = Vec<(u32, [f64; 3])>;
+
+/// Centre, size and repeat levels of a box.
+fn boxed(o: &ObjectDesc) -> ([f64; 3], [f64; 3], Levels) {
     let ShapeDesc::Box { size } = o.shape else {
         panic!("not a box: {o:?}");
     };
