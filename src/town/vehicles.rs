@@ -229,3 +229,61 @@ fn wheels(d: &Dims, l: Label, o: &mut Vec<ObjectDesc>) {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::desc::ShapeDesc;
+
+    /// Min and max corners of a part in the body's frame: boxes are not
+    /// turned; a wheel's axis lies along y, from its translation down by
+    /// its width (see `parts::wheel`).
+    fn extent(o: &ObjectDesc) -> ([f64; 3], [f64; 3]) {
+        let t = o.transform.translate.unwrap();
+        match o.shape {
+            ShapeDesc::Box { size } => (
+                [0, 1, 2].map(|k| t[k] - size[k] / 2.0),
+                [0, 1, 2].map(|k| t[k] + size[k] / 2.0),
+            ),
+            ShapeDesc::Cylinder { radius, height, .. } => (
+                [t[0] - radius, t[1] - height, t[2] - radius],
+                [t[0] + radius, t[1], t[2] + radius],
+            ),
+            _ => panic!("unexpected part {o:?}"),
+        }
+    }
+
+    #[test]
+    fn parts_stay_in_the_footprint_lights_face_out_and_hubs_sit_outside_the_tyres() {
+        for kind in BODIES {
+            let parts = body(kind, class("vehicle"));
+            let [len, w] = kind.footprint_m();
+            for o in &parts {
+                let (lo, hi) = extent(o);
+                let inside = lo[0] >= -len / 2.0 - 1e-9
+                    && hi[0] <= len / 2.0 + 1e-9
+                    && lo[1] >= -w / 2.0 - 1e-9
+                    && hi[1] <= w / 2.0 + 1e-9
+                    && lo[2] >= -1e-9;
+                assert!(inside, "{kind:?}: {lo:?}..{hi:?} of {o:?}");
+            }
+            let with = |m: &str| -> Vec<([f64; 3], [f64; 3])> {
+                let of = parts.iter().filter(|o| o.material.as_deref() == Some(m));
+                of.map(extent).collect()
+            };
+            let front = len / 2.0 - 0.1;
+            let head = with("headlight_emit");
+            let tail = with("taillight_emit");
+            assert_eq!((head.len(), tail.len()), (2, 2), "{kind:?}");
+            assert!(head.iter().all(|(lo, _)| lo[0] > front), "{kind:?}");
+            assert!(tail.iter().all(|(_, hi)| hi[0] < -front), "{kind:?}");
+            let (tyres, hubs) = (with("rubber"), with("chrome"));
+            assert_eq!((tyres.len(), hubs.len()), (4, 4), "{kind:?}");
+            let centre_y = |(lo, hi): &([f64; 3], [f64; 3])| (lo[1] + hi[1]) / 2.0;
+            for (t, h) in tyres.iter().zip(&hubs) {
+                assert!(t.0[2].abs() < 1e-12, "{kind:?}: a tyre off the ground");
+                assert!(centre_y(h).abs() > centre_y(t).abs() + 0.1, "{kind:?}");
+            }
+        }
+    }
+}
