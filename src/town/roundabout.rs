@@ -266,4 +266,53 @@ mod tests {
         assert!((arm_start_m(&l) - x).abs() < 1e-12);
         assert!((r_out * start.cos() - x).abs() < 1e-12);
     }
+
+    #[test]
+    fn the_ring_is_edged_by_curb_and_sidewalk_between_the_arms_and_gravel_in_the_country() {
+        let mut l = Layout {
+            nx: 2,
+            ny: 2,
+            pitch_m: 100.0,
+            road_w_m: 14.0,
+            lane_w_m: 3.5,
+            lanes: 2,
+            sidewalk_m: 3.0,
+            sidewalks: true,
+            river_row: None,
+            roundabout: Some((1, 1)),
+            loop_radius_m: 0.0,
+        };
+        let (c, r_out) = ([100.0, 100.0], 19.0);
+        let open = Some(opening_half_angle(&l));
+        for (sidewalks, want) in [(true, vec!["curb", "sidewalk"]), (false, vec!["gravel"])] {
+            l.sidewalks = sidewalks;
+            let mut out = Vec::new();
+            ring_roadside(&l, c, open, &mut out);
+            let mut kinds: Vec<&str> = out.iter().map(|o| o.material.as_deref().unwrap()).collect();
+            kinds.dedup();
+            assert_eq!(kinds, want);
+            for o in &out {
+                let t = o.transform.translate.unwrap();
+                let (d, a) = (
+                    (t[0] - c[0]).hypot(t[1] - c[1]),
+                    (t[1] - c[1]).atan2(t[0] - c[0]),
+                );
+                assert!(d > r_out && d < r_out + 3.0, "{d}");
+                // Nothing in an arm's opening (about each axis direction).
+                let off_axis = (a - (a / FRAC_PI_2).round() * FRAC_PI_2).abs();
+                assert!(off_axis > opening_half_angle(&l), "{a}");
+                let top = t[2] + if sidewalks { 0.0 } else { 0.005 };
+                assert!(top >= 0.0 && top <= 0.075, "{t:?}");
+            }
+        }
+        // The island: curb drum, lawn, mound, then five plants.
+        let mut out = Vec::new();
+        island(c, 10.0, &mut out);
+        let classes: Vec<&str> = out.iter().map(|o| o.semantic.as_deref().unwrap()).collect();
+        let veg = "vegetation";
+        assert_eq!(
+            classes,
+            ["sidewalk", "terrain", "terrain", veg, veg, veg, veg, veg]
+        );
+    }
 }
