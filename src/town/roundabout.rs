@@ -302,7 +302,7 @@ mod tests {
                 let off_axis = (a - (a / FRAC_PI_2).round() * FRAC_PI_2).abs();
                 assert!(off_axis > opening_half_angle(&l), "{a}");
                 let top = t[2] + if sidewalks { 0.0 } else { 0.005 };
-                assert!(top >= 0.0 && top <= 0.075, "{t:?}");
+                assert!((0.0..=0.075).contains(&top), "{t:?}");
             }
         }
         // The island: curb drum, lawn, mound, then five plants.
