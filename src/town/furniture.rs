@@ -25,45 +25,7 @@ pub fn furniture_objects(
     sites: &[RampSite],
     seed: u64,
 ) -> Vec<ObjectDesc> {
-    let mut out = Vec::new();
-    let (p, hw) = (l.pitch_m, l.road_w_m / 2.0);
-    let mut r = Rng::new(&[seed, tag::FURNITURE]);
-    // Along x-roads (stubs included) and y-roads, per side of the road:
-    // (start, end along the road, world position of (along, side)).
-    for j in 0..=l.ny {
-        let y = j as f64 * p;
-        for side in [-1.0, 1.0] {
-            let place = |a: f64, off: f64| [a, y + side * (hw + off), l.walk_z()];
-            // Street-light arm over the road: north side heading 0 (arm −y).
-            let lamp_heading = if side > 0.0 { 0.0 } else { 180.0 };
-            line(
-                desc,
-                l,
-                &mut r,
-                (-STUB_M, l.len_x() + STUB_M),
-                place,
-                lamp_heading,
-                &mut out,
-            );
-        }
-    }
-    for i in 0..=l.nx {
-        let x = i as f64 * p;
-        for side in [-1.0, 1.0] {
-            let place = |a: f64, off: f64| [x + side * (hw + off), a, l.walk_z()];
-            // East side (side > 0): arm towards −x, heading 270.
-            let lamp_heading = if side > 0.0 { 270.0 } else { 90.0 };
-            line(
-                desc,
-                l,
-                &mut r,
-                (0.0, l.len_y()),
-                place,
-                lamp_heading,
-                &mut out,
-            );
-        }
-    }
+    let mut out = street_lines(desc, l, seed);
     // No trees or signs on bridges.
     if let Some(band) = l.river_band() {
         out.retain(|o| {
@@ -80,8 +42,47 @@ pub fn furniture_objects(
         let at = Rect::centered([t[0], t[1]], [0.0, 0.0]);
         !zones.iter().any(|z| z.contains(&at, 0.0))
     });
+    junction_signs(l, &mut out);
+    out
+}
+
+/// Street lights, trees and signs along both sides of every x-road (stubs
+/// included), then every y-road, from one random stream.
+fn street_lines(desc: &TownDesc, l: &Layout, seed: u64) -> Vec<ObjectDesc> {
+    let mut out = Vec::new();
+    let (p, hw) = (l.pitch_m, l.road_w_m / 2.0);
+    let mut r = Rng::new(&[seed, tag::FURNITURE]);
+    // Per side of the road: (start, end along the road, world position of
+    // (along, side)).
+    for j in 0..=l.ny {
+        let y = j as f64 * p;
+        for side in [-1.0, 1.0] {
+            let place = |a: f64, off: f64| [a, y + side * (hw + off), l.walk_z()];
+            // Street-light arm over the road: north side heading 0 (arm −y).
+            let lamp_heading = if side > 0.0 { 0.0 } else { 180.0 };
+            let span = (-STUB_M, l.len_x() + STUB_M);
+            line(desc, l, &mut r, span, place, lamp_heading, &mut out);
+        }
+    }
+    for i in 0..=l.nx {
+        let x = i as f64 * p;
+        for side in [-1.0, 1.0] {
+            let place = |a: f64, off: f64| [x + side * (hw + off), a, l.walk_z()];
+            // East side (side > 0): arm towards −x, heading 270.
+            let lamp_heading = if side > 0.0 { 270.0 } else { 90.0 };
+            let span = (0.0, l.len_y());
+            line(desc, l, &mut r, span, place, lamp_heading, &mut out);
+        }
+    }
+    out
+}
+
+/// Stop signs at the T junctions of the outer x-roads and traffic lights
+/// (lamps dark) at signalled junctions.
+fn junction_signs(l: &Layout, out: &mut Vec<ObjectDesc>) {
     let (tl, ts) = (class("traffic_light"), class("traffic_sign"));
-    let c = hw + 0.5;
+    let p = l.pitch_m;
+    let c = l.road_w_m / 2.0 + 0.5;
     for j in 0..=l.ny {
         for i in 0..=l.nx {
             let (x, y) = (i as f64 * p, j as f64 * p);
@@ -110,7 +111,6 @@ pub fn furniture_objects(
             }
         }
     }
-    out
 }
 
 /// Trees, lights and the odd sign along one side of one road, skipping the

@@ -140,8 +140,25 @@ fn glass(name: &str, tint: [f64; 3]) -> MaterialDesc {
     }
 }
 
-/// Every material a town uses (names unique).
+/// Every material a town uses (names unique), group by group; the order
+/// is the scene's material order.
 pub fn town_materials(desc: &TownDesc) -> Vec<MaterialDesc> {
+    [
+        ground_materials(desc),
+        building_materials(),
+        vegetation_materials(),
+        pole_materials(),
+        emitter_materials(),
+        sign_materials(),
+        vehicle_materials(),
+        pedestrian_materials(),
+    ]
+    .concat()
+}
+
+/// Roads, their markings, curbs and sidewalks, the river, and the ground
+/// (its colour from the terrain kind), lawns and crops.
+fn ground_materials(desc: &TownDesc) -> Vec<MaterialDesc> {
     let ground = match desc.terrain {
         TerrainKind::Grass => [0.12, 0.2, 0.07],
         TerrainKind::Dry => [0.3, 0.27, 0.15],
@@ -165,6 +182,13 @@ pub fn town_materials(desc: &TownDesc) -> Vec<MaterialDesc> {
         textured("ground", ground, TextureKindDesc::Foliage, 7),
         textured("lawn", [0.1, 0.22, 0.06], TextureKindDesc::Foliage, 8),
         textured("crop", [0.14, 0.24, 0.06], TextureKindDesc::Foliage, 9),
+    ]
+}
+
+/// Walls (the `WALLS` and `TOWER_FRAMES` palettes), roofs, windows, doors
+/// and glass of buildings and barns.
+fn building_materials() -> Vec<MaterialDesc> {
+    vec![
         diffuse("barn_red", [0.38, 0.08, 0.05]),
         textured("brick_red", [0.42, 0.17, 0.11], TextureKindDesc::Brick, 10),
         textured("brick_brown", [0.3, 0.18, 0.12], TextureKindDesc::Brick, 11),
@@ -202,6 +226,12 @@ pub fn town_materials(desc: &TownDesc) -> Vec<MaterialDesc> {
         diffuse("door", [0.25, 0.14, 0.07]),
         glass("glass", [0.9, 0.95, 0.95]),
         glass("glass_tower", [0.55, 0.7, 0.75]),
+    ]
+}
+
+/// Bark and foliage of trees and bushes.
+fn vegetation_materials() -> Vec<MaterialDesc> {
+    vec![
         textured("bark", [0.22, 0.15, 0.09], TextureKindDesc::Concrete, 18),
         textured("foliage", [0.09, 0.22, 0.05], TextureKindDesc::Foliage, 19),
         textured(
@@ -216,9 +246,21 @@ pub fn town_materials(desc: &TownDesc) -> Vec<MaterialDesc> {
             TextureKindDesc::Foliage,
             21,
         ),
+    ]
+}
+
+/// Poles and the street lamp's glass.
+fn pole_materials() -> Vec<MaterialDesc> {
+    vec![
         metal("pole_metal", ConductorPreset::Aluminium, 0.45),
         diffuse("pole_paint", [0.12, 0.13, 0.12]),
         diffuse("lamp_glass", [0.9, 0.9, 0.85]),
+    ]
+}
+
+/// The always-on emitters: street lamps, vehicle lights and lit rooms.
+fn emitter_materials() -> Vec<MaterialDesc> {
+    vec![
         // Scene units: the sun's 980 W·m⁻² stands for ~100 klx, so one unit
         // of radiance is ~100 cd/m². Street lamps ~5000 cd/m² (0.15 m² of
         // panel gives ~15 lx on the road 8 m below), head-lights ~3·10⁴
@@ -227,6 +269,12 @@ pub fn town_materials(desc: &TownDesc) -> Vec<MaterialDesc> {
         emitter("headlight_emit", [300.0, 300.0, 290.0]),
         emitter("taillight_emit", [12.0, 0.5, 0.3]),
         emitter("window_lit", [2.5, 1.9, 1.1]),
+    ]
+}
+
+/// Traffic-light housings and lenses (off and lit) and road signs.
+fn sign_materials() -> Vec<MaterialDesc> {
+    vec![
         diffuse("signal_housing", [0.06, 0.06, 0.05]),
         // Signal lenses: dark tinted glass when off (a clear coat over a
         // dark base), emitters when lit (`signals` picks one per head).
@@ -239,6 +287,12 @@ pub fn town_materials(desc: &TownDesc) -> Vec<MaterialDesc> {
         diffuse("sign_red", [0.55, 0.03, 0.03]),
         diffuse("sign_white", [0.8, 0.8, 0.8]),
         diffuse("sign_blue", [0.04, 0.15, 0.5]),
+    ]
+}
+
+/// Car paints (the `PAINTS` palette), cargo boxes, tyres, hubs and trim.
+fn vehicle_materials() -> Vec<MaterialDesc> {
+    vec![
         paint("paint_red", Some([0.55, 0.04, 0.03]), None),
         paint("paint_blue", Some([0.05, 0.12, 0.45]), None),
         paint("paint_white", Some([0.8, 0.8, 0.78]), None),
@@ -253,6 +307,12 @@ pub fn town_materials(desc: &TownDesc) -> Vec<MaterialDesc> {
         diffuse("rubber", [0.03, 0.03, 0.03]),
         metal("chrome", ConductorPreset::Chrome, 0.05),
         diffuse("plastic_black", [0.05, 0.05, 0.05]),
+    ]
+}
+
+/// Skin and clothes of pedestrians.
+fn pedestrian_materials() -> Vec<MaterialDesc> {
+    vec![
         diffuse("skin", [0.55, 0.38, 0.28]),
         diffuse("cloth_dark", [0.08, 0.08, 0.1]),
         diffuse("cloth_blue", [0.1, 0.15, 0.35]),
@@ -288,5 +348,50 @@ pub fn town_sun(desc: &TownDesc) -> LightDesc {
         azimuth_deg: desc.sun_azimuth_deg,
         irradiance,
         angular_diameter_deg: 0.533,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::town::props::LENS_SLOTS;
+
+    #[test]
+    fn names_are_unique_every_palette_and_prefab_material_is_defined_and_the_ground_follows_the_terrain(
+    ) {
+        let mut desc = crate::town::source::load_named_town("town01", None)
+            .unwrap()
+            .desc;
+        let mut grounds = Vec::new();
+        for terrain in [TerrainKind::Grass, TerrainKind::Dry, TerrainKind::Field] {
+            desc.terrain = terrain;
+            let all = town_materials(&desc);
+            let names: Vec<&str> = all.iter().map(|m| m.name.as_str()).collect();
+            let mut unique = names.clone();
+            unique.sort_unstable();
+            unique.dedup();
+            assert_eq!(unique.len(), names.len(), "{names:?}");
+            let lit: Vec<String> = LENS_SLOTS.iter().map(|s| format!("{s}_lit")).collect();
+            let palettes = WALLS
+                .iter()
+                .chain(TOWER_FRAMES)
+                .chain(PAINTS)
+                .chain(&LENS_SLOTS);
+            for name in palettes.copied().chain(lit.iter().map(String::as_str)) {
+                assert!(names.contains(&name), "{name} missing");
+            }
+            // Every prefab part's material but the per-instance slots.
+            let prefabs = crate::town::props::street_prefabs()
+                .into_iter()
+                .chain(crate::town::vehicles::vehicle_prefabs());
+            for o in prefabs.flat_map(|p| p.objects) {
+                let m = o.material.unwrap();
+                let slot = ["car_paint", "shirt"].contains(&m.as_str());
+                assert!(slot || names.contains(&m.as_str()), "{m} missing");
+            }
+            let ground = all.iter().find(|m| m.name == "ground").unwrap();
+            grounds.push(ground.kind.clone());
+        }
+        assert!(grounds[0] != grounds[1] && grounds[1] != grounds[2] && grounds[0] != grounds[2]);
     }
 }

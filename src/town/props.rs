@@ -8,7 +8,7 @@
 //! x–z plane with the window standing out towards −y; a street light's arm
 //! reaches towards local −y, a traffic light's towards local +y (over the road).
 
-use crate::scene::desc::PrefabDesc;
+use crate::scene::desc::{ObjectDesc, PrefabDesc};
 
 use super::parts::{blob, class, cuboid, cylinder, repeated, Label};
 
@@ -16,7 +16,7 @@ use super::parts::{blob, class, cuboid, cylinder, repeated, Label};
 /// green); both heads of the prefab use them.
 pub const LENS_SLOTS: [&str; 3] = ["signal_red", "signal_amber", "signal_green"];
 
-fn prefab(name: &str, objects: Vec<crate::scene::desc::ObjectDesc>) -> PrefabDesc {
+fn prefab(name: &str, objects: Vec<ObjectDesc>) -> PrefabDesc {
     PrefabDesc {
         name: name.to_string(),
         objects,
@@ -25,14 +25,25 @@ fn prefab(name: &str, objects: Vec<crate::scene::desc::ObjectDesc>) -> PrefabDes
 
 /// Every street prefab.
 pub fn street_prefabs() -> Vec<PrefabDesc> {
+    vec![
+        prefab("window", window()),
+        prefab("window_light", window_light()),
+        prefab("tree_round", tree_round()),
+        prefab("tree_cone", tree_cone()),
+        prefab("bush", bush()),
+        prefab("street_light", street_light()),
+        prefab("traffic_light", traffic_light()),
+        prefab("stop_sign", stop_sign()),
+        prefab("info_sign", info_sign()),
+        prefab("pedestrian", pedestrian(class("pedestrian"))),
+    ]
+}
+
+/// A facade window: a dark interior panel on the wall behind a glass pane,
+/// the frame proud of it.
+fn window() -> Vec<ObjectDesc> {
     let b = class("building");
-    let v = class("vegetation");
-    let p = class("pole");
-    let tl = class("traffic_light");
-    let ts = class("traffic_sign");
-    let ped = class("pedestrian");
-    let window = vec![
-        // Dark interior panel on the wall behind a glass pane, frame proud of it.
+    vec![
         cuboid([1.2, 0.02, 1.6], [0.0, -0.02, 0.0], 0.0, "interior", b),
         cuboid([1.2, 0.02, 1.6], [0.0, -0.05, 0.0], 0.0, "glass", b),
         cuboid(
@@ -59,41 +70,69 @@ pub fn street_prefabs() -> Vec<PrefabDesc> {
             ),
             &[(2, [1.3, 0.0, 0.0])],
         ),
-    ];
-    let tree_round = vec![
+    ]
+}
+
+/// A warm lit room behind a window pane: between the interior panel
+/// (front at y = −0.03) and the glass (back at y = −0.04).
+fn window_light() -> Vec<ObjectDesc> {
+    vec![cuboid(
+        [1.16, 0.004, 1.56],
+        [0.0, -0.035, 0.0],
+        0.0,
+        "window_lit",
+        class("building"),
+    )]
+}
+
+/// A broad tree: a trunk under three foliage blobs.
+fn tree_round() -> Vec<ObjectDesc> {
+    let v = class("vegetation");
+    vec![
         cylinder(0.16, 3.4, 10, [0.0, 0.0, 0.0], "bark", v),
         blob([1.9, 1.9, 1.6], [0.0, 0.0, 4.5], "foliage", v),
         blob([1.3, 1.3, 1.2], [0.8, 0.5, 5.5], "foliage_light", v),
         blob([1.2, 1.2, 1.1], [-0.8, -0.6, 5.3], "foliage", v),
-    ];
-    let tree_cone = vec![
+    ]
+}
+
+/// A conifer: a short trunk under three stacked, narrowing blobs.
+fn tree_cone() -> Vec<ObjectDesc> {
+    let v = class("vegetation");
+    vec![
         cylinder(0.18, 2.0, 10, [0.0, 0.0, 0.0], "bark", v),
         blob([1.8, 1.8, 1.5], [0.0, 0.0, 3.2], "foliage_dark", v),
         blob([1.4, 1.4, 1.3], [0.0, 0.0, 4.7], "foliage_dark", v),
         blob([0.9, 0.9, 1.1], [0.0, 0.0, 6.0], "foliage", v),
-    ];
-    let bush = vec![
+    ]
+}
+
+/// A bush of two blobs.
+fn bush() -> Vec<ObjectDesc> {
+    let v = class("vegetation");
+    vec![
         blob([0.9, 0.9, 0.6], [0.0, 0.0, 0.5], "foliage", v),
         blob([0.6, 0.6, 0.5], [0.5, 0.3, 0.6], "foliage_light", v),
-    ];
-    let street_light = vec![
+    ]
+}
+
+/// An 8 m pole with an arm towards local −y and a lamp housing over an
+/// emitting panel.
+fn street_light() -> Vec<ObjectDesc> {
+    let p = class("pole");
+    vec![
         cylinder(0.09, 8.0, 12, [0.0, 0.0, 0.0], "pole_metal", p),
         cuboid([0.1, 2.2, 0.1], [0.0, -1.1, 7.9], 0.0, "pole_metal", p),
         cuboid([0.35, 0.6, 0.14], [0.0, -2.1, 7.8], 0.0, "pole_metal", p),
         // The emitting panel under the housing (1 mm gap, no shared faces).
         cuboid([0.3, 0.5, 0.02], [0.0, -2.1, 7.719], 0.0, "lamp_emit", p),
-    ];
-    // A warm lit room behind a window pane: between the interior panel
-    // (front at y = −0.03) and the glass (back at y = −0.04).
-    let window_light = vec![cuboid(
-        [1.16, 0.004, 1.56],
-        [0.0, -0.035, 0.0],
-        0.0,
-        "window_lit",
-        b,
-    )];
-    // Pole on the corner, mast arm over the approach lanes (local +y), heads
-    // facing −x (towards the traffic that approaches along +x).
+    ]
+}
+
+/// Pole on the corner, mast arm over the approach lanes (local +y), heads
+/// facing −x (towards the traffic that approaches along +x).
+fn traffic_light() -> Vec<ObjectDesc> {
+    let (p, tl) = (class("pole"), class("traffic_light"));
     let mut traffic_light = vec![
         cylinder(0.11, 6.0, 12, [0.0, 0.0, 0.0], "pole_paint", p),
         cuboid([0.14, 4.5, 0.14], [0.0, 2.25, 5.8], 0.0, "pole_paint", p),
@@ -109,33 +148,30 @@ pub fn street_prefabs() -> Vec<PrefabDesc> {
             traffic_light.push(cuboid([0.03, 0.24, 0.24], [-0.166, y, z + dz], 0.0, m, tl));
         }
     }
-    // An octagonal stop sign facing −x.
-    let stop_sign = vec![
+    traffic_light
+}
+
+/// An octagonal stop sign facing −x.
+fn stop_sign() -> Vec<ObjectDesc> {
+    let (p, ts) = (class("pole"), class("traffic_sign"));
+    vec![
         cylinder(0.04, 2.3, 8, [0.0, 0.0, 0.0], "pole_metal", p),
         sign_disc(0.38, [-0.05, 0.0, 2.3], "sign_red", ts),
         sign_disc(0.3, [-0.07, 0.0, 2.3], "sign_white", ts),
-    ];
-    let info_sign = vec![
+    ]
+}
+
+/// A square blue information sign facing −x.
+fn info_sign() -> Vec<ObjectDesc> {
+    let (p, ts) = (class("pole"), class("traffic_sign"));
+    vec![
         cylinder(0.04, 2.4, 8, [0.0, 0.0, 0.0], "pole_metal", p),
         cuboid([0.04, 0.6, 0.6], [-0.05, 0.0, 2.3], 0.0, "sign_blue", ts),
-    ];
-    let pedestrian = pedestrian(ped);
-    vec![
-        prefab("window", window),
-        prefab("window_light", window_light),
-        prefab("tree_round", tree_round),
-        prefab("tree_cone", tree_cone),
-        prefab("bush", bush),
-        prefab("street_light", street_light),
-        prefab("traffic_light", traffic_light),
-        prefab("stop_sign", stop_sign),
-        prefab("info_sign", info_sign),
-        prefab("pedestrian", pedestrian),
     ]
 }
 
 /// An octagon (8-sided cylinder) facing −x, centred at `at`.
-fn sign_disc(r: f64, at: [f64; 3], mat: &str, l: Label) -> crate::scene::desc::ObjectDesc {
+fn sign_disc(r: f64, at: [f64; 3], mat: &str, l: Label) -> ObjectDesc {
     let mut o = cylinder(r, 0.02, 8, [0.0; 3], mat, l);
     o.transform.translate = Some(at);
     o.transform.rotate_deg = Some([0.0, 90.0, 0.0]);
@@ -143,7 +179,7 @@ fn sign_disc(r: f64, at: [f64; 3], mat: &str, l: Label) -> crate::scene::desc::O
 }
 
 /// A walking figure about 1.75 m tall facing +x; shirt material "shirt".
-fn pedestrian(l: Label) -> Vec<crate::scene::desc::ObjectDesc> {
+fn pedestrian(l: Label) -> Vec<ObjectDesc> {
     vec![
         cuboid([0.16, 0.14, 0.85], [0.12, -0.1, 0.43], 0.0, "cloth_dark", l),
         cuboid([0.16, 0.14, 0.85], [-0.1, 0.1, 0.43], 0.0, "cloth_dark", l),

@@ -246,10 +246,10 @@ fn edge_line(s: &Segment, (s0, s1): (f64, f64), u: f64, ramps: &[&RampSite]) -> 
     o
 }
 
+/// Everything along one straight piece of road: its asphalt, lane lines,
+/// the stop or yield line and crosswalk at each junction end, then curbs
+/// and sidewalks (or shoulders).
 fn segment_objects(l: &Layout, sites: &[RampSite], s: &Segment) -> Vec<ObjectDesc> {
-    let road = class("road");
-    let mark = class("lane_marking");
-    let side = class("sidewalk");
     let hw = l.road_w_m / 2.0;
     let mut o = Vec::new();
     let (p, q) = (s.xy(s.a0, -hw), s.xy(s.a1, hw));
@@ -258,9 +258,24 @@ fn segment_objects(l: &Layout, sites: &[RampSite], s: &Segment) -> Vec<ObjectDes
         [p[0].max(q[0]), p[1].max(q[1])],
         0.0,
         "asphalt",
-        road,
+        class("road"),
     ));
-    // Lines stop short of crosswalks and stop lines at junction ends.
+    lane_lines(l, sites, s, &mut o);
+    for end in 0..2 {
+        if s.junction[end] {
+            junction_end(l, s, end, &mut o);
+        }
+    }
+    roadsides(l, sites, s, &mut o);
+    o
+}
+
+/// The centre line (dashed on one-lane roads, else double solid yellow),
+/// dashed lane dividers and the edge lines, stopping short of crosswalks
+/// and stop lines at junction ends.
+fn lane_lines(l: &Layout, sites: &[RampSite], s: &Segment, o: &mut Vec<ObjectDesc>) {
+    let mark = class("lane_marking");
+    let hw = l.road_w_m / 2.0;
     let clear = |end: usize| match (s.junction[end], s.yield_end[end]) {
         (_, true) => YIELD_CROSSWALK_M + CROSSWALK_M.1 + 0.6,
         (true, false) => STOP_LINE_AT_M + 0.6,
@@ -287,55 +302,63 @@ fn segment_objects(l: &Layout, sites: &[RampSite], s: &Segment) -> Vec<ObjectDes
             o.extend(edge_line(s, (s0, s1), sign * (hw - 0.25), &ramps));
         }
     }
-    // Crosswalk stripes (parallel to traffic, 0.5 m wide every 1 m) and the
-    // stop line across the lanes entering the junction.
-    for (end, &at_junction) in s.junction.iter().enumerate() {
-        if !at_junction {
-            continue;
-        }
-        let (dir, edge) = if end == 0 { (1.0, s.a0) } else { (-1.0, s.a1) };
-        // Traffic entering at a0 drives in −along, on the left (across > 0).
-        let lanes = if end == 0 {
-            (0.2, hw - 0.2)
-        } else {
-            (-hw + 0.2, -0.2)
-        };
-        let across = match s.axis {
-            Axis::X => [0.0, 1.0, 0.0],
-            Axis::Y => [-1.0, 0.0, 0.0],
-        };
-        let back = if s.yield_end[end] {
-            // Yield line: 0.6 m dashes every 1.2 m along the ring's edge.
-            let a = edge + dir * 0.5;
-            let n = ((lanes.1 - lanes.0 + 0.6) / 1.2).floor() as u32;
-            let u = (lanes.0, lanes.0 + 0.6);
-            let dash = s.slab((a - 0.2, a + 0.2), u, PAINT_Z, "paint_white_road", mark);
-            o.push(repeated(dash, &[(n, across.map(|v| v * 1.2))]));
-            YIELD_CROSSWALK_M
-        } else {
-            let a = edge + dir * STOP_LINE_AT_M;
-            o.push(s.slab((a - 0.2, a + 0.2), lanes, PAINT_Z, "paint_white_road", mark));
-            0.0
-        };
-        if !l.sidewalks {
-            continue; // no crosswalks on country roads
-        }
-        let (c0, c1) = (
-            edge + dir * (back + CROSSWALK_M.0),
-            edge + dir * (back + CROSSWALK_M.1),
-        );
-        let n = ((2.0 * hw - 0.5) / 1.0).floor() as u32;
-        let first = -hw + 0.5;
-        let stripe = s.slab(
-            (c0.min(c1), c0.max(c1)),
-            (first, first + 0.5),
-            PAINT_Z,
-            "paint_white_road",
-            mark,
-        );
-        o.push(repeated(stripe, &[(n, across)]));
+}
+
+/// At junction end `end` (0: a0, 1: a1): the stop line across the lanes
+/// entering the junction (a dashed yield line at the roundabout ring), then
+/// on town roads the crosswalk's stripes (parallel to traffic, 0.5 m wide
+/// every 1 m; set back from the ring at a yield end).
+fn junction_end(l: &Layout, s: &Segment, end: usize, o: &mut Vec<ObjectDesc>) {
+    let mark = class("lane_marking");
+    let hw = l.road_w_m / 2.0;
+    let (dir, edge) = if end == 0 { (1.0, s.a0) } else { (-1.0, s.a1) };
+    // Traffic entering at a0 drives in −along, on the left (across > 0).
+    let lanes = if end == 0 {
+        (0.2, hw - 0.2)
+    } else {
+        (-hw + 0.2, -0.2)
+    };
+    let across = match s.axis {
+        Axis::X => [0.0, 1.0, 0.0],
+        Axis::Y => [-1.0, 0.0, 0.0],
+    };
+    let back = if s.yield_end[end] {
+        // Yield line: 0.6 m dashes every 1.2 m along the ring's edge.
+        let a = edge + dir * 0.5;
+        let n = ((lanes.1 - lanes.0 + 0.6) / 1.2).floor() as u32;
+        let u = (lanes.0, lanes.0 + 0.6);
+        let dash = s.slab((a - 0.2, a + 0.2), u, PAINT_Z, "paint_white_road", mark);
+        o.push(repeated(dash, &[(n, across.map(|v| v * 1.2))]));
+        YIELD_CROSSWALK_M
+    } else {
+        let a = edge + dir * STOP_LINE_AT_M;
+        o.push(s.slab((a - 0.2, a + 0.2), lanes, PAINT_Z, "paint_white_road", mark));
+        0.0
+    };
+    if !l.sidewalks {
+        return; // no crosswalks on country roads
     }
-    // Curbs and sidewalks (or flat shoulders) on both sides.
+    let (c0, c1) = (
+        edge + dir * (back + CROSSWALK_M.0),
+        edge + dir * (back + CROSSWALK_M.1),
+    );
+    let n = ((2.0 * hw - 0.5) / 1.0).floor() as u32;
+    let first = -hw + 0.5;
+    let stripe = s.slab(
+        (c0.min(c1), c0.max(c1)),
+        (first, first + 0.5),
+        PAINT_Z,
+        "paint_white_road",
+        mark,
+    );
+    o.push(repeated(stripe, &[(n, across)]));
+}
+
+/// Curbs and sidewalks (or flat gravel shoulders on country roads) on both
+/// sides, leaving room beside ramp sites for their tapers and gores.
+fn roadsides(l: &Layout, sites: &[RampSite], s: &Segment, o: &mut Vec<ObjectDesc>) {
+    let side = class("sidewalk");
+    let hw = l.road_w_m / 2.0;
     let sw = l.sidewalk_m;
     for sign in [-1.0f64, 1.0] {
         let sorted = |(a, b): (f64, f64)| (a.min(b), a.max(b));
@@ -360,7 +383,6 @@ fn segment_objects(l: &Layout, sites: &[RampSite], s: &Segment) -> Vec<ObjectDes
             o.push(s.slab((a0, a1), sorted(walk), (0.0, 0.14), "sidewalk", side));
         }
     }
-    o
 }
 
 /// River bed, water surface, stone embankments and, where each y-road
@@ -502,3 +524,6 @@ fn junction_objects(l: &Layout, i: usize, j: usize, out: &mut Vec<ObjectDesc>) {
         out.push(walk_piece(l, [x - hw, w0.min(w1)], [x + hw, w0.max(w1)]));
     }
 }
+
+#[cfg(test)]
+mod tests;

@@ -78,7 +78,8 @@ fn ring(
     }
 }
 
-/// Every object of the roundabout (none if the town has none).
+/// Every object of the roundabout (none if the town has none): ring
+/// asphalt, markings, the outer curb and sidewalk, the central island.
 pub fn roundabout_objects(l: &Layout) -> Vec<ObjectDesc> {
     let mut out = Vec::new();
     let Some(c) = l.roundabout_center() else {
@@ -86,8 +87,16 @@ pub fn roundabout_objects(l: &Layout) -> Vec<ObjectDesc> {
     };
     let (r_in, r_out) = l.roundabout_radii();
     let open = Some(opening_half_angle(l));
-    // Ring asphalt: radial quads at z = 0 from under the island to under
-    // the outer curb.
+    ring_asphalt(c, (r_in, r_out), &mut out);
+    ring_markings(l, c, open, &mut out);
+    ring_roadside(l, c, open, &mut out);
+    island(c, r_in, &mut out);
+    out
+}
+
+/// Ring asphalt: radial quads at z = 0 from under the island to under the
+/// outer curb.
+fn ring_asphalt(c: [f64; 2], (r_in, r_out): (f64, f64), out: &mut Vec<ObjectDesc>) {
     let n = 96;
     let (q0, q1) = (r_in - 0.5, r_out + 0.2);
     let width = 2.0 * q1 * (PI / n as f64).tan();
@@ -103,13 +112,17 @@ pub fn roundabout_objects(l: &Layout) -> Vec<ObjectDesc> {
             class("road"),
         ));
     }
-    // Markings: solid edge lines (the outer one open at the arms) and a
-    // dashed divider between the ring lanes.
+}
+
+/// Markings: solid edge lines (the outer one open at the arms) and a
+/// dashed divider between the ring lanes.
+fn ring_markings(l: &Layout, c: [f64; 2], open: Option<f64>, out: &mut Vec<ObjectDesc>) {
+    let (r_in, r_out) = l.roundabout_radii();
     let (mark, paint, pz) = (class("lane_marking"), "paint_white_road", (0.0, 0.008));
     let edge_in = (r_in + 0.25, r_in + 0.4);
-    ring(c, edge_in, pz, None, 2.0, false, paint, mark, &mut out);
+    ring(c, edge_in, pz, None, 2.0, false, paint, mark, out);
     let edge_out = (r_out - 0.4, r_out - 0.25);
-    ring(c, edge_out, pz, open, 2.0, false, paint, mark, &mut out);
+    ring(c, edge_out, pz, open, 2.0, false, paint, mark, out);
     let lane_w = (r_out - r_in) / l.lanes as f64;
     for k in 1..l.lanes {
         let r = r_in + k as f64 * lane_w;
@@ -122,24 +135,19 @@ pub fn roundabout_objects(l: &Layout) -> Vec<ObjectDesc> {
             true,
             paint,
             mark,
-            &mut out,
+            out,
         );
     }
-    // Outer curb and sidewalk ring between the arms.
+}
+
+/// Outer curb and sidewalk ring between the arms (a gravel shoulder on
+/// country roads).
+fn ring_roadside(l: &Layout, c: [f64; 2], open: Option<f64>, out: &mut Vec<ObjectDesc>) {
+    let (_, r_out) = l.roundabout_radii();
     if l.sidewalks {
         let side = class("sidewalk");
         let (curb, walk) = ((r_out, r_out + 0.25), (r_out + 0.25, r_out + l.sidewalk_m));
-        ring(
-            c,
-            curb,
-            (0.0, 0.15),
-            open,
-            2.0,
-            false,
-            "curb",
-            side,
-            &mut out,
-        );
+        ring(c, curb, (0.0, 0.15), open, 2.0, false, "curb", side, out);
         ring(
             c,
             walk,
@@ -149,7 +157,7 @@ pub fn roundabout_objects(l: &Layout) -> Vec<ObjectDesc> {
             false,
             "sidewalk",
             side,
-            &mut out,
+            out,
         );
     } else {
         let t = class("terrain");
@@ -163,10 +171,14 @@ pub fn roundabout_objects(l: &Layout) -> Vec<ObjectDesc> {
             false,
             "gravel",
             t,
-            &mut out,
+            out,
         );
     }
-    // Central island: a curb drum, a lawn top, a low grass mound, trees.
+}
+
+/// Central island of radius `r_in`: a curb drum, a lawn top, a low grass
+/// mound, a tree in the middle and four smaller plants round it.
+fn island(c: [f64; 2], r_in: f64, out: &mut Vec<ObjectDesc>) {
     let at = [c[0], c[1], 0.0];
     out.push(cylinder(r_in, 0.15, 64, at, "curb", class("sidewalk")));
     let top = [c[0], c[1], 0.15];
@@ -187,7 +199,6 @@ pub fn roundabout_objects(l: &Layout) -> Vec<ObjectDesc> {
         let name = if q % 2 == 0 { "tree_cone" } else { "bush" };
         out.push(instance(name, p, 45.0 * q as f64, &[], veg));
     }
-    out
 }
 
 #[cfg(test)]
@@ -254,5 +265,54 @@ mod tests {
         let x = (19.0f64 * 19.0 - 7.0 * 7.0).sqrt();
         assert!((arm_start_m(&l) - x).abs() < 1e-12);
         assert!((r_out * start.cos() - x).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_ring_is_edged_by_curb_and_sidewalk_between_the_arms_and_gravel_in_the_country() {
+        let mut l = Layout {
+            nx: 2,
+            ny: 2,
+            pitch_m: 100.0,
+            road_w_m: 14.0,
+            lane_w_m: 3.5,
+            lanes: 2,
+            sidewalk_m: 3.0,
+            sidewalks: true,
+            river_row: None,
+            roundabout: Some((1, 1)),
+            loop_radius_m: 0.0,
+        };
+        let (c, r_out) = ([100.0, 100.0], 19.0);
+        let open = Some(opening_half_angle(&l));
+        for (sidewalks, want) in [(true, vec!["curb", "sidewalk"]), (false, vec!["gravel"])] {
+            l.sidewalks = sidewalks;
+            let mut out = Vec::new();
+            ring_roadside(&l, c, open, &mut out);
+            let mut kinds: Vec<&str> = out.iter().map(|o| o.material.as_deref().unwrap()).collect();
+            kinds.dedup();
+            assert_eq!(kinds, want);
+            for o in &out {
+                let t = o.transform.translate.unwrap();
+                let (d, a) = (
+                    (t[0] - c[0]).hypot(t[1] - c[1]),
+                    (t[1] - c[1]).atan2(t[0] - c[0]),
+                );
+                assert!(d > r_out && d < r_out + 3.0, "{d}");
+                // Nothing in an arm's opening (about each axis direction).
+                let off_axis = (a - (a / FRAC_PI_2).round() * FRAC_PI_2).abs();
+                assert!(off_axis > opening_half_angle(&l), "{a}");
+                let top = t[2] + if sidewalks { 0.0 } else { 0.005 };
+                assert!((0.0..=0.075).contains(&top), "{t:?}");
+            }
+        }
+        // The island: curb drum, lawn, mound, then five plants.
+        let mut out = Vec::new();
+        island(c, 10.0, &mut out);
+        let classes: Vec<&str> = out.iter().map(|o| o.semantic.as_deref().unwrap()).collect();
+        let veg = "vegetation";
+        assert_eq!(
+            classes,
+            ["sidewalk", "terrain", "terrain", veg, veg, veg, veg, veg]
+        );
     }
 }

@@ -28,7 +28,7 @@
 
 use std::f64::consts::{FRAC_PI_2, PI, SQRT_2};
 
-use super::layout::Layout;
+use super::layout::{Layout, LoopCorner};
 use super::roundabout::arm_start_m;
 use super::vehicles::BodyKind;
 
@@ -319,32 +319,7 @@ fn loop_route(
     ring: Option<[f64; 2]>,
     keep_clear: bool,
 ) -> Route {
-    let r = turns.radius_m;
-    let e = (lane as f64 + 0.5) * l.lane_w_m;
-    let hw = l.road_w_m / 2.0;
-    let rho = ring_fillet_m(l);
-    let at_ring = |c: [f64; 2]| ring.filter(|o| (c[0] - o[0]).hypot(c[1] - o[1]) < l.road_w_m);
-    let curves = l.loop_corners();
-    let at_curve = |c: [f64; 2]| {
-        curves
-            .iter()
-            .find(|o| (c[0] - o.corner[0]).hypot(c[1] - o.corner[1]) < l.road_w_m)
-    };
-    // A plain turn's radius: on a loop corner the arc about the road's
-    // centre (the lane corner lies on its diagonal, √2·radius away).
-    let radius = |c: [f64; 2]| match at_curve(c) {
-        Some(o) => (c[0] - o.centre[0]).hypot(c[1] - o.centre[1]) / SQRT_2,
-        None => r,
-    };
-    let cut = |c: [f64; 2]| match at_ring(c) {
-        Some(_) => ring_turn(l, lane, rho).1,
-        None => radius(c),
-    };
-    let unit = |a: [f64; 2], b: [f64; 2]| {
-        let d = [b[0] - a[0], b[1] - a[1]];
-        let n = d[0].hypot(d[1]);
-        ([d[0] / n, d[1] / n], n)
-    };
+    let at = CornerTurns::new(l, lane, turns.radius_m, ring);
     let mut segs = Vec::new();
     let mut clear = Vec::new();
     // Nobody stands on a loop corner's curve; these zones go after the
@@ -355,7 +330,7 @@ fn loop_route(
         let (prev, c, next) = (corners[(q + 3) % 4], corners[q], corners[(q + 1) % 4]);
         let (d_in, side) = unit(prev, c);
         let (d_out, _) = unit(c, next);
-        let (a0, a1) = (cut(prev), cut(c));
+        let (a0, a1) = (at.cut(prev), at.cut(c));
         let from = [prev[0] + a0 * d_in[0], prev[1] + a0 * d_in[1]];
         let heading = d_in[1].atan2(d_in[0]);
         let len_m = side - a0 - a1;
@@ -366,16 +341,108 @@ fn loop_route(
         });
         s += len_m;
         let before = segs.len();
-        // Distance from the lane corner to the junction edge (or to the
-        // roundabout arm's keep-clear start) along the lane.
-        let edge = match at_ring(c) {
+        let (edge, depart) = at.turn(c, (d_in, d_out), heading, &mut segs);
+        let turn_m: f64 = segs[before..].iter().map(Segment::length_m).sum();
+        if keep_clear && at.curve(c).is_some() {
+            curves.push([s, s + turn_m]);
+        } else if keep_clear {
+            clear.push([s + a1 - edge, s + turn_m - a1 + depart]);
+        }
+        s += turn_m;
+    }
+    clear.extend(curves);
+    Route::new(kind, lane, segs, clear, turns.bodies.clone())
+}
+
+/// Unit vector from `a` to `b`, and the distance.
+fn unit(a: [f64; 2], b: [f64; 2]) -> ([f64; 2], f64) {
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let n = d[0].hypot(d[1]);
+    ([d[0] / n, d[1] / n], n)
+}
+
+/// How a loop route in lane `lane` turns at a lane corner: a plain arc, an
+/// arc concentric with a curved loop corner, or a roundabout turn.
+struct CornerTurns<'a> {
+    l: &'a Layout,
+    lane: u32,
+    /// Lane centre's distance from the road centreline, metres.
+    e: f64,
+    /// Radius of a plain turn, metres.
+    r: f64,
+    /// Fillet radius of a roundabout turn, metres.
+    rho: f64,
+    /// Roundabout centre, if the route may pass it.
+    ring: Option<[f64; 2]>,
+    curves: Vec<LoopCorner>,
+}
+
+impl<'a> CornerTurns<'a> {
+    fn new(l: &'a Layout, lane: u32, r: f64, ring: Option<[f64; 2]>) -> Self {
+        CornerTurns {
+            l,
+            lane,
+            e: (lane as f64 + 0.5) * l.lane_w_m,
+            r,
+            rho: ring_fillet_m(l),
+            ring,
+            curves: l.loop_corners(),
+        }
+    }
+
+    /// The roundabout centre if lane corner `c` turns round it.
+    fn at_ring(&self, c: [f64; 2]) -> Option<[f64; 2]> {
+        let near = |o: &[f64; 2]| (c[0] - o[0]).hypot(c[1] - o[1]) < self.l.road_w_m;
+        self.ring.filter(near)
+    }
+
+    /// The curved loop corner lane corner `c` lies on, if any.
+    fn curve(&self, c: [f64; 2]) -> Option<&LoopCorner> {
+        self.curves
+            .iter()
+            .find(|o| (c[0] - o.corner[0]).hypot(c[1] - o.corner[1]) < self.l.road_w_m)
+    }
+
+    /// A plain turn's radius: on a loop corner the arc about the road's
+    /// centre (the lane corner lies on its diagonal, √2·radius away).
+    fn radius(&self, c: [f64; 2]) -> f64 {
+        match self.curve(c) {
+            Some(o) => (c[0] - o.centre[0]).hypot(c[1] - o.centre[1]) / SQRT_2,
+            None => self.r,
+        }
+    }
+
+    /// How far before (and after) lane corner `c` its turn starts (ends).
+    fn cut(&self, c: [f64; 2]) -> f64 {
+        match self.at_ring(c) {
+            Some(_) => ring_turn(self.l, self.lane, self.rho).1,
+            None => self.radius(c),
+        }
+    }
+
+    /// Appends the turn at lane corner `c` from direction `d_in` (heading
+    /// `heading`) to `d_out`. Returns the distances along the lane from the
+    /// lane corner to where the keep-clear zone begins before the turn (the
+    /// stop line, or the roundabout arm's keep-clear start) and ends after
+    /// it (past the departing crosswalk, or the arm's zone).
+    fn turn(
+        &self,
+        c: [f64; 2],
+        (d_in, d_out): ([f64; 2], [f64; 2]),
+        heading: f64,
+        segs: &mut Vec<Segment>,
+    ) -> (f64, f64) {
+        let (l, e) = (self.l, self.e);
+        let hw = l.road_w_m / 2.0;
+        match self.at_ring(c) {
             Some(o) => {
-                let (arcs, _) = ring_turn(l, lane, rho);
+                let (arcs, _) = ring_turn(l, self.lane, self.rho);
                 segs.extend(arcs.map(|a| a.moved(heading, o)));
-                arm_start_m(l) + RING_CLEAR_EXTRA_M - e
+                let edge = arm_start_m(l) + RING_CLEAR_EXTRA_M - e;
+                (edge, edge)
             }
             None => {
-                let r = radius(c);
+                let r = self.radius(c);
                 let sigma = (d_in[0] * d_out[1] - d_in[1] * d_out[0]).signum();
                 let n_left = [-d_in[1], d_in[0]];
                 let start = [c[0] - r * d_in[0], c[1] - r * d_in[1]];
@@ -388,24 +455,10 @@ fn loop_route(
                     phi0: heading - sigma * FRAC_PI_2,
                     sweep: sigma * FRAC_PI_2,
                 });
-                hw - e + STOP_LINE_AT_M
+                (hw - e + STOP_LINE_AT_M, hw - e + CROSSWALK_CLEAR_M)
             }
-        };
-        let turn_m: f64 = segs[before..].iter().map(Segment::length_m).sum();
-        let depart = if at_ring(c).is_some() {
-            edge
-        } else {
-            hw - e + CROSSWALK_CLEAR_M
-        };
-        if keep_clear && at_curve(c).is_some() {
-            curves.push([s, s + turn_m]);
-        } else if keep_clear {
-            clear.push([s + a1 - edge, s + turn_m - a1 + depart]);
         }
-        s += turn_m;
     }
-    clear.extend(curves);
-    Route::new(kind, lane, segs, clear, turns.bodies.clone())
 }
 
 /// Every route of the town: block loops (by row, column, lane), then the

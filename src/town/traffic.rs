@@ -415,30 +415,12 @@ pub fn frame_at(desc: &TownDesc, seed: u64, frame: u64) -> TownFrame {
             next_id += 1;
             let is_ego = ri == ego_route && n == ego_slot_n;
             let mut r = Rng::new(&[seed, tag::SLOT, ri as u64, n as u64]);
-            // A bus line: every third slot of a long-vehicle route always
-            // holds a bus or truck; the others fill at the traffic density.
-            let line = n % LINE_EVERY == 0 && rp.route.bodies.contains(&BodyKind::Bus);
-            let occupied = open && (r.chance(desc.traffic_density) || line);
-            if !(occupied || is_ego) {
+            let ego_here = is_ego.then_some(ego_body);
+            let Some(body) = slot_body(desc, rp, (n, open), &mut r, ego_here) else {
                 continue;
-            }
-            let body = if is_ego {
-                ego_body
-            } else if line {
-                weighted_body(&mut r, &[BodyKind::Bus, BodyKind::Truck])
-            } else {
-                weighted_body(&mut r, &rp.route.bodies)
             };
             let paint = PAINTS[r.index(PAINTS.len())];
-            // Shorter bodies ride forward in their slot, so every front
-            // stands at the stop line (gaps stay ≥ MIN_GAP_M: see `Plan`);
-            // the ring never stands, so its bodies ride their slot centres
-            // (up to 3.75 m ahead, a car would enter corners too fast).
-            let shift = match rp.route.kind {
-                RouteKind::Ring | RouteKind::Overpass => 0.0,
-                RouteKind::Block { .. } => (rp.route.max_len_m() - body.footprint_m()[0]) / 2.0,
-            };
-            let (p, heading) = rp.route.pose(rp.profile.arc_at(tau + offset) + shift);
+            let (p, heading) = slot_pose(rp, tau + offset, body);
             let pose = VehiclePose {
                 id,
                 body,
@@ -460,21 +442,56 @@ pub fn frame_at(desc: &TownDesc, seed: u64, frame: u64) -> TownFrame {
             }
         }
     }
+    let mut pedestrians = walkers::pedestrians(desc, &l, sched, seed, t);
+    if let Some(g) = &grade {
+        for p in &mut pedestrians {
+            p.position[2] += g.height_m(p.position[0], p.position[1]);
+        }
+    }
     TownFrame {
         frame,
         time_s: t,
         ego: ego.expect("the ego slot is always occupied"),
         vehicles,
-        pedestrians: walkers::pedestrians(desc, &l, sched, seed, t)
-            .into_iter()
-            .map(|mut p| {
-                if let Some(g) = &grade {
-                    p.position[2] += g.height_m(p.position[0], p.position[1]);
-                }
-                p
-            })
-            .collect(),
+        pedestrians,
     }
+}
+
+/// The body in slot `n` (`open`: not kept free) of route plan `rp`, drawn
+/// from the slot's stream `r`, or None when the slot stays empty; `ego`:
+/// the ego's body when this is the ego's slot (always occupied). A bus
+/// line: every third slot of a long-vehicle route always holds a bus or
+/// truck; the others fill at the traffic density.
+fn slot_body(
+    desc: &TownDesc,
+    rp: &RoutePlan,
+    (n, open): (usize, bool),
+    r: &mut Rng,
+    ego: Option<BodyKind>,
+) -> Option<BodyKind> {
+    let line = n % LINE_EVERY == 0 && rp.route.bodies.contains(&BodyKind::Bus);
+    let occupied = open && (r.chance(desc.traffic_density) || line);
+    if !(occupied || ego.is_some()) {
+        return None;
+    }
+    Some(match ego {
+        Some(b) => b,
+        None if line => weighted_body(r, &[BodyKind::Bus, BodyKind::Truck]),
+        None => weighted_body(r, &rp.route.bodies),
+    })
+}
+
+/// Position and heading of `body` in the slot at schedule position `at`
+/// of route plan `rp`. Shorter bodies ride forward in their slot, so every
+/// front stands at the stop line (gaps stay ≥ MIN_GAP_M: see `Plan`); the
+/// ring never stands, so its bodies ride their slot centres (up to 3.75 m
+/// ahead, a car would enter corners too fast).
+fn slot_pose(rp: &RoutePlan, at: f64, body: BodyKind) -> ([f64; 2], f64) {
+    let shift = match rp.route.kind {
+        RouteKind::Ring | RouteKind::Overpass => 0.0,
+        RouteKind::Block { .. } => (rp.route.max_len_m() - body.footprint_m()[0]) / 2.0,
+    };
+    rp.route.pose(rp.profile.arc_at(at) + shift)
 }
 
 /// The pose on the overpass road: z and pitch from its height profile.
@@ -495,3 +512,6 @@ fn on_ground(mut v: VehiclePose, grade: Option<&Grade>) -> VehiclePose {
     }
     v
 }
+
+#[cfg(test)]
+mod tests;

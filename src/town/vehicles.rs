@@ -110,9 +110,10 @@ pub fn vehicle_prefabs() -> Vec<PrefabDesc> {
         .collect()
 }
 
+/// One body: the painted lower body, the cabin, a truck's cargo box,
+/// bumpers, lights and wheels.
 fn body(kind: BodyKind, l: Label) -> Vec<ObjectDesc> {
     let d = kind.dims();
-    let (hl, hw) = (d.length / 2.0, d.width / 2.0);
     let lower_h = d.belt_z - d.floor_z;
     let mut o = vec![cuboid(
         [d.length, d.width, lower_h],
@@ -121,7 +122,27 @@ fn body(kind: BodyKind, l: Label) -> Vec<ObjectDesc> {
         "car_paint",
         l,
     )];
-    // Glass cabin with an interior inside and a painted roof on top.
+    cabin(&d, l, &mut o);
+    if kind == BodyKind::Truck {
+        // Cargo box behind the cab.
+        let (hl, box_len) = (d.length / 2.0, d.length - 2.4);
+        o.push(cuboid(
+            [box_len, d.width, 3.4 - d.belt_z + 0.3],
+            [-hl + box_len / 2.0, 0.0, (3.4 + d.belt_z - 0.3) / 2.0],
+            0.0,
+            "cargo",
+            l,
+        ));
+    }
+    bumpers_and_lights(&d, l, &mut o);
+    wheels(&d, l, &mut o);
+    o
+}
+
+/// Glass cabin with an interior inside, a painted roof on top and pillars
+/// at its corners holding the roof.
+fn cabin(d: &Dims, l: Label, o: &mut Vec<ObjectDesc>) {
+    let hw = d.width / 2.0;
     let cabin_h = d.roof_z - 0.06 - d.belt_z;
     let cz = d.belt_z + cabin_h / 2.0;
     o.push(cuboid(
@@ -145,7 +166,6 @@ fn body(kind: BodyKind, l: Label) -> Vec<ObjectDesc> {
         "car_paint",
         l,
     ));
-    // Pillars at the cabin corners hold the roof.
     for sx in [-1.0, 1.0] {
         for sy in [-1.0, 1.0] {
             let at = [
@@ -156,18 +176,12 @@ fn body(kind: BodyKind, l: Label) -> Vec<ObjectDesc> {
             o.push(cuboid([0.1, 0.1, cabin_h], at, 0.0, "car_paint", l));
         }
     }
-    if kind == BodyKind::Truck {
-        // Cargo box behind the cab.
-        let box_len = d.length - 2.4;
-        o.push(cuboid(
-            [box_len, d.width, 3.4 - d.belt_z + 0.3],
-            [-hl + box_len / 2.0, 0.0, (3.4 + d.belt_z - 0.3) / 2.0],
-            0.0,
-            "cargo",
-            l,
-        ));
-    }
-    // Bumpers front and rear.
+}
+
+/// Bumpers front and rear, then head-lights and tail-lights on the front
+/// and rear faces.
+fn bumpers_and_lights(d: &Dims, l: Label, o: &mut Vec<ObjectDesc>) {
+    let (hl, hw) = (d.length / 2.0, d.width / 2.0);
     for sx in [-1.0, 1.0] {
         o.push(cuboid(
             [0.14, d.width + 0.04, 0.22],
@@ -177,7 +191,6 @@ fn body(kind: BodyKind, l: Label) -> Vec<ObjectDesc> {
             l,
         ));
     }
-    // Lights on the front and rear faces.
     let lz = d.belt_z - 0.18;
     for sy in [-1.0, 1.0] {
         let y = sy * (hw - 0.3);
@@ -196,7 +209,11 @@ fn body(kind: BodyKind, l: Label) -> Vec<ObjectDesc> {
             l,
         ));
     }
-    // Wheels (inside the body's width) with chrome hubs on the outside.
+}
+
+/// Wheels (inside the body's width) with chrome hubs on the outside.
+fn wheels(d: &Dims, l: Label, o: &mut Vec<ObjectDesc>) {
+    let hw = d.width / 2.0;
     let tyre_w = 0.24;
     for x in d.axles {
         for sy in [-1.0, 1.0] {
@@ -211,5 +228,62 @@ fn body(kind: BodyKind, l: Label) -> Vec<ObjectDesc> {
             ));
         }
     }
-    o
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::desc::ShapeDesc;
+
+    /// Min and max corners of a part in the body's frame: boxes are not
+    /// turned; a wheel's axis lies along y, from its translation down by
+    /// its width (see `parts::wheel`).
+    fn extent(o: &ObjectDesc) -> ([f64; 3], [f64; 3]) {
+        let t = o.transform.translate.unwrap();
+        match o.shape {
+            ShapeDesc::Box { size } => (
+                [0, 1, 2].map(|k| t[k] - size[k] / 2.0),
+                [0, 1, 2].map(|k| t[k] + size[k] / 2.0),
+            ),
+            ShapeDesc::Cylinder { radius, height, .. } => (
+                [t[0] - radius, t[1] - height, t[2] - radius],
+                [t[0] + radius, t[1], t[2] + radius],
+            ),
+            _ => panic!("unexpected part {o:?}"),
+        }
+    }
+
+    #[test]
+    fn parts_stay_in_the_footprint_lights_face_out_and_hubs_sit_outside_the_tyres() {
+        for kind in BODIES {
+            let parts = body(kind, class("vehicle"));
+            let [len, w] = kind.footprint_m();
+            for o in &parts {
+                let (lo, hi) = extent(o);
+                let inside = lo[0] >= -len / 2.0 - 1e-9
+                    && hi[0] <= len / 2.0 + 1e-9
+                    && lo[1] >= -w / 2.0 - 1e-9
+                    && hi[1] <= w / 2.0 + 1e-9
+                    && lo[2] >= -1e-9;
+                assert!(inside, "{kind:?}: {lo:?}..{hi:?} of {o:?}");
+            }
+            let with = |m: &str| -> Vec<([f64; 3], [f64; 3])> {
+                let of = parts.iter().filter(|o| o.material.as_deref() == Some(m));
+                of.map(extent).collect()
+            };
+            let front = len / 2.0 - 0.1;
+            let head = with("headlight_emit");
+            let tail = with("taillight_emit");
+            assert_eq!((head.len(), tail.len()), (2, 2), "{kind:?}");
+            assert!(head.iter().all(|(lo, _)| lo[0] > front), "{kind:?}");
+            assert!(tail.iter().all(|(_, hi)| hi[0] < -front), "{kind:?}");
+            let (tyres, hubs) = (with("rubber"), with("chrome"));
+            assert_eq!((tyres.len(), hubs.len()), (4, 4), "{kind:?}");
+            let centre_y = |(lo, hi): &([f64; 3], [f64; 3])| (lo[1] + hi[1]) / 2.0;
+            for (t, h) in tyres.iter().zip(&hubs) {
+                assert!(t.0[2].abs() < 1e-12, "{kind:?}: a tyre off the ground");
+                assert!(centre_y(h).abs() > centre_y(t).abs() + 0.1, "{kind:?}");
+            }
+        }
+    }
 }

@@ -98,8 +98,23 @@ impl Overpass {
         (yellow, white)
     }
 
+    /// The concrete structure: side walls and parapets, the deck's
+    /// underside and abutments, the pier line.
     fn structure(&self) -> LocalMesh {
         let mut m = LocalMesh::default();
+        for sx in [-1.0, 1.0] {
+            self.side(&mut m, sx);
+        }
+        self.underside_and_abutments(&mut m);
+        self.pier(&mut m);
+        m
+    }
+
+    /// One side (`sx` = ±1 across x) over the whole profile: the outer wall
+    /// from the ground (or, over the span, the deck's underside) up to the
+    /// parapet's top, then the parapet's inner face and top, station by
+    /// station.
+    fn side(&self, m: &mut LocalMesh, sx: f64) {
         let (d0, d1) = self.deck;
         let under = TOP_M - DECK_M;
         let (pw, ph) = PARAPET_M;
@@ -107,57 +122,61 @@ impl Overpass {
         let x = self.x_m;
         let ys = stations(d0 - APPROACH_M, d1 + APPROACH_M, &self.knots());
         let on_span = |y: f64| y >= d0 && y <= d1;
-        for sx in [-1.0, 1.0] {
-            let side = DVec3::new(sx, 0.0, 0.0);
-            for w in ys.windows(2) {
-                let (a, b) = (w[0], w[1]);
-                let (za, zb) = (self.profile(a).0, self.profile(b).0);
-                // Stations include the deck ends: a piece is on the span or off it.
-                let bottom = if on_span(a) && on_span(b) {
-                    under
-                } else {
-                    GROUND_Z
-                };
-                let (ba, bb) = (bottom, bottom);
-                // Outer wall up to the parapet's top.
-                let p = |u: f64, y: f64, z: f64| DVec3::new(x + sx * u, y, z);
-                quad(
-                    &mut m,
-                    [
-                        p(out, a, ba),
-                        p(out, b, bb),
-                        p(out, b, zb + ph),
-                        p(out, a, za + ph),
-                    ],
-                    side,
-                );
-                // Parapet: inner face and top.
-                quad(
-                    &mut m,
-                    [
-                        p(HALF_WIDTH_M, a, za),
-                        p(HALF_WIDTH_M, b, zb),
-                        p(HALF_WIDTH_M, b, zb + ph),
-                        p(HALF_WIDTH_M, a, za + ph),
-                    ],
-                    -side,
-                );
-                quad(
-                    &mut m,
-                    [
-                        p(HALF_WIDTH_M, a, za + ph),
-                        p(out, a, za + ph),
-                        p(out, b, zb + ph),
-                        p(HALF_WIDTH_M, b, zb + ph),
-                    ],
-                    DVec3::Z,
-                );
-            }
+        let side = DVec3::new(sx, 0.0, 0.0);
+        for w in ys.windows(2) {
+            let (a, b) = (w[0], w[1]);
+            let (za, zb) = (self.profile(a).0, self.profile(b).0);
+            // Stations include the deck ends: a piece is on the span or off it.
+            let bottom = if on_span(a) && on_span(b) {
+                under
+            } else {
+                GROUND_Z
+            };
+            let (ba, bb) = (bottom, bottom);
+            // Outer wall up to the parapet's top.
+            let p = |u: f64, y: f64, z: f64| DVec3::new(x + sx * u, y, z);
+            quad(
+                m,
+                [
+                    p(out, a, ba),
+                    p(out, b, bb),
+                    p(out, b, zb + ph),
+                    p(out, a, za + ph),
+                ],
+                side,
+            );
+            // Parapet: inner face and top.
+            quad(
+                m,
+                [
+                    p(HALF_WIDTH_M, a, za),
+                    p(HALF_WIDTH_M, b, zb),
+                    p(HALF_WIDTH_M, b, zb + ph),
+                    p(HALF_WIDTH_M, a, za + ph),
+                ],
+                -side,
+            );
+            quad(
+                m,
+                [
+                    p(HALF_WIDTH_M, a, za + ph),
+                    p(out, a, za + ph),
+                    p(out, b, zb + ph),
+                    p(HALF_WIDTH_M, b, zb + ph),
+                ],
+                DVec3::Z,
+            );
         }
-        // The deck's underside and the abutment walls facing the span.
-        let c = |u: f64, y: f64, z: f64| DVec3::new(x + u, y, z);
+    }
+
+    /// The deck's underside and the abutment walls facing the span.
+    fn underside_and_abutments(&self, m: &mut LocalMesh) {
+        let (d0, d1) = self.deck;
+        let under = TOP_M - DECK_M;
+        let out = HALF_WIDTH_M + PARAPET_M.0;
+        let c = |u: f64, y: f64, z: f64| DVec3::new(self.x_m + u, y, z);
         quad(
-            &mut m,
+            m,
             [
                 c(-out, d0, under),
                 c(out, d0, under),
@@ -168,7 +187,7 @@ impl Overpass {
         );
         for (y, facing) in [(d0, DVec3::Y), (d1, DVec3::NEG_Y)] {
             quad(
-                &mut m,
+                m,
                 [
                     c(-out, y, GROUND_Z),
                     c(out, y, GROUND_Z),
@@ -178,21 +197,24 @@ impl Overpass {
                 facing,
             );
         }
-        // The pier line: two columns under a cap beam.
-        let yp = self.pier_y_m;
+    }
+
+    /// The pier line: two columns under a cap beam.
+    fn pier(&self, m: &mut LocalMesh) {
+        let under = TOP_M - DECK_M;
+        let (x, yp) = (self.x_m, self.pier_y_m);
         for u in [-2.5, 2.5] {
             boxed(
-                &mut m,
+                m,
                 [x + u - 0.6, yp - 0.6, GROUND_Z],
                 [x + u + 0.6, yp + 0.6, under - 0.8],
             );
         }
         boxed(
-            &mut m,
+            m,
             [x - HALF_WIDTH_M, yp - 0.7, under - 0.8],
             [x + HALF_WIDTH_M, yp + 0.7, under],
         );
-        m
     }
 }
 

@@ -1,5 +1,6 @@
 //! Unit tests of the routes: continuity and total turning of every loop,
-//! the roundabout turn's geometry, and routes through curved loop corners.
+//! the roundabout turn's geometry, routes through curved loop corners, and
+//! the turn and keep-clear distances at one lane corner.
 
 use super::*;
 
@@ -154,4 +155,37 @@ fn roundabout_turn_circles_the_ring_counter_clockwise_in_its_quarter() {
     let (p, h) = arcs[2].at(arcs[2].length_m());
     assert!((p[0] + e).abs() < 1e-9 && (p[1] + e + cut).abs() < 1e-9);
     assert!((h + FRAC_PI_2).sin().abs() < 1e-9);
+}
+
+#[test]
+fn a_corner_turns_on_a_quarter_arc_or_round_the_ring_and_keeps_its_junction_clear() {
+    let l = town(true);
+    let r = Turns::new(l.lane_w_m).radius_m;
+    let (hw, e) = (l.road_w_m / 2.0, 0.5 * l.lane_w_m);
+    let at = CornerTurns::new(&l, 0, r, l.roundabout_center());
+    // A plain right turn at the lane corner by junction (2, 1): heading +y,
+    // then +x (clockwise).
+    let c = [180.0 - e, 90.0 - e];
+    let mut segs = Vec::new();
+    let zone = at.turn(c, ([0.0, 1.0], [1.0, 0.0]), FRAC_PI_2, &mut segs);
+    assert_eq!(zone, (hw - e + STOP_LINE_AT_M, hw - e + CROSSWALK_CLEAR_M));
+    assert_eq!(at.cut(c), r);
+    let [arc] = segs[..] else { panic!("{segs:?}") };
+    assert!((arc.length_m() - r * FRAC_PI_2).abs() < 1e-9);
+    // It starts r before the corner and ends r after it, heading +x.
+    let (p, _) = arc.at(0.0);
+    assert!((p[0] - c[0]).abs() < 1e-9 && (p[1] - (c[1] - r)).abs() < 1e-9);
+    let (q, h) = arc.at(arc.length_m());
+    assert!((q[0] - (c[0] + r)).abs() < 1e-9 && (q[1] - c[1]).abs() < 1e-9);
+    assert!(h.sin().abs() < 1e-9 && h.cos() > 0.0);
+    // At the roundabout (centre (90, 90)): the three arcs of the ring turn,
+    // the zone from the arm's keep-clear start on both sides.
+    let o = l.roundabout_center().unwrap();
+    let c = [o[0] - e, o[1] - e];
+    let mut segs = Vec::new();
+    let zone = at.turn(c, ([1.0, 0.0], [0.0, -1.0]), 0.0, &mut segs);
+    let arm = arm_start_m(&l) + RING_CLEAR_EXTRA_M - e;
+    assert_eq!(zone, (arm, arm));
+    assert_eq!(segs.len(), 3);
+    assert_eq!(at.cut(c), ring_turn(&l, 0, ring_fillet_m(&l)).1);
 }
