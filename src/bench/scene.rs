@@ -110,7 +110,7 @@ irradiance = [900.0, 850.0, 780.0]
 [[object]]
 kind = "obj"
 file = {file:?}
-semantic = "other"
+semantic = "unlabeled"
 transform = {{ rotate_deg = [90.0, 0.0, 0.0] }}
 "#,
         w = cam.width,

@@ -17,7 +17,7 @@ use crate::geometry::{ray_plane_t, ray_sphere_t};
 use crate::scene::{mask_bits, surface_interaction, Scene};
 
 /// Semantic class id of sky pixels (the class table in `scene::semantic`).
-pub const SKY_CLASS: u8 = 13;
+pub const SKY_CLASS: u8 = crate::scene::semantic::SKY;
 
 /// Per-pixel geometry of one view.
 #[derive(Clone, Debug, Default, PartialEq)]

@@ -21,16 +21,22 @@ use shaders_cpu::bsdf::{Bsdf, CoatBase};
 use super::{mask_bits, Material};
 use crate::geometry::SurfaceInteraction;
 use crate::sampler::hash_words;
+use crate::scene::desc::semantic;
 use crate::scene::desc::WetnessDesc;
 
 /// Index of refraction of water.
 pub const WATER_IOR: f32 = 1.33;
 /// Surfaces whose viewer-facing normal has z above this count as exposed.
 pub const UP_FACING_Z: f32 = 0.7;
-/// Semantic ids that get wet: road, lane marking, sidewalk, terrain.
-const WET_CLASSES: [u8; 4] = [1, 2, 3, 6];
+/// Semantic ids that get wet: road, road line, sidewalk, terrain.
+const WET_CLASSES: [u8; 4] = [
+    semantic::ROAD,
+    semantic::ROAD_LINE,
+    semantic::SIDEWALK,
+    semantic::TERRAIN,
+];
 /// Semantic ids that can hold puddles: road, sidewalk.
-const PUDDLE_CLASSES: [u8; 2] = [1, 3];
+const PUDDLE_CLASSES: [u8; 2] = [semantic::ROAD, semantic::SIDEWALK];
 /// Stream tag of the puddle noise.
 const PUDDLE_TAG: u64 = 0x7075_6464_6c65;
 

@@ -225,7 +225,7 @@ pub fn camera_file(
         image_filter: scene.filter_indirect || scene.filter_inscatter,
         semantic_classes: crate::scene::semantic::CLASSES
             .iter()
-            .map(|(n, id)| (n.to_string(), *id))
+            .map(|c| (c.name.to_string(), c.id))
             .collect(),
         conventions: CONVENTIONS,
         // The caller fills in the town and weather seeds it used.

@@ -42,26 +42,10 @@ pub fn turbo(t: f64) -> [u8; 3] {
     ]
 }
 
-/// CARLA's (Cityscapes') colour of each semantic class id of
-/// `scene::semantic::CLASSES`; white for an id beyond the table.
+/// CARLA's colour of a semantic class id (`scene::semantic::CLASSES`);
+/// white for an id beyond the table.
 pub fn semantic_colour(id: u8) -> [u8; 3] {
-    const PALETTE: [[u8; 3]; 14] = [
-        [0, 0, 0],       // other (unlabeled)
-        [128, 64, 128],  // road
-        [157, 234, 50],  // lane_marking (road line)
-        [244, 35, 232],  // sidewalk
-        [70, 70, 70],    // building
-        [107, 142, 35],  // vegetation
-        [152, 251, 152], // terrain
-        [153, 153, 153], // pole
-        [250, 170, 30],  // traffic_light
-        [220, 220, 0],   // traffic_sign
-        [0, 0, 142],     // vehicle (car)
-        [220, 20, 60],   // pedestrian
-        [45, 60, 150],   // water
-        [70, 130, 180],  // sky
-    ];
-    PALETTE.get(id as usize).copied().unwrap_or([255, 255, 255])
+    crate::scene::semantic::class_of(id).map_or([255, 255, 255], |c| c.colour)
 }
 
 /// A bright colour per instance id from a hash of the id (black for 0 = none),
@@ -111,7 +95,7 @@ mod tests {
         assert!(mid[1] > mid[0] && mid[1] > mid[2], "{mid:?}");
         assert!(hi[0] > hi[1] && hi[0] > hi[2], "{hi:?}");
         assert_ne!(turbo(0.0), INVALID);
-        assert_eq!(semantic_colour(13), [70, 130, 180]);
+        assert_eq!(semantic_colour(11), [70, 130, 180]);
         assert_eq!(instance_colour(0), INVALID);
         assert_ne!(instance_colour(1), instance_colour(2));
         assert_eq!(mask_colour(SKY | MIRROR), [162, 65, 217]);

@@ -28,7 +28,7 @@ mod polygon;
 pub mod prefab;
 mod ranges;
 mod resolve;
-pub mod semantic;
+pub use desc::semantic;
 mod shapes;
 mod surface;
 mod table;

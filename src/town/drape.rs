@@ -30,7 +30,7 @@ pub const STEP_M: f64 = 5.0;
 const SHEET_STEP_M: f64 = 10.0;
 
 /// Classes whose boxes lie on the ground and are draped.
-const GROUND_CLASSES: [&str; 4] = ["road", "lane_marking", "sidewalk", "terrain"];
+const GROUND_CLASSES: [&str; 4] = ["road", "road_line", "sidewalk", "terrain"];
 /// Other boxes longer than this (and low on the ground) are draped, metres.
 const LONG_BOX_M: f64 = 6.0;
 
@@ -316,7 +316,7 @@ mod tests {
                 0.0,
                 0.008,
                 "paint",
-                class("lane_marking"),
+                class("road_line"),
             ),
             &[(3, [6.0, 0.0, 0.0])],
         );

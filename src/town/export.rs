@@ -91,7 +91,7 @@ pub fn write_obj(loaded: &LoadedScene, scene: &Scene, obj_path: &Path) -> io::Re
     let mut obj = format!("# parallax town export\nmtllib {mtl_name}\n");
     let (mut base, mut triangles) = (1u64, 0u64);
     for (g, m) in scene.meshes.iter().enumerate() {
-        let class = class_name(m.semantic).unwrap_or("other");
+        let class = class_name(m.semantic).unwrap_or("unlabeled");
         let _ = writeln!(obj, "o {g}_{class}_{}", m.instance);
         for p in &m.p_render {
             let w = *p + scene.origin_world;

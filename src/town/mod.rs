@@ -149,7 +149,7 @@ fn clear_for_overpass(o: &overpass::Overpass, objects: &mut Vec<ObjectDesc>) {
     let flat = |ob: &ObjectDesc| {
         matches!(
             ob.semantic.as_deref(),
-            Some("road" | "lane_marking" | "terrain" | "sidewalk")
+            Some("road" | "road_line" | "terrain" | "sidewalk")
         )
     };
     let buildings: std::collections::BTreeSet<u16> = objects
@@ -189,7 +189,7 @@ pub fn dynamic_objects(frame: &TownFrame) -> Vec<ObjectDesc> {
     let mut out = Vec::with_capacity(frame.vehicles.len() + frame.pedestrians.len() + 1);
     for v in std::iter::once(&frame.ego).chain(&frame.vehicles) {
         let l = Label {
-            class: "vehicle",
+            class: v.body.class(),
             instance: (VEHICLE_ID_BASE + v.id).min(PEDESTRIAN_ID_BASE - 1) as u16,
         };
         let map = [("car_paint", v.paint)];

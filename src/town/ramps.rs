@@ -9,7 +9,7 @@
 //! Local coordinates of a site: `t` along the road from the site start
 //! (world x = a0 + t) and `o` outward from the road centreline, so world
 //! y = y_road + side · o. Everything lies flat at z = 0 (markings 8 mm above),
-//! built as inline triangle meshes (`kind = "mesh"`: road, lane_marking,
+//! built as inline triangle meshes (`kind = "mesh"`: road, road_line,
 //! terrain shoulders) that are validated like every scene mesh.
 
 use glam::DVec3;
@@ -40,7 +40,7 @@ const STEP_M: f64 = 2.0;
 /// Object names of the generated meshes, with their material and class.
 pub const RAMP_MESHES: [(&str, &str, &str); 3] = [
     ("ramps_road", "asphalt", "road"),
-    ("ramps_lane_marking", "paint_white_road", "lane_marking"),
+    ("ramps_lane_marking", "paint_white_road", "road_line"),
     ("ramps_terrain", "gravel", "terrain"),
 ];
 

@@ -229,7 +229,7 @@ fn uncut(a0: f64, a1: f64, cuts: &[(f64, f64)]) -> Vec<(f64, f64)> {
 /// The solid edge line on one side, dashed along the ramp tapers (there it
 /// divides the through lane from the deceleration or acceleration lane).
 fn edge_line(s: &Segment, (s0, s1): (f64, f64), u: f64, ramps: &[&RampSite]) -> Vec<ObjectDesc> {
-    let (m, mark) = ("paint_white_road", class("lane_marking"));
+    let (m, mark) = ("paint_white_road", class("road_line"));
     let mut o = Vec::new();
     let tapers: Vec<(f64, f64)> = ramps
         .iter()
@@ -274,7 +274,7 @@ fn segment_objects(l: &Layout, sites: &[RampSite], s: &Segment) -> Vec<ObjectDes
 /// dashed lane dividers and the edge lines, stopping short of crosswalks
 /// and stop lines at junction ends.
 fn lane_lines(l: &Layout, sites: &[RampSite], s: &Segment, o: &mut Vec<ObjectDesc>) {
-    let mark = class("lane_marking");
+    let mark = class("road_line");
     let hw = l.road_w_m / 2.0;
     let clear = |end: usize| match (s.junction[end], s.yield_end[end]) {
         (_, true) => YIELD_CROSSWALK_M + CROSSWALK_M.1 + 0.6,
@@ -309,7 +309,7 @@ fn lane_lines(l: &Layout, sites: &[RampSite], s: &Segment, o: &mut Vec<ObjectDes
 /// on town roads the crosswalk's stripes (parallel to traffic, 0.5 m wide
 /// every 1 m; set back from the ring at a yield end).
 fn junction_end(l: &Layout, s: &Segment, end: usize, o: &mut Vec<ObjectDesc>) {
-    let mark = class("lane_marking");
+    let mark = class("road_line");
     let hw = l.road_w_m / 2.0;
     let (dir, edge) = if end == 0 { (1.0, s.a0) } else { (-1.0, s.a1) };
     // Traffic entering at a0 drives in −along, on the left (across > 0).
@@ -425,7 +425,7 @@ fn river_objects(l: &Layout, band: &Rect, out: &mut Vec<ObjectDesc>) {
         // The deck and its parapets are a structure (their sides are seen
         // across the river), labelled like the overpass's; only the asphalt
         // on top of the deck is road.
-        out.push(slab(min, max, -0.8, -0.005, "concrete", class("building")));
+        out.push(slab(min, max, -0.8, -0.005, "concrete", class("bridge")));
         for sx in [-1.0, 1.0] {
             let xe = x + sx * (reach - 0.1);
             let parapet = slab(
@@ -434,7 +434,7 @@ fn river_objects(l: &Layout, band: &Rect, out: &mut Vec<ObjectDesc>) {
                 0.0,
                 1.1,
                 "concrete",
-                class("building"),
+                class("bridge"),
             );
             out.push(parapet);
         }

@@ -118,7 +118,7 @@ fn ring_asphalt(c: [f64; 2], (r_in, r_out): (f64, f64), out: &mut Vec<ObjectDesc
 /// dashed divider between the ring lanes.
 fn ring_markings(l: &Layout, c: [f64; 2], open: Option<f64>, out: &mut Vec<ObjectDesc>) {
     let (r_in, r_out) = l.roundabout_radii();
-    let (mark, paint, pz) = (class("lane_marking"), "paint_white_road", (0.0, 0.008));
+    let (mark, paint, pz) = (class("road_line"), "paint_white_road", (0.0, 0.008));
     let edge_in = (r_in + 0.25, r_in + 0.4);
     ring(c, edge_in, pz, None, 2.0, false, paint, mark, out);
     let edge_out = (r_out - 0.4, r_out - 0.25);

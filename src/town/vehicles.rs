@@ -69,6 +69,15 @@ impl BodyKind {
         }
     }
 
+    /// Semantic class (CARLA's): buses and trucks apart from cars.
+    pub fn class(self) -> &'static str {
+        match self {
+            BodyKind::Bus => "bus",
+            BodyKind::Truck => "truck",
+            _ => "car",
+        }
+    }
+
     fn dims(self) -> Dims {
         let d = |length, width, floor_z, belt_z, cabin_len, cabin_x, roof_z, wheel_r, axles| Dims {
             length,
@@ -105,7 +114,7 @@ pub fn vehicle_prefabs() -> Vec<PrefabDesc> {
         .iter()
         .map(|&b| PrefabDesc {
             name: b.prefab().to_string(),
-            objects: body(b, class("vehicle")),
+            objects: body(b, class(b.class())),
         })
         .collect()
 }
@@ -256,7 +265,7 @@ mod tests {
     #[test]
     fn parts_stay_in_the_footprint_lights_face_out_and_hubs_sit_outside_the_tyres() {
         for kind in BODIES {
-            let parts = body(kind, class("vehicle"));
+            let parts = body(kind, class(kind.class()));
             let [len, w] = kind.footprint_m();
             for o in &parts {
                 let (lo, hi) = extent(o);

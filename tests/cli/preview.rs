@@ -90,7 +90,7 @@ fn preview_of_a_tiny_render_shows_the_documented_colours() {
             let i = y * W + x;
             // Semantic: CARLA's colour of the class; sky is (70, 130, 180).
             assert_eq!(sem.at(x, y), semantic_colour(semantic[i]), "({x}, {y})");
-            if semantic[i] == 13 {
+            if semantic[i] == parallax::scene::semantic::SKY {
                 assert_eq!(sem.at(x, y), [70, 130, 180]);
                 sky += 1;
             }

@@ -315,7 +315,7 @@ semantic = "road"
 kind = "box"
 size = [2.0, 1.6, 1.5]
 material = "grey"
-semantic = "vehicle"
+semantic = "car"
 instance = 300
 transform = { translate = [7.0, 0.8, 0.75] }
 [[object]]

@@ -195,8 +195,8 @@ fn rich_scene_builds_every_shape_with_normals_where_curved() {
         assert!(m.normals.iter().all(|n| (n.length() - 1.0).abs() < 1e-5));
     }
     assert!(scene.meshes[4].normals.is_empty());
-    assert_eq!(scene.meshes[0].semantic, 7);
-    // The instance scales the prefab by 2: sphere radius 0.6 at (3, 4, 6.4).
+    assert_eq!(scene.meshes[0].semantic, 6); // CARLA: pole
+                                             // The instance scales the prefab by 2: sphere radius 0.6 at (3, 4, 6.4).
     assert!((scene.spheres[0].radius - 0.6).abs() < 1e-12);
     assert!((scene.spheres[0].center - DVec3::new(3.0, 4.0, 6.4)).length() < 1e-12);
     assert_eq!(scene.spheres[0].instance, 9);
@@ -283,7 +283,7 @@ fn prefab_instance_applies_transform_material_map_and_overrides() {
 kind = "instance"
 prefab = "car"
 material_map = { paint = "red" }
-semantic = "vehicle"
+semantic = "car"
 instance = 5
 transform = { translate = [100.0, 0.0, 0.0], rotate_deg = [0.0, 0.0, 90.0] }
 [[prefab]]
@@ -292,7 +292,7 @@ name = "car"
 kind = "box"
 size = [4.0, 2.0, 1.0]
 material = "paint"
-semantic = "other"
+semantic = "unlabeled"
 transform = { translate = [0.0, 0.0, 1.0] }
 [[prefab.object]]
 kind = "sphere"
@@ -308,8 +308,8 @@ albedo = [0.2, 0.2, 0.9]
     );
     let body = &scene.meshes[0];
     assert_eq!(scene.materials[body.tri_material[0] as usize].name, "red");
-    assert_eq!((body.semantic, body.instance), (10, 5));
-    // Rz(90°): the 4 m long axis now runs along y.
+    assert_eq!((body.semantic, body.instance), (14, 5)); // CARLA: car
+                                                         // Rz(90°): the 4 m long axis now runs along y.
     let (lo, hi) = bounds(body);
     assert!((lo - DVec3::new(-1.0, -2.0, 0.5)).length() < 1e-12, "{lo}");
     assert!((hi - DVec3::new(1.0, 2.0, 1.5)).length() < 1e-12, "{hi}");
@@ -320,7 +320,7 @@ albedo = [0.2, 0.2, 0.9]
         wheel.center
     );
     assert_eq!(scene.materials[wheel.material as usize].name, "grey");
-    assert_eq!((wheel.semantic, wheel.instance), (10, 5));
+    assert_eq!((wheel.semantic, wheel.instance), (14, 5));
     assert_eq!(scene.spheres_f32[0].w, 0.4);
 }
 
@@ -477,7 +477,7 @@ fn obj_with_mtl_becomes_meshes_with_named_materials() {
     let scene = build_scene(&loaded, DVec3::ZERO).unwrap();
     assert_eq!(scene.triangle_count(), 3);
     let mesh = &scene.meshes[0];
-    assert_eq!(mesh.semantic, 9);
+    assert_eq!(mesh.semantic, 8); // CARLA: traffic_sign
     let names: Vec<&str> = mesh
         .tri_material
         .iter()

@@ -116,12 +116,12 @@ fn every_object_and_every_built_mesh_has_a_class() {
         let loaded = load_town_frame(&desc, 1, 0, CameraConfig::Normal, Path::new("t.toml"))
             .unwrap_or_else(|e| panic!("{e}"));
         let built = build_scene(&loaded, DVec3::ZERO).expect("town builds");
-        let mut seen = [false; 14];
+        let mut seen = [false; 29];
         for m in &built.meshes {
-            assert_ne!(m.semantic, 0, "a mesh of {name} has class 'other'");
+            assert_ne!(m.semantic, 0, "a mesh of {name} is unlabeled");
             seen[m.semantic as usize] = true;
         }
-        for class in ["road", "lane_marking", "terrain", "vegetation", "pole"] {
+        for class in ["road", "road_line", "terrain", "vegetation", "pole"] {
             let id = class_id(class).unwrap() as usize;
             assert!(seen[id], "{name} has no {class}");
         }
@@ -130,7 +130,7 @@ fn every_object_and_every_built_mesh_has_a_class() {
         assert_eq!(seen[sidewalk], desc.sidewalks, "{name}: sidewalks");
         for class in [
             "building",
-            "vehicle",
+            "car",
             "traffic_light",
             "traffic_sign",
             "pedestrian",

@@ -16,7 +16,7 @@
 //!   (x − d, y) hits the same 3D point within 1e-4·Z, except on triangle
 //!   edges (ties between two surfaces), which must stay rare, and surfaces
 //!   seen exactly edge-on from the right camera;
-//! - labels: every hit pixel has a class other than "other".
+//! - labels: every hit pixel has a class other than "unlabeled".
 
 use glam::{DMat3, DVec3};
 use parallax::accel::{Accel, Backend, Hit, Ray};

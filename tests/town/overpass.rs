@@ -29,14 +29,16 @@ fn vertical_ray_at_the_crossing_hits_deck_then_highway_with_clearance() {
     let o = Overpass::new(&desc, &l).expect("town06 has an overpass");
     let mut loaded = load_town_frame(&desc, SEED, 0, CameraConfig::Normal, &town_file("town06"))
         .expect("town06 loads");
-    loaded
-        .desc
-        .objects
-        .retain(|ob| !matches!(ob.semantic.as_deref(), Some("vehicle" | "pedestrian")));
+    loaded.desc.objects.retain(|ob| {
+        !matches!(
+            ob.semantic.as_deref(),
+            Some("car" | "bus" | "truck" | "pedestrian")
+        )
+    });
     let origin = DVec3::new(o.x_m, 0.0, 0.0);
     let BuiltScene { scene, accel, .. } =
         BuiltScene::build(&loaded, origin, Backend::default_backend()).unwrap();
-    let (road, building) = (class_id("road").unwrap(), class_id("building").unwrap());
+    let (road, bridge) = (class_id("road").unwrap(), class_id("bridge").unwrap());
     // Every surface along a ray down from 30 m at (x, y): (class, z).
     let column = |x: f64, y: f64| {
         let mut out = Vec::new();
@@ -62,7 +64,7 @@ fn vertical_ray_at_the_crossing_hits_deck_then_highway_with_clearance() {
             // The overpass road (or its paint) on top of the deck …
             assert!((c[0].1 - TOP_M).abs() < 0.01, "({dx}, {y}): {c:?}");
             // … then the underside, then the highway at grade.
-            assert_eq!(c[1].0, building, "({dx}, {y}): {c:?}");
+            assert_eq!(c[1].0, bridge, "({dx}, {y}): {c:?}");
             assert!((c[1].1 - CLEARANCE_M).abs() < 1e-4, "{c:?}");
             assert_eq!(c[2].0, road, "({dx}, {y}): {c:?}");
             assert!(c[2].1.abs() < 1e-4, "{c:?}");
@@ -78,7 +80,7 @@ fn vertical_ray_at_the_crossing_hits_deck_then_highway_with_clearance() {
     assert!((c[0].1 - TOP_M).abs() < 0.01 && ramp_at_grade, "{c:?}");
     // Open to the sky along its whole route: the first surface below 30 m
     // is its asphalt or paint, at the profile's height.
-    let mark = class_id("lane_marking").unwrap();
+    let mark = class_id("road_line").unwrap();
     let r = o.route();
     let mut s = 0.0;
     while s < r.length_m() {
@@ -239,7 +241,7 @@ fn ground_truth_on_the_bridge_lies_on_its_planes() {
     let origin = DVec3::from(loaded.desc.camera.position);
     let BuiltScene { scene, accel, .. } =
         BuiltScene::build(&loaded, origin, Backend::default_backend()).unwrap();
-    let building = class_id("building").unwrap();
+    let bridge = class_id("bridge").unwrap();
     let ego = frame_at(&desc, seed, frame).ego;
     let east = o.x_m + HALF_WIDTH_M + PARAPET_M.0;
     for config in [CONFIGS[0], CONFIGS[3], CONFIGS[4]] {
@@ -258,7 +260,7 @@ fn ground_truth_on_the_bridge_lies_on_its_planes() {
             for i in 0..320u32 {
                 let k = (j * 320 + i) as usize;
                 let z = out.left.depth_z[k];
-                if !z.is_finite() || out.left.semantic[k] != building {
+                if !z.is_finite() || out.left.semantic[k] != bridge {
                     continue;
                 }
                 let (u, v) = (i as f64 + 0.5, j as f64 + 0.5);

@@ -81,7 +81,7 @@ fn ramp_surface_joins_the_highway_edge_without_gaps() {
     let loaded = load_town_frame(&desc, 3, 0, CameraConfig::Normal, Path::new("t.toml")).unwrap();
     let BuiltScene { scene, accel, .. } =
         BuiltScene::build(&loaded, DVec3::ZERO, Backend::default_backend()).unwrap();
-    let (road, paint) = (class_id("road").unwrap(), class_id("lane_marking").unwrap());
+    let (road, paint) = (class_id("road").unwrap(), class_id("road_line").unwrap());
     let mut checked = 0;
     for s in ramp_sites(&desc, &l) {
         let len = s.len_m();

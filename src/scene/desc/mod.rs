@@ -17,6 +17,7 @@ mod medium;
 mod num;
 mod object;
 mod rig;
+pub mod semantic;
 mod sensor;
 mod wetness;
 

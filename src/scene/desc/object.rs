@@ -19,7 +19,7 @@ pub struct ObjectDesc {
     /// MTL materials) and `instance` (whose prefab objects carry theirs).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub material: Option<String>,
-    /// Semantic class name (see `scene::semantic::CLASSES`); default "other".
+    /// Semantic class name (see `scene::semantic::CLASSES`); default "unlabeled" (id 0).
     /// On an instance, overrides the prefab objects' classes.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub semantic: Option<String>,

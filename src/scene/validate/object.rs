@@ -32,7 +32,7 @@ impl V<'_> {
     /// A known semantic class name.
     fn semantic(&self, key: &str, s: &str) -> Result<(), SceneError> {
         if class_id(s).is_none() {
-            let known: Vec<&str> = CLASSES.iter().map(|c| c.0).collect();
+            let known: Vec<&str> = CLASSES.iter().map(|c| c.name).collect();
             return Err(self.err(
                 key,
                 format!(

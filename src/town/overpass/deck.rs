@@ -257,15 +257,15 @@ pub fn overpass_meshes(o: &Overpass) -> Vec<ObjectDesc> {
         mesh(
             "overpass_centre_line",
             "paint_yellow_road",
-            "lane_marking",
+            "road_line",
             yellow,
         ),
         mesh(
             "overpass_edge_lines",
             "paint_white_road",
-            "lane_marking",
+            "road_line",
             white,
         ),
-        mesh("overpass_structure", "concrete", "building", o.structure()),
+        mesh("overpass_structure", "concrete", "bridge", o.structure()),
     ]
 }

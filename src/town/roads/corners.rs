@@ -80,7 +80,7 @@ fn band(c: &LoopCorner, (r0, r1): (f64, f64), cut: Cut, mat: &str, l: Label) -> 
 pub fn loop_corner_objects(l: &Layout) -> Vec<ObjectDesc> {
     let mut out = Vec::new();
     let hw = l.road_w_m / 2.0;
-    let (paint, mark) = (PAINT_Z, class("lane_marking"));
+    let (paint, mark) = (PAINT_Z, class("road_line"));
     for c in l.loop_corners() {
         let r = l.loop_radius_m;
         // The asphalt reaches 1 cm inside its inner edge: a chord piece's
