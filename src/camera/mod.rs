@@ -12,7 +12,7 @@ mod baseline;
 mod rig;
 
 pub use baseline::{baseline_dir_name, check_baseline_dirs, SharedBaselineDir};
-pub use rig::{world_from_camera_rotation, StereoRig};
+pub use rig::StereoRig;
 
 use glam::{DMat3, DVec2, DVec3};
 

@@ -170,11 +170,17 @@ pub fn estimate(
         .map(|c| c.frames as f64 * c.cost.frame_cpu_seconds(config))
         .sum();
     let hours = |seconds: f64| seconds * threads as f64 / 3600.0;
-    let hdr = if config.hdr { 1 + b } else { 0 };
+    // Every map the registry declares for the left view and per baseline,
+    // plus the camera file.
+    let maps = |per_baseline| {
+        crate::output::registry::maps_in(per_baseline)
+            .filter(|m| config.hdr || !m.hdr_only)
+            .count() as u64
+    };
     Ok(Estimate {
         frames,
         frames_in_shard: classes.iter().map(|c| c.frames_in_shard).sum(),
-        files_per_frame: 7 + 5 * b + hdr,
+        files_per_frame: maps(false) + 1 + maps(true) * b,
         seconds_per_frame: total / frames.max(1) as f64,
         cpu_seconds_per_frame: cpu / frames.max(1) as f64,
         cores: threads,

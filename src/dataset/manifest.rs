@@ -17,7 +17,6 @@ use super::plan::Job;
 use crate::output::frame::FrameSeeds;
 use crate::output::layouts::LayoutKind;
 use crate::output::{Access, FileRecord, OutputError};
-use crate::stats::is_valid_disparity;
 use crate::town::TownSource;
 
 /// Name of the dataset description at the root.
@@ -153,7 +152,7 @@ impl DisparityRecord {
     pub fn of(baseline_cm: f64, disparity: &[f32]) -> DisparityRecord {
         let (mut n, mut sum) = (0u64, 0.0f64);
         let (mut min_px, mut max_px) = (f64::INFINITY, f64::NEG_INFINITY);
-        for d in disparity.iter().filter(|&&d| is_valid_disparity(d)) {
+        for d in disparity.iter().filter(|&&d| crate::eval::gt_valid(d)) {
             let d = *d as f64;
             n += 1;
             sum += d;

@@ -29,7 +29,7 @@ mod inputs;
 mod surface;
 mod widths;
 
-pub use guide::{centre_normals, centre_opacity, denoise_view, DepthGuide};
+pub use guide::{denoise_view, DepthGuide};
 pub use inputs::ViewInputs;
 pub use widths::Widths;
 

@@ -19,7 +19,7 @@ mod set;
 pub use set::{LightSample, LightSelection, LightSet, MAX_DISTANT};
 // The light and sky data a `Scene` stores are built below the scene;
 // sampling them is this module's job.
-pub use crate::scene::emitters::{build_sky, moon_phase_factor, Light, MOON_TO_SUN};
+pub use crate::scene::emitters::{moon_phase_factor, Light};
 
 use shaders_cpu::sampling::{sample_uniform_cone, uniform_cone_pdf, Frame};
 

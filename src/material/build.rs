@@ -144,6 +144,7 @@ fn explicit_mask(flags: &[MaskFlag]) -> u8 {
     })
 }
 
-fn v3(c: [f64; 3]) -> Vec3 {
+/// A description's colour or vector as f32.
+pub(crate) fn v3(c: [f64; 3]) -> Vec3 {
     DVec3::from(c).as_vec3()
 }

@@ -55,10 +55,7 @@ pub fn instance_colour(id: u16) -> [u8; 3] {
         return INVALID;
     }
     // splitmix64's finaliser: every bit of the id moves every output bit.
-    let mut z = (id as u64).wrapping_add(0x9E37_79B9_7F4A_7C15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    z ^= z >> 31;
+    let z = crate::sampler::mix64(id as u64);
     [0, 1, 2].map(|k| 64 + ((z >> (16 * k)) % 192) as u8)
 }
 

@@ -11,6 +11,7 @@ use shaders_cpu::sky::atmosphere::{Atmosphere, SOLAR_IRRADIANCE, SUN_ANGULAR_RAD
 use shaders_cpu::sky::{CloudLayer, NightGlow, OvercastSky, PhysicalSky, PhysicalSkyParams, Sky};
 
 use super::desc::{LightDesc, SceneDesc, SkyDesc};
+use crate::material::build::v3;
 
 /// An explicit light source.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -62,7 +63,7 @@ pub fn build_emitters(desc: &SceneDesc, origin_world: DVec3) -> (Vec<Light>, Sky
 
 /// Unit vector towards a direction given by elevation above the horizon and
 /// azimuth counter-clockwise from +x (world z up).
-pub fn dir_from_elevation_azimuth(elevation_deg: f64, azimuth_deg: f64) -> DVec3 {
+fn dir_from_elevation_azimuth(elevation_deg: f64, azimuth_deg: f64) -> DVec3 {
     let (e, a) = (elevation_deg.to_radians(), azimuth_deg.to_radians());
     DVec3::new(e.cos() * a.cos(), e.cos() * a.sin(), e.sin())
 }
@@ -77,10 +78,6 @@ const MOON_ANGULAR_RADIUS_RAD: f32 = 0.004_52;
 pub fn moon_phase_factor(phase_deg: f64) -> f64 {
     let a = phase_deg.clamp(0.0, 180.0).to_radians();
     (((std::f64::consts::PI - a) * a.cos() + a.sin()) / std::f64::consts::PI).max(0.0)
-}
-
-fn v3(c: [f64; 3]) -> Vec3 {
-    DVec3::from(c).as_vec3()
 }
 
 /// The sky of `desc` (black without one) and the disk light it brings, if its

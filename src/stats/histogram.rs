@@ -44,15 +44,10 @@ pub struct DisparitySummary {
     pub median: f64,
 }
 
-/// Whether a disparity counts: finite and > 0 (sky is 0, no hit is ∞).
-pub fn is_valid_disparity(d: f32) -> bool {
-    d.is_finite() && d > 0.0
-}
-
 impl DisparityHistogram {
     /// Adds one disparity; values that are not finite and > 0 are ignored.
     pub fn add(&mut self, d: f32) {
-        if !is_valid_disparity(d) {
+        if !crate::eval::gt_valid(d) {
             return;
         }
         let d = d as f64;

@@ -15,9 +15,7 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
-pub use histogram::{
-    is_valid_disparity, DisparityHistogram, DisparitySummary, BIN_WIDTH_PX, MAX_BINNED_PX,
-};
+pub use histogram::{DisparityHistogram, DisparitySummary, BIN_WIDTH_PX, MAX_BINNED_PX};
 pub use plot::{write_histogram_plots, AXES_AT, PLOT_SIZE};
 
 use crate::eval::find_gt_disparities;

@@ -64,7 +64,7 @@ impl ExportCameras {
 }
 
 /// The cameras file beside an OBJ: `<stem>.cameras.json`.
-pub fn cameras_path(obj_path: &Path) -> PathBuf {
+fn cameras_path(obj_path: &Path) -> PathBuf {
     obj_path.with_extension("cameras.json")
 }
 

@@ -6,6 +6,7 @@
 
 use crate::common;
 use crate::common::cli::parallax;
+use crate::common::readback::bits;
 
 use glam::Vec3;
 use parallax::output::*;
@@ -24,10 +25,6 @@ fn depth_pattern(w: usize, h: usize) -> Vec<f32> {
             _ => 1.0 + k as f32 * 1.618_034,
         })
         .collect()
-}
-
-fn bits(v: &[f32]) -> Vec<u32> {
-    v.iter().map(|x| x.to_bits()).collect()
 }
 
 /// Files left in a directory other than `keep`.

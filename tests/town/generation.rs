@@ -116,7 +116,7 @@ fn every_object_and_every_built_mesh_has_a_class() {
         let loaded = load_town_frame(&desc, 1, 0, CameraConfig::Normal, Path::new("t.toml"))
             .unwrap_or_else(|e| panic!("{e}"));
         let built = build_scene(&loaded, DVec3::ZERO).expect("town builds");
-        let mut seen = [false; 29];
+        let mut seen = [false; parallax::scene::semantic::CLASSES.len()];
         for m in &built.meshes {
             assert_ne!(m.semantic, 0, "a mesh of {name} is unlabeled");
             seen[m.semantic as usize] = true;

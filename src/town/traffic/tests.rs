@@ -58,6 +58,10 @@ fn shorter_bodies_ride_forward_on_block_loops_and_centred_on_the_ring() {
         // At the route's start both lie on its first straight.
         let (p_long, h_long) = slot_pose(rp, 0.0, longest);
         let (p_short, h_short) = slot_pose(rp, 0.0, short);
+        // The longest body fills its slot: no shift from the slot's pose.
+        let (p_slot, h_slot) = rp.route.pose(rp.profile.arc_at(0.0));
+        let d_long = (p_long[0] - p_slot[0]).hypot(p_long[1] - p_slot[1]);
+        assert!(d_long < 1e-9 && (h_long - h_slot).abs() < 1e-12, "{d_long}");
         let ahead = [p_short[0] - p_long[0], p_short[1] - p_long[1]];
         let along = ahead[0] * h_long.cos() + ahead[1] * h_long.sin();
         let expected = match rp.route.kind {
