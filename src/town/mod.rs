@@ -24,6 +24,7 @@ pub mod farms;
 pub mod furniture;
 pub mod grade;
 pub mod layout;
+pub mod lettering;
 pub mod materials;
 pub mod overpass;
 pub mod parts;
