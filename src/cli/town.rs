@@ -1,10 +1,10 @@
-//! `parallax town NAME [--seed S] [--frame K] [--config C] [--export FILE.obj]`:
-//! generates one town frame, reports its size and build times, and
-//! optionally writes its geometry as OBJ + MTL with the frame's cameras
-//! beside it. Without `--seed` a seed is drawn and printed (as `render
+//! `parallax town NAME [--seed S] [--frame K] [--config C] [--export FILE.obj]
+//! [--report FILE.json]`: generates one town frame, reports its size and
+//! build times, optionally writes its content report (`town::report`) and
+//! its geometry as OBJ + MTL with the frame's cameras beside it. Without `--seed` a seed is drawn and printed (as `render
 //! --town` draws and records one).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use clap::Args;
@@ -14,6 +14,9 @@ use super::{parse_baselines, show, thread_pool, CliError};
 use crate::accel::{Accel, Backend};
 use crate::render::recipe::{draw_seed, FrameRecipe, FrameSource, FrameSpec, Overrides};
 use crate::town::export::{write_cameras, ExportCameras};
+use crate::town::report::{
+    objects_per_class, peak_rss_bytes, BuildSeconds, ContentReport, GeometryCounts,
+};
 use crate::town::{load_named_town, CameraConfig};
 
 /// Arguments of `parallax town`.
@@ -41,6 +44,10 @@ pub struct TownArgs {
     /// cameras (STEM.cameras.json) beside it.
     #[arg(long)]
     pub export: Option<PathBuf>,
+    /// Write what the frame holds as JSON: objects per class, prototypes,
+    /// instances, unique and instanced triangles, build seconds, peak memory.
+    #[arg(long)]
+    pub report: Option<PathBuf>,
     /// Image width of the exported cameras, pixels (default: the town rig's).
     #[arg(long)]
     pub width: Option<u32>,
@@ -64,6 +71,9 @@ pub struct TownArgs {
 /// Runs `parallax town`.
 pub fn run(a: TownArgs) -> Result<(), CliError> {
     let town = load_named_town(&a.name, a.scenes.as_deref()).map_err(CliError::input)?;
+    if let Some(path) = &a.report {
+        check_report_path(path)?;
+    }
     let seed = a.seed.unwrap_or_else(draw_seed);
     let pool = thread_pool(a.threads)?;
     pool.install(|| {
@@ -90,6 +100,27 @@ pub fn run(a: TownArgs) -> Result<(), CliError> {
             built.accel.backend_name(),
             gen_s + scene_s + accel_s
         );
+        if let Some(path) = &a.report {
+            let report = ContentReport {
+                town: town.desc.name.clone(),
+                seed,
+                frame: a.frame,
+                config: a.config.to_string(),
+                objects: loaded.desc.objects.len(),
+                objects_per_class: objects_per_class(&loaded.desc),
+                geometry: GeometryCounts::of(&built.scene),
+                seconds: BuildSeconds {
+                    generate: gen_s,
+                    scene: scene_s,
+                    accel: accel_s,
+                },
+                peak_rss_bytes: peak_rss_bytes(),
+            };
+            report
+                .write(path)
+                .map_err(|e| CliError::failure(format!("--report {}: {e}", show(path))))?;
+            println!("wrote {}", show(path));
+        }
         if let Some(obj) = &a.export {
             let stats = crate::town::export::write_obj(loaded, &built.scene, obj)
                 .map_err(|e| CliError::failure(format!("--export {}: {e}", show(obj))))?;
@@ -108,6 +139,23 @@ pub fn run(a: TownArgs) -> Result<(), CliError> {
         }
         Ok(())
     })
+}
+
+/// Refuses a report path whose directory does not exist, before any work.
+fn check_report_path(path: &Path) -> Result<(), CliError> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    if dir.is_dir() {
+        Ok(())
+    } else {
+        Err(CliError::input(format!(
+            "--report {}: directory {} does not exist",
+            show(path),
+            show(dir)
+        )))
+    }
 }
 
 impl TownArgs {

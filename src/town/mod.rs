@@ -30,6 +30,7 @@ pub mod overpass;
 pub mod parts;
 pub mod props;
 pub mod ramps;
+pub mod report;
 pub mod rig;
 pub mod rng;
 pub mod roads;

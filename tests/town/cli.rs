@@ -2,7 +2,8 @@
 //! writes frame K in the native layout with the town's seed, the frame
 //! index, K, the configuration's rig pose on the ego of that frame and the
 //! requested image size;
-//! `parallax town NAME --export FILE.obj` writes OBJ + MTL; bad names,
+//! `parallax town NAME --export FILE.obj --report FILE.json` writes OBJ +
+//! MTL and a content report that counts what the OBJ holds; bad names,
 //! configurations and argument mixes exit with code 2 and say why.
 
 use std::path::Path;
@@ -132,6 +133,7 @@ fn render_town_writes_frame_k_with_its_seed() {
 fn town_export_writes_obj_and_mtl() {
     let dir = tempfile::tempdir().unwrap();
     let obj = dir.path().join("t.obj");
+    let report = dir.path().join("t.json");
     let o = parallax_run(&[
         "town",
         "town07",
@@ -141,14 +143,51 @@ fn town_export_writes_obj_and_mtl() {
         "2",
         "--export",
         obj.to_str().unwrap(),
+        "--report",
+        report.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(stdout.contains("triangles"), "{stdout}");
     let text = std::fs::read_to_string(&obj).unwrap();
     assert!(text.starts_with("# parallax town export\nmtllib t.mtl\n"));
-    assert!(text.lines().filter(|l| l.starts_with("f ")).count() > 100_000);
+    let faces = text.lines().filter(|l| l.starts_with("f ")).count();
+    assert!(faces > 100_000);
     assert!(Path::new(&dir.path().join("t.mtl")).is_file());
+
+    // The content report counts what the (flattened) export holds.
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    let geometry = &r["geometry"];
+    assert_eq!(
+        geometry["instanced_triangles"].as_u64(),
+        Some(faces as u64),
+        "{r}"
+    );
+    let unique = geometry["unique_triangles"].as_u64().unwrap();
+    assert!(unique > 0 && unique <= faces as u64, "{r}");
+    assert_eq!(
+        (r["town"].as_str(), r["frame"].as_u64()),
+        (Some("town07"), Some(2))
+    );
+    let objects = r["objects"].as_u64().unwrap();
+    assert!(stdout.contains(&format!("{objects} objects")), "{stdout}");
+    let per_class = r["objects_per_class"].as_object().unwrap();
+    for (class, n) in per_class {
+        assert!(
+            parallax::scene::semantic::class_id(class).is_some(),
+            "{class}"
+        );
+        assert!(n.as_u64().unwrap() > 0, "{class}");
+    }
+    // Every town object carries a class; roads, buildings and cars exist.
+    assert!(!per_class.contains_key("unlabeled"), "{r}");
+    for class in ["road", "building", "car", "vegetation"] {
+        assert!(per_class.contains_key(class), "{class}: {r}");
+    }
+    let counted: u64 = per_class.values().map(|n| n.as_u64().unwrap()).sum();
+    assert!(counted >= objects, "{r}");
+    assert!(r["peak_rss_bytes"].as_u64().unwrap() > 1 << 20, "{r}");
 }
 
 #[test]
@@ -156,7 +195,7 @@ fn bad_town_arguments_exit_2_with_a_reason() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");
     let out = out.to_str().unwrap();
-    let cases: [(&[&str], &str); 6] = [
+    let cases: [(&[&str], &str); 7] = [
         (&["render", "--town", "town99", "-o", out], "town99.toml"),
         // A bare name not found says which directory it was looked up in.
         (
@@ -190,6 +229,10 @@ fn bad_town_arguments_exit_2_with_a_reason() {
             "--town",
         ),
         (&["town", "town02", "--config", "sideways"], "sideways"),
+        (
+            &["town", "town02", "--report", "no_such_dir/r.json"],
+            "--report",
+        ),
     ];
     for (args, needle) in cases {
         let o = parallax_run(args);
