@@ -149,6 +149,14 @@ mod tests {
     #[test]
     fn objects_count_once_per_class_through_prefabs() {
         let toml = r#"
+            [camera]
+            position = [0.0, 0.0, 1.65]
+            hfov_deg = 60.0
+
+            [sky]
+            kind = "constant"
+            le = [1.0, 1.0, 1.0]
+
             [[material]]
             name = "m"
             kind = "diffuse"
@@ -187,7 +195,7 @@ mod tests {
             material = "m"
         "#;
         let desc = parse_scene_str(toml, Path::new("t.toml")).unwrap();
-        let counts = objects_per_class(&desc);
+        let counts = objects_per_class(&desc.desc);
         let want: BTreeMap<String, usize> = [
             ("pole", 1),
             ("traffic_light", 1),
