@@ -5,23 +5,55 @@
 //!
 //! Normals are render-space (= world orientation) unit vectors; `n_geo` follows
 //! the triangle winding (or points out of a sphere) and is not flipped here.
+//! A hit on an instance is shaded in the prototype's frame and carried to
+//! render space (`to_render`): the point and its error bound through the
+//! instance transform, normals through its inverse transpose.
 
-use glam::{Vec2, Vec3};
+use glam::{Mat3A, Vec2, Vec3};
 
-use super::{Mesh, Scene};
+use super::{Instance, Mesh, Scene};
 use crate::accel::Hit;
 use crate::geometry::{gamma, position_error, Ray, SurfaceInteraction};
 
 /// Builds the interaction for `hit` of `ray` in `scene`.
 pub fn surface_interaction(scene: &Scene, ray: &Ray, hit: &Hit) -> SurfaceInteraction {
-    let geom = hit.geom_id as usize;
-    if geom < scene.meshes.len() {
-        let mesh = &scene.meshes[geom];
-        let tri = mesh.triangles[hit.prim_id as usize];
-        let p = tri.map(|i| mesh.p_f32[i as usize]);
-        triangle_interaction(mesh, p, mesh.tri_material[hit.prim_id as usize], hit)
-    } else {
-        sphere_interaction(scene, ray, hit)
+    let Some((mesh, inst)) = scene.hit_mesh(hit) else {
+        return sphere_interaction(scene, ray, hit);
+    };
+    let tri = mesh.triangles[hit.prim_id as usize];
+    let p = tri.map(|i| mesh.p_f32[i as usize]);
+    let si = triangle_interaction(mesh, p, mesh.tri_material[hit.prim_id as usize], hit);
+    match inst {
+        None => si,
+        Some(inst) => to_render(si, inst),
+    }
+}
+
+/// An interaction computed in an instance's local frame, in render space:
+/// the point's error bound grows by the transform's rounding (pbrt-v4
+/// §6.8.6: (1 + γ₃)|M|·e + γ₃(|M|·|p| + |t|)); normals go through the
+/// instance's normal map, the shading normal kept on `n_geo`'s side; the
+/// instance's labels replace the prototype's.
+#[inline]
+pub(super) fn to_render(si: SurfaceInteraction, inst: &Instance) -> SurfaceInteraction {
+    let m = inst.render_from_local_f32;
+    let abs_m = Mat3A::from_cols(
+        m.matrix3.x_axis.abs(),
+        m.matrix3.y_axis.abs(),
+        m.matrix3.z_axis.abs(),
+    );
+    let p_error = (1.0 + gamma(3)) * abs_m.mul_vec3(si.p_error)
+        + gamma(3) * (abs_m.mul_vec3(si.p.abs()) + Vec3::from(m.translation).abs());
+    let n_geo = inst.normal_to_render.mul_vec3(si.n_geo).normalize_or(Vec3::Z);
+    let n = inst.normal_to_render.mul_vec3(si.n_shading).normalize_or(n_geo);
+    SurfaceInteraction {
+        p: m.transform_point3(si.p),
+        p_error,
+        n_geo,
+        n_shading: if n.dot(n_geo) < 0.0 { -n } else { n },
+        semantic: inst.semantic.unwrap_or(si.semantic),
+        instance: inst.instance.unwrap_or(si.instance),
+        ..si
     }
 }
 

@@ -199,7 +199,7 @@ fn town01_river_lies_under_a_bridge_on_every_street() {
                 glam::Vec3::NEG_Z,
             ))
             .expect("something below");
-        (hit.t, scene.meshes[hit.geom_id as usize].semantic)
+        (hit.t, scene.hit_labels(&hit).0)
     };
     for i in 0..=layout.nx {
         let x = i as f64 * layout.pitch_m;
@@ -240,7 +240,7 @@ fn town03_roundabout_has_ring_road_island_and_sidewalk_and_traffic_keeps_to_the_
             .expect("ground");
         (
             10.0 - hit.t as f64,
-            scene.meshes[hit.geom_id as usize].semantic,
+            scene.hit_labels(&hit).0,
         )
     };
     let id = |n: &str| class_id(n).unwrap();

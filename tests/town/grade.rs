@@ -118,7 +118,7 @@ fn rays_down_hit_the_road_at_the_field_height_under_routes_and_vehicles() {
             .intersect(&Ray::new(o.as_vec3(), Vec3::NEG_Z))
             .expect("the ground is everywhere");
         (
-            scene.meshes[hit.geom_id as usize].semantic,
+            scene.hit_labels(&hit).0,
             top - hit.t as f64,
         )
     };

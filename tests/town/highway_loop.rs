@@ -234,7 +234,7 @@ fn town04_curves_are_asphalt_with_nothing_on_them_and_the_cut_corners_are_ground
             .intersect(&Ray::new(o.as_vec3(), Vec3::NEG_Z))
             .expect("the ground is everywhere");
         (
-            scene.meshes[hit.geom_id as usize].semantic,
+            scene.hit_labels(&hit).0,
             50.0 - hit.t as f64,
         )
     };

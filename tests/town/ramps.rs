@@ -121,7 +121,7 @@ fn ramp_surface_joins_the_highway_edge_without_gaps() {
                         glam::Vec3::NEG_Z,
                     ))
                     .unwrap_or_else(|| panic!("nothing below {w:?}"));
-                let c = scene.meshes[hit.geom_id as usize].semantic;
+                let c = scene.hit_labels(&hit).0;
                 let z = 3.0 - hit.t as f64;
                 assert!(
                     c == road || c == paint,
