@@ -11,7 +11,7 @@
 use glam::Vec3;
 
 use super::huge::HugeArray;
-use super::surface::{sphere_interaction, to_render, triangle_interaction};
+use super::surface::{sphere_interaction, triangle_interaction};
 use super::Scene;
 use crate::accel::{Hit, NO_INSTANCE};
 use crate::geometry::{Ray, SurfaceInteraction};
@@ -114,10 +114,10 @@ impl SurfaceTable {
             let p = inst.prototype as usize;
             let r = &self.records[self.proto_first[p][geom] + hit.prim_id as usize];
             let mesh = &scene.prototypes[p].meshes[geom];
-            to_render(triangle_interaction(mesh, r.p, r.material, hit), inst)
+            triangle_interaction(mesh, r.p, r.material, hit, Some(inst))
         } else if geom < scene.meshes.len() {
             let r = &self.records[self.first[geom] + hit.prim_id as usize];
-            triangle_interaction(&scene.meshes[geom], r.p, r.material, hit)
+            triangle_interaction(&scene.meshes[geom], r.p, r.material, hit, None)
         } else {
             sphere_interaction(scene, ray, hit)
         }
