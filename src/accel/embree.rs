@@ -128,11 +128,7 @@ impl EmbreeAccel {
         } else {
             None
         };
-        let normal_to_render = geo
-            .instances
-            .iter()
-            .map(|i| i.normal_to_render())
-            .collect();
+        let normal_to_render = geo.instances.iter().map(|i| i.normal_to_render()).collect();
         Ok(EmbreeAccel {
             scene,
             shading,

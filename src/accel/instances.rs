@@ -82,7 +82,11 @@ fn render_bounds(m: Affine3A, lo: Vec3, hi: Vec3) -> (Vec3, Vec3) {
     let mut max = Vec3::splat(f32::NEG_INFINITY);
     for i in 0..8 {
         let pick = |bit: u32, a: f32, b: f32| if i >> bit & 1 == 1 { b } else { a };
-        let c = Vec3::new(pick(0, lo.x, hi.x), pick(1, lo.y, hi.y), pick(2, lo.z, hi.z));
+        let c = Vec3::new(
+            pick(0, lo.x, hi.x),
+            pick(1, lo.y, hi.y),
+            pick(2, lo.z, hi.z),
+        );
         let p = m.transform_point3(c);
         min = min.min(p);
         max = max.max(p);
@@ -95,7 +99,11 @@ impl<A: Accel> InstanceLayer<A> {
     /// Builds every prototype of `geo` with `build_proto` and places the
     /// instances; with `tree` they get a top-level BVH, else a linear scan.
     /// Instances of empty prototypes are left out (they can never be hit).
-    pub fn build(geo: &AccelGeometry, tree: bool, build_proto: impl Fn(&AccelGeometry) -> A) -> Self {
+    pub fn build(
+        geo: &AccelGeometry,
+        tree: bool,
+        build_proto: impl Fn(&AccelGeometry) -> A,
+    ) -> Self {
         if geo.instances.is_empty() {
             return InstanceLayer::default();
         }
@@ -176,9 +184,8 @@ impl<A: Accel> InstanceLayer<A> {
         if self.is_empty() {
             return false;
         }
-        let test = |it: &Placed| {
-            self.protos[it.proto as usize].occluded(&it.local_ray(ray, ray.tmax))
-        };
+        let test =
+            |it: &Placed| self.protos[it.proto as usize].occluded(&it.local_ray(ray, ray.tmax));
         if self.nodes.is_empty() {
             return self.items.iter().any(test);
         }
@@ -202,7 +209,10 @@ mod tests {
         let (min, max) = render_bounds(m, lo, hi);
         for c in [lo, hi, Vec3::new(-1.0, 1.0, 0.0), Vec3::new(1.0, -1.0, 1.0)] {
             let p = m.transform_point3(c);
-            assert!(p.cmpgt(min).all() && p.cmplt(max).all(), "{p} outside {min}..{max}");
+            assert!(
+                p.cmpgt(min).all() && p.cmplt(max).all(),
+                "{p} outside {min}..{max}"
+            );
         }
         // Tight up to the padding: the rotated x extent is 2cos(0.5) + sin(0.5).
         let want = 2.0 * 0.5f32.cos() + 0.5f32.sin();

@@ -115,7 +115,12 @@ impl<'a> AccelGeometry<'a> {
 
     /// Total primitive count (triangles plus spheres), prototypes counted once.
     pub fn primitive_count(&self) -> usize {
-        let proto: usize = self.prototypes.iter().flatten().map(|m| m.triangles.len()).sum();
+        let proto: usize = self
+            .prototypes
+            .iter()
+            .flatten()
+            .map(|m| m.triangles.len())
+            .sum();
         self.meshes.iter().map(|m| m.triangles.len()).sum::<usize>() + self.spheres.len() + proto
     }
 

@@ -546,10 +546,11 @@ fn scene_radius(scene: &Scene) -> f32 {
     let placed = scene.instances.iter().flat_map(|i| {
         let m = i.render_from_local_f32;
         let proto = &scene.prototypes[i.prototype as usize];
-        proto
-            .meshes
-            .iter()
-            .flat_map(move |pm| pm.p_f32.iter().map(move |&p| m.transform_point3(p).length()))
+        proto.meshes.iter().flat_map(move |pm| {
+            pm.p_f32
+                .iter()
+                .map(move |&p| m.transform_point3(p).length())
+        })
     });
     let r = scene
         .meshes

@@ -11,8 +11,8 @@ use glam::{DVec3, Vec4};
 
 use super::desc::{build_medium, build_rain, MaterialDesc, SceneDesc};
 use super::emitters::build_emitters;
-use super::load::{LoadedScene, SceneError};
 use super::instancing::{build_shapes, Instancing};
+use super::load::{LoadedScene, SceneError};
 use super::validate::material_table;
 use super::{Scene, Sphere};
 use crate::material::{build_material, Wetness};
@@ -32,7 +32,13 @@ pub fn build_scene_with(
     let desc = &scene.desc;
     let table = material_table(desc, &scene.objs);
     let materials: Vec<_> = table.iter().map(|m| build_material(m)).collect();
-    let shapes = build_shapes(scene, &material_index(&table), &materials, origin_world, mode)?;
+    let shapes = build_shapes(
+        scene,
+        &material_index(&table),
+        &materials,
+        origin_world,
+        mode,
+    )?;
     let (lights, sky) = build_emitters(desc, origin_world);
     Ok(Scene {
         origin_world,

@@ -66,7 +66,9 @@ pub(super) fn build_shapes(
             material_map,
         } = &o.shape
         {
-            *placements.entry((prefab.as_str(), material_map)).or_default() += repeat_count(&o.repeat);
+            *placements
+                .entry((prefab.as_str(), material_map))
+                .or_default() += repeat_count(&o.repeat);
         }
     }
     let mut flat = Leaves::default();
@@ -78,7 +80,9 @@ pub(super) fn build_shapes(
             ShapeDesc::Instance {
                 prefab,
                 material_map,
-            } if mode == Instancing::Prototypes && placements[&(prefab.as_str(), material_map)] >= 2 => {
+            } if mode == Instancing::Prototypes
+                && placements[&(prefab.as_str(), material_map)] >= 2 =>
+            {
                 let key = (prefab.as_str(), material_map);
                 match protos.get(&key) {
                     Some(&p) => p,

@@ -44,9 +44,9 @@ pub mod validate;
 mod walk;
 
 pub use build::{build_scene, build_scene_with};
-pub use instancing::{Content, Instancing};
 pub use desc::{serialize_scene, SceneDesc};
 pub use emitters::Light;
+pub use instancing::{Content, Instancing};
 pub use load::{load_scene, parse_scene_str, LoadedScene, SceneError, SceneErrorKind};
 pub use surface::surface_interaction;
 pub use table::SurfaceTable;

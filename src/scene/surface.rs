@@ -70,7 +70,10 @@ pub(super) fn triangle_interaction(
         if !mesh.normals.is_empty() {
             let nv = |i: usize| match inst {
                 None => mesh.normals[i],
-                Some(inst) => inst.normal_to_render.mul_vec3(mesh.normals[i]).normalize_or_zero(),
+                Some(inst) => inst
+                    .normal_to_render
+                    .mul_vec3(mesh.normals[i])
+                    .normalize_or_zero(),
             };
             let n = nv(i0) * b[0] + nv(i1) * b[1] + nv(i2) * b[2];
             if let Some(n) = n.try_normalize() {

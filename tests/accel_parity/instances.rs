@@ -64,7 +64,9 @@ impl Placed {
                 local_from_render: x.inverse().as_affine3a(),
             });
             for (p, t) in &proto {
-                let moved = p.iter().map(|&v| x.transform_point3(v.as_dvec3()).as_vec3());
+                let moved = p
+                    .iter()
+                    .map(|&v| x.transform_point3(v.as_dvec3()).as_vec3());
                 flat.push((moved.collect(), t.clone()));
             }
         }
@@ -159,10 +161,19 @@ fn instanced_geometry_hits_what_the_flattened_geometry_hits_on_every_backend() {
             }
             occ_mismatches += (inst.occluded(ray) != flat.occluded(ray)) as usize;
         }
-        assert!(on_instances > rays.len() / 4, "{backend}: {on_instances} instance hits");
+        assert!(
+            on_instances > rays.len() / 4,
+            "{backend}: {on_instances} instance hits"
+        );
         assert!(hits > on_instances, "{backend}: the ground is never hit");
-        assert!(id_mismatches < rays.len() / 200, "{backend}: {id_mismatches} id mismatches");
-        assert!(occ_mismatches < rays.len() / 500, "{backend}: {occ_mismatches} occluded mismatches");
+        assert!(
+            id_mismatches < rays.len() / 200,
+            "{backend}: {id_mismatches} id mismatches"
+        );
+        assert!(
+            occ_mismatches < rays.len() / 500,
+            "{backend}: {occ_mismatches} occluded mismatches"
+        );
     }
 }
 
@@ -173,7 +184,11 @@ fn bvh_matches_brute_force_bit_for_bit_on_instances() {
     let (bvh, brute) = (build(Backend::Bvh, &geo), build(Backend::Brute, &geo));
     for ray in &rays(6000) {
         let (a, b) = (bvh.intersect(ray), brute.intersect(ray));
-        assert_eq!(a.map(|h| (h.t, h.inst_id)), b.map(|h| (h.t, h.inst_id)), "{ray:?}");
+        assert_eq!(
+            a.map(|h| (h.t, h.inst_id)),
+            b.map(|h| (h.t, h.inst_id)),
+            "{ray:?}"
+        );
         assert_eq!(bvh.occluded(ray), brute.occluded(ray), "{ray:?}");
     }
 }
@@ -211,12 +226,18 @@ fn instance_hit_has_analytic_t_and_render_space_normal() {
         let accel = build(backend, &geo);
         // x = 1.2 is inside only because of the ×3 stretch; d has length 2.
         let hit = accel
-            .intersect(&Ray::new(Vec3::new(1.2, 0.0, 0.1), Vec3::new(0.0, 2.0, 0.0)))
+            .intersect(&Ray::new(
+                Vec3::new(1.2, 0.0, 0.1),
+                Vec3::new(0.0, 2.0, 0.0),
+            ))
             .unwrap_or_else(|| panic!("{backend}: missed"));
         assert_eq!(hit.inst_id, 0, "{backend}");
         assert!((hit.t - 2.5).abs() < 1e-5, "{backend}: t = {}", hit.t);
         let n = hit.n_geo.normalize();
-        assert!((n - Vec3::new(0.0, -1.0, 0.0)).length() < 1e-5, "{backend}: n = {n}");
+        assert!(
+            (n - Vec3::new(0.0, -1.0, 0.0)).length() < 1e-5,
+            "{backend}: n = {n}"
+        );
         assert!(accel
             .intersect(&Ray::new(Vec3::new(1.6, 0.0, 0.1), Vec3::Y))
             .is_none());

@@ -23,7 +23,8 @@ const H: u32 = 54;
 /// normals, a cylinder and a nested "lamp" prefab) in front of a camera at
 /// `base` + (0, 0, 1.65) looking along +x, over a ground quad.
 fn scene_text(base: DVec3) -> String {
-    let at = |x: f64, y: f64, z: f64| format!("[{:?}, {:?}, {:?}]", base.x + x, base.y + y, base.z + z);
+    let at =
+        |x: f64, y: f64, z: f64| format!("[{:?}, {:?}, {:?}]", base.x + x, base.y + y, base.z + z);
     let mut t = common::camera_block(W, H, [base.x, base.y, base.z + 1.65]);
     t += "baselines_cm = [54.0, 300.0]\n";
     t += common::GREY_UNDER_SKY;
@@ -74,12 +75,31 @@ transform = { translate = [-0.9, 1.3, 0.0] }
 "#;
     let placements = [
         ("[6.3, 1.1, 0.0]", "[0.0, 0.0, 20.0]", "1.0", ""),
-        ("[9.7, -2.9, 0.0]", "[0.0, 0.0, -65.0]", "[1.5, 0.6, 1.2]", "instance = 7\n"),
-        ("[14.2, 3.3, 0.4]", "[8.0, -5.0, 140.0]", "[0.7, 1.3, 0.9]", "semantic = \"vegetation\"\n"),
-        ("[19.5, -0.6, 0.0]", "[0.0, 0.0, 95.0]", "2.0", "instance = 9\nsemantic = \"fence\"\n"),
+        (
+            "[9.7, -2.9, 0.0]",
+            "[0.0, 0.0, -65.0]",
+            "[1.5, 0.6, 1.2]",
+            "instance = 7\n",
+        ),
+        (
+            "[14.2, 3.3, 0.4]",
+            "[8.0, -5.0, 140.0]",
+            "[0.7, 1.3, 0.9]",
+            "semantic = \"vegetation\"\n",
+        ),
+        (
+            "[19.5, -0.6, 0.0]",
+            "[0.0, 0.0, 95.0]",
+            "2.0",
+            "instance = 9\nsemantic = \"fence\"\n",
+        ),
     ];
     for (p, r, s, labels) in placements {
-        let p: Vec<f64> = p.trim_matches(['[', ']']).split(", ").map(|v| v.parse().unwrap()).collect();
+        let p: Vec<f64> = p
+            .trim_matches(['[', ']'])
+            .split(", ")
+            .map(|v| v.parse().unwrap())
+            .collect();
         t += &format!(
             "\n[[object]]\nkind = \"instance\"\nprefab = \"kiosk\"\n{labels}transform = {{ translate = {}, rotate_deg = {r}, scale = {s} }}\n",
             at(p[0], p[1], p[2])
@@ -145,13 +165,22 @@ fn assert_same_ground_truth(base: DVec3) {
             assert!(za.is_infinite() || cos > 0.9999, "{what}: normals {cos}");
             on_kiosks += (a.semantic[k] != 1 && za.is_finite()) as usize;
         }
-        assert!(on_kiosks > 300, "{backend}: only {on_kiosks} pixels see the kiosks");
+        assert!(
+            on_kiosks > 300,
+            "{backend}: only {on_kiosks} pixels see the kiosks"
+        );
         for (da, db) in inst.disparity.iter().zip(&flat.disparity) {
             for (x, y) in da.iter().zip(db) {
-                assert!((x - y).abs() <= 1e-6 * y.abs(), "{backend}: disparity {x} vs {y}");
+                assert!(
+                    (x - y).abs() <= 1e-6 * y.abs(),
+                    "{backend}: disparity {x} vs {y}"
+                );
             }
         }
-        assert_eq!(inst.occlusion, flat.occlusion, "{backend} at {base}: occlusion");
+        assert_eq!(
+            inst.occlusion, flat.occlusion,
+            "{backend} at {base}: occlusion"
+        );
     }
     // Every label the overrides give is seen: 7 and 9 as ids, vegetation and fence.
     let seen = |v: u16| flat.left.instance.contains(&v);

@@ -227,8 +227,7 @@ fn ramps_keep_clear_of_lots_buildings_and_furniture() {
     };
     let (mut low, mut near, mut triangles) = (0usize, 0usize, 0usize);
     for m in scene
-        .meshes
-        .iter()
+        .flattened_meshes()
         .filter(|m| standing.contains(&m.semantic))
     {
         let world: Vec<DVec3> = m.p_render.iter().map(|&p| p + scene.origin_world).collect();
