@@ -1,5 +1,6 @@
 //! Ground truth through two-level instances: the same prefab placements
-//! built as instances and flattened give the same depth (1e-6 relative),
+//! built as instances and flattened give the same depth (1e-9 relative,
+//! tighter than the 1e-6 contract),
 //! identical semantic and instance ids, the same disparity and identical
 //! occlusion masks — near the origin and 2e5 m from it (the render origin
 //! follows the camera, so the rig stands there too), with rotated and
@@ -156,7 +157,9 @@ fn assert_same_ground_truth(base: DVec3) {
             let what = format!("{backend} at {base}: pixel {k}");
             assert_eq!(za.is_finite(), zb.is_finite(), "{what}: {za} vs {zb}");
             if za.is_finite() {
-                assert!((za - zb).abs() <= 1e-6 * zb, "{what}: depth {za} vs {zb}");
+                // 1e-6 is the contract; 1e-9 shows both are the f64
+                // re-intersection (traversal's f32 t is ~1e-7 off).
+                assert!((za - zb).abs() <= 1e-9 * zb, "{what}: depth {za} vs {zb}");
             }
             assert_eq!(a.semantic[k], b.semantic[k], "{what}: semantic");
             assert_eq!(a.instance[k], b.instance[k], "{what}: instance id");
