@@ -58,6 +58,7 @@ fn bench_primary(cr: &mut Criterion) {
             triangles: &triangles,
         }],
         spheres: &[],
+        ..Default::default()
     };
     let rays = primary_rays();
     let mut hits: Vec<Option<Hit>> = vec![None; rays.len()];

@@ -1,7 +1,8 @@
 //! Parity of the accelerator backends: the pure-Rust BVH against the brute-force
 //! scan (same primitive routines, so any difference is a traversal bug), Embree
 //! against the BVH (independent implementations), any-hit against closest-hit,
-//! batches against single rays, and watertightness on shared edges/vertices.
+//! batches against single rays, and watertightness on shared edges/vertices;
+//! instanced geometry against the same flattened (`accel_parity/instances.rs`).
 //!
 //! Scenes are random triangle soups plus spheres from a fixed-seed SplitMix64,
 //! so every run tests the same rays.
@@ -11,6 +12,9 @@ use parallax::accel::{
     build_accel, validate_geometry, Accel, AccelError, AccelGeometry, AnyAccel, Backend, Hit, Ray,
     TriMeshRef,
 };
+
+#[path = "accel_parity/instances.rs"]
+mod instances;
 
 /// SplitMix64: tiny, deterministic, good enough for test geometry.
 struct Rng(u64);
@@ -97,6 +101,7 @@ impl TestScene {
                 },
             ],
             spheres: &self.spheres,
+            ..Default::default()
         }
     }
 }
@@ -361,6 +366,7 @@ fn rays_through_shared_edges_and_vertices_never_leak() {
             triangles: &triangles,
         }],
         spheres: &[],
+        ..Default::default()
     };
     let inside = positions.iter().copied().sum::<Vec3>() / positions.len() as f32;
     // Aim exactly at every vertex and at every edge midpoint, from inside and
@@ -436,6 +442,7 @@ fn empty_geometry_misses_everything() {
             triangles: &[],
         }],
         spheres: &[],
+        ..Default::default()
     };
     let rays = [
         Ray::new(Vec3::ZERO, Vec3::Z),
@@ -469,6 +476,7 @@ fn sphere_hits_report_sphere_ids_and_outward_normal() {
             triangles: &triangles,
         }],
         spheres: &spheres,
+        ..Default::default()
     };
     for backend in all_backends() {
         let accel = build(backend, &geo);
@@ -510,6 +518,7 @@ fn backend_names_round_trip_and_bad_input_errors() {
             triangles: &bad_index,
         }],
         spheres: &[],
+        ..Default::default()
     };
     let expected = AccelError::IndexOutOfRange {
         geom_id: 0,
@@ -523,6 +532,7 @@ fn backend_names_round_trip_and_bad_input_errors() {
     let geo = AccelGeometry {
         meshes: Vec::new(),
         spheres: &bad_sphere,
+        ..Default::default()
     };
     assert_eq!(
         validate_geometry(&geo),
@@ -554,5 +564,6 @@ fn dummy_hit() -> Hit {
         u: 0.0,
         v: 0.0,
         n_geo: Vec3::Z,
+        inst_id: parallax::accel::NO_INSTANCE,
     }
 }

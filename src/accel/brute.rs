@@ -2,6 +2,7 @@
 //! with the same routines as the BVH (`prim.rs`), so parity tests isolate the
 //! hierarchy. O(n) per ray — tests and tiny scenes only.
 
+use super::instances::InstanceLayer;
 use super::prim::WatertightRay;
 use super::soup::{occludes, pack_primitives, ClosestSearch, PackedPrim};
 use super::{Accel, AccelGeometry, Hit, Ray};
@@ -10,6 +11,7 @@ use super::{Accel, AccelGeometry, Hit, Ray};
 #[derive(Clone, Debug)]
 pub struct BruteAccel {
     prims: Vec<PackedPrim>,
+    instances: InstanceLayer<BruteAccel>,
 }
 
 impl BruteAccel {
@@ -17,6 +19,7 @@ impl BruteAccel {
     pub fn build(geo: &AccelGeometry) -> Self {
         BruteAccel {
             prims: pack_primitives(geo),
+            instances: InstanceLayer::build(geo, false, BruteAccel::build),
         }
     }
 }
@@ -27,12 +30,14 @@ impl Accel for BruteAccel {
         for prim in &self.prims {
             search.test(prim);
         }
-        search.finish()
+        let mut best = search.finish();
+        self.instances.intersect(ray, &mut best);
+        best
     }
 
     fn occluded(&self, ray: &Ray) -> bool {
         let wray = WatertightRay::new(ray);
-        self.prims.iter().any(|p| occludes(ray, &wray, p))
+        self.prims.iter().any(|p| occludes(ray, &wray, p)) || self.instances.occluded(ray)
     }
 
     fn backend_name(&self) -> &'static str {

@@ -6,13 +6,16 @@
 //! 1 + 2γ₃ so rounding never culls a box the ray touches, and a zero
 //! direction component whose origin lies exactly on a slab plane (0·∞ = NaN)
 //! keeps the box. Combined with the watertight triangle test this makes the
-//! BVH return exactly what the brute-force scan returns.
+//! BVH return exactly what the brute-force scan returns. Instances: a
+//! second, top-level BVH over their boxes, each prototype a BVH of its own
+//! (`instances.rs`), traversed after the flat tree with its closest t.
 
 use std::cmp::Ordering::{Equal, Less};
 
 use glam::Vec3;
 
 use super::bvh_build::{build_nodes, BuildRef, Node, MAX_DEPTH};
+use super::instances::InstanceLayer;
 use super::prim::WatertightRay;
 use super::soup::{occludes, pack_primitives, ClosestSearch, PackedPrim};
 use super::{Accel, AccelGeometry, Hit, Ray};
@@ -25,6 +28,8 @@ const FAR_INFLATE: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f
 pub struct BvhAccel {
     nodes: Vec<Node>,
     prims: Vec<PackedPrim>,
+    /// Prototypes (each a BVH of its own) under a top-level BVH of placements.
+    instances: InstanceLayer<BvhAccel>,
 }
 
 impl BvhAccel {
@@ -46,75 +51,80 @@ impl BvhAccel {
             .collect();
         let nodes = build_nodes(&mut refs);
         let prims = refs.iter().map(|r| prims_in[r.index as usize]).collect();
-        BvhAccel { nodes, prims }
+        BvhAccel {
+            nodes,
+            prims,
+            instances: InstanceLayer::build(geo, true, BvhAccel::build),
+        }
     }
 
     /// Node count (for logs).
     pub fn node_count(&self) -> usize {
         self.nodes.len()
     }
+}
 
-    /// Front-to-back traversal; `visit_leaf` gets each leaf's primitives and
-    /// returns the current far bound (shrinking as hits are found), or `None`
-    /// to stop.
-    #[inline]
-    fn traverse(
-        &self,
-        ray: &Ray,
-        mut tmax: f32,
-        mut visit_leaf: impl FnMut(&[PackedPrim]) -> Option<f32>,
-    ) {
-        if self.nodes.is_empty() || !matches!(ray.tmin.partial_cmp(&tmax), Some(Less | Equal)) {
+/// Front-to-back traversal of `nodes` over `items` (leaf ranges index
+/// `items`); `visit_leaf` gets each leaf's items and returns the current far
+/// bound (shrinking as hits are found), or `None` to stop.
+#[inline]
+pub(crate) fn traverse<T>(
+    nodes: &[Node],
+    items: &[T],
+    ray: &Ray,
+    mut tmax: f32,
+    mut visit_leaf: impl FnMut(&[T]) -> Option<f32>,
+) {
+    if nodes.is_empty() || !matches!(ray.tmin.partial_cmp(&tmax), Some(Less | Equal)) {
+        return;
+    }
+    let inv_d = ray.d.recip();
+    let mut stack = [0u32; MAX_DEPTH];
+    let mut sp = 0usize;
+    let mut index = 0usize;
+    if slab_test(&nodes[0], ray.o, inv_d, ray.tmin, tmax).is_none() {
+        return;
+    }
+    loop {
+        let node = &nodes[index];
+        if node.count > 0 {
+            let start = node.offset as usize;
+            match visit_leaf(&items[start..start + node.count as usize]) {
+                Some(t) => tmax = t,
+                None => return,
+            }
+        } else {
+            let (left, right) = (index + 1, node.offset as usize);
+            let t_left = slab_test(&nodes[left], ray.o, inv_d, ray.tmin, tmax);
+            let t_right = slab_test(&nodes[right], ray.o, inv_d, ray.tmin, tmax);
+            match (t_left, t_right) {
+                (Some(tl), Some(tr)) => {
+                    let (near, far) = if tl <= tr {
+                        (left, right)
+                    } else {
+                        (right, left)
+                    };
+                    stack[sp] = far as u32;
+                    sp += 1;
+                    index = near;
+                    continue;
+                }
+                (Some(_), None) => {
+                    index = left;
+                    continue;
+                }
+                (None, Some(_)) => {
+                    index = right;
+                    continue;
+                }
+                (None, None) => {}
+            }
+        }
+        if sp == 0 {
             return;
         }
-        let inv_d = ray.d.recip();
-        let mut stack = [0u32; MAX_DEPTH];
-        let mut sp = 0usize;
-        let mut index = 0usize;
-        if slab_test(&self.nodes[0], ray.o, inv_d, ray.tmin, tmax).is_none() {
-            return;
-        }
-        loop {
-            let node = &self.nodes[index];
-            if node.count > 0 {
-                let start = node.offset as usize;
-                match visit_leaf(&self.prims[start..start + node.count as usize]) {
-                    Some(t) => tmax = t,
-                    None => return,
-                }
-            } else {
-                let (left, right) = (index + 1, node.offset as usize);
-                let t_left = slab_test(&self.nodes[left], ray.o, inv_d, ray.tmin, tmax);
-                let t_right = slab_test(&self.nodes[right], ray.o, inv_d, ray.tmin, tmax);
-                match (t_left, t_right) {
-                    (Some(tl), Some(tr)) => {
-                        let (near, far) = if tl <= tr {
-                            (left, right)
-                        } else {
-                            (right, left)
-                        };
-                        stack[sp] = far as u32;
-                        sp += 1;
-                        index = near;
-                        continue;
-                    }
-                    (Some(_), None) => {
-                        index = left;
-                        continue;
-                    }
-                    (None, Some(_)) => {
-                        index = right;
-                        continue;
-                    }
-                    (None, None) => {}
-                }
-            }
-            if sp == 0 {
-                return;
-            }
-            sp -= 1;
-            index = stack[sp] as usize;
-        }
+        sp -= 1;
+        index = stack[sp] as usize;
     }
 }
 
@@ -147,23 +157,25 @@ fn slab_test(node: &Node, o: Vec3, inv_d: Vec3, tmin: f32, tmax: f32) -> Option<
 impl Accel for BvhAccel {
     fn intersect(&self, ray: &Ray) -> Option<Hit> {
         let mut search = ClosestSearch::new(ray);
-        self.traverse(ray, ray.tmax, |prims| {
+        traverse(&self.nodes, &self.prims, ray, ray.tmax, |prims| {
             for prim in prims {
                 search.test(prim);
             }
             Some(search.tmax())
         });
-        search.finish()
+        let mut best = search.finish();
+        self.instances.intersect(ray, &mut best);
+        best
     }
 
     fn occluded(&self, ray: &Ray) -> bool {
         let wray = WatertightRay::new(ray);
         let mut hit = false;
-        self.traverse(ray, ray.tmax, |prims| {
+        traverse(&self.nodes, &self.prims, ray, ray.tmax, |prims| {
             hit = prims.iter().any(|p| occludes(ray, &wray, p));
             (!hit).then_some(ray.tmax)
         });
-        hit
+        hit || self.instances.occluded(ray)
     }
 
     fn backend_name(&self) -> &'static str {

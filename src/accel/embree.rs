@@ -14,12 +14,18 @@
 //! batches (rows of camera rays, occlusion segments from one camera centre) go
 //! through 8-wide packets (`rtcIntersect8`/`rtcOccluded8`) with a coherent
 //! context and a valid mask for the tail.
+//!
+//! Instances: each prototype is a committed child scene of its own (robust,
+//! and a non-robust twin for shading), placed by `INSTANCE` geometries with
+//! ids `meshes.len() + 1 + k` for instance k. Embree reports an instanced
+//! hit's `Ng` in the prototype's frame; `Decode` maps it to render space
+//! with the inverse transpose of the instance transform.
 
 use embree3::{
     BufferUsage, BuildQuality, Device, Format, Geometry, GeometryKind, Hit8, IntersectContext,
     Ray as RtcRay, Ray8, RayHit, RayHit8, Scene, SceneFlags, ValidMask, ValidMaskN, INVALID_ID,
 };
-use glam::Vec3;
+use glam::{Affine3A, Mat3A, Vec3};
 
 use super::{validate_geometry, Accel, AccelError, AccelGeometry, Hit, Ray};
 
@@ -34,7 +40,42 @@ const LANES: usize = 8;
 pub struct EmbreeAccel {
     scene: Scene<'static>,
     shading: Option<Scene<'static>>,
+    decode: Decode,
     build_seconds: [f64; 2],
+    /// Prototype scenes (robust, then shading twins): the instance
+    /// geometries of the scenes above point at them.
+    _prototypes: Vec<Scene<'static>>,
+}
+
+/// What turns an Embree hit into a `Hit`: the id of instance 0 and each
+/// instance's local → render normal map.
+#[derive(Debug, Default)]
+struct Decode {
+    inst_base: u32,
+    normal_to_render: Vec<Mat3A>,
+}
+
+impl Decode {
+    /// The `Hit` of a valid Embree hit.
+    #[inline]
+    fn hit(&self, t: f32, ids: [u32; 3], u: f32, v: f32, ng: [f32; 3]) -> Hit {
+        let [geom_id, prim_id, inst] = ids;
+        let mut n_geo = Vec3::from(ng);
+        let mut inst_id = super::NO_INSTANCE;
+        if inst != INVALID_ID {
+            inst_id = inst - self.inst_base;
+            n_geo = self.normal_to_render[inst_id as usize].mul_vec3(n_geo);
+        }
+        Hit {
+            t,
+            geom_id,
+            prim_id,
+            u,
+            v,
+            n_geo,
+            inst_id,
+        }
+    }
 }
 
 impl std::fmt::Debug for EmbreeAccel {
@@ -63,22 +104,40 @@ impl EmbreeAccel {
         // Embree does not bounds-check indices: validation is a safety matter here.
         validate_geometry(geo)?;
         let device = Device::new().map_err(|e| embree_error("device", e))?;
-        let geometries = geometries(&device, geo)?;
+        let mut geometries = geometries(&device, &geo.flat())?;
+        let inst_base = geo.sphere_geom_id() + 1;
         let t = std::time::Instant::now();
         // Robust mode is needed: without it Embree 3 lets rays aimed exactly at
         // shared vertices/edges of a closed mesh slip through
         // (`rays_through_shared_edges_and_vertices_never_leak`), which would
         // punch holes into ground-truth depth.
+        let (robust_protos, robust_insts) =
+            instance_geometries(&device, geo, inst_base, SceneFlags::ROBUST)?;
+        let flat_len = geometries.len();
+        geometries.extend(robust_insts);
         let scene = commit_scene(&device, &geometries, SceneFlags::ROBUST)?;
         let robust_s = t.elapsed().as_secs_f64();
         let t = std::time::Instant::now();
-        let shading = shading_twin
-            .then(|| commit_scene(&device, &geometries, SceneFlags::NONE))
-            .transpose()?;
+        let mut prototypes = robust_protos;
+        let shading = if shading_twin {
+            let (protos, insts) = instance_geometries(&device, geo, inst_base, SceneFlags::NONE)?;
+            prototypes.extend(protos);
+            geometries.truncate(flat_len);
+            geometries.extend(insts);
+            Some(commit_scene(&device, &geometries, SceneFlags::NONE)?)
+        } else {
+            None
+        };
+        let normal_to_render = geo.instances.iter().map(|i| i.normal_to_render()).collect();
         Ok(EmbreeAccel {
             scene,
             shading,
+            decode: Decode {
+                inst_base,
+                normal_to_render,
+            },
             build_seconds: [robust_s, t.elapsed().as_secs_f64()],
+            _prototypes: prototypes,
         })
     }
 
@@ -96,7 +155,7 @@ impl EmbreeAccel {
     /// Closest hits through 8-wide packets with an explicit coherence hint
     /// (`true` for primary rays of a tile, `false` for scattered rays).
     pub fn intersect_batch_with(&self, rays: &[Ray], hits: &mut [Option<Hit>], coherent: bool) {
-        intersect_packets(&self.scene, rays, hits, coherent);
+        intersect_packets(&self.scene, &self.decode, rays, hits, coherent);
     }
 
     /// Any-hit through 8-wide packets with an explicit coherence hint.
@@ -106,7 +165,13 @@ impl EmbreeAccel {
 }
 
 /// Closest hits of `rays` on `scene` through 8-wide packets.
-fn intersect_packets(scene: &Scene, rays: &[Ray], hits: &mut [Option<Hit>], coherent: bool) {
+fn intersect_packets(
+    scene: &Scene,
+    decode: &Decode,
+    rays: &[Ray],
+    hits: &mut [Option<Hit>],
+    coherent: bool,
+) {
     assert_eq!(
         rays.len(),
         hits.len(),
@@ -127,17 +192,15 @@ fn intersect_packets(scene: &Scene, rays: &[Ray], hits: &mut [Option<Hit>], cohe
         rayhit.hit.instID[0] = [INVALID_ID; LANES];
         scene.intersect8(&mut ctx, &mut rayhit, &valid);
         for (lane, out) in hit_chunk.iter_mut().enumerate() {
-            *out = (rayhit.hit.geomID[lane] != INVALID_ID).then(|| Hit {
-                t: rayhit.ray.tfar[lane],
-                geom_id: rayhit.hit.geomID[lane],
-                prim_id: rayhit.hit.primID[lane],
-                u: rayhit.hit.u[lane],
-                v: rayhit.hit.v[lane],
-                n_geo: Vec3::new(
-                    rayhit.hit.Ng_x[lane],
-                    rayhit.hit.Ng_y[lane],
-                    rayhit.hit.Ng_z[lane],
-                ),
+            let h = &rayhit.hit;
+            *out = (h.geomID[lane] != INVALID_ID).then(|| {
+                decode.hit(
+                    rayhit.ray.tfar[lane],
+                    [h.geomID[lane], h.primID[lane], h.instID[0][lane]],
+                    h.u[lane],
+                    h.v[lane],
+                    [h.Ng_x[lane], h.Ng_y[lane], h.Ng_z[lane]],
+                )
             });
         }
     }
@@ -224,6 +287,52 @@ fn geometries(
     Ok(out)
 }
 
+/// One committed child scene per prototype (with `flags`) and an instance
+/// geometry (id `inst_base + k`) per placement of a non-empty prototype.
+#[allow(clippy::type_complexity)]
+fn instance_geometries(
+    device: &Device,
+    geo: &AccelGeometry,
+    inst_base: u32,
+    flags: SceneFlags,
+) -> Result<(Vec<Scene<'static>>, Vec<(Geometry<'static>, u32)>), AccelError> {
+    if geo.instances.is_empty() {
+        return Ok((Vec::new(), Vec::new()));
+    }
+    let mut protos = Vec::with_capacity(geo.prototypes.len());
+    for p in 0..geo.prototypes.len() {
+        let geometries = geometries(device, &geo.prototype(p))?;
+        protos.push(commit_scene(device, &geometries, flags)?);
+    }
+    let empty: Vec<bool> = geo
+        .prototypes
+        .iter()
+        .map(|ms| ms.iter().all(|m| m.triangles.is_empty()))
+        .collect();
+    let mut out = Vec::with_capacity(geo.instances.len());
+    for (k, inst) in geo.instances.iter().enumerate() {
+        if empty[inst.prototype as usize] {
+            continue;
+        }
+        let mut builder = device
+            .create_geometry(GeometryKind::INSTANCE)
+            .map_err(|e| embree_error("instance geometry", e))?;
+        builder.set_instanced_scene(&protos[inst.prototype as usize]);
+        builder.set_transform(0, &column_major(inst.render_from_local));
+        out.push((builder.commit(), inst_base + k as u32));
+    }
+    Ok((protos, out))
+}
+
+/// A 4×4 column-major matrix of an affine map (Embree's transform format).
+fn column_major(m: Affine3A) -> [f32; 16] {
+    let c = m.to_cols_array();
+    [
+        c[0], c[1], c[2], 0.0, c[3], c[4], c[5], 0.0, c[6], c[7], c[8], 0.0, c[9], c[10], c[11],
+        1.0,
+    ]
+}
+
 /// Commits a scene (high build quality) over `geometries` with `flags`.
 fn commit_scene(
     device: &Device,
@@ -270,17 +379,19 @@ fn single_ray(r: &Ray) -> RtcRay {
 
 /// Closest hit of one ray on `scene` (incoherent context).
 #[inline]
-fn intersect_one(scene: &Scene, ray: &Ray) -> Option<Hit> {
+fn intersect_one(scene: &Scene, decode: &Decode, ray: &Ray) -> Option<Hit> {
     let mut ctx = IntersectContext::incoherent();
     let mut rayhit = RayHit::from_ray(single_ray(ray));
     scene.intersect(&mut ctx, &mut rayhit);
-    rayhit.hit.is_valid().then(|| Hit {
-        t: rayhit.ray.tfar,
-        geom_id: rayhit.hit.geomID,
-        prim_id: rayhit.hit.primID,
-        u: rayhit.hit.u,
-        v: rayhit.hit.v,
-        n_geo: Vec3::new(rayhit.hit.Ng_x, rayhit.hit.Ng_y, rayhit.hit.Ng_z),
+    let h = &rayhit.hit;
+    h.is_valid().then(|| {
+        decode.hit(
+            rayhit.ray.tfar,
+            [h.geomID, h.primID, h.instID[0]],
+            h.u,
+            h.v,
+            [h.Ng_x, h.Ng_y, h.Ng_z],
+        )
     })
 }
 
@@ -293,7 +404,7 @@ fn occluded_one(scene: &Scene, ray: &Ray) -> bool {
 
 impl Accel for EmbreeAccel {
     fn intersect(&self, ray: &Ray) -> Option<Hit> {
-        intersect_one(&self.scene, ray)
+        intersect_one(&self.scene, &self.decode, ray)
     }
 
     fn occluded(&self, ray: &Ray) -> bool {
@@ -315,7 +426,7 @@ impl Accel for EmbreeAccel {
     }
 
     fn intersect_shading(&self, ray: &Ray) -> Option<Hit> {
-        intersect_one(self.shading_scene(), ray)
+        intersect_one(self.shading_scene(), &self.decode, ray)
     }
 
     fn occluded_shading(&self, ray: &Ray) -> bool {
@@ -323,7 +434,7 @@ impl Accel for EmbreeAccel {
     }
 
     fn intersect_batch_shading(&self, rays: &[Ray], hits: &mut [Option<Hit>]) {
-        intersect_packets(self.shading_scene(), rays, hits, true);
+        intersect_packets(self.shading_scene(), &self.decode, rays, hits, true);
     }
 
     fn occluded_batch_shading(&self, rays: &[Ray], out: &mut [bool]) {

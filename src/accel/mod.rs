@@ -10,19 +10,29 @@
 //! order given; all spheres together form geometry id `meshes.len()`, with the
 //! sphere index as primitive id. Barycentrics follow Embree: `u` weights vertex
 //! 1, `v` weights vertex 2, `1 − u − v` weights vertex 0.
+//!
+//! Two-level instancing: a prototype is a list of triangle meshes in its own
+//! local frame, stored once; an instance places one prototype by an affine
+//! render_from_local map. A hit on an instance carries `inst_id` (the
+//! instance's index) with `geom_id`/`prim_id` naming the mesh and triangle
+//! inside the prototype; `t` is the render-space ray's parameter (affine maps
+//! preserve it) and `n_geo` is in render space. Flat hits have
+//! `inst_id == NO_INSTANCE`. (`instances.rs` is the layer the pure-Rust
+//! backends share.)
 
 mod brute;
 mod bvh;
 mod bvh_build;
 #[cfg(feature = "embree")]
 mod embree;
+mod instances;
 mod prim;
 mod soup;
 
 use std::fmt;
 use std::str::FromStr;
 
-use glam::{Vec3, Vec4};
+use glam::{Affine3A, Vec3, Vec4};
 
 pub use crate::geometry::Ray;
 pub use brute::BruteAccel;
@@ -44,8 +54,35 @@ pub struct Hit {
     pub u: f32,
     /// Barycentric weight of vertex 2 (0 for spheres).
     pub v: f32,
-    /// Geometric normal, not normalised, any orientation.
+    /// Geometric normal, not normalised, any orientation; render space.
     pub n_geo: Vec3,
+    /// Index of the instance hit, or [`NO_INSTANCE`] for flat geometry.
+    pub inst_id: u32,
+}
+
+/// `Hit::inst_id` of a hit on flat (not instanced) geometry.
+pub const NO_INSTANCE: u32 = u32::MAX;
+
+impl InstanceRef {
+    /// The map of winding normals from local to render space: the inverse
+    /// transpose times the sign of the determinant, so a mirrored instance
+    /// reports the normal its flattened triangles' winding gives.
+    pub fn normal_to_render(&self) -> glam::Mat3A {
+        let m = self.local_from_render.matrix3;
+        let sign = if m.determinant() < 0.0 { -1.0 } else { 1.0 };
+        m.transpose() * sign
+    }
+}
+
+/// One placement of a prototype.
+#[derive(Clone, Copy, Debug)]
+pub struct InstanceRef {
+    /// Index into `AccelGeometry::prototypes`.
+    pub prototype: u32,
+    /// Local → render space (rounded from the scene's f64 map).
+    pub render_from_local: Affine3A,
+    /// Render → local space (the f64 inverse, rounded).
+    pub local_from_render: Affine3A,
 }
 
 /// One triangle mesh as the accelerator sees it.
@@ -64,17 +101,44 @@ pub struct AccelGeometry<'a> {
     pub meshes: Vec<TriMeshRef<'a>>,
     /// Spheres as (centre xyz, radius w), render space; geometry id `meshes.len()`.
     pub spheres: &'a [Vec4],
+    /// Prototypes: each a list of triangle meshes in its local frame.
+    pub prototypes: Vec<Vec<TriMeshRef<'a>>>,
+    /// Placements of the prototypes; `Hit::inst_id` = index.
+    pub instances: &'a [InstanceRef],
 }
 
-impl AccelGeometry<'_> {
+impl<'a> AccelGeometry<'a> {
     /// Geometry id used for the sphere set.
     pub fn sphere_geom_id(&self) -> u32 {
         self.meshes.len() as u32
     }
 
-    /// Total primitive count (triangles plus spheres).
+    /// Total primitive count (triangles plus spheres), prototypes counted once.
     pub fn primitive_count(&self) -> usize {
-        self.meshes.iter().map(|m| m.triangles.len()).sum::<usize>() + self.spheres.len()
+        let proto: usize = self
+            .prototypes
+            .iter()
+            .flatten()
+            .map(|m| m.triangles.len())
+            .sum();
+        self.meshes.iter().map(|m| m.triangles.len()).sum::<usize>() + self.spheres.len() + proto
+    }
+
+    /// The flat part (meshes and spheres) as a geometry of its own.
+    pub(crate) fn flat(&self) -> AccelGeometry<'a> {
+        AccelGeometry {
+            meshes: self.meshes.clone(),
+            spheres: self.spheres,
+            ..AccelGeometry::default()
+        }
+    }
+
+    /// Prototype `p` as a geometry of its own (its meshes, no spheres).
+    pub(crate) fn prototype(&self, p: usize) -> AccelGeometry<'a> {
+        AccelGeometry {
+            meshes: self.prototypes[p].clone(),
+            ..AccelGeometry::default()
+        }
     }
 }
 
@@ -260,7 +324,39 @@ impl std::error::Error for AccelError {}
 /// Checks what every backend relies on: triangle indices in range (Embree does
 /// not bounds-check), finite positions, finite non-negative radii.
 pub fn validate_geometry(geo: &AccelGeometry) -> Result<(), AccelError> {
-    for (geom_id, mesh) in geo.meshes.iter().enumerate() {
+    for (p, proto) in geo.prototypes.iter().enumerate() {
+        validate_meshes(proto).map_err(|e| match e {
+            AccelError::InvalidGeometry { geom_id, index } => AccelError::Backend(format!(
+                "prototype {p}, mesh {geom_id}, vertex {index}: non-finite position"
+            )),
+            AccelError::IndexOutOfRange { geom_id, prim_id } => AccelError::Backend(format!(
+                "prototype {p}, mesh {geom_id}, triangle {prim_id}: vertex index out of range"
+            )),
+            other => other,
+        })?;
+    }
+    for (i, inst) in geo.instances.iter().enumerate() {
+        let finite = inst.render_from_local.is_finite() && inst.local_from_render.is_finite();
+        if inst.prototype as usize >= geo.prototypes.len() || !finite {
+            return Err(AccelError::Backend(format!(
+                "instance {i}: prototype {} of {} or a non-finite transform",
+                inst.prototype,
+                geo.prototypes.len()
+            )));
+        }
+    }
+    validate_meshes(&geo.meshes)?;
+    if let Some(index) = geo.spheres.iter().position(|s| !s.is_finite() || s.w < 0.0) {
+        return Err(AccelError::InvalidGeometry {
+            geom_id: geo.sphere_geom_id(),
+            index: index as u32,
+        });
+    }
+    Ok(())
+}
+
+fn validate_meshes(meshes: &[TriMeshRef]) -> Result<(), AccelError> {
+    for (geom_id, mesh) in meshes.iter().enumerate() {
         let geom_id = geom_id as u32;
         if let Some(index) = mesh.positions.iter().position(|p| !p.is_finite()) {
             return Err(AccelError::InvalidGeometry {
@@ -279,12 +375,6 @@ pub fn validate_geometry(geo: &AccelGeometry) -> Result<(), AccelError> {
                 prim_id: prim_id as u32,
             });
         }
-    }
-    if let Some(index) = geo.spheres.iter().position(|s| !s.is_finite() || s.w < 0.0) {
-        return Err(AccelError::InvalidGeometry {
-            geom_id: geo.sphere_geom_id(),
-            index: index as u32,
-        });
     }
     Ok(())
 }

@@ -1,7 +1,8 @@
 //! The flat primitive list the pure-Rust backends traverse, and the per-ray
 //! closest-hit search state they share.
 //!
-//! Every triangle and sphere of an `AccelGeometry` becomes one `PackedPrim`
+//! Every flat triangle and sphere of an `AccelGeometry` (instances are
+//! `instances.rs`'s) becomes one `PackedPrim`
 //! holding its own vertex positions (no index indirection in the hot loop) and
 //! its (geometry id, primitive id) from the `mod.rs` conventions. The closest
 //! search keeps `tmax` shrinking as hits are found, so later tests are cheaper.
@@ -45,7 +46,7 @@ impl PackedPrim {
 /// Flattens `geo` into packed primitives in id order (meshes, then spheres).
 /// Indices must already be validated.
 pub(crate) fn pack_primitives(geo: &AccelGeometry) -> Vec<PackedPrim> {
-    let mut prims = Vec::with_capacity(geo.primitive_count());
+    let mut prims = Vec::with_capacity(geo.flat().primitive_count());
     for (geom_id, mesh) in geo.meshes.iter().enumerate() {
         prims.extend(
             mesh.triangles
@@ -140,6 +141,7 @@ impl ClosestSearch {
                 u: b.hit.u,
                 v: b.hit.v,
                 n_geo,
+                inst_id: super::NO_INSTANCE,
             }
         })
     }

@@ -85,15 +85,19 @@ pub fn run(a: TownArgs) -> Result<(), CliError> {
         let prepared = recipe.prepare().map_err(recipe_error)?;
         let (loaded, built) = (&recipe.loaded, &prepared.built);
         let (scene_s, accel_s) = (built.scene_seconds, built.accel_seconds);
+        let content = built.scene.content();
         println!(
-            "{} seed {} frame {} ({}): {} objects, {} meshes, {} triangles; generate {:.2} s, scene {:.2} s, accel {:.2} s ({}), total {:.2} s",
+            "{} seed {} frame {} ({}): {} objects, {} meshes, {} prototypes, {} instances, {} triangles ({} unique); generate {:.2} s, scene {:.2} s, accel {:.2} s ({}), total {:.2} s",
             town.desc.name,
             seed,
             a.frame,
             a.config,
             loaded.desc.objects.len(),
-            built.scene.meshes.len(),
-            built.scene.triangle_count(),
+            content.meshes,
+            content.prototypes,
+            content.instances,
+            content.instanced_triangles,
+            content.unique_triangles,
             gen_s,
             scene_s,
             accel_s,

@@ -70,16 +70,25 @@ fn plausible(t64: f64, t32: f32) -> bool {
     t64.is_finite() && t64 > 0.0 && (t64 - t32 as f64).abs() <= 1e-3 * t32 as f64 + 1e-3
 }
 
-/// Exact (f64) ray parameter of `hit` for the ray o + t·d.
+/// Exact (f64) ray parameter of `hit` for the ray o + t·d. A hit on an
+/// instance is re-intersected in the prototype's frame, the ray carried
+/// there by the f64 inverse (an affine map keeps t).
 pub fn exact_t(scene: &Scene, o: DVec3, d: DVec3, hit: &Hit) -> f64 {
-    let g = hit.geom_id as usize;
-    let t64 = if g < scene.meshes.len() {
-        let m = &scene.meshes[g];
-        let tri = m.triangles[hit.prim_id as usize];
-        ray_plane_t(o, d, tri.map(|i| m.p_render[i as usize]))
-    } else {
-        let s = &scene.spheres[hit.prim_id as usize];
-        ray_sphere_t(o, d, s.center, s.radius, 0.5 * hit.t as f64)
+    let t64 = match scene.hit_mesh(hit) {
+        Some((m, inst)) => {
+            let tri = m.triangles[hit.prim_id as usize].map(|i| m.p_render[i as usize]);
+            match inst {
+                None => ray_plane_t(o, d, tri),
+                Some(inst) => {
+                    let x = inst.local_from_render;
+                    ray_plane_t(x.transform_point3(o), x.transform_vector3(d), tri)
+                }
+            }
+        }
+        None => {
+            let s = &scene.spheres[hit.prim_id as usize];
+            ray_sphere_t(o, d, s.center, s.radius, 0.5 * hit.t as f64)
+        }
     };
     match t64 {
         Some(t) if plausible(t, hit.t) => t,

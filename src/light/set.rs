@@ -458,7 +458,10 @@ impl LightSet {
     }
 
     /// Pdf per solid angle (with pmf) that NEE would have chosen point `q` on
-    /// emissive triangle (geom, prim), seen from `p` with light normal `n_light`.
+    /// emissive triangle (geom, prim) of a flat mesh, seen from `p` with light
+    /// normal `n_light`. Emitters are never instanced (`scene::instancing`
+    /// flattens prefabs with emissive materials), so a hit on an emitter
+    /// always names a flat mesh.
     pub fn pdf_triangle(&self, geom: u32, prim: u32, p: Vec3, q: Vec3, n_light: Vec3) -> f32 {
         let Some(&idx) = self
             .tri_entry
@@ -540,11 +543,21 @@ fn selection_pmf(weights: &[f32]) -> Vec<f32> {
 /// Radius of the scene's bounding sphere around the render origin, clamped to a
 /// range that keeps distant lights from swamping or vanishing in selection.
 fn scene_radius(scene: &Scene) -> f32 {
+    let placed = scene.instances.iter().flat_map(|i| {
+        let m = i.render_from_local_f32;
+        let proto = &scene.prototypes[i.prototype as usize];
+        proto.meshes.iter().flat_map(move |pm| {
+            pm.p_f32
+                .iter()
+                .map(move |&p| m.transform_point3(p).length())
+        })
+    });
     let r = scene
         .meshes
         .iter()
         .flat_map(|m| m.p_f32.iter())
         .map(|p| p.length())
+        .chain(placed)
         .chain(
             scene
                 .spheres_f32

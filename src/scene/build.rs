@@ -1,7 +1,8 @@
 //! Description → immutable render-space `Scene`: materials (`material::build`),
 //! shapes (`shapes`: prefabs, repeats and transforms flattened in f64 world
 //! coordinates, then `origin_world` subtracted — render space = world
-//! orientation, centred on the rig — and only then rounded to f32), emitters
+//! orientation, centred on the rig — and only then rounded to f32; shared
+//! prefabs as prototypes with instances, `instancing`), emitters
 //! (`emitters`) and the frame's air and weather (medium, rain, wetness).
 
 use std::collections::HashMap;
@@ -10,8 +11,8 @@ use glam::{DVec3, Vec4};
 
 use super::desc::{build_medium, build_rain, MaterialDesc, SceneDesc};
 use super::emitters::build_emitters;
+use super::instancing::{build_shapes, Instancing};
 use super::load::{LoadedScene, SceneError};
-use super::shapes::build_shapes;
 use super::validate::material_table;
 use super::{Scene, Sphere};
 use crate::material::{build_material, Wetness};
@@ -19,16 +20,35 @@ use crate::material::{build_material, Wetness};
 /// Builds the scene of one frame around `origin_world` (world metres): every
 /// position becomes `p_world − origin_world`.
 pub fn build_scene(scene: &LoadedScene, origin_world: DVec3) -> Result<Scene, SceneError> {
+    build_scene_with(scene, origin_world, Instancing::default())
+}
+
+/// As [`build_scene`], with shared prefabs instanced or everything flat.
+pub fn build_scene_with(
+    scene: &LoadedScene,
+    origin_world: DVec3,
+    mode: Instancing,
+) -> Result<Scene, SceneError> {
     let desc = &scene.desc;
     let table = material_table(desc, &scene.objs);
-    let (meshes, spheres) = build_shapes(scene, &material_index(&table), origin_world)?;
+    let materials: Vec<_> = table.iter().map(|m| build_material(m)).collect();
+    let shapes = build_shapes(
+        scene,
+        &material_index(&table),
+        &materials,
+        origin_world,
+        mode,
+    )?;
     let (lights, sky) = build_emitters(desc, origin_world);
     Ok(Scene {
         origin_world,
-        meshes,
-        spheres_f32: spheres_f32(&spheres),
-        spheres,
-        materials: table.iter().map(|m| build_material(m)).collect(),
+        meshes: shapes.meshes,
+        spheres_f32: spheres_f32(&shapes.spheres),
+        spheres: shapes.spheres,
+        instances_f32: shapes.instances.iter().map(|i| i.accel_ref()).collect(),
+        prototypes: shapes.prototypes,
+        instances: shapes.instances,
+        materials,
         lights,
         sky,
         medium: desc.medium.as_ref().map(|m| build_medium(m, origin_world)),

@@ -14,11 +14,18 @@
 //! camera centre, world coordinates, f64): every position in it is
 //! `p_world − origin_world`. f64 copies of positions are kept for the
 //! ground-truth pass, which re-intersects the hit primitive in f64.
+//!
+//! Prefab instances placed more than once become two-level instances
+//! (`instancing`): a `Prototype` holds the prefab's meshes once, in its own
+//! frame, and each `Instance` places it by an f64 affine map; a hit on one
+//! carries `Hit::inst_id`, and `surface`, `table` and the GT pass carry it
+//! through the transform (`hit_mesh`).
 
 pub mod build;
 pub mod desc;
 pub mod emitters;
 mod huge;
+mod instancing;
 pub mod load;
 pub mod mesh;
 mod mtl_check;
@@ -36,19 +43,20 @@ pub mod transform;
 pub mod validate;
 mod walk;
 
-pub use build::build_scene;
+pub use build::{build_scene, build_scene_with};
 pub use desc::{serialize_scene, SceneDesc};
 pub use emitters::Light;
+pub use instancing::{Content, Instancing};
 pub use load::{load_scene, parse_scene_str, LoadedScene, SceneError, SceneErrorKind};
 pub use surface::surface_interaction;
 pub use table::SurfaceTable;
 // Materials are built below the scene; a scene stores them.
 pub use crate::material::{mask_bits, Material};
 
-use glam::{DVec3, Vec2, Vec3, Vec4};
+use glam::{Affine3A, DAffine3, DVec3, Mat3A, Vec2, Vec3, Vec4};
 use shaders_cpu::sky::Sky;
 
-use crate::accel::{AccelGeometry, TriMeshRef};
+use crate::accel::{AccelGeometry, Hit, InstanceRef, TriMeshRef, NO_INSTANCE};
 use crate::material::{MaterialView, Wetness};
 
 /// A triangle mesh in render space.
@@ -72,6 +80,72 @@ pub struct Mesh {
     pub instance: u16,
 }
 
+/// A prefab's meshes built once, in the prefab's own frame: `Mesh::p_render`
+/// and `p_f32` hold local positions, `normals` local directions; materials
+/// are resolved (a prototype is shared only by instances whose material
+/// maps are the same), labels are the prefab's own (instances may override).
+#[derive(Clone, Debug, Default)]
+pub struct Prototype {
+    /// Name of the prefab.
+    pub prefab: String,
+    /// Meshes in the local frame; `Hit::geom_id` = index.
+    pub meshes: Vec<Mesh>,
+}
+
+/// One placement of a prototype.
+#[derive(Clone, Debug)]
+pub struct Instance {
+    /// Index into `Scene::prototypes`.
+    pub prototype: u32,
+    /// Local → render space, f64 (world placement minus the render origin).
+    pub render_from_local: DAffine3,
+    /// Its f64 inverse (the GT pass re-intersects in the local frame).
+    pub local_from_render: DAffine3,
+    /// f32 copy of `render_from_local` (shading).
+    pub render_from_local_f32: Affine3A,
+    /// Local → render map of winding normals (`InstanceRef::normal_to_render`).
+    pub normal_to_render: Mat3A,
+    /// Semantic class that replaces the prototype's (the instance object's).
+    pub semantic: Option<u8>,
+    /// Instance id that replaces the prototype's.
+    pub instance: Option<u16>,
+}
+
+impl Instance {
+    /// An instance of `prototype` at `render_from_local`.
+    pub fn new(
+        prototype: u32,
+        render_from_local: DAffine3,
+        semantic: Option<u8>,
+        instance: Option<u16>,
+    ) -> Instance {
+        let local_from_render = render_from_local.inverse();
+        let accel = InstanceRef {
+            prototype,
+            render_from_local: render_from_local.as_affine3a(),
+            local_from_render: local_from_render.as_affine3a(),
+        };
+        Instance {
+            prototype,
+            render_from_local,
+            local_from_render,
+            render_from_local_f32: accel.render_from_local,
+            normal_to_render: accel.normal_to_render(),
+            semantic,
+            instance,
+        }
+    }
+
+    /// What the accelerator needs of this instance.
+    pub fn accel_ref(&self) -> InstanceRef {
+        InstanceRef {
+            prototype: self.prototype,
+            render_from_local: self.render_from_local_f32,
+            local_from_render: self.local_from_render.as_affine3a(),
+        }
+    }
+}
+
 /// An analytic sphere in render space.
 #[derive(Clone, Debug)]
 pub struct Sphere {
@@ -92,8 +166,14 @@ pub struct Sphere {
 pub struct Scene {
     /// World position of the render-space origin (metres).
     pub origin_world: DVec3,
-    /// Triangle meshes; geometry id = index.
+    /// Flat triangle meshes (render space); geometry id = index.
     pub meshes: Vec<Mesh>,
+    /// Prototypes of the instances (local frames).
+    pub prototypes: Vec<Prototype>,
+    /// Placed prototypes; `Hit::inst_id` = index.
+    pub instances: Vec<Instance>,
+    /// The instances as the accelerator wants them.
+    pub instances_f32: Vec<InstanceRef>,
     /// Analytic spheres; geometry id = `meshes.len()`, prim id = index.
     pub spheres: Vec<Sphere>,
     /// Sphere data as the accelerator wants it (centre, radius), f32.
@@ -133,6 +213,90 @@ impl Scene {
                 })
                 .collect(),
             spheres: &self.spheres_f32,
+            prototypes: self
+                .prototypes
+                .iter()
+                .map(|p| {
+                    p.meshes
+                        .iter()
+                        .map(|m| TriMeshRef {
+                            positions: &m.p_f32,
+                            triangles: &m.triangles,
+                        })
+                        .collect()
+                })
+                .collect(),
+            instances: &self.instances_f32,
+        }
+    }
+
+    /// The mesh a triangle hit lies on, and the instance placing it (None
+    /// for flat meshes); None for spheres.
+    #[inline]
+    pub fn hit_mesh(&self, hit: &Hit) -> Option<(&Mesh, Option<&Instance>)> {
+        if hit.inst_id == NO_INSTANCE {
+            return self.meshes.get(hit.geom_id as usize).map(|m| (m, None));
+        }
+        let inst = &self.instances[hit.inst_id as usize];
+        let mesh = &self.prototypes[inst.prototype as usize].meshes[hit.geom_id as usize];
+        Some((mesh, Some(inst)))
+    }
+
+    /// Render-space f64 vertices of the triangle `hit` hit (None for spheres).
+    pub fn hit_triangle(&self, hit: &Hit) -> Option<[DVec3; 3]> {
+        let (m, inst) = self.hit_mesh(hit)?;
+        let tri = m.triangles[hit.prim_id as usize].map(|i| m.p_render[i as usize]);
+        Some(match inst {
+            None => tri,
+            Some(i) => tri.map(|p| i.render_from_local.transform_point3(p)),
+        })
+    }
+
+    /// Semantic class and instance id of what `hit` hit.
+    pub fn hit_labels(&self, hit: &Hit) -> (u8, u16) {
+        match self.hit_mesh(hit) {
+            Some((m, None)) => (m.semantic, m.instance),
+            Some((m, Some(i))) => (
+                i.semantic.unwrap_or(m.semantic),
+                i.instance.unwrap_or(m.instance),
+            ),
+            None => {
+                let s = &self.spheres[hit.prim_id as usize];
+                (s.semantic, s.instance)
+            }
+        }
+    }
+
+    /// Every triangle mesh in render space as if nothing were instanced:
+    /// the flat meshes, then each instance's prototype meshes transformed
+    /// in f64 (labels resolved). For export and hashing, not rendering.
+    pub fn flattened_meshes(&self) -> impl Iterator<Item = std::borrow::Cow<'_, Mesh>> {
+        use std::borrow::Cow;
+        let flat = self.meshes.iter().map(Cow::Borrowed);
+        let placed = self.instances.iter().flat_map(move |inst| {
+            self.prototypes[inst.prototype as usize]
+                .meshes
+                .iter()
+                .map(move |m| Cow::Owned(instancing::place_mesh(m, inst)))
+        });
+        flat.chain(placed)
+    }
+
+    /// Replaces every semantic class id (meshes, prototypes, instance
+    /// overrides, spheres) by `f(id)`.
+    pub fn map_semantic(&mut self, f: impl Fn(u8) -> u8) {
+        let meshes = self
+            .meshes
+            .iter_mut()
+            .chain(self.prototypes.iter_mut().flat_map(|p| p.meshes.iter_mut()));
+        for m in meshes {
+            m.semantic = f(m.semantic);
+        }
+        for i in &mut self.instances {
+            i.semantic = i.semantic.map(&f);
+        }
+        for s in &mut self.spheres {
+            s.semantic = f(s.semantic);
         }
     }
 
@@ -146,8 +310,9 @@ impl Scene {
         }
     }
 
-    /// Total triangle count.
+    /// Triangle count as if flattened (every instance counts its
+    /// prototype's triangles); see [`Scene::content`] for stored counts.
     pub fn triangle_count(&self) -> usize {
-        self.meshes.iter().map(|m| m.triangles.len()).sum()
+        self.content().instanced_triangles as usize
     }
 }

@@ -2,7 +2,8 @@
 //! and repeats flattened by `walk`) is tessellated or imported in local f64
 //! coordinates, transformed to world, moved by −origin_world into render
 //! space and only then rounded to f32. Material names resolve to indices of
-//! the scene's material table here.
+//! the scene's material table here. `instancing` decides which objects
+//! become leaves here and which prototypes.
 
 use std::collections::HashMap;
 
@@ -12,20 +13,28 @@ use super::desc::ShapeDesc;
 use super::load::{LoadedScene, SceneError, SceneErrorKind};
 use super::mesh::{self, LocalMesh};
 use super::obj::ObjAsset;
-use super::walk::{walk, Placed};
+use super::walk::Placed;
 use super::{Mesh, Sphere};
 
-/// The meshes and spheres of every object of `scene`, in render space
-/// around `origin_world`; `index` maps material names to table indices.
-pub(super) fn build_shapes(
-    scene: &LoadedScene,
-    index: &HashMap<&str, u32>,
-    origin_world: DVec3,
-) -> Result<(Vec<Mesh>, Vec<Sphere>), SceneError> {
-    let mut meshes = Vec::new();
-    let mut spheres = Vec::new();
-    walk(&scene.desc, true, &mut |placed| {
-        let resolve = |name: &str| resolve_material(scene, index, &placed, name);
+/// Meshes and spheres collected from placed leaf objects.
+#[derive(Default)]
+pub(super) struct Leaves {
+    pub meshes: Vec<Mesh>,
+    pub spheres: Vec<Sphere>,
+}
+
+impl Leaves {
+    /// Tessellates or imports one placed leaf object around `origin_world`
+    /// (zero for a prototype's local frame); `index` maps material names
+    /// to table indices.
+    pub fn add(
+        &mut self,
+        scene: &LoadedScene,
+        index: &HashMap<&str, u32>,
+        placed: &Placed,
+        origin_world: DVec3,
+    ) -> Result<(), SceneError> {
+        let resolve = |name: &str| resolve_material(scene, index, placed, name);
         let own = placed.object.material.as_deref().map(resolve).transpose()?;
         let at = Placement {
             world_from_local: placed.world_from_local,
@@ -34,8 +43,13 @@ pub(super) fn build_shapes(
             instance: placed.instance,
         };
         match &placed.object.shape {
-            ShapeDesc::Sphere { radius } => spheres.push(sphere(&at, *radius, own.unwrap_or(0))),
-            ShapeDesc::Obj { file } => meshes.push(obj_mesh(&scene.objs[file], own, resolve, &at)?),
+            ShapeDesc::Sphere { radius } => {
+                self.spheres.push(sphere(&at, *radius, own.unwrap_or(0)))
+            }
+            ShapeDesc::Obj { file } => {
+                self.meshes
+                    .push(obj_mesh(&scene.objs[file], own, resolve, &at)?)
+            }
             ShapeDesc::Mesh {
                 positions,
                 normals,
@@ -47,13 +61,14 @@ pub(super) fn build_shapes(
                     SceneError::at(&scene.path, SceneErrorKind::Invalid, key, m)
                 })?;
                 let m = vec![own.unwrap_or(0); kept.len()];
-                meshes.push(render_mesh(positions, normals, kept, m, &at));
+                self.meshes
+                    .push(render_mesh(positions, normals, kept, m, &at));
             }
             other => {
                 // None: an instance, which walk has expanded.
                 if let Some(local) = tessellate(other) {
                     let m = vec![own.unwrap_or(0); local.triangles.len()];
-                    meshes.push(render_mesh(
+                    self.meshes.push(render_mesh(
                         &local.positions,
                         &local.normals,
                         local.triangles,
@@ -64,8 +79,7 @@ pub(super) fn build_shapes(
             }
         }
         Ok(())
-    })?;
-    Ok((meshes, spheres))
+    }
 }
 
 /// The table index of material `name` as `placed` sees it (through its

@@ -5,47 +5,77 @@
 //!
 //! Normals are render-space (= world orientation) unit vectors; `n_geo` follows
 //! the triangle winding (or points out of a sphere) and is not flipped here.
+//! A hit on an instance is interpolated in the prototype's frame and carried
+//! to render space (see `triangle_interaction`).
 
-use glam::{Vec2, Vec3};
+use glam::{Mat3A, Vec2, Vec3};
 
-use super::{Mesh, Scene};
+use super::{Instance, Mesh, Scene};
 use crate::accel::Hit;
 use crate::geometry::{gamma, position_error, Ray, SurfaceInteraction};
 
 /// Builds the interaction for `hit` of `ray` in `scene`.
 pub fn surface_interaction(scene: &Scene, ray: &Ray, hit: &Hit) -> SurfaceInteraction {
-    let geom = hit.geom_id as usize;
-    if geom < scene.meshes.len() {
-        let mesh = &scene.meshes[geom];
-        let tri = mesh.triangles[hit.prim_id as usize];
-        let p = tri.map(|i| mesh.p_f32[i as usize]);
-        triangle_interaction(mesh, p, mesh.tri_material[hit.prim_id as usize], hit)
-    } else {
-        sphere_interaction(scene, ray, hit)
-    }
+    let Some((mesh, inst)) = scene.hit_mesh(hit) else {
+        return sphere_interaction(scene, ray, hit);
+    };
+    let tri = mesh.triangles[hit.prim_id as usize];
+    let p = tri.map(|i| mesh.p_f32[i as usize]);
+    triangle_interaction(mesh, p, mesh.tri_material[hit.prim_id as usize], hit, inst)
 }
 
 /// The interaction on triangle `hit.prim_id` of `mesh`, given its vertex
 /// positions `p` and material (shared by [`surface_interaction`] and
-/// `SurfaceTable`, so both compute the same bits).
+/// `SurfaceTable`, so both compute the same bits). With `inst`, `mesh` is a
+/// prototype's and `p` local: the point and its error bound go through the
+/// instance transform (pbrt-v4 §6.8.6: (1 + γ₃)|M|·e + γ₃(|M|·|p| + |t|)),
+/// the winding normal and each vertex normal through its normal map before
+/// interpolating (so the shading normal is the one the flattened mesh's
+/// unit vertex normals give), and the instance's labels replace the
+/// prototype's.
 #[inline(always)]
 pub(super) fn triangle_interaction(
     mesh: &Mesh,
     p: [Vec3; 3],
     material: u32,
     hit: &Hit,
+    inst: Option<&Instance>,
 ) -> SurfaceInteraction {
     let b = [1.0 - hit.u - hit.v, hit.u, hit.v];
-    let p_hit = p[0] * b[0] + p[1] * b[1] + p[2] * b[2];
-    let n_geo = (p[1] - p[0])
-        .cross(p[2] - p[0])
-        .normalize_or(hit.n_geo.normalize_or(Vec3::Z));
+    let mut p_hit = p[0] * b[0] + p[1] * b[1] + p[2] * b[2];
+    let mut p_error = position_error(b, p);
+    let mut semantic = mesh.semantic;
+    let mut instance = mesh.instance;
+    let mut n_cross = (p[1] - p[0]).cross(p[2] - p[0]);
+    if let Some(inst) = inst {
+        let m = inst.render_from_local_f32;
+        let abs_m = Mat3A::from_cols(
+            m.matrix3.x_axis.abs(),
+            m.matrix3.y_axis.abs(),
+            m.matrix3.z_axis.abs(),
+        );
+        p_error = (1.0 + gamma(3)) * abs_m.mul_vec3(p_error)
+            + gamma(3) * (abs_m.mul_vec3(p_hit.abs()) + Vec3::from(m.translation).abs());
+        p_hit = m.transform_point3(p_hit);
+        n_cross = inst.normal_to_render.mul_vec3(n_cross);
+        semantic = inst.semantic.unwrap_or(semantic);
+        instance = inst.instance.unwrap_or(instance);
+    }
+    // `hit.n_geo` is render space on every backend: the fallback needs no map.
+    let n_geo = n_cross.normalize_or(hit.n_geo.normalize_or(Vec3::Z));
     let mut n_shading = n_geo;
     let mut uv = Vec2::ZERO;
     if !mesh.normals.is_empty() || !mesh.uvs.is_empty() {
         let [i0, i1, i2] = mesh.triangles[hit.prim_id as usize].map(|i| i as usize);
         if !mesh.normals.is_empty() {
-            let n = mesh.normals[i0] * b[0] + mesh.normals[i1] * b[1] + mesh.normals[i2] * b[2];
+            let nv = |i: usize| match inst {
+                None => mesh.normals[i],
+                Some(inst) => inst
+                    .normal_to_render
+                    .mul_vec3(mesh.normals[i])
+                    .normalize_or_zero(),
+            };
+            let n = nv(i0) * b[0] + nv(i1) * b[1] + nv(i2) * b[2];
             if let Some(n) = n.try_normalize() {
                 n_shading = if n.dot(n_geo) < 0.0 { -n } else { n };
             }
@@ -56,13 +86,13 @@ pub(super) fn triangle_interaction(
     }
     SurfaceInteraction {
         p: p_hit,
-        p_error: position_error(b, p),
+        p_error,
         n_geo,
         n_shading,
         uv,
         material,
-        semantic: mesh.semantic,
-        instance: mesh.instance,
+        semantic,
+        instance,
     }
 }
 

@@ -13,7 +13,7 @@ use glam::Vec3;
 use super::huge::HugeArray;
 use super::surface::{sphere_interaction, triangle_interaction};
 use super::Scene;
-use crate::accel::Hit;
+use crate::accel::{Hit, NO_INSTANCE};
 use crate::geometry::{Ray, SurfaceInteraction};
 
 #[cfg(doc)]
@@ -30,8 +30,11 @@ struct TriangleRecord {
 /// Per-triangle records of every mesh of a scene, built once per frame.
 #[derive(Clone, Debug, Default)]
 pub struct SurfaceTable {
-    /// Index of each mesh's first record.
+    /// Index of each flat mesh's first record.
     first: Vec<usize>,
+    /// Per prototype, index of each of its meshes' first record (after
+    /// the flat meshes' records).
+    proto_first: Vec<Vec<usize>>,
     /// On huge pages: vertices read them at random (see `huge.rs`).
     records: HugeArray<TriangleRecord>,
 }
@@ -45,7 +48,20 @@ impl SurfaceTable {
             first.push(total);
             total += mesh.triangles.len();
         }
-        let records = scene.meshes.iter().flat_map(|mesh| {
+        let mut proto_first = Vec::with_capacity(scene.prototypes.len());
+        for p in &scene.prototypes {
+            let mut f = Vec::with_capacity(p.meshes.len());
+            for mesh in &p.meshes {
+                f.push(total);
+                total += mesh.triangles.len();
+            }
+            proto_first.push(f);
+        }
+        let meshes = scene
+            .meshes
+            .iter()
+            .chain(scene.prototypes.iter().flat_map(|p| &p.meshes));
+        let records = meshes.flat_map(|mesh| {
             mesh.triangles
                 .iter()
                 .zip(&mesh.tri_material)
@@ -56,6 +72,7 @@ impl SurfaceTable {
         });
         SurfaceTable {
             first,
+            proto_first,
             records: HugeArray::from_exact_iter(total, records),
         }
     }
@@ -64,14 +81,9 @@ impl SurfaceTable {
     /// 48-byte record may straddle); a hint only, results never change.
     #[inline]
     pub fn prefetch(&self, scene: &Scene, hit: &Hit) {
-        let geom = hit.geom_id as usize;
-        if geom >= scene.meshes.len() {
-            return;
-        }
         let Some(r) = self
-            .first
-            .get(geom)
-            .and_then(|&f| self.records.get(f + hit.prim_id as usize))
+            .first_record(scene, hit)
+            .and_then(|f| self.records.get(f + hit.prim_id as usize))
         else {
             return;
         };
@@ -97,12 +109,29 @@ impl SurfaceTable {
     #[inline]
     pub fn interaction(&self, scene: &Scene, ray: &Ray, hit: &Hit) -> SurfaceInteraction {
         let geom = hit.geom_id as usize;
-        if geom < scene.meshes.len() {
+        if hit.inst_id != NO_INSTANCE {
+            let inst = &scene.instances[hit.inst_id as usize];
+            let p = inst.prototype as usize;
+            let r = &self.records[self.proto_first[p][geom] + hit.prim_id as usize];
+            let mesh = &scene.prototypes[p].meshes[geom];
+            triangle_interaction(mesh, r.p, r.material, hit, Some(inst))
+        } else if geom < scene.meshes.len() {
             let r = &self.records[self.first[geom] + hit.prim_id as usize];
-            triangle_interaction(&scene.meshes[geom], r.p, r.material, hit)
+            triangle_interaction(&scene.meshes[geom], r.p, r.material, hit, None)
         } else {
             sphere_interaction(scene, ray, hit)
         }
+    }
+
+    /// Index of the first record of the mesh `hit` lies on (None: a sphere).
+    #[inline]
+    fn first_record(&self, scene: &Scene, hit: &Hit) -> Option<usize> {
+        let geom = hit.geom_id as usize;
+        if hit.inst_id == NO_INSTANCE {
+            return self.first.get(geom).copied();
+        }
+        let p = scene.instances.get(hit.inst_id as usize)?.prototype as usize;
+        self.proto_first.get(p)?.get(geom).copied()
     }
 }
 

@@ -4,6 +4,10 @@
 //!
 //! world_from_local composes right to left: instance frames, then the
 //! object's repeat offset, then its own transform.
+//!
+//! `walk_top` and `walk_prefab` walk one top-level object, or one prefab's
+//! contents in the prefab's own frame: what `instancing` needs to build a
+//! prototype once and to flatten what stays flat.
 
 use std::collections::BTreeMap;
 
@@ -77,6 +81,80 @@ pub fn walk<'a, E>(
     Ok(())
 }
 
+/// Calls `visit` for every leaf of top-level object `i` (repeats expanded).
+pub fn walk_top<'a, E>(
+    desc: &'a SceneDesc,
+    i: usize,
+    visit: &mut dyn FnMut(Placed<'a>) -> Result<(), E>,
+) -> Result<(), E> {
+    let top = Frame {
+        world_from_parent: DAffine3::IDENTITY,
+        maps: Vec::new(),
+        semantic: None,
+        instance: None,
+        via: String::new(),
+    };
+    walk_object(
+        desc,
+        &desc.objects[i],
+        format!("object[{i}]"),
+        &top,
+        true,
+        visit,
+    )
+}
+
+/// Calls `visit` for every leaf of prefab `prefab` as top-level object `i`
+/// instances it with `material_map`, in the prefab's frame (world_from_local
+/// is prefab_from_local) and without the object's semantic/instance
+/// overrides (the instance applies those).
+pub fn walk_prefab<'a, E>(
+    desc: &'a SceneDesc,
+    i: usize,
+    prefab: &str,
+    material_map: &'a BTreeMap<String, String>,
+    visit: &mut dyn FnMut(Placed<'a>) -> Result<(), E>,
+) -> Result<(), E> {
+    let inner = Frame {
+        world_from_parent: DAffine3::IDENTITY,
+        maps: vec![material_map],
+        semantic: None,
+        instance: None,
+        via: format!("object[{i}] → "),
+    };
+    walk_prefab_objects(desc, prefab, &inner, true, visit)
+}
+
+/// Walks the objects of prefab `prefab` in `frame` (unknown names are
+/// reported by validation before any walk).
+fn walk_prefab_objects<'a, E>(
+    desc: &'a SceneDesc,
+    prefab: &str,
+    frame: &Frame<'a>,
+    expand_repeats: bool,
+    visit: &mut dyn FnMut(Placed<'a>) -> Result<(), E>,
+) -> Result<(), E> {
+    let Some((p, prefab_desc)) = desc
+        .prefabs
+        .iter()
+        .enumerate()
+        .find(|(_, p)| p.name == prefab)
+    else {
+        return Ok(());
+    };
+    for (j, child) in prefab_desc.objects.iter().enumerate() {
+        walk_object(
+            desc,
+            child,
+            format!("prefab[{p}].object[{j}]"),
+            frame,
+            expand_repeats,
+            visit,
+        )?;
+    }
+    Ok(())
+}
+
 fn walk_object<'a, E>(
     desc: &'a SceneDesc,
     object: &'a ObjectDesc,
@@ -102,14 +180,6 @@ fn walk_object<'a, E>(
                 prefab,
                 material_map,
             } => {
-                let Some((p, prefab_desc)) = desc
-                    .prefabs
-                    .iter()
-                    .enumerate()
-                    .find(|(_, p)| &p.name == prefab)
-                else {
-                    continue; // reported by validation before any walk
-                };
                 let mut maps = frame.maps.clone();
                 maps.push(material_map);
                 let inner = Frame {
@@ -119,16 +189,7 @@ fn walk_object<'a, E>(
                     instance,
                     via: format!("{}{key} → ", frame.via),
                 };
-                for (j, child) in prefab_desc.objects.iter().enumerate() {
-                    walk_object(
-                        desc,
-                        child,
-                        format!("prefab[{p}].object[{j}]"),
-                        &inner,
-                        expand_repeats,
-                        visit,
-                    )?;
-                }
+                walk_prefab_objects(desc, prefab, &inner, expand_repeats, visit)?;
             }
             _ => visit(Placed {
                 key: key.clone(),

@@ -90,7 +90,8 @@ pub fn write_obj(loaded: &LoadedScene, scene: &Scene, obj_path: &Path) -> io::Re
     }
     let mut obj = format!("# parallax town export\nmtllib {mtl_name}\n");
     let (mut base, mut triangles) = (1u64, 0u64);
-    for (g, m) in scene.meshes.iter().enumerate() {
+    // Instances flattened: an OBJ file has no instancing.
+    for (g, m) in scene.flattened_meshes().enumerate() {
         let class = class_name(m.semantic).unwrap_or("unlabeled");
         let _ = writeln!(obj, "o {g}_{class}_{}", m.instance);
         for p in &m.p_render {

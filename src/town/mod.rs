@@ -277,7 +277,7 @@ pub fn geometry_hash(scene: &Scene) -> u64 {
             h = (h ^ b as u64).wrapping_mul(0x100_0000_01b3);
         }
     };
-    for m in &scene.meshes {
+    for m in scene.flattened_meshes() {
         eat(m.semantic as u64 | (m.instance as u64) << 8);
         for p in &m.p_render {
             let w = *p + scene.origin_world;

@@ -73,9 +73,7 @@ pub fn pre_carla_id(id: u8) -> u8 {
 
 /// `scene` with its meshes' semantic ids as they were before CARLA's table.
 pub fn with_pre_carla_ids(mut scene: Scene) -> Scene {
-    for m in &mut scene.meshes {
-        m.semantic = pre_carla_id(m.semantic);
-    }
+    scene.map_semantic(pre_carla_id);
     scene
 }
 

@@ -84,10 +84,9 @@ fn distance_to_edge(
     d: DVec3,
     hit: &parallax::accel::Hit,
 ) -> f64 {
-    let Some(m) = scene.meshes.get(hit.geom_id as usize) else {
+    let Some([a, b, c]) = scene.hit_triangle(hit) else {
         return f64::INFINITY; // spheres have no edges
     };
-    let [a, b, c] = m.triangles[hit.prim_id as usize].map(|i| m.p_render[i as usize]);
     let d = d.normalize();
     [(a, b), (b, c), (c, a)]
         .iter()

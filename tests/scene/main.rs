@@ -6,6 +6,7 @@ mod common;
 
 mod bad_input;
 mod inline_mesh;
+mod instancing;
 mod mtl_values;
 mod obj_polygons;
 mod sky_bad_input;

@@ -38,12 +38,12 @@ fn export_then_reimport_keeps_triangle_count_and_bounds() {
     assert_eq!(asset.materials.len(), stats.materials);
     assert!(asset.groups.iter().all(|g| g.material.is_some()));
 
-    let want = bounds(
-        scene
-            .meshes
+    let want = bounds(scene.flattened_meshes().flat_map(|m| {
+        m.p_render
             .iter()
-            .flat_map(|m| m.p_render.iter().map(|&p| p + scene.origin_world)),
-    );
+            .map(|&p| p + scene.origin_world)
+            .collect::<Vec<_>>()
+    }));
     let got = bounds(
         asset
             .groups
@@ -59,18 +59,24 @@ fn export_then_reimport_keeps_triangle_count_and_bounds() {
     // Face by face, in order: the re-imported triangle has the world
     // vertices and the material (MTL names carry no whitespace, the loader
     // prefixes the file name) of the scene's triangle it was written from.
-    let want_faces = scene.meshes.iter().flat_map(|m| {
-        m.triangles.iter().zip(&m.tri_material).map(|(t, &mi)| {
-            (
-                t.map(|i| m.p_render[i as usize] + scene.origin_world),
-                format!(
-                    "town02.obj/{}",
-                    scene.materials[mi as usize]
-                        .name
-                        .replace(char::is_whitespace, "_")
-                ),
-            )
-        })
+    let want_faces = scene.flattened_meshes().flat_map(|m| {
+        let faces: Vec<_> = m
+            .triangles
+            .iter()
+            .zip(&m.tri_material)
+            .map(|(t, &mi)| {
+                (
+                    t.map(|i| m.p_render[i as usize] + scene.origin_world),
+                    format!(
+                        "town02.obj/{}",
+                        scene.materials[mi as usize]
+                            .name
+                            .replace(char::is_whitespace, "_")
+                    ),
+                )
+            })
+            .collect();
+        faces
     });
     let got_faces = asset.groups.iter().flat_map(|g| {
         let name = &asset.materials[g.material.expect("usemtl")].name;

@@ -117,7 +117,7 @@ fn every_object_and_every_built_mesh_has_a_class() {
             .unwrap_or_else(|e| panic!("{e}"));
         let built = build_scene(&loaded, DVec3::ZERO).expect("town builds");
         let mut seen = [false; parallax::scene::semantic::CLASSES.len()];
-        for m in &built.meshes {
+        for m in built.flattened_meshes() {
             assert_ne!(m.semantic, 0, "a mesh of {name} is unlabeled");
             seen[m.semantic as usize] = true;
         }
@@ -199,7 +199,7 @@ fn town01_river_lies_under_a_bridge_on_every_street() {
                 glam::Vec3::NEG_Z,
             ))
             .expect("something below");
-        (hit.t, scene.meshes[hit.geom_id as usize].semantic)
+        (hit.t, scene.hit_labels(&hit).0)
     };
     for i in 0..=layout.nx {
         let x = i as f64 * layout.pitch_m;
@@ -238,10 +238,7 @@ fn town03_roundabout_has_ring_road_island_and_sidewalk_and_traffic_keeps_to_the_
         let hit = accel
             .intersect(&Ray::new(o, glam::Vec3::NEG_Z))
             .expect("ground");
-        (
-            10.0 - hit.t as f64,
-            scene.meshes[hit.geom_id as usize].semantic,
-        )
+        (10.0 - hit.t as f64, scene.hit_labels(&hit).0)
     };
     let id = |n: &str| class_id(n).unwrap();
     for deg in [0.0, 37.0, 90.0, 150.0, 222.0, 300.0] {
@@ -266,7 +263,10 @@ fn town03_roundabout_has_ring_road_island_and_sidewalk_and_traffic_keeps_to_the_
     }
     // No building within the ring, its sidewalk and a metre more.
     let clear = layout.roundabout_clear_m();
-    for m in scene.meshes.iter().filter(|m| m.semantic == id("building")) {
+    for m in scene
+        .flattened_meshes()
+        .filter(|m| m.semantic == id("building"))
+    {
         for p in &m.p_render {
             let w = *p + scene.origin_world;
             let d = (w.x - c[0]).hypot(w.y - c[1]);

@@ -12,7 +12,7 @@ use parallax::accel::{Accel, Backend, Ray};
 use parallax::render::recipe::BuiltScene;
 use parallax::scene::desc::ShapeDesc;
 use parallax::scene::semantic::class_id;
-use parallax::scene::{build_scene, LoadedScene, Scene};
+use parallax::scene::{build_scene, build_scene_with, Instancing, LoadedScene, Scene};
 use parallax::town::grade::{body_rotation_deg, Grade, MAX_GRADE};
 use parallax::town::layout::Layout;
 use parallax::town::routes::{routes, Turns};
@@ -117,10 +117,7 @@ fn rays_down_hit_the_road_at_the_field_height_under_routes_and_vehicles() {
         let hit = accel
             .intersect(&Ray::new(o.as_vec3(), Vec3::NEG_Z))
             .expect("the ground is everywhere");
-        (
-            scene.meshes[hit.geom_id as usize].semantic,
-            top - hit.t as f64,
-        )
+        (scene.hit_labels(&hit).0, top - hit.t as f64)
     };
     let mut checked = 0;
     for r in routes(&l, &Turns::new(l.lane_w_m)) {
@@ -208,7 +205,7 @@ fn buildings_never_float_and_the_hills_sit_on_the_field() {
     let scene = static_scene(&desc, "town04", origin);
     let building = class_id("building").unwrap();
     let mut lowest: std::collections::BTreeMap<u16, Vec<DVec3>> = Default::default();
-    for m in scene.meshes.iter().filter(|m| m.semantic == building) {
+    for m in scene.flattened_meshes().filter(|m| m.semantic == building) {
         let e = lowest.entry(m.instance).or_default();
         e.extend(m.p_render.iter().map(|&p| p + origin));
     }
@@ -256,7 +253,10 @@ fn level_towns_hash_as_before_the_grade_existed() {
         let loaded =
             load_town_frame(&desc, SEED, 0, CameraConfig::Normal, &town_file(name)).unwrap();
         // Hashed with the class ids of the time.
-        let scene = with_pre_carla_ids(build_scene(&loaded, DVec3::ZERO).unwrap());
+        // Flattened as then: instancing reorders meshes and rounds their
+        // vertices through the instance transform.
+        let flat = build_scene_with(&loaded, DVec3::ZERO, Instancing::Flat);
+        let scene = with_pre_carla_ids(flat.unwrap());
         assert_eq!(
             geometry_hash(&scene),
             want,

@@ -89,18 +89,16 @@ fn plane_t(scene: &Scene, accel: &impl Accel, o: DVec3, d: DVec3) -> f64 {
     let hit = accel
         .intersect(&Ray::new(o.as_vec3(), d.as_vec3()))
         .expect("a road pixel hits");
-    let m = &scene.meshes[hit.geom_id as usize];
-    let [a, b, c] = m.triangles[hit.prim_id as usize].map(|i| m.p_render[i as usize]);
+    let [a, b, c] = scene.hit_triangle(&hit).expect("a triangle");
     let n = (b - a).cross(c - a);
     (a - o).dot(n) / d.dot(n)
 }
 
 /// Distance from the hit point to the nearest edge of its triangle (metres).
 fn distance_to_edge(scene: &Scene, o: DVec3, d: DVec3, hit: &Hit) -> f64 {
-    let Some(m) = scene.meshes.get(hit.geom_id as usize) else {
+    let Some([a, b, c]) = scene.hit_triangle(hit) else {
         return f64::INFINITY;
     };
-    let [a, b, c] = m.triangles[hit.prim_id as usize].map(|i| m.p_render[i as usize]);
     let p = o + d * exact_t(scene, o, d, hit);
     [(a, b), (b, c), (c, a)]
         .iter()

@@ -233,10 +233,7 @@ fn town04_curves_are_asphalt_with_nothing_on_them_and_the_cut_corners_are_ground
         let hit = accel
             .intersect(&Ray::new(o.as_vec3(), Vec3::NEG_Z))
             .expect("the ground is everywhere");
-        (
-            scene.meshes[hit.geom_id as usize].semantic,
-            50.0 - hit.t as f64,
-        )
+        (scene.hit_labels(&hit).0, 50.0 - hit.t as f64)
     };
     // Level town: exact; graded: the surface chords the field within 3 mm.
     let tol = if grade.is_some() { 3e-3 } else { 1e-4 };

@@ -48,7 +48,7 @@ fn vertical_ray_at_the_crossing_hits_deck_then_highway_with_clearance() {
             Vec3::NEG_Z,
         )) {
             let z = top - hit.t as f64;
-            out.push((scene.meshes[hit.geom_id as usize].semantic, z));
+            out.push((scene.hit_labels(&hit).0, z));
             top = z - 1e-3;
         }
         out

@@ -121,7 +121,7 @@ fn ramp_surface_joins_the_highway_edge_without_gaps() {
                         glam::Vec3::NEG_Z,
                     ))
                     .unwrap_or_else(|| panic!("nothing below {w:?}"));
-                let c = scene.meshes[hit.geom_id as usize].semantic;
+                let c = scene.hit_labels(&hit).0;
                 let z = 3.0 - hit.t as f64;
                 assert!(
                     c == road || c == paint,
@@ -227,8 +227,7 @@ fn ramps_keep_clear_of_lots_buildings_and_furniture() {
     };
     let (mut low, mut near, mut triangles) = (0usize, 0usize, 0usize);
     for m in scene
-        .meshes
-        .iter()
+        .flattened_meshes()
         .filter(|m| standing.contains(&m.semantic))
     {
         let world: Vec<DVec3> = m.p_render.iter().map(|&p| p + scene.origin_world).collect();
