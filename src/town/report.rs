@@ -57,14 +57,14 @@ pub struct GeometryCounts {
 impl GeometryCounts {
     /// The counts of a built scene.
     pub fn of(scene: &Scene) -> Self {
-        let triangles = scene.triangle_count();
+        let c = scene.content();
         GeometryCounts {
-            meshes: scene.meshes.len(),
-            prototypes: 0,
-            instances: 0,
-            unique_triangles: triangles,
-            instanced_triangles: triangles,
-            spheres: scene.spheres.len(),
+            meshes: c.meshes as usize,
+            prototypes: c.prototypes as usize,
+            instances: c.instances as usize,
+            unique_triangles: c.unique_triangles as usize,
+            instanced_triangles: c.instanced_triangles as usize,
+            spheres: c.spheres as usize,
         }
     }
 }
