@@ -78,11 +78,11 @@ fn shared_prefabs_become_instances_and_emitters_spheres_and_singletons_stay_flat
     assert_eq!((s.content().prototypes, s.content().meshes), (0, 1));
 }
 
+/// A mesh as a comparable record: labels, triangles, materials, world vertices.
+type Record = (u8, u16, Vec<[u32; 3]>, Vec<u32>, Vec<DVec3>);
+
 /// Meshes as comparable records: labels, triangles and f64 world vertices.
-fn records(
-    meshes: impl Iterator<Item = Mesh>,
-    origin: DVec3,
-) -> Vec<(u8, u16, Vec<[u32; 3]>, Vec<u32>, Vec<DVec3>)> {
+fn records(meshes: impl Iterator<Item = Mesh>, origin: DVec3) -> Vec<Record> {
     let mut v: Vec<_> = meshes
         .map(|m| {
             let p = m.p_render.iter().map(|&p| p + origin).collect::<Vec<_>>();
@@ -90,7 +90,7 @@ fn records(
         })
         .collect();
     // Order-free: the instanced build lists flat meshes before instances.
-    let key = |r: &(u8, u16, Vec<[u32; 3]>, Vec<u32>, Vec<DVec3>)| {
+    let key = |r: &Record| {
         let p = r.4[0];
         (
             r.0,
