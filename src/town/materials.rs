@@ -56,11 +56,7 @@ fn diffuse(name: &str, albedo: [f64; 3]) -> MaterialDesc {
 /// A diffuse material with a procedural texture of real-world feature size.
 fn textured(name: &str, albedo: [f64; 3], kind: TextureKindDesc, seed: u32) -> MaterialDesc {
     MaterialDesc {
-        texture: Some(TextureDesc {
-            kind,
-            scale: 1.0,
-            seed,
-        }),
+        texture: Some(TextureDesc::new(kind, seed)),
         ..diffuse(name, albedo)
     }
 }
