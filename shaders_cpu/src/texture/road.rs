@@ -15,10 +15,10 @@ use super::{decals, plane, smoothstep, Pat};
 const ASPHALT_UNDER_PAINT: f32 = 0.09;
 
 /// The aggregate relief shared by asphalt and the paint on it: 4 mm stones
-/// proud of the binder by up to ~0.6 mm, 1.5 mm grit.
+/// proud of the binder by up to ~0.6 mm (one noise: this runs three times
+/// per seen road point).
 fn aggregate_height(p: DVec3, seed: u32) -> f32 {
     0.0006 * value_noise(p, 0.004, seed ^ 0x1A).max(-0.3)
-        + 0.0002 * value_noise(p, 0.0015, seed ^ 0x1B)
 }
 
 /// Asphalt. Decals (manholes, gratings, oil stains) and cracks, patches and
@@ -47,9 +47,9 @@ pub fn asphalt(base: Vec3, p: DVec3, n: Vec3, seed: u32, color: bool) -> Pat {
             DARK
         };
         let grit = 1.0 + 0.15 * value_noise(p, 0.0025, seed ^ 0x11);
-        let surface = 1.0 + 0.12 * fbm(p, 0.06, 3, 0.6, seed ^ 0x22);
-        // Wear and patching: 1.6 m down to 40 cm.
-        let wear = 1.0 + 0.2 * fbm(p, 1.6, 3, 0.55, seed ^ 0x33);
+        let surface = 1.0 + 0.12 * fbm(p, 0.06, 2, 0.6, seed ^ 0x22);
+        // Wear: 1.6 m and 80 cm.
+        let wear = 1.0 + 0.2 * fbm(p, 1.6, 2, 0.55, seed ^ 0x33);
         // Tyre streaks: 5 m long, 25 cm wide, along x and along y (town
         // grids), polished lighter or rubbed darker (mean 1).
         let sx = value_noise(DVec3::new(p.x / 20.0, p.y, 0.0), 0.25, seed ^ 0x44);
@@ -83,15 +83,21 @@ pub fn asphalt(base: Vec3, p: DVec3, n: Vec3, seed: u32, color: bool) -> Pat {
         }
         // Tar-sealed seams: 5 cm bands every 9.7 m along x and 13.3 m along
         // y, wandering ±3 cm; smooth (the aggregate filled) and dark.
-        let wob = 0.03 * value_noise(p, 0.7, seed ^ 0x55) as f64;
-        let sx = plane::edge_dist(plane::cell(p.x + wob, 9.7, 3.1).1, 9.7);
-        let sy = plane::edge_dist(plane::cell(p.y + wob, 13.3, 5.3).1, 13.3);
-        let tar = 1.0 - smoothstep(0.02, 0.03, sx.min(sy));
-        h = h * (1.0 - tar) + 0.0004 * tar;
-        f *= 1.0 - 0.55 * tar;
+        let seam = |wob: f64| {
+            let sx = plane::edge_dist(plane::cell(p.x + wob, 9.7, 3.1).1, 9.7);
+            let sy = plane::edge_dist(plane::cell(p.y + wob, 13.3, 5.3).1, 13.3);
+            sx.min(sy)
+        };
+        // The wobble's noise only near a seam.
+        if seam(0.0) < 0.07 {
+            let wob = 0.03 * value_noise(p, 0.7, seed ^ 0x55) as f64;
+            let tar = 1.0 - smoothstep(0.02, 0.03, seam(wob));
+            h = h * (1.0 - tar) + 0.0004 * tar;
+            f *= 1.0 - 0.55 * tar;
+        }
         // Cracks: zero lines of a 90 cm noise, ~1 cm wide, 4 mm deep, in
         // the third of the road where an 8 m field says the surface is old.
-        let old = fbm(p, 8.0, 2, 0.5, seed ^ 0x66);
+        let old = value_noise(p, 8.0, seed ^ 0x66);
         if old > 0.2 {
             let c = value_noise(p, 0.9, seed ^ 0x77).abs();
             let crack = (1.0 - smoothstep(0.004, 0.012, c)) * smoothstep(0.2, 0.3, old);

@@ -8,10 +8,10 @@ use super::noise::{cell_hash, cell_noise, fbm, unit, value_noise};
 use super::{plane, smoothstep, Pat};
 
 /// Plaster: trowel mottling (40 cm … 10 cm), grain (1 cm … 2 mm), relief
-/// of trowel ridges (0.5 mm) and sand (0.15 mm).
+/// of trowel ridges (0.5 mm at 5 cm) and sand (0.15 mm).
 pub fn plaster(base: Vec3, p: DVec3, seed: u32, color: bool) -> Pat {
     let h =
-        0.0005 * fbm(p, 0.05, 2, 0.5, seed ^ 0x71) + 0.00015 * value_noise(p, 0.002, seed ^ 0x72);
+        0.0005 * value_noise(p, 0.05, seed ^ 0x71) + 0.00015 * value_noise(p, 0.002, seed ^ 0x72);
     let c = if color {
         let trowel = 1.0 + 0.07 * fbm(p, 0.4, 3, 0.5, seed ^ 0x77);
         let grain = 1.0 + 0.06 * fbm(p, 0.01, 3, 0.7, seed ^ 0x88);
