@@ -10,7 +10,7 @@
 //! nominal albedo (`TextureKind::MEAN_PRESERVING`; road paint's wear and
 //! leaves' veins are the exceptions, documented on the kind); albedos are
 //! clamped to [0, 0.99]. Relief is a height in metres along the normal
-//! whose tangential gradient, by central-free forward differences 0.4 mm
+//! whose tangential gradient, by forward differences 0.4 mm
 //! apart in the tangent frame of the geometric normal, tilts the shading
 //! normal ([`Texture::bump_normal`]); the BSDF side (`bsdf::normal_map`)
 //! keeps that energy-conserving.
