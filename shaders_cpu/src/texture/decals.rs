@@ -92,7 +92,7 @@ fn grating(p: DVec3, seed: u32) -> Option<Pat> {
     let inner = a.abs() < HALF.0 - 0.03 && b.abs() < HALF.1 - 0.03;
     // Bars 1.5 cm, slots 2.5 cm along a.
     let slot = inner && plane::cell(a, 0.04, 0.0).1 > 0.015;
-    let edge = plane::edge_dist(plane::cell(a, 0.04, 0.0).1 - 0.015, 0.025) as f32;
+    let edge = plane::edge_dist(plane::cell(a, 0.04, 0.0).1 - 0.015, 0.025);
     if slot {
         let depth = plane::joint(edge, 0.0, 0.003, 0.03);
         return Some(Pat {
