@@ -12,7 +12,7 @@
 
 use glam::{DVec3, Vec3};
 use shaders_cpu::bsdf::{Bsdf, CoatBase};
-use shaders_cpu::texture::Texture;
+use shaders_cpu::texture::TexSample;
 
 use super::Material;
 use crate::geometry::SurfaceInteraction;
@@ -34,27 +34,32 @@ fn scale_alpha(alpha: f32, f: f32) -> f32 {
     (alpha * f * f).min(1.0)
 }
 
-/// `bsdf` with the texture's albedo (tint) and roughness at `p` (world).
-fn textured(bsdf: Bsdf, t: &Texture, p: DVec3, n: Vec3) -> Bsdf {
+/// The nominal colour a texture modulates in `bsdf`: a Lambertian albedo,
+/// a coat's base, a dielectric's tint (a conductor: white, roughness only).
+fn nominal(bsdf: &Bsdf) -> Vec3 {
     match bsdf {
-        Bsdf::Lambert { albedo } => Bsdf::Lambert {
-            albedo: t.albedo(albedo, p, n),
-        },
+        Bsdf::Lambert { albedo } => *albedo,
+        Bsdf::Dielectric { tint, .. } => *tint,
+        Bsdf::Coated { base, .. } => base.albedo_hint(),
+        _ => Vec3::ONE,
+    }
+}
+
+/// `bsdf` with the texture's albedo (tint) and roughness `s`.
+fn textured(bsdf: Bsdf, s: TexSample) -> Bsdf {
+    match bsdf {
+        Bsdf::Lambert { .. } => Bsdf::Lambert { albedo: s.albedo },
         Bsdf::Conductor { eta, k, alpha } => Bsdf::Conductor {
             eta,
             k,
-            alpha: scale_alpha(alpha, t.sample(Vec3::ONE, p, n).roughness),
+            alpha: scale_alpha(alpha, s.roughness),
         },
-        Bsdf::Dielectric { eta, alpha, tint } => {
-            let s = t.sample(tint, p, n);
-            Bsdf::Dielectric {
-                eta,
-                alpha: scale_alpha(alpha, s.roughness),
-                tint: s.albedo,
-            }
-        }
+        Bsdf::Dielectric { eta, alpha, .. } => Bsdf::Dielectric {
+            eta,
+            alpha: scale_alpha(alpha, s.roughness),
+            tint: s.albedo,
+        },
         Bsdf::Coated { base, eta, alpha } => {
-            let s = t.sample(base.albedo_hint(), p, n);
             let base = match base {
                 CoatBase::Lambert { .. } => CoatBase::Lambert { albedo: s.albedo },
                 CoatBase::Conductor { eta, k, alpha } => CoatBase::Conductor {
@@ -90,9 +95,11 @@ pub fn textured_bsdf(
     match material.texture {
         Some(t) if seen && material.le == Vec3::ZERO => {
             let p = origin_world + si.p.as_dvec3();
-            let bsdf = textured(material.bsdf, &t, p, si.n_geo);
+            let bsdf = material.bsdf;
+            let (s, normal) = t.shade(nominal(&bsdf), p, si.n_geo, si.n_shading);
+            let bsdf = textured(bsdf, s);
             if t.has_relief() {
-                bsdf.normal_mapped(t.bump_normal(p, si.n_geo, si.n_shading))
+                bsdf.normal_mapped(normal)
             } else {
                 bsdf
             }

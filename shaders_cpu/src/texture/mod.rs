@@ -209,6 +209,30 @@ impl Texture {
         self.bump > 0.0 && self.kind != TextureKind::Glass
     }
 
+    /// Albedo, roughness factor and the relief's shading normal
+    /// ([`Texture::bump_normal`]) at once: the pattern's colour pass gives
+    /// the height at `p_world`, so the gradient needs two more height passes.
+    pub fn shade(
+        &self,
+        base: Vec3,
+        p_world: DVec3,
+        n_geo: Vec3,
+        n_shading: Vec3,
+    ) -> (TexSample, Vec3) {
+        let p = p_world / self.scale;
+        let pat = self.pat(base, p, n_geo, true);
+        let sample = TexSample {
+            albedo: pat.c.clamp(Vec3::ZERO, Vec3::splat(0.99)),
+            roughness: pat.r.max(0.0),
+        };
+        let normal = if self.has_relief() {
+            self.tilt(p, n_geo, n_shading, pat.h)
+        } else {
+            n_shading
+        };
+        (sample, normal)
+    }
+
     /// The shading normal the relief gives at `p_world`: `n_shading` (unit,
     /// on the side of `n_geo`) tilted by `bump` × the height's tangential
     /// gradient (forward differences along the tangents of `n_geo`'s
@@ -219,8 +243,13 @@ impl Texture {
             return n_shading;
         }
         let p = p_world / self.scale;
-        let frame = Frame::from_z(n_geo);
         let h0 = self.pat(Vec3::ONE, p, n_geo, false).h;
+        self.tilt(p, n_geo, n_shading, h0)
+    }
+
+    /// [`Texture::bump_normal`] at texture-space `p` of height `h0`.
+    fn tilt(&self, p: DVec3, n_geo: Vec3, n_shading: Vec3, h0: f32) -> Vec3 {
+        let frame = Frame::from_z(n_geo);
         let dh = |t: Vec3| {
             let q = p + t.as_dvec3() * BUMP_STEP_M;
             (self.pat(Vec3::ONE, q, n_geo, false).h - h0) / BUMP_STEP_M as f32

@@ -46,7 +46,8 @@ pub fn asphalt(base: Vec3, p: DVec3, n: Vec3, seed: u32, color: bool) -> Pat {
         } else {
             DARK
         };
-        let grit = 1.0 + 0.15 * value_noise(p, 0.0025, seed ^ 0x11);
+        // Grit, 2 mm (a hash, not a noise: the colour pass runs per seen point).
+        let grit = 1.0 + 0.15 * cell_noise(p, 0.002, seed ^ 0x11);
         let surface = 1.0 + 0.12 * fbm(p, 0.06, 2, 0.6, seed ^ 0x22);
         // Wear: 1.6 m and 80 cm.
         let wear = 1.0 + 0.2 * fbm(p, 1.6, 2, 0.55, seed ^ 0x33);
