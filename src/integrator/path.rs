@@ -416,12 +416,18 @@ impl<A: Accel> PathContext<'_, A> {
         }
         if st.split.ahead && !bsdf.is_delta() {
             st.split.ahead = false;
-            if let (true, Bsdf::Lambert { albedo }) = (scene.filter_indirect, &bsdf) {
-                st.split.rho = st.beta * *albedo;
+            if let (true, Some(albedo)) = (scene.filter_indirect, bsdf.diffuse_albedo()) {
+                st.split.rho = st.beta * albedo;
                 st.split.behind_delta = st.bounces > 0;
             }
         }
-        let frame = Frame::from_z(si.n_shading);
+        // A relief's perturbed normal is a microsurface on the geometric
+        // normal (Schüssler et al. 2017, `bsdf::normal_map`), not a frame.
+        let frame = match bsdf {
+            Bsdf::NormalMapped { .. } => Frame::from_z(si.n_geo),
+            _ => Frame::from_z(si.n_shading),
+        };
+        let bsdf = bsdf.in_frame(&frame);
         let vertex = Vertex {
             wo_local: frame.to_local(wo),
             front: si.front_origin(),

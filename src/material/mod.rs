@@ -46,7 +46,7 @@ pub struct Material {
     pub two_sided_emission: bool,
     /// GT mask bits this surface sets (`mask_bits::TRANSPARENT`, `MIRROR`).
     pub mask: u8,
-    /// Procedural albedo variation of a Lambertian `bsdf` (world position).
+    /// Procedural albedo, roughness and relief (world position).
     pub texture: Option<shaders_cpu::texture::Texture>,
 }
 
@@ -70,7 +70,7 @@ impl MaterialView<'_> {
     #[inline]
     pub fn bsdf(&self, si: &SurfaceInteraction, wo: Vec3, seen: bool) -> Bsdf {
         let material = &self.materials[si.material as usize];
-        let textured = textured_bsdf(material, self.origin_world, si.p, si.n_geo, seen);
+        let textured = textured_bsdf(material, self.origin_world, si, seen);
         wet_bsdf(self.wetness, si, wo, textured)
     }
 
@@ -96,9 +96,8 @@ mod tests {
     /// A textured asphalt road material (nominal albedo 0.2).
     fn road() -> Material {
         let texture = TextureDesc {
-            kind: TextureKindDesc::Asphalt,
-            scale: 1.0,
-            seed: 3,
+            bump: 0.0,
+            ..TextureDesc::new(TextureKindDesc::Asphalt, 3)
         };
         Material {
             name: "road".into(),

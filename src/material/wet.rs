@@ -16,7 +16,7 @@
 
 use glam::{DVec3, Vec3};
 use shaders_cpu::bsdf::fresnel::fr_dielectric;
-use shaders_cpu::bsdf::{Bsdf, CoatBase};
+use shaders_cpu::bsdf::{Bsdf, CoatBase, Facet};
 
 use super::{mask_bits, Material};
 use crate::geometry::SurfaceInteraction;
@@ -187,12 +187,32 @@ pub fn wet_bsdf(wetness: Option<&Wetness>, si: &SurfaceInteraction, wo: Vec3, bs
     let Some(w) = wetness else {
         return bsdf;
     };
-    let base = match bsdf {
-        Bsdf::Lambert { albedo } => CoatBase::Lambert { albedo },
-        Bsdf::Conductor { eta, k, alpha } => CoatBase::Conductor { eta, k, alpha },
+    let (base, relief) = match bsdf {
+        Bsdf::Lambert { albedo } => (CoatBase::Lambert { albedo }, None),
+        Bsdf::Conductor { eta, k, alpha } => (CoatBase::Conductor { eta, k, alpha }, None),
+        // A relief stays under a damp film; a puddle is flat.
+        Bsdf::NormalMapped {
+            facet: Facet::Lambert { albedo },
+            wp,
+        } => (CoatBase::Lambert { albedo }, Some(wp)),
+        Bsdf::NormalMapped {
+            facet: Facet::Conductor { eta, k, alpha },
+            wp,
+        } => (CoatBase::Conductor { eta, k, alpha }, Some(wp)),
         // Glass and already-coated surfaces keep their own interface.
-        Bsdf::Dielectric { .. } | Bsdf::Coated { .. } => return bsdf,
+        Bsdf::Dielectric { .. } | Bsdf::Coated { .. } | Bsdf::NormalMapped { .. } => return bsdf,
     };
+    if let Some(wp) = relief {
+        let flat = match base {
+            CoatBase::Lambert { albedo } => Bsdf::Lambert { albedo },
+            CoatBase::Conductor { eta, k, alpha } => Bsdf::Conductor { eta, k, alpha },
+        };
+        return match state(w, si, wo) {
+            WetState::Dry => bsdf,
+            WetState::Wet => wet_bsdf(wetness, si, wo, flat).normal_mapped(wp),
+            WetState::Puddle => wet_bsdf(wetness, si, wo, flat),
+        };
+    }
     match state(w, si, wo) {
         WetState::Dry => bsdf,
         WetState::Wet => Bsdf::Coated {

@@ -1,6 +1,9 @@
 //! The town material library (linear RGB albedos, GGX conductors, glass)
 //! and the sky and sun of a town. Palettes name the materials buildings and
-//! vehicles draw from per instance.
+//! vehicles draw from per instance. Static-world surfaces carry procedural
+//! textures (albedo, roughness, relief; kinds in `scene::desc::material`):
+//! asphalt, worn paint, paving, kerbs, brick bonds, plaster, stone,
+//! concrete, glass, painted and brushed metal, wood, bark, grass and soil.
 
 use crate::scene::desc::{
     ConductorPreset, LightDesc, MaterialDesc, MaterialKindDesc, SkyDesc, TextureDesc,
@@ -13,6 +16,7 @@ use super::desc::{SkyKind, TerrainKind, TownDesc};
 pub const WALLS: &[&str] = &[
     "brick_red",
     "brick_brown",
+    "brick_buff",
     "plaster_cream",
     "plaster_white",
     "plaster_blue",
@@ -55,13 +59,14 @@ fn diffuse(name: &str, albedo: [f64; 3]) -> MaterialDesc {
 
 /// A diffuse material with a procedural texture of real-world feature size.
 fn textured(name: &str, albedo: [f64; 3], kind: TextureKindDesc, seed: u32) -> MaterialDesc {
+    with_texture(diffuse(name, albedo), kind, seed)
+}
+
+/// `m` with a procedural texture of real-world feature size.
+fn with_texture(m: MaterialDesc, kind: TextureKindDesc, seed: u32) -> MaterialDesc {
     MaterialDesc {
-        texture: Some(TextureDesc {
-            kind,
-            scale: 1.0,
-            seed,
-        }),
-        ..diffuse(name, albedo)
+        texture: Some(TextureDesc::new(kind, seed)),
+        ..m
     }
 }
 
@@ -159,10 +164,10 @@ pub fn town_materials(desc: &TownDesc) -> Vec<MaterialDesc> {
 /// Roads, their markings, curbs and sidewalks, the river, and the ground
 /// (its colour from the terrain kind), lawns and crops.
 fn ground_materials(desc: &TownDesc) -> Vec<MaterialDesc> {
-    let ground = match desc.terrain {
-        TerrainKind::Grass => [0.12, 0.2, 0.07],
-        TerrainKind::Dry => [0.3, 0.27, 0.15],
-        TerrainKind::Field => [0.22, 0.15, 0.09],
+    let (ground, ground_kind) = match desc.terrain {
+        TerrainKind::Grass => ([0.12, 0.2, 0.07], TextureKindDesc::Grass),
+        TerrainKind::Dry => ([0.3, 0.27, 0.15], TextureKindDesc::Soil),
+        TerrainKind::Field => ([0.22, 0.15, 0.09], TextureKindDesc::Soil),
     };
     vec![
         textured("asphalt", [0.08, 0.08, 0.085], TextureKindDesc::Asphalt, 1),
@@ -172,16 +177,26 @@ fn ground_materials(desc: &TownDesc) -> Vec<MaterialDesc> {
             TextureKindDesc::Asphalt,
             2,
         ),
-        diffuse("paint_white_road", [0.78, 0.78, 0.74]),
-        diffuse("paint_yellow_road", [0.75, 0.55, 0.1]),
-        textured("curb", [0.55, 0.54, 0.52], TextureKindDesc::Concrete, 3),
-        textured("sidewalk", [0.42, 0.41, 0.39], TextureKindDesc::Concrete, 4),
-        textured("gravel", [0.3, 0.28, 0.25], TextureKindDesc::Asphalt, 5),
-        textured("mud", [0.1, 0.085, 0.06], TextureKindDesc::Concrete, 6),
+        textured(
+            "paint_white_road",
+            [0.78, 0.78, 0.74],
+            TextureKindDesc::RoadPaint,
+            22,
+        ),
+        textured(
+            "paint_yellow_road",
+            [0.75, 0.55, 0.1],
+            TextureKindDesc::RoadPaint,
+            23,
+        ),
+        textured("curb", [0.55, 0.54, 0.52], TextureKindDesc::Kerb, 3),
+        textured("sidewalk", [0.42, 0.41, 0.39], TextureKindDesc::Paving, 4),
+        textured("gravel", [0.3, 0.28, 0.25], TextureKindDesc::Soil, 5),
+        textured("mud", [0.1, 0.085, 0.06], TextureKindDesc::Soil, 6),
         glass("water", [0.55, 0.7, 0.62]),
-        textured("ground", ground, TextureKindDesc::Foliage, 7),
-        textured("lawn", [0.1, 0.22, 0.06], TextureKindDesc::Foliage, 8),
-        textured("crop", [0.14, 0.24, 0.06], TextureKindDesc::Foliage, 9),
+        textured("ground", ground, ground_kind, 7),
+        textured("lawn", [0.1, 0.22, 0.06], TextureKindDesc::Grass, 8),
+        textured("crop", [0.14, 0.24, 0.06], TextureKindDesc::Grass, 9),
     ]
 }
 
@@ -189,9 +204,20 @@ fn ground_materials(desc: &TownDesc) -> Vec<MaterialDesc> {
 /// and glass of buildings and barns.
 fn building_materials() -> Vec<MaterialDesc> {
     vec![
-        diffuse("barn_red", [0.38, 0.08, 0.05]),
+        textured("barn_red", [0.38, 0.08, 0.05], TextureKindDesc::Wood, 24),
         textured("brick_red", [0.42, 0.17, 0.11], TextureKindDesc::Brick, 10),
-        textured("brick_brown", [0.3, 0.18, 0.12], TextureKindDesc::Brick, 11),
+        textured(
+            "brick_brown",
+            [0.3, 0.18, 0.12],
+            TextureKindDesc::BrickFlemish,
+            11,
+        ),
+        textured(
+            "brick_buff",
+            [0.55, 0.42, 0.28],
+            TextureKindDesc::BrickEnglish,
+            25,
+        ),
         textured(
             "plaster_cream",
             [0.72, 0.66, 0.52],
@@ -217,22 +243,46 @@ fn building_materials() -> Vec<MaterialDesc> {
             15,
         ),
         textured("concrete", [0.5, 0.5, 0.48], TextureKindDesc::Concrete, 16),
-        textured("stone", [0.56, 0.52, 0.45], TextureKindDesc::Concrete, 17),
-        metal("steel_dark", ConductorPreset::Iron, 0.5),
-        diffuse("roof", [0.2, 0.19, 0.19]),
-        diffuse("roof_tile", [0.38, 0.14, 0.08]),
-        diffuse("window_frame", [0.85, 0.85, 0.82]),
+        textured("stone", [0.56, 0.52, 0.45], TextureKindDesc::Stone, 17),
+        with_texture(
+            metal("steel_dark", ConductorPreset::Iron, 0.5),
+            TextureKindDesc::MetalBrushed,
+            26,
+        ),
+        textured("roof", [0.2, 0.19, 0.19], TextureKindDesc::Concrete, 27),
+        // Clay tiles: brick courses at twice the size (430 × 130 mm).
+        MaterialDesc {
+            texture: Some(TextureDesc {
+                scale: 2.0,
+                ..TextureDesc::new(TextureKindDesc::Brick, 28)
+            }),
+            ..diffuse("roof_tile", [0.38, 0.14, 0.08])
+        },
+        textured(
+            "window_frame",
+            [0.85, 0.85, 0.82],
+            TextureKindDesc::MetalPainted,
+            29,
+        ),
         diffuse("interior", [0.04, 0.035, 0.03]),
-        diffuse("door", [0.25, 0.14, 0.07]),
-        glass("glass", [0.9, 0.95, 0.95]),
-        glass("glass_tower", [0.55, 0.7, 0.75]),
+        textured("door", [0.25, 0.14, 0.07], TextureKindDesc::Wood, 30),
+        with_texture(
+            glass("glass", [0.9, 0.95, 0.95]),
+            TextureKindDesc::Glass,
+            31,
+        ),
+        with_texture(
+            glass("glass_tower", [0.55, 0.7, 0.75]),
+            TextureKindDesc::Glass,
+            32,
+        ),
     ]
 }
 
 /// Bark and foliage of trees and bushes.
 fn vegetation_materials() -> Vec<MaterialDesc> {
     vec![
-        textured("bark", [0.22, 0.15, 0.09], TextureKindDesc::Concrete, 18),
+        textured("bark", [0.22, 0.15, 0.09], TextureKindDesc::Bark, 18),
         textured("foliage", [0.09, 0.22, 0.05], TextureKindDesc::Foliage, 19),
         textured(
             "foliage_light",
@@ -252,8 +302,17 @@ fn vegetation_materials() -> Vec<MaterialDesc> {
 /// Poles and the street lamp's glass.
 fn pole_materials() -> Vec<MaterialDesc> {
     vec![
-        metal("pole_metal", ConductorPreset::Aluminium, 0.45),
-        diffuse("pole_paint", [0.12, 0.13, 0.12]),
+        with_texture(
+            metal("pole_metal", ConductorPreset::Aluminium, 0.45),
+            TextureKindDesc::MetalBrushed,
+            33,
+        ),
+        textured(
+            "pole_paint",
+            [0.12, 0.13, 0.12],
+            TextureKindDesc::MetalPainted,
+            34,
+        ),
         diffuse("lamp_glass", [0.9, 0.9, 0.85]),
     ]
 }
@@ -275,7 +334,12 @@ fn emitter_materials() -> Vec<MaterialDesc> {
 /// Traffic-light housings and lenses (off and lit) and road signs.
 fn sign_materials() -> Vec<MaterialDesc> {
     vec![
-        diffuse("signal_housing", [0.06, 0.06, 0.05]),
+        textured(
+            "signal_housing",
+            [0.06, 0.06, 0.05],
+            TextureKindDesc::MetalPainted,
+            35,
+        ),
         // Signal lenses: dark tinted glass when off (a clear coat over a
         // dark base), emitters when lit (`signals` picks one per head).
         lens("signal_red", [0.1, 0.015, 0.01]),
@@ -284,9 +348,24 @@ fn sign_materials() -> Vec<MaterialDesc> {
         emitter("signal_red_lit", SIGNAL_RADIANCE[0]),
         emitter("signal_amber_lit", SIGNAL_RADIANCE[1]),
         emitter("signal_green_lit", SIGNAL_RADIANCE[2]),
-        diffuse("sign_red", [0.55, 0.03, 0.03]),
-        diffuse("sign_white", [0.8, 0.8, 0.8]),
-        diffuse("sign_blue", [0.04, 0.15, 0.5]),
+        textured(
+            "sign_red",
+            [0.55, 0.03, 0.03],
+            TextureKindDesc::MetalPainted,
+            36,
+        ),
+        textured(
+            "sign_white",
+            [0.8, 0.8, 0.8],
+            TextureKindDesc::MetalPainted,
+            37,
+        ),
+        textured(
+            "sign_blue",
+            [0.04, 0.15, 0.5],
+            TextureKindDesc::MetalPainted,
+            38,
+        ),
     ]
 }
 
@@ -355,6 +434,56 @@ pub fn town_sun(desc: &TownDesc) -> LightDesc {
 mod tests {
     use super::*;
     use crate::town::props::LENS_SLOTS;
+
+    #[test]
+    fn static_surfaces_carry_their_texture_kind() {
+        use TextureKindDesc as K;
+        let desc = crate::town::source::load_named_town("town01", None)
+            .unwrap()
+            .desc;
+        let all = town_materials(&desc);
+        let kind = |n: &str| {
+            let m = all.iter().find(|m| m.name == n).unwrap();
+            m.texture.map(|t| t.kind)
+        };
+        let expect = [
+            ("asphalt", K::Asphalt),
+            ("paint_white_road", K::RoadPaint),
+            ("paint_yellow_road", K::RoadPaint),
+            ("sidewalk", K::Paving),
+            ("curb", K::Kerb),
+            ("brick_red", K::Brick),
+            ("brick_brown", K::BrickFlemish),
+            ("brick_buff", K::BrickEnglish),
+            ("stone", K::Stone),
+            ("plaster_white", K::Plaster),
+            ("concrete", K::Concrete),
+            ("glass", K::Glass),
+            ("steel_dark", K::MetalBrushed),
+            ("pole_metal", K::MetalBrushed),
+            ("pole_paint", K::MetalPainted),
+            ("door", K::Wood),
+            ("bark", K::Bark),
+            ("lawn", K::Grass),
+            ("mud", K::Soil),
+        ];
+        for (name, k) in expect {
+            assert_eq!(kind(name), Some(k), "{name}");
+        }
+        // Everything of the static world is textured but water and the
+        // dark room interiors.
+        let bare: Vec<String> = [
+            ground_materials(&desc),
+            building_materials(),
+            vegetation_materials(),
+        ]
+        .concat()
+        .into_iter()
+        .filter(|m| m.texture.is_none())
+        .map(|m| m.name)
+        .collect();
+        assert_eq!(bare, ["water", "interior"]);
+    }
 
     #[test]
     fn names_are_unique_every_palette_and_prefab_material_is_defined_and_the_ground_follows_the_terrain(

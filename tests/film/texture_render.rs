@@ -7,6 +7,7 @@ use crate::common;
 use common::{render, scene_from_toml};
 use glam::{DVec3, Vec3};
 use parallax::accel::Backend;
+use parallax::geometry::SurfaceInteraction;
 use parallax::material::{textured_albedo, textured_bsdf};
 use parallax::scene::build_scene;
 use shaders_cpu::bsdf::Bsdf;
@@ -54,21 +55,27 @@ fn texture_depends_on_world_position_not_render_origin() {
                 (i % 5) as f64 / 1024.0,
             );
             let n = if i % 2 == 0 { Vec3::Z } else { Vec3::Y };
-            let albedo =
-                |s: &parallax::scene::Scene, m: &parallax::scene::Material| match textured_bsdf(
-                    m,
-                    s.origin_world,
-                    (p_world - s.origin_world).as_vec3(),
-                    n,
-                    true,
-                ) {
-                    Bsdf::Lambert { albedo } => albedo,
-                    other => panic!("textured diffuse became {other:?}"),
+            // Albedo and relief (the bumped normal) alike.
+            let albedo = |s: &parallax::scene::Scene, m: &parallax::scene::Material| {
+                let si = SurfaceInteraction {
+                    p: (p_world - s.origin_world).as_vec3(),
+                    p_error: Vec3::ZERO,
+                    n_geo: n,
+                    n_shading: n,
+                    uv: glam::Vec2::ZERO,
+                    material: 0,
+                    semantic: 0,
+                    instance: 0,
                 };
+                match textured_bsdf(m, s.origin_world, &si, true) {
+                    b @ Bsdf::NormalMapped { wp, .. } => (b.diffuse_albedo().unwrap(), wp),
+                    other => panic!("textured diffuse became {other:?}"),
+                }
+            };
             let (va, vb) = (albedo(&a, m_a), albedo(&b, m_b));
             assert_eq!(va, vb, "{} at {p_world}", m_a.name);
-            assert_eq!(va, textured_albedo(m_a, p_world, n));
-            distinct.insert(va.x.to_bits());
+            assert_eq!(va.0, textured_albedo(m_a, p_world, n));
+            distinct.insert(va.0.x.to_bits());
         }
     }
     assert!(

@@ -6,6 +6,7 @@ mod common;
 
 mod analytic_furnace;
 mod analytic_lights;
+mod bump_furnace;
 mod bvh;
 mod media_analytic;
 mod noise_town;

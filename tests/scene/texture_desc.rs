@@ -34,7 +34,8 @@ fn texture_key_parses_with_defaults_and_round_trips() {
         TextureDesc {
             kind: TextureKindDesc::Brick,
             scale: 1.0,
-            seed: 0
+            seed: 0,
+            bump: 1.0,
         }
     );
     let text = parallax::scene::serialize_scene(&loaded.desc);
@@ -45,9 +46,24 @@ fn texture_key_parses_with_defaults_and_round_trips() {
 
 #[test]
 fn texture_misuse_is_rejected_with_key_path() {
-    let e = error_of("kind = \"conductor\"\npreset = \"gold\"\ntexture = { kind = \"asphalt\" }");
+    // Every kind but emitters takes a texture.
+    let e = error_of(
+        "kind = \"emissive\"\nradiance = [1.0, 1.0, 1.0]\ntexture = { kind = \"asphalt\" }",
+    );
     assert!(
-        e.contains("material[0].texture") && e.contains("diffuse"),
+        e.contains("material[0].texture") && e.contains("emissive"),
+        "{e}"
+    );
+    let metal = scene_from_toml(&scene_with(
+        "kind = \"conductor\"\npreset = \"iron\"\nroughness = 0.4\ntexture = { kind = \"metal_brushed\", bump = 0.5 }",
+    ));
+    let t = metal.desc.materials[0].texture.unwrap();
+    assert_eq!((t.kind, t.bump), (TextureKindDesc::MetalBrushed, 0.5));
+    let e = error_of(
+        "kind = \"diffuse\"\nalbedo = [0.4, 0.4, 0.4]\ntexture = { kind = \"stone\", bump = 5.0 }",
+    );
+    assert!(
+        e.contains("material[0].texture.bump") && e.contains('5'),
         "{e}"
     );
     let e = error_of("kind = \"diffuse\"\nalbedo = [0.4, 0.4, 0.4]\ntexture = { kind = \"asphalt\", scale = 0.0 }");

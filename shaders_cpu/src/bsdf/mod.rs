@@ -3,12 +3,14 @@
 //! This file is the contract (pbrt-v4 `base/bxdf.h` style); each family lives in
 //! its own file: `lambert` (pbrt-v4 §9.2), `conductor` (§9.4, §9.6),
 //! `dielectric` (§9.5, §9.7), `coat` (a dielectric coat over a base, after
-//! Weidlich & Wilkie 2007), with `microfacet` (GGX, §9.6) and `fresnel`
-//! (§9.3). `eval` is f without the cosine; `pdf` is per solid angle; a delta
+//! Weidlich & Wilkie 2007), `normal_map` (a perturbed normal as a
+//! microsurface, Schüssler et al. 2017), with `microfacet` (GGX, §9.6) and
+//! `fresnel` (§9.3). `eval` is f without the cosine; `pdf` is per solid angle; a delta
 //! sample carries f = (specular weight)/|cosθi| so f·|cosθi|/pdf is the weight.
 
 pub mod fresnel;
 pub mod microfacet;
+pub mod normal_map;
 
 mod coat;
 mod conductor;
@@ -16,7 +18,9 @@ mod dielectric;
 mod lambert;
 mod presets;
 
+use crate::sampling::Frame;
 pub use coat::CoatBase;
+pub use normal_map::Facet;
 pub use presets::roughness_to_alpha;
 
 use glam::{Vec2, Vec3};
@@ -82,6 +86,15 @@ pub enum Bsdf {
         /// GGX roughness alpha of the coat (< 1e-3: smooth, a delta lobe).
         alpha: f32,
     },
+    /// A non-delta reflection-only BSDF under a perturbed normal
+    /// (`normal_map`); evaluated in the frame of the geometric normal.
+    NormalMapped {
+        /// The BSDF on the perturbed facet.
+        facet: Facet,
+        /// The perturbed normal: in the local frame once [`Bsdf::in_frame`]
+        /// has run (before that, in the space the frame is built in).
+        wp: Vec3,
+    },
 }
 
 impl Bsdf {
@@ -93,6 +106,7 @@ impl Bsdf {
             Bsdf::Conductor { eta, k, alpha } => conductor::eval(eta, k, alpha, wo, wi),
             Bsdf::Dielectric { eta, alpha, tint } => dielectric::eval(eta, alpha, tint, wo, wi),
             Bsdf::Coated { base, eta, alpha } => coat::eval(&base, eta, alpha, wo, wi),
+            Bsdf::NormalMapped { facet, wp } => normal_map::eval(&facet, wp, wo, wi),
         }
     }
     /// Pdf per solid angle of sampling `wi` given `wo` (zero for delta lobes).
@@ -103,6 +117,7 @@ impl Bsdf {
             Bsdf::Conductor { alpha, .. } => conductor::pdf(alpha, wo, wi),
             Bsdf::Dielectric { eta, alpha, .. } => dielectric::pdf(eta, alpha, wo, wi),
             Bsdf::Coated { base, eta, alpha } => coat::pdf(&base, eta, alpha, wo, wi),
+            Bsdf::NormalMapped { facet, wp } => normal_map::pdf(&facet, wp, wo, wi),
         }
     }
     /// Samples `wi` given `wo`, a lobe-selection number and a 2D sample.
@@ -115,6 +130,7 @@ impl Bsdf {
                 dielectric::sample(eta, alpha, tint, wo, u_lobe, u)
             }
             Bsdf::Coated { base, eta, alpha } => coat::sample(&base, eta, alpha, wo, u_lobe, u),
+            Bsdf::NormalMapped { facet, wp } => normal_map::sample(&facet, wp, wo, u_lobe, u),
         }
     }
     /// Whether every lobe is a delta (eval and pdf are then always zero).
@@ -127,6 +143,7 @@ impl Bsdf {
             }
             Bsdf::Dielectric { eta, alpha, .. } => dielectric::is_delta(eta, alpha),
             Bsdf::Coated { base, alpha, .. } => coat::is_delta(&base, alpha),
+            Bsdf::NormalMapped { .. } => false,
         }
     }
     /// A rough colour for debug views: Lambert albedo, a conductor's normal-
@@ -137,6 +154,55 @@ impl Bsdf {
             Bsdf::Conductor { eta, k, .. } => fresnel::fr_complex_rgb(1.0, eta, k),
             Bsdf::Dielectric { tint, .. } => tint,
             Bsdf::Coated { base, .. } => base.albedo_hint(),
+            Bsdf::NormalMapped { facet, .. } => facet.albedo_hint(),
+        }
+    }
+
+    /// The Lambertian reflectance of a diffuse surface, bumped or not
+    /// (what image-space filtering divides by); None for other models.
+    pub fn diffuse_albedo(&self) -> Option<Vec3> {
+        match *self {
+            Bsdf::Lambert { albedo }
+            | Bsdf::NormalMapped {
+                facet: Facet::Lambert { albedo },
+                ..
+            } => Some(albedo),
+            _ => None,
+        }
+    }
+
+    /// `self` under the perturbed normal `wp` (unit, in the space the
+    /// shading frame will be built in, on the geometric normal's side):
+    /// [`Bsdf::NormalMapped`] for a reflection-only model without delta
+    /// lobes, `self` unchanged otherwise (glass, mirrors, smooth coats).
+    pub fn normal_mapped(self, wp: Vec3) -> Bsdf {
+        let facet = match self {
+            Bsdf::Lambert { albedo } => Facet::Lambert { albedo },
+            Bsdf::Conductor { eta, k, alpha } if !self.is_delta() => {
+                Facet::Conductor { eta, k, alpha }
+            }
+            Bsdf::Coated { base, eta, alpha }
+                if !base.is_delta()
+                    && !microfacet::TrowbridgeReitz::new(alpha).effectively_smooth() =>
+            {
+                Facet::Coated { base, eta, alpha }
+            }
+            _ => return self,
+        };
+        Bsdf::NormalMapped { facet, wp }
+    }
+
+    /// Expresses a [`Bsdf::NormalMapped`]'s normal in `frame` (built on the
+    /// geometric normal, flipped as the surface was), mirrored to the
+    /// frame's upper side; other models unchanged.
+    pub fn in_frame(self, frame: &Frame) -> Bsdf {
+        match self {
+            Bsdf::NormalMapped { facet, wp } => {
+                let local = frame.to_local(wp);
+                let wp = if local.z < 0.0 { -local } else { local };
+                Bsdf::NormalMapped { facet, wp }
+            }
+            other => other,
         }
     }
 }

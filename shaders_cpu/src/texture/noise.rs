@@ -37,6 +37,13 @@ fn mix(mut h: u32, c: i64) -> u32 {
     h ^ (h >> 16)
 }
 
+/// The `k`-th further hash drawn from `h` (one mixing round): independent
+/// draws from one cell hash, where shifting its bits would not be uniform.
+#[inline]
+pub fn rehash(h: u32, k: u32) -> u32 {
+    mix(h, k as i64 + 0x2F)
+}
+
 /// A hash mapped to [-1, 1) (uniform, mean 0).
 #[inline]
 pub fn signed_unit(h: u32) -> f32 {

@@ -9,7 +9,6 @@ use glam::Vec3;
 
 use crate::accel::{Accel, Hit, Ray};
 use crate::integrator::PathContext;
-use shaders_cpu::bsdf::Bsdf;
 
 /// The split's state along one path.
 #[derive(Clone, Copy, Debug, Default)]
@@ -63,9 +62,9 @@ impl<A: Accel> PathContext<'_, A> {
     pub(super) fn first_lambert_albedo(&self, ray: &Ray, hit: &Hit) -> Option<Vec3> {
         let scene = self.scene;
         let si = self.surfaces.interaction(scene, ray, hit);
-        match scene.material_view().bsdf(&si, -ray.d, true) {
-            Bsdf::Lambert { albedo } => Some(albedo),
-            _ => None,
-        }
+        scene
+            .material_view()
+            .bsdf(&si, -ray.d, true)
+            .diffuse_albedo()
     }
 }

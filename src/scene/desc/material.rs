@@ -15,9 +15,11 @@ pub struct MaterialDesc {
     /// Explicit GT mask flags, replacing the ones derived from the kind.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mask: Option<Vec<MaskFlag>>,
-    /// Procedural albedo variation (diffuse materials only), e.g.
-    /// `texture = { kind = "asphalt", scale = 1.0, seed = 3 }`. A function of
-    /// world position, with mean over a large area equal to `albedo`.
+    /// Procedural albedo, roughness and relief, e.g.
+    /// `texture = { kind = "asphalt", scale = 1.0, seed = 3 }`: a function of
+    /// world position whose mean albedo over a large area is the material's
+    /// (`albedo`, a coat's diffuse base, a dielectric's `tint`); emitters
+    /// take none.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub texture: Option<TextureDesc>,
     /// The scattering model and its parameters.
@@ -25,7 +27,8 @@ pub struct MaterialDesc {
     pub kind: MaterialKindDesc,
 }
 
-/// A procedural texture on a diffuse material's albedo.
+/// A procedural texture: albedo, roughness and relief (bump) varying with
+/// world position, e.g. `texture = { kind = "brick_flemish", seed = 3 }`.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TextureDesc {
@@ -38,40 +41,128 @@ pub struct TextureDesc {
     /// Decorrelates materials sharing a kind (default 0).
     #[serde(default)]
     pub seed: u32,
+    /// Relief multiplier in [0, 4] (default 1: the kind's own relief, e.g.
+    /// recessed mortar joints; 0: flat, albedo and roughness only).
+    #[serde(default = "default_bump")]
+    pub bump: f64,
 }
 
-/// The texture patterns (`shaders_cpu::texture::TextureKind`).
+/// The texture kinds of the scene format (`shaders_cpu::texture::TextureKind`
+/// documents each): the names other modules give materials by.
+///
+/// `asphalt`, `road_paint`, `paving`, `kerb`, `brick` (stretcher bond),
+/// `brick_flemish`, `brick_english`, `plaster`, `stone`, `concrete`,
+/// `glass`, `metal_painted`, `metal_brushed`, `wood`, `bark`, `leaves`,
+/// `foliage`, `grass`, `soil`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum TextureKindDesc {
-    /// Road asphalt: 4 mm aggregate speckle, grit, wear patches up to 1.6 m.
+    /// Road asphalt: aggregate, cracks, patches, tar seams, tyre wear,
+    /// manhole covers, drain gratings and oil stains.
     Asphalt,
-    /// Concrete: mottling (60 cm … 4 cm), aggregate texture, sand grain.
-    Concrete,
-    /// Running-bond brick, 215 × 65 mm with 10 mm mortar, in the wall plane
-    /// (paving on surfaces facing up or down).
+    /// Worn road-marking paint: wear, gaps showing the asphalt, aggregate relief.
+    RoadPaint,
+    /// Paving slabs (600 × 600 mm) with recessed joints.
+    Paving,
+    /// Kerb stones (915 mm long) with joints.
+    Kerb,
+    /// Stretcher-bond brick, 215 × 65 mm with 10 mm recessed mortar.
     Brick,
-    /// Plaster: low-amplitude trowel mottling and grain.
+    /// Flemish-bond brick: stretchers and headers alternating in each course.
+    BrickFlemish,
+    /// English-bond brick: courses of stretchers and of headers alternating.
+    BrickEnglish,
+    /// Rendered plaster: trowel mottling, grain, fine relief.
     Plaster,
-    /// Foliage: per-leaf (5 cm) brightness and hue, clumps, veins.
+    /// Ashlar stone: courses of dressed blocks of varied length.
+    Stone,
+    /// Concrete: mottling, aggregate, sand, formwork pores.
+    Concrete,
+    /// Glass: faint tint variation and smudges (on the transmission tint).
+    Glass,
+    /// Painted metal: paint with chips and rust spots, orange-peel relief.
+    MetalPainted,
+    /// Brushed metal: roughness streaks along the horizontal.
+    MetalBrushed,
+    /// Wood: planks with grain along the horizontal, knots.
+    Wood,
+    /// Bark: vertical furrows and ridges with strong relief.
+    Bark,
+    /// Leaves: leaf-scale hue and brightness, midribs and veins.
+    Leaves,
+    /// Foliage seen from afar: per-leaf brightness and hue, clumps, veins.
     Foliage,
+    /// Grass: blades, clumps and dry patches.
+    Grass,
+    /// Soil: clods, pebbles and damp patches.
+    Soil,
+}
+
+impl TextureKindDesc {
+    /// Every kind, in the order of the list above.
+    pub const ALL: [TextureKindDesc; 19] = [
+        TextureKindDesc::Asphalt,
+        TextureKindDesc::RoadPaint,
+        TextureKindDesc::Paving,
+        TextureKindDesc::Kerb,
+        TextureKindDesc::Brick,
+        TextureKindDesc::BrickFlemish,
+        TextureKindDesc::BrickEnglish,
+        TextureKindDesc::Plaster,
+        TextureKindDesc::Stone,
+        TextureKindDesc::Concrete,
+        TextureKindDesc::Glass,
+        TextureKindDesc::MetalPainted,
+        TextureKindDesc::MetalBrushed,
+        TextureKindDesc::Wood,
+        TextureKindDesc::Bark,
+        TextureKindDesc::Leaves,
+        TextureKindDesc::Foliage,
+        TextureKindDesc::Grass,
+        TextureKindDesc::Soil,
+    ];
 }
 
 impl TextureDesc {
+    /// A texture of `kind` at real-world size with its own relief.
+    pub fn new(kind: TextureKindDesc, seed: u32) -> Self {
+        TextureDesc {
+            kind,
+            scale: 1.0,
+            seed,
+            bump: 1.0,
+        }
+    }
+
     /// The shading-side texture.
     pub fn build(&self) -> shaders_cpu::texture::Texture {
         use shaders_cpu::texture::TextureKind as K;
         let kind = match self.kind {
             TextureKindDesc::Asphalt => K::Asphalt,
-            TextureKindDesc::Concrete => K::Concrete,
+            TextureKindDesc::RoadPaint => K::RoadPaint,
+            TextureKindDesc::Paving => K::Paving,
+            TextureKindDesc::Kerb => K::Kerb,
             TextureKindDesc::Brick => K::Brick,
+            TextureKindDesc::BrickFlemish => K::BrickFlemish,
+            TextureKindDesc::BrickEnglish => K::BrickEnglish,
             TextureKindDesc::Plaster => K::Plaster,
+            TextureKindDesc::Stone => K::Stone,
+            TextureKindDesc::Concrete => K::Concrete,
+            TextureKindDesc::Glass => K::Glass,
+            TextureKindDesc::MetalPainted => K::MetalPainted,
+            TextureKindDesc::MetalBrushed => K::MetalBrushed,
+            TextureKindDesc::Wood => K::Wood,
+            TextureKindDesc::Bark => K::Bark,
+            TextureKindDesc::Leaves => K::Leaves,
             TextureKindDesc::Foliage => K::Foliage,
+            TextureKindDesc::Grass => K::Grass,
+            TextureKindDesc::Soil => K::Soil,
         };
         shaders_cpu::texture::Texture {
             kind,
             scale: self.scale,
             seed: self.seed,
+            bump: self.bump as f32,
         }
     }
 }
@@ -214,6 +305,9 @@ pub fn conductor_eta_k(
 }
 
 fn default_scale() -> f64 {
+    1.0
+}
+fn default_bump() -> f64 {
     1.0
 }
 fn default_ior() -> f64 {

@@ -1,5 +1,5 @@
 //! The `[[material]]` checks: names (no '/', reserved for OBJ materials),
-//! textures (diffuse only) and each kind's parameters.
+//! textures (not on emitters) and each kind's parameters.
 
 use crate::scene::desc::{MaterialDesc, MaterialKindDesc};
 use crate::scene::load::SceneError;
@@ -19,10 +19,11 @@ impl V<'_> {
             ));
         }
         if let Some(t) = &m.texture {
-            if !matches!(m.kind, MaterialKindDesc::Diffuse { .. }) {
-                return Err(self.err(k("texture"), "textures apply to diffuse materials only"));
+            if matches!(m.kind, MaterialKindDesc::Emissive { .. }) {
+                return Err(self.err(k("texture"), "emissive materials take no texture"));
             }
             self.range(&k("texture.scale"), &[t.scale], 1e-3, 1e3)?;
+            self.range(&k("texture.bump"), &[t.bump], 0.0, 4.0)?;
         }
         match &m.kind {
             MaterialKindDesc::Diffuse { albedo } => self.range(&k("albedo"), albedo, 0.0, 1.0),
