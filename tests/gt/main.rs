@@ -10,4 +10,5 @@ mod exactness;
 mod occlusion;
 mod rain;
 mod street;
+mod vegetation;
 mod weather;
