@@ -38,10 +38,16 @@ pub fn furniture_objects(
         });
     }
     let zones: Vec<_> = sites.iter().map(|r| r.clear_zone()).collect();
+    let reach = 2.0 * vegetation::max_reach_m();
     out.retain(|o| {
         let t = o.transform.translate.unwrap_or_default();
         let at = Rect::centered([t[0], t[1]], [0.0, 0.0]);
-        !zones.iter().any(|z| z.contains(&at, 0.0))
+        // A tree's crown reaches out from its foot.
+        let crown = Rect::centered([t[0], t[1]], [reach, reach]);
+        let tree = o.semantic.as_deref() == Some("vegetation");
+        !zones
+            .iter()
+            .any(|z| z.contains(&at, 0.0) || (tree && z.overlaps(&crown)))
     });
     junction_signs(l, &mut out);
     out

@@ -278,7 +278,8 @@ impl Terrain {
             );
             let plant = vegetation::HILL[r.index(vegetation::HILL.len())];
             let heading = r.range(0.0, 360.0);
-            if self.flat_distance([x, y]) < FLAT_M + 4.0 {
+            // Crowns stay out of the flat zone (roads, lots, ramp sites).
+            if self.flat_distance([x, y]) < FLAT_M + vegetation::max_reach_m() {
                 continue;
             }
             // Sunk 15 cm so the trunk base never floats over a slope.

@@ -197,7 +197,11 @@ fn depth_and_disparity_exact_on_a_grown_tree_with_sub_pixel_leaves() {
 
     let veg = parallax::scene::semantic::class_id("vegetation").expect("class");
     let cams: Vec<DVec3> = std::iter::once(c_left)
-        .chain(BASELINES_M.iter().map(|&b| c_left + DVec3::new(0.0, -b, 0.0)))
+        .chain(
+            BASELINES_M
+                .iter()
+                .map(|&b| c_left + DVec3::new(0.0, -b, 0.0)),
+        )
         .collect();
     let (mut ties, mut tree_px, mut checked) = (0usize, 0usize, 0usize);
     for (v, &c) in cams.iter().enumerate() {
@@ -212,15 +216,24 @@ fn depth_and_disparity_exact_on_a_grown_tree_with_sub_pixel_leaves() {
                 }
                 let (z, d) = if v == 0 {
                     let b = &r.out.baselines;
-                    (r.out.left.depth_z[k], b.iter().map(|b| b.disparity_left[k]).collect())
+                    (
+                        r.out.left.depth_z[k],
+                        b.iter().map(|b| b.disparity_left[k]).collect(),
+                    )
                 } else {
                     let b = &r.out.baselines[v - 1];
                     (b.depth_right[k] as f64, vec![b.disparity_right[k]])
                 };
                 checked += 1;
                 let Some(zt) = z_true else {
-                    assert!(z.is_infinite() && z > 0.0, "view {v} ({i},{j}): {z}, not sky");
-                    assert!(d.iter().all(|&d| d == 0.0), "view {v} ({i},{j}): sky disparity");
+                    assert!(
+                        z.is_infinite() && z > 0.0,
+                        "view {v} ({i},{j}): {z}, not sky"
+                    );
+                    assert!(
+                        d.iter().all(|&d| d == 0.0),
+                        "view {v} ({i},{j}): sky disparity"
+                    );
                     continue;
                 };
                 assert!(

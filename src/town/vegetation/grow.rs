@@ -164,7 +164,9 @@ impl Growth<'_> {
             let at = ids[k];
             let parent_dir = (self.nodes[at].p - self.nodes[ids[k - 1]].p).normalize();
             let shape = if trunk {
-                self.form.crown.length_factor((t - t0) / (1.0 - t0).max(1e-9))
+                self.form
+                    .crown
+                    .length_factor((t - t0) / (1.0 - t0).max(1e-9))
             } else {
                 1.0 - 0.4 * t
             };

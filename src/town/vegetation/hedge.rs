@@ -34,9 +34,21 @@ pub fn hedge_leaves(mut r: Rng) -> (PlantMesh, usize) {
     let [l, d, h] = core_size();
     // (face normal, two in-face axes with their extents, face centre)
     let faces = [
-        (DVec3::Y, [(DVec3::X, l), (DVec3::Z, h)], DVec3::new(0.0, d / 2.0, h / 2.0)),
-        (-DVec3::Y, [(DVec3::X, l), (DVec3::Z, h)], DVec3::new(0.0, -d / 2.0, h / 2.0)),
-        (DVec3::Z, [(DVec3::X, l), (DVec3::Y, d)], DVec3::new(0.0, 0.0, h)),
+        (
+            DVec3::Y,
+            [(DVec3::X, l), (DVec3::Z, h)],
+            DVec3::new(0.0, d / 2.0, h / 2.0),
+        ),
+        (
+            -DVec3::Y,
+            [(DVec3::X, l), (DVec3::Z, h)],
+            DVec3::new(0.0, -d / 2.0, h / 2.0),
+        ),
+        (
+            DVec3::Z,
+            [(DVec3::X, l), (DVec3::Y, d)],
+            DVec3::new(0.0, 0.0, h),
+        ),
     ];
     let mut n = 0;
     for (normal, [(a, la), (b, lb)], centre) in faces {
@@ -45,7 +57,11 @@ pub fn hedge_leaves(mut r: Rng) -> (PlantMesh, usize) {
             let s = r.range(-0.5, 0.5) * la;
             // Keep whole leaves inside the segment's length so neighbours
             // never interpenetrate at the joint.
-            let s = if a == DVec3::X { s.clamp(-la / 2.0 + 0.06, la / 2.0 - 0.06) } else { s };
+            let s = if a == DVec3::X {
+                s.clamp(-la / 2.0 + 0.06, la / 2.0 - 0.06)
+            } else {
+                s
+            };
             let t = r.range(-0.5, 0.5) * lb;
             let base = centre + a * s + b * t + normal * r.range(0.0, 0.6 * SKIN_M);
             let tilt = DVec3::new(r.range(-0.6, 0.6), r.range(-0.6, 0.6), r.range(-0.6, 0.6));

@@ -148,6 +148,26 @@ pub fn vegetation_prefabs() -> Vec<PrefabDesc> {
     PREFABS.get_or_init(build_prefabs).clone()
 }
 
+/// The farthest any placed plant reaches from its foot in plan view,
+/// metres (the widest prefab at the largest placement scale): what keeps
+/// crowns out of a clear zone.
+pub fn max_reach_m() -> f64 {
+    static REACH: OnceLock<f64> = OnceLock::new();
+    *REACH.get_or_init(|| {
+        let mut reach: f64 = 0.0;
+        for p in vegetation_prefabs() {
+            for o in &p.objects {
+                if let ShapeDesc::Mesh { positions, .. } = &o.shape {
+                    for q in positions {
+                        reach = reach.max(q[0].hypot(q[1]));
+                    }
+                }
+            }
+        }
+        reach * 1.1
+    })
+}
+
 /// The species a town plants along its streets: a main one and a second,
 /// drawn per town and seed.
 #[derive(Clone, Debug)]
@@ -166,7 +186,10 @@ pub struct Planting {
 impl Planting {
     /// The planting of `desc` with `seed`.
     pub fn new(desc: &TownDesc, seed: u64) -> Self {
-        let name = desc.name.bytes().fold(0u64, |h, b| h.wrapping_mul(31) ^ b as u64);
+        let name = desc
+            .name
+            .bytes()
+            .fold(0u64, |h, b| h.wrapping_mul(31) ^ b as u64);
         let mut r = Rng::new(&[seed, tag::TREES, name]);
         let street = [Species::Plane, Species::Plane, Species::Birch, Species::Oak];
         let main = street[r.index(street.len())];
@@ -175,7 +198,9 @@ impl Planting {
             density: desc.vegetation_density,
             main,
             second: rest[r.index(rest.len())],
-            verges: desc.sidewalks && desc.sidewalk_width_m >= 2.5 && desc.vegetation_density >= 0.5,
+            verges: desc.sidewalks
+                && desc.sidewalk_width_m >= 2.5
+                && desc.vegetation_density >= 0.5,
             seed,
         }
     }
@@ -218,7 +243,11 @@ pub const HILL: [Plant; 5] = [
     Plant::Bush,
 ];
 
-fn diffuse(name: String, albedo: [f64; 3], texture: Option<(TextureKindDesc, u32)>) -> MaterialDesc {
+fn diffuse(
+    name: String,
+    albedo: [f64; 3],
+    texture: Option<(TextureKindDesc, u32)>,
+) -> MaterialDesc {
     MaterialDesc {
         name,
         mask: None,
@@ -238,18 +267,46 @@ pub fn materials() -> Vec<MaterialDesc> {
     let mut out = Vec::new();
     let (foliage, bark) = (TextureKindDesc::Foliage, TextureKindDesc::Concrete);
     for (k, s) in SPECIES.into_iter().enumerate() {
-        out.push(diffuse(bark_material(s), s.bark_albedo(), Some((bark, 40 + k as u32))));
+        out.push(diffuse(
+            bark_material(s),
+            s.bark_albedo(),
+            Some((bark, 40 + k as u32)),
+        ));
         for v in 0..VARIANTS {
             let seed = 50 + (k * VARIANTS + v) as u32;
-            out.push(diffuse(leaves_material(s, v), s.leaf_albedo(v), Some((foliage, seed))));
+            out.push(diffuse(
+                leaves_material(s, v),
+                s.leaf_albedo(v),
+                Some((foliage, seed)),
+            ));
         }
     }
-    out.push(diffuse("bark_bush".into(), [0.2, 0.15, 0.1], Some((bark, 70))));
-    out.push(diffuse("leaves_bush_0".into(), [0.08, 0.19, 0.05], Some((foliage, 71))));
-    out.push(diffuse("leaves_bush_1".into(), [0.12, 0.2, 0.06], Some((foliage, 72))));
+    out.push(diffuse(
+        "bark_bush".into(),
+        [0.2, 0.15, 0.1],
+        Some((bark, 70)),
+    ));
+    out.push(diffuse(
+        "leaves_bush_0".into(),
+        [0.08, 0.19, 0.05],
+        Some((foliage, 71)),
+    ));
+    out.push(diffuse(
+        "leaves_bush_1".into(),
+        [0.12, 0.2, 0.06],
+        Some((foliage, 72)),
+    ));
     out.push(diffuse("hedge_core".into(), [0.025, 0.06, 0.02], None));
-    out.push(diffuse("leaves_hedge".into(), [0.06, 0.15, 0.04], Some((foliage, 73))));
-    out.push(diffuse(VERGE.into(), [0.1, 0.19, 0.06], Some((foliage, 74))));
+    out.push(diffuse(
+        "leaves_hedge".into(),
+        [0.06, 0.15, 0.04],
+        Some((foliage, 73)),
+    ));
+    out.push(diffuse(
+        VERGE.into(),
+        [0.1, 0.19, 0.06],
+        Some((foliage, 74)),
+    ));
     out
 }
 

@@ -21,7 +21,12 @@ pub enum Species {
 }
 
 /// Every species.
-pub const SPECIES: [Species; 4] = [Species::Plane, Species::Oak, Species::Spruce, Species::Birch];
+pub const SPECIES: [Species; 4] = [
+    Species::Plane,
+    Species::Oak,
+    Species::Spruce,
+    Species::Birch,
+];
 
 fn level(count: u32, angle_deg: f64, ratio: f64, segments: u32, lift: f64, sides: u32) -> Level {
     Level {

@@ -62,8 +62,16 @@ fn species_differ_in_shape_and_leaves() {
     // The oak spreads wider than it is tall; the spruce and the birch are
     // slender (taller than wide); the plane's crown is round.
     assert!(shape[oak].1 > shape[oak].0, "oak {:?}", shape[oak]);
-    assert!(shape[spruce].0 > 1.5 * shape[spruce].1, "spruce {:?}", shape[spruce]);
-    assert!(shape[birch].0 > 1.2 * shape[birch].1, "birch {:?}", shape[birch]);
+    assert!(
+        shape[spruce].0 > 1.5 * shape[spruce].1,
+        "spruce {:?}",
+        shape[spruce]
+    );
+    assert!(
+        shape[birch].0 > 1.2 * shape[birch].1,
+        "birch {:?}",
+        shape[birch]
+    );
     assert!(shape[oak].1 > shape[birch].1 && shape[plane].1 > shape[birch].1);
     // The spruce's crown is widest near the ground: leaves in its lowest
     // third spread further from the trunk than those in its top third.
@@ -99,7 +107,11 @@ fn the_generator_is_a_pure_function_of_species_and_variant() {
         assert_eq!(bits(&a), bits(&b), "{s:?} twice");
         assert_eq!(a.bark.triangles, b.bark.triangles);
         let c = grow_tree(s, 2);
-        assert_ne!(bits(&a), bits(&c), "{s:?}: variants 1 and 2 are the same tree");
+        assert_ne!(
+            bits(&a),
+            bits(&c),
+            "{s:?}: variants 1 and 2 are the same tree"
+        );
         let (ha, hc) = (bbox(&a.leaves.positions).1.z, bbox(&c.leaves.positions).1.z);
         assert!((ha - hc).abs() > 0.05, "{s:?}: variant heights {ha} {hc}");
     }
@@ -114,7 +126,10 @@ fn every_leaf_hangs_within_a_twig_length_of_a_twig_end() {
         let longest = g.twig_tips.iter().map(|t| t.1).fold(0.0, f64::max);
         assert!(longest > 0.0 && longest < 2.0, "twig length {longest}");
         for (k, p) in g.leaf_bases.iter().enumerate() {
-            let attached = g.twig_tips.iter().any(|(tip, len)| (*p - *tip).length() <= *len);
+            let attached = g
+                .twig_tips
+                .iter()
+                .any(|(tip, len)| (*p - *tip).length() <= *len);
             assert!(attached, "leaf {k} at {p} hangs from no twig");
         }
         // The blade starts at its base point (vertex 0 of its four).
@@ -198,7 +213,9 @@ fn triangle_counts_per_variant_fit_the_sum() {
 
 #[test]
 fn planting_follows_the_town_and_seed() {
-    let desc = crate::town::load_named_town("town01", None).expect("town01").desc;
+    let desc = crate::town::load_named_town("town01", None)
+        .expect("town01")
+        .desc;
     let plantings: Vec<_> = (0..16).map(|s| Planting::new(&desc, s)).collect();
     for p in &plantings {
         assert_ne!(p.main, p.second);
@@ -207,17 +224,22 @@ fn planting_follows_the_town_and_seed() {
     let mains: BTreeSet<_> = plantings.iter().map(|p| p.main).collect();
     assert!(mains.len() >= 2, "16 seeds, one street species: {mains:?}");
     let again = Planting::new(&desc, 5);
-    assert_eq!((again.main, again.second), (plantings[5].main, plantings[5].second));
+    assert_eq!(
+        (again.main, again.second),
+        (plantings[5].main, plantings[5].second)
+    );
     // Placement: variant and scale follow the place; the label is vegetation.
     let a = place(Plant::Tree(Species::Oak), [3.0, 4.0, 0.0], 10.0, 7);
     let b = place(Plant::Tree(Species::Oak), [3.0, 4.0, 0.0], 10.0, 7);
     assert_eq!(a, b);
     assert_eq!(a.semantic.as_deref(), Some("vegetation"));
     let names: BTreeSet<_> = (0..40)
-        .map(|k| match place(Plant::Tree(Species::Oak), [k as f64, 0.0, 0.0], 0.0, 7).shape {
-            ShapeDesc::Instance { prefab, .. } => prefab,
-            _ => unreachable!("an instance"),
-        })
+        .map(
+            |k| match place(Plant::Tree(Species::Oak), [k as f64, 0.0, 0.0], 0.0, 7).shape {
+                ShapeDesc::Instance { prefab, .. } => prefab,
+                _ => unreachable!("an instance"),
+            },
+        )
         .collect();
     assert_eq!(names.len(), VARIANTS, "{names:?}");
 }
