@@ -17,6 +17,7 @@ use super::layout::{Layout, Rect};
 use super::materials::{TOWER_FRAMES, WALLS};
 use super::parts::{class, cuboid, ground_quad, instance, repeated, slab, Label};
 use super::rng::{tag, Rng};
+use super::vegetation::{self, Plant};
 
 /// Floor height, metres.
 pub const FLOOR_M: f64 = 3.2;
@@ -103,13 +104,7 @@ fn row_of_plots(
             building(desc, &plot, south, r, id, out);
         } else if r.chance(desc.vegetation_density) {
             let c = plot.center();
-            out.push(instance(
-                "bush",
-                [c[0], c[1], 0.0],
-                0.0,
-                &[],
-                class("vegetation"),
-            ));
+            out.push(vegetation::place(Plant::Bush, [c[0], c[1], 0.0], 0.0, 0));
         }
         x += w + if r.chance(0.4) {
             r.range(1.5, 4.0)
@@ -135,17 +130,11 @@ fn park(desc: &TownDesc, l: &Layout, lot: &Rect, r: &mut Rng, out: &mut Vec<Obje
             r.range(lot.min[1] + 2.0, lot.max[1] - 2.0),
             0.0,
         ];
-        let name = ["tree_round", "tree_cone", "bush"][r.index(3)];
+        let plant = vegetation::PARK[r.index(vegetation::PARK.len())];
         if l.near_roundabout(&Rect::centered([at[0], at[1]], [3.0, 3.0])) {
             continue;
         }
-        out.push(instance(
-            name,
-            at,
-            r.range(0.0, 360.0),
-            &[],
-            class("vegetation"),
-        ));
+        out.push(vegetation::place(plant, at, r.range(0.0, 360.0), 0));
     }
 }
 

@@ -1,5 +1,5 @@
 //! Rural blocks (terrain `field`): a ploughed field with crop ridges
-//! running along x, a hedge along its south edge and, on some fields, a
+//! running along x, a grass verge and a clipped hedge along its south edge and, on some fields, a
 //! barn with a gable roof in a corner of the lot.
 //!
 //! Ridges are 0.7 m wide, 0.25 m high boxes every 1.6 m: relief a stereo
@@ -9,8 +9,9 @@ use crate::scene::desc::ObjectDesc;
 
 use super::buildings::gable_roof;
 use super::layout::Rect;
-use super::parts::{class, instance, repeated, slab, Label};
+use super::parts::{class, ground_quad, instance, repeated, slab, Label};
 use super::rng::Rng;
+use super::vegetation::{self, hedge::HEDGE_LEN_M};
 
 /// Ridge pitch across the field, metres.
 const RIDGE_PITCH_M: f64 = 1.6;
@@ -34,17 +35,20 @@ pub fn field_block(lot: &Rect, r: &mut Rng, next_id: &mut u16, out: &mut Vec<Obj
         );
         out.push(repeated(ridge, &[(rows, [0.0, RIDGE_PITCH_M, 0.0])]));
     }
-    // A hedge of bushes along the road side of the field.
-    let n = (lot.size()[0] / 2.0).floor() as u32;
+    // A grass verge along the road side, and on it a clipped hedge of
+    // segments laid end to end.
+    out.push(ground_quad(
+        lot.min,
+        [lot.max[0], lot.min[1] + 2.8],
+        0.005,
+        vegetation::VERGE,
+        t,
+    ));
+    let n = (lot.size()[0] / HEDGE_LEN_M).floor() as u32;
     if n > 0 {
-        let bush = instance(
-            "bush",
-            [lot.min[0] + 1.0, lot.min[1] + 1.0, 0.0],
-            0.0,
-            &[],
-            class("vegetation"),
-        );
-        out.push(repeated(bush, &[(n, [2.0, 0.0, 0.0])]));
+        let at = [lot.min[0] + HEDGE_LEN_M / 2.0, lot.min[1] + 1.0, 0.0];
+        let hedge = instance(vegetation::HEDGE, at, 0.0, &[], class("vegetation"));
+        out.push(repeated(hedge, &[(n, [HEDGE_LEN_M, 0.0, 0.0])]));
     }
     if r.chance(0.6) {
         let (w, d) = (r.range(14.0, 22.0), r.range(9.0, 12.0));

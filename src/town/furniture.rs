@@ -12,10 +12,11 @@ use crate::scene::desc::ObjectDesc;
 
 use super::desc::TownDesc;
 use super::layout::{Layout, Rect, STUB_M};
-use super::parts::{class, instance};
+use super::parts::{class, instance, turned_quad};
 use super::ramps::RampSite;
 use super::rng::{tag, Rng};
 use super::signals;
+use super::vegetation::{self, Planting};
 
 /// Every street tree, light, signal and sign of the town, clear of the
 /// ramp `sites` (`ramps::ramp_sites`).
@@ -37,10 +38,16 @@ pub fn furniture_objects(
         });
     }
     let zones: Vec<_> = sites.iter().map(|r| r.clear_zone()).collect();
+    let reach = 2.0 * vegetation::max_reach_m();
     out.retain(|o| {
         let t = o.transform.translate.unwrap_or_default();
         let at = Rect::centered([t[0], t[1]], [0.0, 0.0]);
-        !zones.iter().any(|z| z.contains(&at, 0.0))
+        // A tree's crown reaches out from its foot.
+        let crown = Rect::centered([t[0], t[1]], [reach, reach]);
+        let tree = o.semantic.as_deref() == Some("vegetation");
+        !zones
+            .iter()
+            .any(|z| z.contains(&at, 0.0) || (tree && z.overlaps(&crown)))
     });
     junction_signs(l, &mut out);
     out
@@ -52,6 +59,7 @@ fn street_lines(desc: &TownDesc, l: &Layout, seed: u64) -> Vec<ObjectDesc> {
     let mut out = Vec::new();
     let (p, hw) = (l.pitch_m, l.road_w_m / 2.0);
     let mut r = Rng::new(&[seed, tag::FURNITURE]);
+    let trees = Planting::new(desc, seed);
     // Per side of the road: (start, end along the road, world position of
     // (along, side)).
     for j in 0..=l.ny {
@@ -61,7 +69,7 @@ fn street_lines(desc: &TownDesc, l: &Layout, seed: u64) -> Vec<ObjectDesc> {
             // Street-light arm over the road: north side heading 0 (arm −y).
             let lamp_heading = if side > 0.0 { 0.0 } else { 180.0 };
             let span = (-STUB_M, l.len_x() + STUB_M);
-            line(desc, l, &mut r, span, place, lamp_heading, &mut out);
+            line(&trees, l, &mut r, span, place, lamp_heading, &mut out);
         }
     }
     for i in 0..=l.nx {
@@ -71,7 +79,7 @@ fn street_lines(desc: &TownDesc, l: &Layout, seed: u64) -> Vec<ObjectDesc> {
             // East side (side > 0): arm towards −x, heading 270.
             let lamp_heading = if side > 0.0 { 270.0 } else { 90.0 };
             let span = (0.0, l.len_y());
-            line(desc, l, &mut r, span, place, lamp_heading, &mut out);
+            line(&trees, l, &mut r, span, place, lamp_heading, &mut out);
         }
     }
     out
@@ -116,7 +124,7 @@ fn junction_signs(l: &Layout, out: &mut Vec<ObjectDesc>) {
 /// Trees, lights and the odd sign along one side of one road, skipping the
 /// junction areas (every multiple of the pitch).
 fn line(
-    desc: &TownDesc,
+    trees: &Planting,
     l: &Layout,
     r: &mut Rng,
     (a0, a1): (f64, f64),
@@ -144,25 +152,22 @@ fn line(
         }
         a += 30.0;
     }
-    if desc.vegetation_density > 0.0 {
-        let spacing = 9.0 / desc.vegetation_density.max(0.15);
+    if trees.density > 0.0 {
+        let spacing = 9.0 / trees.density.max(0.15);
         let mut a = a0 + r.range(2.0, spacing);
         while a < a1 {
             if !near_junction(a) && r.chance(0.85) {
-                let name = if r.chance(0.7) {
-                    "tree_round"
-                } else {
-                    "tree_cone"
-                };
-                out.push(instance(
-                    name,
-                    place(a, off + 0.3),
-                    r.range(0.0, 360.0),
-                    &[],
-                    class("vegetation"),
-                ));
+                let main = r.chance(0.7);
+                let at = place(a, off + 0.3);
+                out.push(trees.street_tree(main, at, r.range(0.0, 360.0)));
+                if !trees.verges {
+                    out.push(tree_pit(at, &place));
+                }
             }
             a += spacing * r.range(0.8, 1.2);
+        }
+        if trees.verges {
+            verges(l, (a0, a1), keep_clear, &place, off + 0.3, out);
         }
     }
     let mut a = a0 + r.range(20.0, 120.0);
@@ -177,5 +182,56 @@ fn line(
             ));
         }
         a += r.range(80.0, 200.0);
+    }
+}
+
+/// A square of grass round a street tree's foot (class `terrain`), level
+/// with the sidewalk and 5 mm above it, turned with the road.
+fn tree_pit(at: [f64; 3], place: &impl Fn(f64, f64) -> [f64; 3]) -> ObjectDesc {
+    let (p, q) = (place(0.0, 0.0), place(1.0, 0.0));
+    let heading = (q[1] - p[1]).atan2(q[0] - p[0]).to_degrees();
+    let c = [at[0], at[1], at[2] + 0.005];
+    turned_quad([1.2, 1.2], c, heading, vegetation::VERGE, class("terrain"))
+}
+
+/// Grass verges (class `terrain`) along the tree line, `width_centre` from
+/// the kerb: one strip per road section between junction areas, none
+/// reaching a bridge or the roundabout.
+fn verges(
+    l: &Layout,
+    (a0, a1): (f64, f64),
+    keep_clear: f64,
+    place: &impl Fn(f64, f64) -> [f64; 3],
+    width_centre: f64,
+    out: &mut Vec<ObjectDesc>,
+) {
+    let p = l.pitch_m;
+    let (first, last) = ((a0 / p).floor() as i64, (a1 / p).ceil() as i64);
+    for k in first..last {
+        let s0 = (k as f64 * p + keep_clear).max(a0);
+        let s1 = ((k + 1) as f64 * p - keep_clear).min(a1);
+        if s1 - s0 < 2.0 {
+            continue;
+        }
+        let (e0, e1) = (place(s0, width_centre), place(s1, width_centre));
+        let strip = Rect {
+            min: [e0[0].min(e1[0]) - 0.5, e0[1].min(e1[1]) - 0.5],
+            max: [e0[0].max(e1[0]) + 0.5, e0[1].max(e1[1]) + 0.5],
+        };
+        let on_bridge = l
+            .river_band()
+            .is_some_and(|b| strip.min[1] < b.max[1] && strip.max[1] > b.min[1]);
+        if on_bridge || l.near_roundabout(&strip) {
+            continue;
+        }
+        let heading = (e1[1] - e0[1]).atan2(e1[0] - e0[0]).to_degrees();
+        let c = [(e0[0] + e1[0]) / 2.0, (e0[1] + e1[1]) / 2.0, e0[2] + 0.005];
+        out.push(turned_quad(
+            [s1 - s0, 1.0],
+            c,
+            heading,
+            vegetation::VERGE,
+            class("terrain"),
+        ));
     }
 }

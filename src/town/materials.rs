@@ -152,6 +152,7 @@ pub fn town_materials(desc: &TownDesc) -> Vec<MaterialDesc> {
         ground_materials(desc),
         building_materials(),
         vegetation_materials(),
+        super::vegetation::materials(),
         pole_materials(),
         emitter_materials(),
         sign_materials(),

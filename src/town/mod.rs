@@ -40,6 +40,7 @@ pub mod signals;
 pub mod source;
 pub mod terrain;
 pub mod traffic;
+pub mod vegetation;
 pub mod vehicles;
 pub mod walkers;
 
@@ -231,6 +232,7 @@ pub fn town_scene(desc: &TownDesc, seed: u64, frame: u64, config: CameraConfig) 
     objects.extend(town.meshes());
     let mut prefabs = props::street_prefabs();
     prefabs.extend(vehicles::vehicle_prefabs());
+    prefabs.extend(vegetation::vegetation_prefabs());
     SceneDesc {
         camera: rig_desc(config, &tf.ego),
         render: RenderDesc {

@@ -1,6 +1,5 @@
 //! Prefabs of the street scene: a facade window (and the lit room that
-//! some windows show), trees of two shapes, a
-//! bush, a street light with an emissive lamp panel, a traffic light (two
+//! some windows show), a street light with an emissive lamp panel, a traffic light (two
 //! heads whose lens materials are slots the frame's signal phase fills,
 //! see `signals`), a stop sign, a pedestrian.
 //!
@@ -28,9 +27,6 @@ pub fn street_prefabs() -> Vec<PrefabDesc> {
     vec![
         prefab("window", window()),
         prefab("window_light", window_light()),
-        prefab("tree_round", tree_round()),
-        prefab("tree_cone", tree_cone()),
-        prefab("bush", bush()),
         prefab("street_light", street_light()),
         prefab("traffic_light", traffic_light()),
         prefab("stop_sign", stop_sign()),
@@ -83,37 +79,6 @@ fn window_light() -> Vec<ObjectDesc> {
         "window_lit",
         class("building"),
     )]
-}
-
-/// A broad tree: a trunk under three foliage blobs.
-fn tree_round() -> Vec<ObjectDesc> {
-    let v = class("vegetation");
-    vec![
-        cylinder(0.16, 3.4, 10, [0.0, 0.0, 0.0], "bark", v),
-        blob([1.9, 1.9, 1.6], [0.0, 0.0, 4.5], "foliage", v),
-        blob([1.3, 1.3, 1.2], [0.8, 0.5, 5.5], "foliage_light", v),
-        blob([1.2, 1.2, 1.1], [-0.8, -0.6, 5.3], "foliage", v),
-    ]
-}
-
-/// A conifer: a short trunk under three stacked, narrowing blobs.
-fn tree_cone() -> Vec<ObjectDesc> {
-    let v = class("vegetation");
-    vec![
-        cylinder(0.18, 2.0, 10, [0.0, 0.0, 0.0], "bark", v),
-        blob([1.8, 1.8, 1.5], [0.0, 0.0, 3.2], "foliage_dark", v),
-        blob([1.4, 1.4, 1.3], [0.0, 0.0, 4.7], "foliage_dark", v),
-        blob([0.9, 0.9, 1.1], [0.0, 0.0, 6.0], "foliage", v),
-    ]
-}
-
-/// A bush of two blobs.
-fn bush() -> Vec<ObjectDesc> {
-    let v = class("vegetation");
-    vec![
-        blob([0.9, 0.9, 0.6], [0.0, 0.0, 0.5], "foliage", v),
-        blob([0.6, 0.6, 0.5], [0.5, 0.3, 0.6], "foliage_light", v),
-    ]
 }
 
 /// An 8 m pole with an arm towards local −y and a lamp housing over an

@@ -14,7 +14,8 @@ use std::f64::consts::{FRAC_PI_2, PI};
 use crate::scene::desc::ObjectDesc;
 
 use super::layout::Layout;
-use super::parts::{class, cuboid, cylinder, instance, turned_quad, Label};
+use super::parts::{class, cuboid, cylinder, turned_quad, Label};
+use super::vegetation::{self, Plant, Species};
 
 /// Distance from the roundabout centre at which each approach arm's
 /// straight road ends (its kerbs meet the ring's outer kerb), metres.
@@ -190,14 +191,18 @@ fn island(c: [f64; 2], r_in: f64, out: &mut Vec<ObjectDesc>) {
         class("terrain"),
     );
     out.push(mound);
-    let veg = class("vegetation");
-    out.push(instance("tree_round", [c[0], c[1], 1.1], 0.0, &[], veg));
+    let centre = Plant::Tree(Species::Plane);
+    out.push(vegetation::place(centre, [c[0], c[1], 1.1], 0.0, 0));
     for q in 0..4 {
         let t = (q as f64 + 0.5) * FRAC_PI_2;
         let r = 0.6 * r_in;
         let p = [c[0] + r * t.cos(), c[1] + r * t.sin(), 0.5];
-        let name = if q % 2 == 0 { "tree_cone" } else { "bush" };
-        out.push(instance(name, p, 45.0 * q as f64, &[], veg));
+        let plant = if q % 2 == 0 {
+            Plant::Tree(Species::Birch)
+        } else {
+            Plant::Bush
+        };
+        out.push(vegetation::place(plant, p, 45.0 * q as f64, 0));
     }
 }
 

@@ -16,9 +16,9 @@ use crate::scene::mesh::LocalMesh;
 
 use super::desc::TownDesc;
 use super::layout::{Layout, Rect, GROUND_MARGIN_M};
-use super::parts::{class, instance};
 use super::ramps::RampSite;
 use super::rng::Rng;
+use super::vegetation;
 
 /// Name of the terrain mesh object (`kind = "mesh"`) in a town frame.
 pub const TERRAIN_NAME: &str = "terrain";
@@ -276,14 +276,15 @@ impl Terrain {
                 r.range(self.extent.min[0], self.extent.max[0]),
                 r.range(self.extent.min[1], self.extent.max[1]),
             );
-            let name = ["tree_round", "tree_cone", "tree_cone", "bush"][r.index(4)];
+            let plant = vegetation::HILL[r.index(vegetation::HILL.len())];
             let heading = r.range(0.0, 360.0);
-            if self.flat_distance([x, y]) < FLAT_M + 4.0 {
+            // Crowns stay out of the flat zone (roads, lots, ramp sites).
+            if self.flat_distance([x, y]) < FLAT_M + vegetation::max_reach_m() {
                 continue;
             }
             // Sunk 15 cm so the trunk base never floats over a slope.
             let z = self.height_m(x, y) + GROUND_Z - 0.15;
-            out.push(instance(name, [x, y, z], heading, &[], class("vegetation")));
+            out.push(vegetation::place(plant, [x, y, z], heading, seed));
         }
         out
     }

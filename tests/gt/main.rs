@@ -11,4 +11,5 @@ mod instancing;
 mod occlusion;
 mod rain;
 mod street;
+mod vegetation;
 mod weather;

@@ -40,7 +40,7 @@ const PINNED_HASHES: [(&str, u64, u64, u64); 8] = [
     ),
     (
         "town03",
-        0xc807794dd5c8c8ab,
+        0xe45c_d037_0ae3_5683,
         0x5fa3b267fa5751b3,
         0x789a0556b13a60bc,
     ),
