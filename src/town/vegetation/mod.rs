@@ -255,6 +255,7 @@ fn diffuse(
             kind,
             scale: 1.0,
             seed,
+            bump: 1.0,
         }),
         kind: MaterialKindDesc::Diffuse { albedo },
     }
@@ -265,7 +266,7 @@ fn diffuse(
 /// grass verge's.
 pub fn materials() -> Vec<MaterialDesc> {
     let mut out = Vec::new();
-    let (foliage, bark) = (TextureKindDesc::Foliage, TextureKindDesc::Concrete);
+    let (foliage, bark) = (TextureKindDesc::Leaves, TextureKindDesc::Bark);
     for (k, s) in SPECIES.into_iter().enumerate() {
         out.push(diffuse(
             bark_material(s),
@@ -305,7 +306,7 @@ pub fn materials() -> Vec<MaterialDesc> {
     out.push(diffuse(
         VERGE.into(),
         [0.1, 0.19, 0.06],
-        Some((foliage, 74)),
+        Some((TextureKindDesc::Grass, 74)),
     ));
     out
 }
