@@ -229,3 +229,31 @@ fn value_noise_and_fbm_have_zero_mean_and_unit_bound() {
     let b = unit(hash_cell([5 + (1 << 32), 7, 1], 0));
     assert_ne!(a, b);
 }
+
+#[test]
+fn asphalt_holds_sparse_drains_and_iron_covers_on_roads_only() {
+    // One million points over a 1 km square: drain slots (3 cm deep, the
+    // only relief below 2 cm) cover 1/3 of 22 m cells × ~0.08 m², about
+    // 5.5e-5 of the road; iron (covers and gratings: albedo ~0.07 whatever
+    // the base) about 6e-4. Walls of asphalt get neither.
+    let t = tex(TextureKind::Asphalt, 11);
+    let base = Vec3::splat(0.9);
+    let n = 1_000_000;
+    let (mut slots, mut iron, mut wall_slots) = (0usize, 0usize, 0usize);
+    for i in 0..n {
+        let p = plane_point(
+            i,
+            1000.0,
+            DVec3::new(-300.0, 200.0, 0.0),
+            DVec3::X,
+            DVec3::Y,
+        );
+        slots += usize::from(t.height(p, Vec3::Z) < -0.02);
+        iron += usize::from(t.albedo(base, p, Vec3::Z).max_element() < 0.1);
+        wall_slots += usize::from(t.height(p, Vec3::X) < -0.02);
+    }
+    let (fs, fi) = (slots as f64 / n as f64, iron as f64 / n as f64);
+    assert!((2.5e-5..1.2e-4).contains(&fs), "slot fraction {fs}");
+    assert!((3e-4..1.2e-3).contains(&fi), "iron fraction {fi}");
+    assert_eq!(wall_slots, 0);
+}

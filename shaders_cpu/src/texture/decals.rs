@@ -94,7 +94,8 @@ fn grating(p: DVec3, seed: u32) -> Option<Pat> {
     let slot = inner && plane::cell(a, 0.04, 0.0).1 > 0.015;
     let edge = plane::edge_dist(plane::cell(a, 0.04, 0.0).1 - 0.015, 0.025);
     if slot {
-        let depth = plane::joint(edge, 0.0, 0.003, 0.03);
+        // Full depth inside the slot, 0 at its edges.
+        let depth = -0.03 * smoothstep(0.0, 0.003, edge);
         return Some(Pat {
             c: Vec3::splat(0.012),
             r: 1.0,
