@@ -146,6 +146,7 @@ pub fn town_materials(desc: &TownDesc) -> Vec<MaterialDesc> {
     [
         ground_materials(desc),
         building_materials(),
+        super::facade::facade_materials(),
         vegetation_materials(),
         pole_materials(),
         emitter_materials(),

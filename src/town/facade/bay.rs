@@ -1,0 +1,304 @@
+//! The bay prefabs of a style: one floor-high slice of wall `bay_m` wide
+//! with its opening, and what fills it — a window (frame, recessed glass,
+//! sill, lintel) before a shallow room (walls, ceiling, a lamp panel,
+//! curtains or blinds, a piece of furniture), a shopfront, a front door
+//! with steps, a lobby or a roller door — plus the lamp overlay of a lit room.
+//!
+//! Bay frame: x along the wall (bay centred on x = 0), the wall plane at
+//! y = 0 with the outside towards −y, the inside up to y = `SKIN_M`, z from
+//! the bay's floor (0) to the floor above (`floor_m`). Bays tile a façade
+//! edge to edge; the building's core starts at y = `SKIN_M`.
+
+use crate::scene::desc::ObjectDesc;
+use crate::town::parts::{class, cuboid, repeated, Label};
+
+use super::style::{Ground, Style};
+
+/// Depth of the façade skin (wall, reveal, room) in front of the core.
+pub const SKIN_M: f64 = 1.2;
+/// Thickness of the room's walls, ceiling and floor.
+const LINING_M: f64 = 0.05;
+/// Width of a window frame's bars.
+const FRAME_M: f64 = 0.06;
+/// Thickness of a glass pane.
+const GLASS_M: f64 = 0.012;
+/// Window variants per style (curtains, blinds, furniture).
+pub const VARIANTS: u32 = 3;
+/// Depth of a shopfront's glass behind the wall plane.
+pub const SHOP_RECESS_M: f64 = 0.15;
+
+/// A box between two corners of the bay frame.
+pub fn boxed(lo: [f64; 3], hi: [f64; 3], mat: &str, l: Label) -> ObjectDesc {
+    let size = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
+    let at = [
+        (lo[0] + hi[0]) / 2.0,
+        (lo[1] + hi[1]) / 2.0,
+        (lo[2] + hi[2]) / 2.0,
+    ];
+    cuboid(size, at, 0.0, mat, l)
+}
+
+/// The opening of a bay: x half-width, bottom and top z.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Opening {
+    /// Half the opening's width.
+    pub half_w: f64,
+    /// Bottom of the opening above the bay's floor.
+    pub z0: f64,
+    /// Top of the opening.
+    pub z1: f64,
+}
+
+/// The window opening of `s`.
+pub fn window_opening(s: &Style) -> Opening {
+    Opening {
+        half_w: s.window_m[0] / 2.0,
+        z0: s.sill_m,
+        z1: s.sill_m + s.window_m[1],
+    }
+}
+
+/// The wall around `o`, `depth` thick: piers either side, the panel below
+/// and the panel above.
+fn wall_around(s: &Style, o: Opening, depth: f64, out: &mut Vec<ObjectDesc>) {
+    let (b, hw, h) = (class("building"), s.bay_m / 2.0, s.floor_m);
+    let wall = s.walls[0];
+    for side in [-1.0, 1.0] {
+        let (x0, x1) = (side * hw, side * o.half_w);
+        out.push(boxed([x0.min(x1), 0.0, 0.0], [x0.max(x1), depth, h], wall, b));
+    }
+    if o.z0 > 0.0 {
+        out.push(boxed([-o.half_w, 0.0, 0.0], [o.half_w, depth, o.z0], wall, b));
+    }
+    if o.z1 < h {
+        out.push(boxed([-o.half_w, 0.0, o.z1], [o.half_w, depth, h], wall, b));
+    }
+}
+
+/// The room behind the front wall (`front` thick): back wall, side walls,
+/// floor, ceiling, and the lamp panel (off) under the ceiling.
+fn room(s: &Style, front: f64, out: &mut Vec<ObjectDesc>) {
+    let (b, hw, h, l) = (class("building"), s.bay_m / 2.0, s.floor_m, LINING_M);
+    out.push(boxed([-hw, SKIN_M - l, 0.0], [hw, SKIN_M, h], "facade_room_wall", b));
+    for side in [-1.0, 1.0] {
+        let (x0, x1) = (side * hw, side * (hw - l));
+        let (lo, hi) = ([x0.min(x1), front, 0.0], [x0.max(x1), SKIN_M - l, h]);
+        out.push(boxed(lo, hi, "facade_room_wall", b));
+    }
+    let (lo, hi) = ([-hw + l, front, 0.0], [hw - l, SKIN_M - l, l]);
+    out.push(boxed(lo, hi, "facade_room_floor", b));
+    let (lo, hi) = ([-hw + l, front, h - l], [hw - l, SKIN_M - l, h]);
+    out.push(boxed(lo, hi, "facade_room_ceiling", b));
+    let (y0, y1) = lamp_span(front);
+    // 1 mm below the ceiling: no shared faces.
+    let (lo, hi) = ([-0.3, y0, h - l - 0.021], [0.3, y1, h - l - 0.001]);
+    out.push(boxed(lo, hi, "facade_lamp_off", b));
+}
+
+/// The lamp panel's y extent in a room whose front wall is `front` thick.
+fn lamp_span(front: f64) -> (f64, f64) {
+    (front + 0.2, SKIN_M - LINING_M - 0.2)
+}
+
+/// Front-wall thickness of a bay whose glass stands `recess` deep.
+pub fn front_depth(recess: f64) -> f64 {
+    recess + 0.1
+}
+
+/// Glass filling `o` with its front face `recess` behind the wall plane,
+/// a frame around it (proud of the glass by 4 cm), `panes` panes and an
+/// optional transom.
+fn glazing(o: Opening, recess: f64, frame: &str, panes: u32, transom: bool) -> Vec<ObjectDesc> {
+    let b = class("building");
+    let (hw, f) = (o.half_w, FRAME_M);
+    let (y0, y1) = (recess - 0.04, recess + 0.06);
+    let mut out = vec![boxed(
+        [-hw, recess, o.z0],
+        [hw, recess + GLASS_M, o.z1],
+        "facade_glass",
+        b,
+    )];
+    out.push(boxed([-hw, y0, o.z1 - f], [hw, y1, o.z1], frame, b));
+    out.push(boxed([-hw, y0, o.z0], [hw, y1, o.z0 + f], frame, b));
+    let side = boxed([-hw, y0, o.z0 + f], [-hw + f, y1, o.z1 - f], frame, b);
+    out.push(repeated(side, &[(2, [2.0 * hw - f, 0.0, 0.0])]));
+    if panes > 1 {
+        let step = 2.0 * hw / panes as f64;
+        let x = -hw + step - f / 2.0;
+        let bar = boxed([x, y0, o.z0 + f], [x + f, y1, o.z1 - f], frame, b);
+        out.push(repeated(bar, &[(panes - 1, [step, 0.0, 0.0])]));
+    }
+    if transom {
+        let z = o.z0 + 0.72 * (o.z1 - o.z0);
+        out.push(boxed([-hw + f, y0, z], [hw - f, y1, z + f], frame, b));
+    }
+    out
+}
+
+/// A window bay of style `s`, variant `v` (0..VARIANTS): wall with the
+/// opening, glazing, stone sill and lintel, the room behind, and its
+/// curtains or blinds and furniture.
+pub fn window_bay(s: &Style, v: u32) -> Vec<ObjectDesc> {
+    let b = class("building");
+    let o = window_opening(s);
+    let front = front_depth(s.recess_m);
+    let mut out = Vec::new();
+    wall_around(s, o, front, &mut out);
+    out.extend(glazing(o, s.recess_m, s.frame, s.panes, s.transom));
+    let hw = o.half_w;
+    // Sill, lintel and curtains stay inside the bay (bays tile a wall).
+    let wide = |e: f64| (hw + e).min(s.bay_m / 2.0 - LINING_M);
+    // The sill sticks out 6 cm and reaches back to the glass; the lintel
+    // is 3 cm proud of the wall.
+    let (sx, lx) = (wide(0.08), wide(0.15));
+    out.push(boxed([-sx, -0.06, o.z0 - 0.06], [sx, s.recess_m, o.z0], s.trim, b));
+    if o.z1 + 0.2 < s.floor_m {
+        out.push(boxed([-lx, -0.03, o.z1], [lx, 0.0, o.z1 + 0.2], s.trim, b));
+    }
+    room(s, front, &mut out);
+    // Curtains hang 3–6 cm behind the front wall, from the opening's top
+    // to its sill; blinds come down from the top.
+    let (cy0, cy1) = (front + 0.03, front + 0.06);
+    let (z0, z1) = (o.z0, (o.z1 + 0.05).min(s.floor_m - LINING_M - 0.03));
+    let cx = wide(0.1);
+    match v % VARIANTS {
+        0 => {
+            let w = 0.3 * hw;
+            out.push(boxed([-cx, cy0, z0], [-hw + w, cy1, z1], "facade_curtain_cream", b));
+            out.push(boxed([hw - w, cy0, z0], [cx, cy1, z1], "facade_curtain_cream", b));
+        }
+        1 => {
+            let zb = o.z1 - 0.4 * (o.z1 - o.z0);
+            out.push(boxed([-hw, cy0, zb], [hw, cy1, z1], "facade_blind", b));
+        }
+        _ => {
+            let w = 0.9 * hw;
+            out.push(boxed([-cx, cy0, z0], [-hw + w, cy1, z1], "facade_curtain_red", b));
+        }
+    }
+    furniture(s, front, v, &mut out);
+    out
+}
+
+/// One piece of furniture against the room's back wall: a shelf, a table
+/// or a sofa.
+fn furniture(s: &Style, front: f64, v: u32, out: &mut Vec<ObjectDesc>) {
+    let b = class("building");
+    let back = SKIN_M - LINING_M - 0.001;
+    let hw = s.bay_m / 2.0 - LINING_M - 0.1;
+    let depth = (back - front - 0.3).min(0.45);
+    let (lo, hi, m) = match v % VARIANTS {
+        0 => ([-hw.min(0.5), back - depth * 0.7, LINING_M], [hw.min(0.5), back, 1.8], "facade_wood"),
+        1 => ([-hw.min(0.6), back - depth, LINING_M], [hw.min(0.3), back, 0.75], "facade_wood"),
+        _ => ([-hw.min(0.9), back - depth, LINING_M], [hw.min(0.9), back, 0.8], "facade_sofa"),
+    };
+    out.push(boxed(lo, [hi[0], hi[1], hi[2].min(s.floor_m - 0.3)], m, b));
+}
+
+/// The emitter of a lit room: a panel 2 mm under the window bay's (off)
+/// lamp panel, radiating downward.
+pub fn room_light(s: &Style) -> Vec<ObjectDesc> {
+    let (y0, y1) = lamp_span(front_depth(s.recess_m));
+    let z = s.floor_m - LINING_M - 0.021;
+    vec![boxed(
+        [-0.29, y0 + 0.01, z - 0.004],
+        [0.29, y1 - 0.01, z - 0.002],
+        "window_lit",
+        class("building"),
+    )]
+}
+
+/// Shopfront opening of a ground-floor bay (narrow piers, a stall riser
+/// and a fascia for the sign).
+pub fn shop_opening(s: &Style) -> Opening {
+    Opening {
+        half_w: s.bay_m / 2.0 - 0.15,
+        z0: if s.ground == Ground::Lobby { 0.1 } else { 0.45 },
+        z1: (s.floor_m - 0.6).min(2.9),
+    }
+}
+
+/// A shopfront (or lobby) bay: large glazing before a lit-by-day shop
+/// room with shelves and a counter.
+pub fn shop_bay(s: &Style) -> Vec<ObjectDesc> {
+    let b = class("building");
+    let o = shop_opening(s);
+    let front = front_depth(SHOP_RECESS_M);
+    let mut out = Vec::new();
+    wall_around(s, o, front, &mut out);
+    out.extend(glazing(o, SHOP_RECESS_M, s.frame, 2, false));
+    room(s, front, &mut out);
+    let back = SKIN_M - LINING_M - 0.001;
+    let hw = o.half_w - 0.2;
+    let shelf = boxed([-hw, back - 0.3, 0.9], [hw, back, 0.93], "facade_wood", b);
+    out.push(repeated(shelf, &[(3, [0.0, 0.0, 0.5])]));
+    out.push(boxed([-0.6, back - 0.7, LINING_M], [0.6, back - 0.45, 0.95], "facade_wood", b));
+    out
+}
+
+/// Steps before a door: `n` risers of 0.17 m, each 0.3 m deep, 1.6 m wide.
+pub fn steps(n: u32) -> Vec<ObjectDesc> {
+    let b = class("building");
+    (0..n)
+        .map(|k| {
+            let y0 = -0.3 * (n - k) as f64;
+            let z1 = 0.17 * (k + 1) as f64;
+            boxed([-0.8, y0, 0.0], [0.8, 0.0, z1], "facade_step", b)
+        })
+        .collect()
+}
+
+/// A door bay: the door recessed 0.25 m behind a stone threshold raised by
+/// `n_steps` steps, a fanlight above it, a handle, and (residential) a
+/// canopy.
+pub fn door_bay(s: &Style, n_steps: u32, canopy: bool) -> Vec<ObjectDesc> {
+    let b = class("building");
+    let sill = 0.17 * n_steps as f64;
+    let o = Opening {
+        half_w: 0.55,
+        z0: 0.0,
+        z1: sill + 2.2 + 0.45,
+    };
+    let front = front_depth(0.25);
+    let mut out = Vec::new();
+    wall_around(s, o, front, &mut out);
+    // The threshold fills the opening up to the door's sill.
+    if sill > 0.0 {
+        out.push(boxed([-0.55, 0.0, 0.0], [0.55, front, sill], "facade_step", b));
+    }
+    let leaf_top = sill + 2.2;
+    out.push(boxed([-0.55, 0.25, sill], [0.55, 0.3, leaf_top], "door", b));
+    out.push(boxed([0.35, 0.22, sill + 1.0], [0.42, 0.25, sill + 1.06], "facade_metal_dark", b));
+    let fan = Opening {
+        half_w: 0.55,
+        z0: leaf_top,
+        z1: o.z1,
+    };
+    out.extend(glazing(fan, 0.25, s.frame, 1, false));
+    out.push(boxed([-0.55, front, leaf_top], [0.55, front + 0.05, o.z1], "facade_room_wall", b));
+    out.extend(steps(n_steps));
+    if canopy && o.z1 + 0.3 < s.floor_m {
+        out.push(boxed([-0.9, -0.9, o.z1 + 0.15], [0.9, 0.0, o.z1 + 0.25], s.trim, b));
+    }
+    out
+}
+
+/// A warehouse's roller door bay: a 3.2 m × 3.6 m opening closed by a
+/// slatted steel door 0.2 m behind the wall plane.
+pub fn roller_bay(s: &Style) -> Vec<ObjectDesc> {
+    let b = class("building");
+    let o = Opening {
+        half_w: 1.6,
+        z0: 0.0,
+        z1: 3.6_f64.min(s.floor_m - 0.4),
+    };
+    let mut out = Vec::new();
+    wall_around(s, o, 0.4, &mut out);
+    out.push(boxed([-1.6, 0.25, 0.0], [1.6, 0.4, o.z1], "facade_metal_grey", b));
+    // Slats: ribs 4 cm proud, every 0.2 m.
+    let rib = boxed([-1.6, 0.21, 0.1], [1.6, 0.25, 0.14], "facade_metal_grey", b);
+    let n = ((o.z1 - 0.2) / 0.2) as u32;
+    out.push(repeated(rib, &[(n, [0.0, 0.0, 0.2])]));
+    out.push(boxed([-1.6, 0.0, o.z1 - 0.01], [1.6, 0.25, o.z1], "facade_metal_dark", b));
+    out
+}
