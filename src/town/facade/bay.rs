@@ -10,13 +10,16 @@
 //! edge to edge; the building's core starts at y = `SKIN_M`.
 
 use crate::scene::desc::ObjectDesc;
-use crate::town::parts::{class, cuboid, repeated, Label};
+use crate::town::parts::{class, cuboid, repeated, turned_quad, Label};
 
 use super::style::{Ground, Style};
 
 /// Depth of the façade skin (wall, reveal, room) in front of the core.
 pub const SKIN_M: f64 = 1.2;
-/// Thickness of the room's walls, ceiling and floor.
+/// Clearance of the room's floor above, and ceiling below, the floor
+/// lines (the room above starts 2 cm higher: no shared planes).
+const ROOM_FLOOR_M: f64 = 0.01;
+/// Clearance of curtains and furniture from the bay's sides.
 const LINING_M: f64 = 0.05;
 /// Width of a window frame's bars.
 const FRAME_M: f64 = 0.06;
@@ -36,6 +39,25 @@ pub fn boxed(lo: [f64; 3], hi: [f64; 3], mat: &str, l: Label) -> ObjectDesc {
         (lo[2] + hi[2]) / 2.0,
     ];
     cuboid(size, at, 0.0, mat, l)
+}
+
+/// A vertical rectangle x0..x1 × z0..z1 in the plane y, facing −y (out).
+fn quad_out(x: [f64; 2], z: [f64; 2], y: f64, mat: &str, l: Label) -> ObjectDesc {
+    let at = [(x[0] + x[1]) / 2.0, y, (z[0] + z[1]) / 2.0];
+    let mut q = turned_quad([x[1] - x[0], z[1] - z[0]], at, 0.0, mat, l);
+    // A quarter turn about x takes the quad's +z normal to −y, its +y to +z.
+    q.transform.rotate_deg = Some([90.0, 0.0, 0.0]);
+    q
+}
+
+/// A horizontal rectangle x0..x1 × y0..y1 at height z, facing up or down.
+fn quad_flat(x: [f64; 2], y: [f64; 2], z: f64, up: bool, mat: &str, l: Label) -> ObjectDesc {
+    let at = [(x[0] + x[1]) / 2.0, (y[0] + y[1]) / 2.0, z];
+    let mut q = turned_quad([x[1] - x[0], y[1] - y[0]], at, 0.0, mat, l);
+    if !up {
+        q.transform.rotate_deg = Some([180.0, 0.0, 0.0]);
+    }
+    q
 }
 
 /// The opening of a bay: x half-width, bottom and top z.
@@ -75,29 +97,28 @@ fn wall_around(s: &Style, o: Opening, depth: f64, out: &mut Vec<ObjectDesc>) {
     }
 }
 
-/// The room behind the front wall (`front` thick): back wall, side walls,
-/// floor, ceiling, and the lamp panel (off) under the ceiling.
+/// The room behind the front wall (`front` thick): back wall, floor and
+/// ceiling as single faces across the bay (neighbouring bays' rooms join
+/// into one floor; the façade's solid ends close it), and the lamp panel
+/// (off) under the ceiling.
 fn room(s: &Style, front: f64, out: &mut Vec<ObjectDesc>) {
-    let (b, hw, h, l) = (class("building"), s.bay_m / 2.0, s.floor_m, LINING_M);
-    out.push(boxed([-hw, SKIN_M - l, 0.0], [hw, SKIN_M, h], "facade_room_wall", b));
-    for side in [-1.0, 1.0] {
-        let (x0, x1) = (side * hw, side * (hw - l));
-        let (lo, hi) = ([x0.min(x1), front, 0.0], [x0.max(x1), SKIN_M - l, h]);
-        out.push(boxed(lo, hi, "facade_room_wall", b));
-    }
-    let (lo, hi) = ([-hw + l, front, 0.0], [hw - l, SKIN_M - l, l]);
-    out.push(boxed(lo, hi, "facade_room_floor", b));
-    let (lo, hi) = ([-hw + l, front, h - l], [hw - l, SKIN_M - l, h]);
-    out.push(boxed(lo, hi, "facade_room_ceiling", b));
+    let (b, hw, h) = (class("building"), s.bay_m / 2.0, s.floor_m);
+    let (x, y) = ([-hw, hw], [front, SKIN_M]);
+    out.push(quad_out(x, [0.0, h], SKIN_M, "facade_room_wall", b));
+    out.push(quad_flat(x, y, ROOM_FLOOR_M, true, "facade_room_floor", b));
+    out.push(quad_flat(x, y, h - ROOM_FLOOR_M, false, "facade_room_ceiling", b));
     let (y0, y1) = lamp_span(front);
-    // 1 mm below the ceiling: no shared faces.
-    let (lo, hi) = ([-0.3, y0, h - l - 0.021], [0.3, y1, h - l - 0.001]);
-    out.push(boxed(lo, hi, "facade_lamp_off", b));
+    out.push(quad_flat([-0.3, 0.3], [y0, y1], lamp_z(s), false, "facade_lamp_off", b));
+}
+
+/// Height of the unlit lamp panel (1 cm under the ceiling).
+fn lamp_z(s: &Style) -> f64 {
+    s.floor_m - ROOM_FLOOR_M - 0.01
 }
 
 /// The lamp panel's y extent in a room whose front wall is `front` thick.
 fn lamp_span(front: f64) -> (f64, f64) {
-    (front + 0.2, SKIN_M - LINING_M - 0.2)
+    (front + 0.2, SKIN_M - 0.2)
 }
 
 /// Front-wall thickness of a bay whose glass stands `recess` deep.
@@ -158,22 +179,22 @@ pub fn window_bay(s: &Style, v: u32) -> Vec<ObjectDesc> {
     room(s, front, &mut out);
     // Curtains hang 3–6 cm behind the front wall, from the opening's top
     // to its sill; blinds come down from the top.
-    let (cy0, cy1) = (front + 0.03, front + 0.06);
-    let (z0, z1) = (o.z0, (o.z1 + 0.05).min(s.floor_m - LINING_M - 0.03));
+    let cy = front + 0.05;
+    let (z0, z1) = (o.z0, (o.z1 + 0.05).min(lamp_z(s) - 0.01));
     let cx = wide(0.1);
     match v % VARIANTS {
         0 => {
             let w = 0.3 * hw;
-            out.push(boxed([-cx, cy0, z0], [-hw + w, cy1, z1], "facade_curtain_cream", b));
-            out.push(boxed([hw - w, cy0, z0], [cx, cy1, z1], "facade_curtain_cream", b));
+            out.push(quad_out([-cx, -hw + w], [z0, z1], cy, "facade_curtain_cream", b));
+            out.push(quad_out([hw - w, cx], [z0, z1], cy, "facade_curtain_cream", b));
         }
         1 => {
             let zb = o.z1 - 0.4 * (o.z1 - o.z0);
-            out.push(boxed([-hw, cy0, zb], [hw, cy1, z1], "facade_blind", b));
+            out.push(quad_out([-hw, hw], [zb, z1], cy, "facade_blind", b));
         }
         _ => {
             let w = 0.9 * hw;
-            out.push(boxed([-cx, cy0, z0], [-hw + w, cy1, z1], "facade_curtain_red", b));
+            out.push(quad_out([-cx, -hw + w], [z0, z1], cy, "facade_curtain_red", b));
         }
     }
     furniture(s, front, v, &mut out);
@@ -184,13 +205,14 @@ pub fn window_bay(s: &Style, v: u32) -> Vec<ObjectDesc> {
 /// or a sofa.
 fn furniture(s: &Style, front: f64, v: u32, out: &mut Vec<ObjectDesc>) {
     let b = class("building");
-    let back = SKIN_M - LINING_M - 0.001;
+    let back = SKIN_M - 0.001;
     let hw = s.bay_m / 2.0 - LINING_M - 0.1;
     let depth = (back - front - 0.3).min(0.45);
+    let z = ROOM_FLOOR_M + 0.001;
     let (lo, hi, m) = match v % VARIANTS {
-        0 => ([-hw.min(0.5), back - depth * 0.7, LINING_M], [hw.min(0.5), back, 1.8], "facade_wood"),
-        1 => ([-hw.min(0.6), back - depth, LINING_M], [hw.min(0.3), back, 0.75], "facade_wood"),
-        _ => ([-hw.min(0.9), back - depth, LINING_M], [hw.min(0.9), back, 0.8], "facade_sofa"),
+        0 => ([-hw.min(0.5), back - depth * 0.7, z], [hw.min(0.5), back, 1.8], "facade_wood"),
+        1 => ([-hw.min(0.6), back - depth, z], [hw.min(0.3), back, 0.75], "facade_wood"),
+        _ => ([-hw.min(0.9), back - depth, z], [hw.min(0.9), back, 0.8], "facade_sofa"),
     };
     out.push(boxed(lo, [hi[0], hi[1], hi[2].min(s.floor_m - 0.3)], m, b));
 }
@@ -199,13 +221,8 @@ fn furniture(s: &Style, front: f64, v: u32, out: &mut Vec<ObjectDesc>) {
 /// lamp panel, radiating downward.
 pub fn room_light(s: &Style) -> Vec<ObjectDesc> {
     let (y0, y1) = lamp_span(front_depth(s.recess_m));
-    let z = s.floor_m - LINING_M - 0.021;
-    vec![boxed(
-        [-0.29, y0 + 0.01, z - 0.004],
-        [0.29, y1 - 0.01, z - 0.002],
-        "window_lit",
-        class("building"),
-    )]
+    let z = lamp_z(s) - 0.002;
+    vec![quad_flat([-0.29, 0.29], [y0 + 0.01, y1 - 0.01], z, false, "window_lit", class("building"))]
 }
 
 /// Shopfront opening of a ground-floor bay (narrow piers, a stall riser
@@ -228,11 +245,12 @@ pub fn shop_bay(s: &Style) -> Vec<ObjectDesc> {
     wall_around(s, o, front, &mut out);
     out.extend(glazing(o, SHOP_RECESS_M, s.frame, 2, false));
     room(s, front, &mut out);
-    let back = SKIN_M - LINING_M - 0.001;
+    let back = SKIN_M - 0.001;
     let hw = o.half_w - 0.2;
     let shelf = boxed([-hw, back - 0.3, 0.9], [hw, back, 0.93], "facade_wood", b);
     out.push(repeated(shelf, &[(3, [0.0, 0.0, 0.5])]));
-    out.push(boxed([-0.6, back - 0.7, LINING_M], [0.6, back - 0.45, 0.95], "facade_wood", b));
+    let z = ROOM_FLOOR_M + 0.001;
+    out.push(boxed([-0.6, back - 0.7, z], [0.6, back - 0.45, 0.95], "facade_wood", b));
     out
 }
 
@@ -275,7 +293,7 @@ pub fn door_bay(s: &Style, n_steps: u32, canopy: bool) -> Vec<ObjectDesc> {
         z1: o.z1,
     };
     out.extend(glazing(fan, 0.25, s.frame, 1, false));
-    out.push(boxed([-0.55, front, leaf_top], [0.55, front + 0.05, o.z1], "facade_room_wall", b));
+    room(s, front, &mut out);
     out.extend(steps(n_steps));
     if canopy && o.z1 + 0.3 < s.floor_m {
         out.push(boxed([-0.9, -0.9, o.z1 + 0.15], [0.9, 0.0, o.z1 + 0.25], s.trim, b));
@@ -300,5 +318,6 @@ pub fn roller_bay(s: &Style) -> Vec<ObjectDesc> {
     let n = ((o.z1 - 0.2) / 0.2) as u32;
     out.push(repeated(rib, &[(n, [0.0, 0.0, 0.2])]));
     out.push(boxed([-1.6, 0.0, o.z1 - 0.01], [1.6, 0.25, o.z1], "facade_metal_dark", b));
+    room(s, 0.4, &mut out);
     out
 }

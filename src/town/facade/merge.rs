@@ -1,4 +1,4 @@
-//! Merges a prefab's boxes into one inline mesh per (material, class,
+//! Merges a prefab's boxes and quads into one inline mesh per (material, class,
 //! instance id): a bay of twenty boxes becomes a handful of meshes with
 //! the same triangles, so a town of many placed bays holds far fewer
 //! geometries. Other shapes pass through unchanged, in order after the
@@ -9,10 +9,10 @@ use std::collections::BTreeMap;
 use glam::DVec3;
 
 use crate::scene::desc::{ObjectDesc, ShapeDesc};
-use crate::scene::mesh::{cuboid, LocalMesh};
+use crate::scene::mesh::{cuboid, quad, LocalMesh};
 use crate::scene::transform::{parent_from_local, repeat_offsets};
 
-/// `objects` with every box (any transform, any repeats) merged into one
+/// `objects` with every box and quad (any transform, any repeats) merged into one
 /// mesh object per (material, semantic, instance), first-seen order.
 pub fn merge_boxes(objects: Vec<ObjectDesc>) -> Vec<ObjectDesc> {
     type Key = (Option<String>, Option<String>, Option<u16>);
@@ -20,16 +20,19 @@ pub fn merge_boxes(objects: Vec<ObjectDesc>) -> Vec<ObjectDesc> {
     let mut meshes: BTreeMap<Key, LocalMesh> = BTreeMap::new();
     let mut rest = Vec::new();
     for o in objects {
-        let ShapeDesc::Box { size } = o.shape else {
-            rest.push(o);
-            continue;
+        let block = match o.shape {
+            ShapeDesc::Box { size } => cuboid(size),
+            ShapeDesc::Quad { size } => quad(size),
+            _ => {
+                rest.push(o);
+                continue;
+            }
         };
         let key = (o.material.clone(), o.semantic.clone(), o.instance);
         if !meshes.contains_key(&key) {
             order.push(key.clone());
         }
         let mesh = meshes.entry(key).or_default();
-        let block = cuboid(size);
         let local = parent_from_local(&o.transform);
         for offset in repeat_offsets(&o.repeat) {
             let base = mesh.positions.len() as u32;

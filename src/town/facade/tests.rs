@@ -18,24 +18,19 @@ const ID: Label = Label {
     instance: 1001,
 };
 
-/// Axis-aligned bounds of a box part (no rotation) with its repeats.
+/// Axis-aligned bounds of a box or quad part with its repeats (through
+/// the merge into a mesh, which places every corner).
 fn bounds(o: &ObjectDesc) -> ([f64; 3], [f64; 3]) {
-    let ShapeDesc::Box { size } = o.shape else {
-        panic!("not a box: {o:?}");
+    let merged = merge::merge_boxes(vec![o.clone()]);
+    let ShapeDesc::Mesh { positions, .. } = &merged[0].shape else {
+        panic!("not a box or quad: {o:?}");
     };
-    assert!(o.transform.rotate_deg.is_none());
-    let c = o.transform.translate.unwrap();
-    let mut lo = [0.0; 3];
-    let mut hi = [0.0; 3];
-    for k in 0..3 {
-        lo[k] = c[k] - size[k] / 2.0;
-        hi[k] = c[k] + size[k] / 2.0;
-    }
-    for rep in &o.repeat {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in positions {
         for k in 0..3 {
-            let d = rep.offset[k] * (rep.count - 1) as f64;
-            lo[k] = lo[k].min(lo[k] + d);
-            hi[k] = hi[k].max(hi[k] + d);
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
         }
     }
     (lo, hi)
@@ -131,8 +126,11 @@ fn the_lit_panel_hangs_just_below_the_unlit_one_inside_the_room() {
             .map(bounds)
             .unwrap();
         assert!(light.1[2] < off.0[2] && off.0[2] - light.1[2] < 0.005, "{}", s.name);
+        assert_eq!(light.0[2], light.1[2]);
         assert!(light.0[0] > off.0[0] && light.1[0] < off.1[0]);
         assert!(light.0[1] > bay::front_depth(s.recess_m) && light.1[1] < SKIN_M);
+        // Both face down: the lit one is a single quad.
+        assert!(matches!(bay::room_light(s)[0].shape, ShapeDesc::Quad { .. }));
     }
 }
 
