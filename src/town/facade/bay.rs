@@ -9,7 +9,10 @@
 //! the bay's floor (0) to the floor above (`floor_m`). Bays tile a façade
 //! edge to edge; the building's core starts at y = `SKIN_M`.
 
+use glam::DVec3;
+
 use crate::scene::desc::ObjectDesc;
+use crate::scene::mesh::LocalMesh;
 use crate::town::parts::{class, cuboid, repeated, turned_quad, Label};
 
 use super::style::{Ground, Style};
@@ -80,21 +83,69 @@ pub fn window_opening(s: &Style) -> Opening {
     }
 }
 
-/// The wall around `o`, `depth` thick: piers either side, the panel below
-/// and the panel above.
+/// The wall around `o`, `depth` thick, as one mesh: its front and back
+/// faces with the hole and the four reveals. The bay's outer sides, top
+/// and bottom are left out: bays tile a wall edge to edge (neighbours,
+/// the façade's solid ends, the roof and the ground hide them).
 fn wall_around(s: &Style, o: Opening, depth: f64, out: &mut Vec<ObjectDesc>) {
-    let (b, hw, h) = (class("building"), s.bay_m / 2.0, s.floor_m);
-    let wall = s.walls[0];
-    for side in [-1.0, 1.0] {
-        let (x0, x1) = (side * hw, side * o.half_w);
-        out.push(boxed([x0.min(x1), 0.0, 0.0], [x0.max(x1), depth, h], wall, b));
+    let (hw, h) = (s.bay_m / 2.0, s.floor_m);
+    let outer = [-hw, hw, 0.0, h];
+    let inner = [-o.half_w, o.half_w, o.z0, o.z1];
+    out.push(ring(outer, inner, [0.0, depth], s.walls[0]));
+}
+
+/// A rectangular ring in the x–z plane between y0 and y1: the `outer`
+/// rectangle `[x0, x1, z0, z1]` less the `inner` one, faces out (−y) at
+/// y0, in (+y) at y1, and the hole's reveals facing into the hole; no
+/// outer sides. Empty strips (an opening down to the floor) are skipped.
+fn ring(outer: [f64; 4], inner: [f64; 4], [y0, y1]: [f64; 2], mat: &str) -> ObjectDesc {
+    let mut m = LocalMesh::default();
+    let [x0, x1, z0, z1] = outer;
+    let [ix0, ix1, iz0, iz1] = inner;
+    let (ex, ey, ez) = (DVec3::X, DVec3::Y, DVec3::Z);
+    let strips = [
+        ([x0, z0], [ix0 - x0, z1 - z0]),
+        ([ix1, z0], [x1 - ix1, z1 - z0]),
+        ([ix0, z0], [ix1 - ix0, iz0 - z0]),
+        ([ix0, iz1], [ix1 - ix0, z1 - iz1]),
+    ];
+    for ([x, z], [w, hh]) in strips {
+        // Front: x × z = −y; back: z × x = +y.
+        rect(&mut m, DVec3::new(x, y0, z), ex * w, ez * hh);
+        rect(&mut m, DVec3::new(x, y1, z), ez * hh, ex * w);
     }
-    if o.z0 > 0.0 {
-        out.push(boxed([-o.half_w, 0.0, 0.0], [o.half_w, depth, o.z0], wall, b));
+    let d = y1 - y0;
+    let ih = iz1 - iz0;
+    let iw = ix1 - ix0;
+    rect(&mut m, DVec3::new(ix0, y0, iz0), ey * d, ez * ih); // faces +x
+    rect(&mut m, DVec3::new(ix1, y0, iz0), ez * ih, ey * d); // faces −x
+    if iz0 > z0 {
+        rect(&mut m, DVec3::new(ix0, y0, iz0), ex * iw, ey * d); // faces +z
     }
-    if o.z1 < h {
-        out.push(boxed([-o.half_w, 0.0, o.z1], [o.half_w, depth, h], wall, b));
+    if iz1 < z1 {
+        rect(&mut m, DVec3::new(ix0, y0, iz1), ey * d, ex * iw); // faces −z
     }
+    ObjectDesc {
+        name: None,
+        material: Some(mat.to_string()),
+        semantic: Some("building".to_string()),
+        instance: None,
+        transform: Default::default(),
+        repeat: Vec::new(),
+        shape: m.into_shape(),
+    }
+}
+
+/// Appends the rectangle p, p + u, p + u + v, p + v (normal u × v) unless
+/// it is empty.
+fn rect(m: &mut LocalMesh, p: DVec3, u: DVec3, v: DVec3) {
+    if u.length() <= 0.0 || v.length() <= 0.0 {
+        return;
+    }
+    let base = m.positions.len() as u32;
+    m.positions.extend([p, p + u, p + u + v, p + v]);
+    m.triangles
+        .extend([[base, base + 1, base + 2], [base, base + 2, base + 3]]);
 }
 
 /// The room behind the front wall (`front` thick): back wall, floor and
@@ -139,10 +190,8 @@ fn glazing(o: Opening, recess: f64, frame: &str, panes: u32, transom: bool) -> V
         "facade_glass",
         b,
     )];
-    out.push(boxed([-hw, y0, o.z1 - f], [hw, y1, o.z1], frame, b));
-    out.push(boxed([-hw, y0, o.z0], [hw, y1, o.z0 + f], frame, b));
-    let side = boxed([-hw, y0, o.z0 + f], [-hw + f, y1, o.z1 - f], frame, b);
-    out.push(repeated(side, &[(2, [2.0 * hw - f, 0.0, 0.0])]));
+    let inner = [-hw + f, hw - f, o.z0 + f, o.z1 - f];
+    out.push(ring([-hw, hw, o.z0, o.z1], inner, [y0, y1], frame));
     if panes > 1 {
         let step = 2.0 * hw / panes as f64;
         let x = -hw + step - f / 2.0;

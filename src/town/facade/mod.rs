@@ -71,6 +71,7 @@ pub fn facade_prefabs() -> Vec<PrefabDesc> {
         }
         if s.balcony > 0.0 {
             add(prefab_name(s, "balcony"), ornament::balcony(s));
+            add(prefab_name(s, "railing"), ornament::railing(s));
         }
     }
     for k in 0..front::SHOP_NAMES.len() {
@@ -182,10 +183,10 @@ pub fn building(
     for f in facades(plot, south) {
         facade(s, wall, f, floors, r, (&mut lit, lit_fraction), id, out);
         if f.front && balconies {
-            balcony_columns(s, wall, f, floors, r, id, out);
+            balcony_columns(s, f, floors, r, id, out);
         }
     }
-    let [w, d] = plot.size();
+    let d = plot.size()[1];
     let flat = !(s.roof == Roof::Gable && floors <= 2 && d <= 14.0);
     if flat {
         let grow = if s.parapet_m > 0.0 { 0.0 } else { 0.2 };
@@ -201,7 +202,6 @@ pub fn building(
         out.push(crate::town::buildings::gable_roof(plot, h, id));
     }
     out.extend(ornament::bands(s, wall, plot, floors, flat, id));
-    let _ = w;
     s
 }
 
@@ -309,27 +309,21 @@ fn ground_floor(
     }
 }
 
-/// Balconies on every other column of the street front, floors 1 and up
-/// (a prefab whose railing keeps its own `fence` class).
-fn balcony_columns(
-    s: &Style,
-    wall: &str,
-    f: Facade,
-    floors: u32,
-    r: &mut Rng,
-    id: Label,
-    out: &mut Vec<ObjectDesc>,
-) {
-    let _ = wall;
+/// Balconies on every other column of the street front, floors 1 and up:
+/// the slab (`building`) and its railing (`fence`, the building's id).
+fn balcony_columns(s: &Style, f: Facade, floors: u32, r: &mut Rng, id: Label, out: &mut Vec<ObjectDesc>) {
     let (cols, _) = columns(s, f.len);
     let parity = r.int(0, 1);
-    let along = heading_dir(f.heading);
+    let fence = Label {
+        class: "fence",
+        instance: id.instance,
+    };
     for c in (0..cols).filter(|c| c % 2 == parity) {
         let x = -(cols as f64 - 1.0) * s.bay_m / 2.0 + c as f64 * s.bay_m;
         let at = place(f.c, f.heading, [x, 0.0, s.floor_m]);
-        let mut o = instance(&prefab_name(s, "balcony"), at, f.heading, &[], id);
-        o.semantic = None;
-        let _ = along;
-        out.push(repeated(o, &[(floors - 1, [0.0, 0.0, s.floor_m])]));
+        let up = [(floors - 1, [0.0, 0.0, s.floor_m])];
+        for (kind, l) in [("balcony", id), ("railing", fence)] {
+            out.push(repeated(instance(&prefab_name(s, kind), at, f.heading, &[], l), &up));
+        }
     }
 }

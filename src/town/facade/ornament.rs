@@ -23,13 +23,20 @@ pub const BAR_STEP_M: f64 = 0.12;
 /// Side of a bar's square section.
 pub const BAR_M: f64 = 0.02;
 
-/// A balcony one bay wide: a concrete slab and a railing of thin bars
-/// under a top rail on its three open sides.
+/// A balcony slab one bay wide, its top at z = 0.
 pub fn balcony(s: &Style) -> Vec<ObjectDesc> {
-    let (b, f) = (class("building"), class("fence"));
+    let hw = s.bay_m / 2.0 - 0.2;
+    let lo = [-hw, -BALCONY_DEPTH_M, -0.15];
+    vec![boxed(lo, [hw, 0.0, 0.0], "concrete", class("building"))]
+}
+
+/// The railing of a balcony (`fence`): thin bars under a top rail on the
+/// slab's three open sides.
+pub fn railing(s: &Style) -> Vec<ObjectDesc> {
+    let f = class("fence");
     let hw = s.bay_m / 2.0 - 0.2;
     let d = BALCONY_DEPTH_M;
-    let mut out = vec![boxed([-hw, -d, -0.15], [hw, 0.0, 0.0], "concrete", b)];
+    let mut out = Vec::new();
     let m = "facade_railing";
     // Top rails: front and two sides.
     out.push(boxed([-hw, -d, RAIL_M - 0.04], [hw, -d + 0.04, RAIL_M], m, f));

@@ -23,8 +23,9 @@ const ID: Label = Label {
 fn bounds(o: &ObjectDesc) -> ([f64; 3], [f64; 3]) {
     let merged = merge::merge_boxes(vec![o.clone()]);
     let ShapeDesc::Mesh { positions, .. } = &merged[0].shape else {
-        panic!("not a box or quad: {o:?}");
+        panic!("not a box, quad or mesh: {o:?}");
     };
+    assert!(o.transform == Default::default() || !matches!(o.shape, ShapeDesc::Mesh { .. }));
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
     for p in positions {
@@ -102,9 +103,19 @@ fn window_bay_parts_stay_inside_their_bay_and_the_glass_is_recessed() {
             assert_eq!(lo[1], s.recess_m, "{}", s.name);
             assert!((hi[0] - lo[0] - s.window_m[0]).abs() < 1e-12);
             assert!((lo[2] - o.z0).abs() < 1e-12 && (hi[2] - o.z1).abs() < 1e-12);
-            // Nothing but the sill stands between the wall plane and the
-            // glass inside the opening's interior (the reveal is clear).
+            // Nothing stands between the wall plane and the glass inside the
+            // opening (the reveal is clear): no box there, and the rings
+            // (wall, frame) have no vertex inside the frame's hole.
             for p in &parts {
+                if let ShapeDesc::Mesh { positions, .. } = &p.shape {
+                    for q in positions {
+                        let hole = q[0].abs() < o.half_w - 0.06 - 1e-9
+                            && q[2] > o.z0 + 0.06 + 1e-9
+                            && q[2] < o.z1 - 0.06 - 1e-9;
+                        assert!(!hole, "{} ring vertex {q:?} in the opening", s.name);
+                    }
+                    continue;
+                }
                 let (plo, phi) = bounds(p);
                 let inside = plo[0] < -o.half_w + 0.1 && phi[0] > o.half_w - 0.1;
                 let in_front = plo[1] < s.recess_m - 0.04 - 1e-9;
@@ -196,10 +207,10 @@ fn sign_letters_sit_on_the_board_face() {
 #[test]
 fn balcony_railing_is_fence_bars_at_their_spacing() {
     for s in STYLES.iter().filter(|s| s.balcony > 0.0) {
-        let parts = ornament::balcony(s);
-        assert_eq!(parts[0].semantic.as_deref(), Some("building"));
-        assert!(parts[1..].iter().all(|p| p.semantic.as_deref() == Some("fence")));
-        let front_bars = &parts[3];
+        assert_eq!(ornament::balcony(s)[0].semantic.as_deref(), Some("building"));
+        let parts = ornament::railing(s);
+        assert!(parts.iter().all(|p| p.semantic.as_deref() == Some("fence")));
+        let front_bars = &parts[2];
         assert_eq!(front_bars.repeat[0].offset, [ornament::BAR_STEP_M, 0.0, 0.0]);
         let (lo, hi) = bounds(front_bars);
         let hw = s.bay_m / 2.0 - 0.2;
@@ -226,9 +237,10 @@ fn a_building_is_deterministic_per_seed_and_labelled_as_one() {
     assert_ne!(a, build(4, &desc, 5).0);
     for o in &a {
         assert_eq!(o.instance, Some(1001), "{o:?}");
-        // Only balconies defer to their parts' classes (building, fence).
-        let balcony = matches!(&o.shape, ShapeDesc::Instance { prefab, .. } if prefab.ends_with("balcony"));
-        assert_eq!(o.semantic.as_deref(), (!balcony).then_some("building"), "{o:?}");
+        // Balcony railings are `fence`, everything else `building`.
+        let railing = matches!(&o.shape, ShapeDesc::Instance { prefab, .. } if prefab.ends_with("railing"));
+        let want = if railing { "fence" } else { "building" };
+        assert_eq!(o.semantic.as_deref(), Some(want), "{o:?}");
     }
 }
 
