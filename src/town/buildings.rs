@@ -195,10 +195,6 @@ mod tests {
             .desc
     }
 
-    const ID: Label = Label {
-        class: "building",
-        instance: 1001,
-    };
 
     #[test]
     fn floors_stay_in_their_range_and_most_buildings_are_short() {

@@ -36,7 +36,9 @@ fn facade_glass_depth_is_the_wall_distance_plus_the_recess() {
         "{base}[[material]]\nname = \"grey\"\nkind = \"diffuse\"\nalbedo = [0.5, 0.5, 0.5]\n"
     ))
     .desc;
-    let town = parallax::town::load_named_town("town01", None).unwrap().desc;
+    let town = parallax::town::load_named_town("town01", None)
+        .unwrap()
+        .desc;
     scene.materials = parallax::town::materials::town_materials(&town);
     scene.prefabs = facade::facade_prefabs();
     let label = parallax::town::parts::Label {
@@ -46,7 +48,11 @@ fn facade_glass_depth_is_the_wall_distance_plus_the_recess() {
     let name = facade::prefab_name(s, "window_0");
     let bay = parallax::town::parts::instance(&name, [WALL_X, 0.0, z0], 270.0, &[], label);
     scene.objects = vec![bay];
-    let r = render(&scene_from_toml(&serialize_scene(&scene)), Backend::default_backend(), 0);
+    let r = render(
+        &scene_from_toml(&serialize_scene(&scene)),
+        Backend::default_backend(),
+        0,
+    );
 
     let f = (W as f64 / 2.0) / 30f64.to_radians().tan();
     let glass_z = WALL_X + s.recess_m;
@@ -66,8 +72,10 @@ fn facade_glass_depth_is_the_wall_distance_plus_the_recess() {
             let frame = 0.06 + 0.01;
             let in_glass = gy.abs() < o.half_w - frame && gz > o.z0 + frame && gz < o.z1 - frame;
             let (wy, wz) = at(WALL_X);
-            let on_pier = wy.abs() > o.half_w + 0.2 && wy.abs() < s.bay_m / 2.0 - 0.01
-                && wz > o.z0 + 0.1 && wz < o.z1 - 0.1;
+            let on_pier = wy.abs() > o.half_w + 0.2
+                && wy.abs() < s.bay_m / 2.0 - 0.01
+                && wz > o.z0 + 0.1
+                && wz < o.z1 - 0.1;
             let expected = if in_glass {
                 glass += 1;
                 glass_z
@@ -78,16 +86,30 @@ fn facade_glass_depth_is_the_wall_distance_plus_the_recess() {
                 continue;
             };
             let z = r.out.left.depth_z[k];
-            assert!((z - expected).abs() <= 1e-5 * expected, "pixel ({i},{j}): Z {z} vs {expected}");
+            assert!(
+                (z - expected).abs() <= 1e-5 * expected,
+                "pixel ({i},{j}): Z {z} vs {expected}"
+            );
             assert_eq!(r.out.left.instance[k], 1234, "pixel ({i},{j})");
             let transparent = r.out.left.mask[k] & 4 != 0;
-            assert_eq!(transparent, in_glass, "pixel ({i},{j}) mask {}", r.out.left.mask[k]);
+            assert_eq!(
+                transparent, in_glass,
+                "pixel ({i},{j}) mask {}",
+                r.out.left.mask[k]
+            );
             for b in &r.out.baselines {
                 let dt = f * b.baseline_m / expected;
                 let dd = b.disparity_left[k] as f64;
-                assert!((dd - dt).abs() <= 1e-5 * dt + 1e-6, "pixel ({i},{j}) B={}: d {dd} vs {dt}", b.baseline_m);
+                assert!(
+                    (dd - dt).abs() <= 1e-5 * dt + 1e-6,
+                    "pixel ({i},{j}) B={}: d {dd} vs {dt}",
+                    b.baseline_m
+                );
             }
         }
     }
-    assert!(glass > 300 && wall > 20, "{glass} glass and {wall} wall pixels");
+    assert!(
+        glass > 300 && wall > 20,
+        "{glass} glass and {wall} wall pixels"
+    );
 }

@@ -157,9 +157,23 @@ fn room(s: &Style, front: f64, out: &mut Vec<ObjectDesc>) {
     let (x, y) = ([-hw, hw], [front, SKIN_M]);
     out.push(quad_out(x, [0.0, h], SKIN_M, "facade_room_wall", b));
     out.push(quad_flat(x, y, ROOM_FLOOR_M, true, "facade_room_floor", b));
-    out.push(quad_flat(x, y, h - ROOM_FLOOR_M, false, "facade_room_ceiling", b));
+    out.push(quad_flat(
+        x,
+        y,
+        h - ROOM_FLOOR_M,
+        false,
+        "facade_room_ceiling",
+        b,
+    ));
     let (y0, y1) = lamp_span(front);
-    out.push(quad_flat([-0.3, 0.3], [y0, y1], lamp_z(s), false, "facade_lamp_off", b));
+    out.push(quad_flat(
+        [-0.3, 0.3],
+        [y0, y1],
+        lamp_z(s),
+        false,
+        "facade_lamp_off",
+        b,
+    ));
 }
 
 /// Height of the unlit lamp panel (1 cm under the ceiling).
@@ -221,7 +235,12 @@ pub fn window_bay(s: &Style, v: u32) -> Vec<ObjectDesc> {
     // The sill sticks out 6 cm and reaches back to the glass; the lintel
     // is 3 cm proud of the wall.
     let (sx, lx) = (wide(0.08), wide(0.15));
-    out.push(boxed([-sx, -0.06, o.z0 - 0.06], [sx, s.recess_m, o.z0], s.trim, b));
+    out.push(boxed(
+        [-sx, -0.06, o.z0 - 0.06],
+        [sx, s.recess_m, o.z0],
+        s.trim,
+        b,
+    ));
     if o.z1 + 0.2 < s.floor_m {
         out.push(boxed([-lx, -0.03, o.z1], [lx, 0.0, o.z1 + 0.2], s.trim, b));
     }
@@ -234,8 +253,20 @@ pub fn window_bay(s: &Style, v: u32) -> Vec<ObjectDesc> {
     match v % VARIANTS {
         0 => {
             let w = 0.3 * hw;
-            out.push(quad_out([-cx, -hw + w], [z0, z1], cy, "facade_curtain_cream", b));
-            out.push(quad_out([hw - w, cx], [z0, z1], cy, "facade_curtain_cream", b));
+            out.push(quad_out(
+                [-cx, -hw + w],
+                [z0, z1],
+                cy,
+                "facade_curtain_cream",
+                b,
+            ));
+            out.push(quad_out(
+                [hw - w, cx],
+                [z0, z1],
+                cy,
+                "facade_curtain_cream",
+                b,
+            ));
         }
         1 => {
             let zb = o.z1 - 0.4 * (o.z1 - o.z0);
@@ -243,7 +274,13 @@ pub fn window_bay(s: &Style, v: u32) -> Vec<ObjectDesc> {
         }
         _ => {
             let w = 0.9 * hw;
-            out.push(quad_out([-cx, -hw + w], [z0, z1], cy, "facade_curtain_red", b));
+            out.push(quad_out(
+                [-cx, -hw + w],
+                [z0, z1],
+                cy,
+                "facade_curtain_red",
+                b,
+            ));
         }
     }
     furniture(s, front, v, &mut out);
@@ -259,9 +296,21 @@ fn furniture(s: &Style, front: f64, v: u32, out: &mut Vec<ObjectDesc>) {
     let depth = (back - front - 0.3).min(0.45);
     let z = ROOM_FLOOR_M + 0.001;
     let (lo, hi, m) = match v % VARIANTS {
-        0 => ([-hw.min(0.5), back - depth * 0.7, z], [hw.min(0.5), back, 1.8], "facade_wood"),
-        1 => ([-hw.min(0.6), back - depth, z], [hw.min(0.3), back, 0.75], "facade_wood"),
-        _ => ([-hw.min(0.9), back - depth, z], [hw.min(0.9), back, 0.8], "facade_sofa"),
+        0 => (
+            [-hw.min(0.5), back - depth * 0.7, z],
+            [hw.min(0.5), back, 1.8],
+            "facade_wood",
+        ),
+        1 => (
+            [-hw.min(0.6), back - depth, z],
+            [hw.min(0.3), back, 0.75],
+            "facade_wood",
+        ),
+        _ => (
+            [-hw.min(0.9), back - depth, z],
+            [hw.min(0.9), back, 0.8],
+            "facade_sofa",
+        ),
     };
     out.push(boxed(lo, [hi[0], hi[1], hi[2].min(s.floor_m - 0.3)], m, b));
 }
@@ -271,7 +320,14 @@ fn furniture(s: &Style, front: f64, v: u32, out: &mut Vec<ObjectDesc>) {
 pub fn room_light(s: &Style) -> Vec<ObjectDesc> {
     let (y0, y1) = lamp_span(front_depth(s.recess_m));
     let z = lamp_z(s) - 0.002;
-    vec![quad_flat([-0.29, 0.29], [y0 + 0.01, y1 - 0.01], z, false, "window_lit", class("building"))]
+    vec![quad_flat(
+        [-0.29, 0.29],
+        [y0 + 0.01, y1 - 0.01],
+        z,
+        false,
+        "window_lit",
+        class("building"),
+    )]
 }
 
 /// Shopfront opening of a ground-floor bay (narrow piers, a stall riser
@@ -299,7 +355,12 @@ pub fn shop_bay(s: &Style) -> Vec<ObjectDesc> {
     let shelf = boxed([-hw, back - 0.3, 0.9], [hw, back, 0.93], "facade_wood", b);
     out.push(repeated(shelf, &[(3, [0.0, 0.0, 0.5])]));
     let z = ROOM_FLOOR_M + 0.001;
-    out.push(boxed([-0.6, back - 0.7, z], [0.6, back - 0.45, 0.95], "facade_wood", b));
+    out.push(boxed(
+        [-0.6, back - 0.7, z],
+        [0.6, back - 0.45, 0.95],
+        "facade_wood",
+        b,
+    ));
     out
 }
 
@@ -331,11 +392,21 @@ pub fn door_bay(s: &Style, n_steps: u32, canopy: bool) -> Vec<ObjectDesc> {
     wall_around(s, o, front, &mut out);
     // The threshold fills the opening up to the door's sill.
     if sill > 0.0 {
-        out.push(boxed([-0.55, 0.0, 0.0], [0.55, front, sill], "facade_step", b));
+        out.push(boxed(
+            [-0.55, 0.0, 0.0],
+            [0.55, front, sill],
+            "facade_step",
+            b,
+        ));
     }
     let leaf_top = sill + 2.2;
     out.push(boxed([-0.55, 0.25, sill], [0.55, 0.3, leaf_top], "door", b));
-    out.push(boxed([0.35, 0.22, sill + 1.0], [0.42, 0.25, sill + 1.06], "facade_metal_dark", b));
+    out.push(boxed(
+        [0.35, 0.22, sill + 1.0],
+        [0.42, 0.25, sill + 1.06],
+        "facade_metal_dark",
+        b,
+    ));
     let fan = Opening {
         half_w: 0.55,
         z0: leaf_top,
@@ -345,7 +416,12 @@ pub fn door_bay(s: &Style, n_steps: u32, canopy: bool) -> Vec<ObjectDesc> {
     room(s, front, &mut out);
     out.extend(steps(n_steps));
     if canopy && o.z1 + 0.3 < s.floor_m {
-        out.push(boxed([-0.9, -0.9, o.z1 + 0.15], [0.9, 0.0, o.z1 + 0.25], s.trim, b));
+        out.push(boxed(
+            [-0.9, -0.9, o.z1 + 0.15],
+            [0.9, 0.0, o.z1 + 0.25],
+            s.trim,
+            b,
+        ));
     }
     out
 }
@@ -361,12 +437,22 @@ pub fn roller_bay(s: &Style) -> Vec<ObjectDesc> {
     };
     let mut out = Vec::new();
     wall_around(s, o, 0.4, &mut out);
-    out.push(boxed([-1.6, 0.25, 0.0], [1.6, 0.4, o.z1], "facade_metal_grey", b));
+    out.push(boxed(
+        [-1.6, 0.25, 0.0],
+        [1.6, 0.4, o.z1],
+        "facade_metal_grey",
+        b,
+    ));
     // Slats: ribs 4 cm proud, every 0.2 m.
     let rib = boxed([-1.6, 0.21, 0.1], [1.6, 0.25, 0.14], "facade_metal_grey", b);
     let n = ((o.z1 - 0.2) / 0.2) as u32;
     out.push(repeated(rib, &[(n, [0.0, 0.0, 0.2])]));
-    out.push(boxed([-1.6, 0.0, o.z1 - 0.01], [1.6, 0.25, o.z1], "facade_metal_dark", b));
+    out.push(boxed(
+        [-1.6, 0.0, o.z1 - 0.01],
+        [1.6, 0.25, o.z1],
+        "facade_metal_dark",
+        b,
+    ));
     room(s, 0.4, &mut out);
     out
 }

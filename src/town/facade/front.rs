@@ -143,7 +143,12 @@ pub fn sign_width(k: usize) -> f64 {
 pub fn sign(k: usize) -> Vec<ObjectDesc> {
     let b = class("building");
     let w = sign_width(k);
-    let board = boxed([-w / 2.0, -0.05, 0.0], [w / 2.0, 0.0, BOARD_M], BOARDS[0], b);
+    let board = boxed(
+        [-w / 2.0, -0.05, 0.0],
+        [w / 2.0, 0.0, BOARD_M],
+        BOARDS[0],
+        b,
+    );
     let text = text_mesh(SHOP_NAMES[k], CAP_M, 0.03);
     let x0 = -(w - 0.4) / 2.0;
     let z0 = (BOARD_M - CAP_M) / 2.0;

@@ -36,7 +36,10 @@ pub fn merge_boxes(objects: Vec<ObjectDesc>) -> Vec<ObjectDesc> {
         let local = parent_from_local(&o.transform);
         for offset in repeat_offsets(&o.repeat) {
             let base = mesh.positions.len() as u32;
-            let moved = block.positions.iter().map(|p| local.transform_point3(*p) + offset);
+            let moved = block
+                .positions
+                .iter()
+                .map(|p| local.transform_point3(*p) + offset);
             mesh.positions.extend(moved.collect::<Vec<DVec3>>());
             mesh.triangles
                 .extend(block.triangles.iter().map(|t| t.map(|i| i + base)));
@@ -72,7 +75,10 @@ mod tests {
         let mut turned = box_at([1.0, 2.0, 3.0], [5.0, 0.0, 0.0], 90.0, "a", b);
         turned.transform.rotate_deg = Some([0.0, 0.0, 90.0]);
         let objects = vec![
-            repeated(box_at([1.0, 1.0, 1.0], [0.0, 0.0, 0.5], 0.0, "a", b), &[(3, [2.0, 0.0, 0.0])]),
+            repeated(
+                box_at([1.0, 1.0, 1.0], [0.0, 0.0, 0.5], 0.0, "a", b),
+                &[(3, [2.0, 0.0, 0.0])],
+            ),
             cylinder(0.1, 1.0, 8, [0.0; 3], "a", b),
             box_at([1.0, 1.0, 1.0], [0.0, 9.0, 0.5], 0.0, "b", b),
             turned,
@@ -80,13 +86,22 @@ mod tests {
         let out = merge_boxes(objects);
         assert_eq!(out.len(), 3);
         assert!(matches!(out[2].shape, ShapeDesc::Cylinder { .. }));
-        let ShapeDesc::Mesh { positions, triangles, .. } = &out[0].shape else {
+        let ShapeDesc::Mesh {
+            positions,
+            triangles,
+            ..
+        } = &out[0].shape
+        else {
             panic!()
         };
         assert_eq!(out[0].material.as_deref(), Some("a"));
         // Three repeats and the turned box: 4 × 12 triangles.
         assert_eq!(triangles.len(), 48);
-        let has = |p: [f64; 3]| positions.iter().any(|q| (0..3).all(|k| (q[k] - p[k]).abs() < 1e-12));
+        let has = |p: [f64; 3]| {
+            positions
+                .iter()
+                .any(|q| (0..3).all(|k| (q[k] - p[k]).abs() < 1e-12))
+        };
         assert!(has([4.5, 0.5, 1.0]) && has([-0.5, -0.5, 0.0]));
         // The turned box: 1 × 2 × 3 about (5, 0, 0), x and y swapped.
         assert!(has([6.0, 0.5, 1.5]) && has([4.0, -0.5, -1.5]));

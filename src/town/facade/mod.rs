@@ -54,7 +54,10 @@ pub fn facade_prefabs() -> Vec<PrefabDesc> {
     };
     for s in &STYLES {
         for v in 0..bay::VARIANTS {
-            add(prefab_name(s, &format!("window_{v}")), bay::window_bay(s, v));
+            add(
+                prefab_name(s, &format!("window_{v}")),
+                bay::window_bay(s, v),
+            );
         }
         add(prefab_name(s, "light"), bay::room_light(s));
         let (n_steps, canopy) = door_steps(s);
@@ -197,7 +200,13 @@ pub fn building(
             min: [plot.min[0] + 0.3, plot.min[1] + 0.3],
             max: [plot.max[0] - 0.3, plot.max[1] - 0.3],
         };
-        out.extend(ornament::place_roof_units(&inner, h + 0.2, s.roof_units, r, id));
+        out.extend(ornament::place_roof_units(
+            &inner,
+            h + 0.2,
+            s.roof_units,
+            r,
+            id,
+        ));
     } else {
         out.push(crate::town::buildings::gable_roof(plot, h, id));
     }
@@ -225,7 +234,11 @@ fn facade(
     let (cols, end) = columns(s, f.len);
     // Solid wall at both ends, full height and skin depth.
     for side in [-1.0, 1.0] {
-        let at = place(f.c, f.heading, [side * (f.len - end) / 2.0, SKIN_M / 2.0, h / 2.0]);
+        let at = place(
+            f.c,
+            f.heading,
+            [side * (f.len - end) / 2.0, SKIN_M / 2.0, h / 2.0],
+        );
         out.push(cuboid([end, SKIN_M, h], at, f.heading, wall, id));
     }
     if cols == 0 {
@@ -244,7 +257,10 @@ fn facade(
         let v = r.int(0, bay::VARIANTS - 1);
         let at = place(f.c, f.heading, [x0, 0.0, row as f64 * s.floor_m]);
         let name = prefab_name(s, &format!("window_{v}"));
-        out.push(repeated(instance(&name, at, f.heading, map, id), &[(cols, step)]));
+        out.push(repeated(
+            instance(&name, at, f.heading, map, id),
+            &[(cols, step)],
+        ));
         if lit.chance(lit_fraction) {
             let c0 = lit.int(0, cols - 1);
             let run = lit.int(1, (cols - c0).min(4));
@@ -296,10 +312,20 @@ fn ground_floor(
         if let Some(k) = u.name {
             let board = [(BOARDS[0], BOARDS[r.index(BOARDS.len())])];
             let at = place(f.c, f.heading, [mid, 0.0, top + 0.05]);
-            out.push(instance(&format!("facade_sign_{k}"), at, f.heading, &board, id));
+            out.push(instance(
+                &format!("facade_sign_{k}"),
+                at,
+                f.heading,
+                &board,
+                id,
+            ));
         }
         let colour = [(AWNINGS[0], AWNINGS[r.index(AWNINGS.len())])];
-        let kind = if r.chance(0.5) { "awning_striped" } else { "awning" };
+        let kind = if r.chance(0.5) {
+            "awning_striped"
+        } else {
+            "awning"
+        };
         for c in u.first..u.first + u.cols {
             if plan[c as usize] == GroundBay::Shop {
                 let at = place(f.c, f.heading, [x_of(c), 0.0, top]);
@@ -311,7 +337,14 @@ fn ground_floor(
 
 /// Balconies on every other column of the street front, floors 1 and up:
 /// the slab (`building`) and its railing (`fence`, the building's id).
-fn balcony_columns(s: &Style, f: Facade, floors: u32, r: &mut Rng, id: Label, out: &mut Vec<ObjectDesc>) {
+fn balcony_columns(
+    s: &Style,
+    f: Facade,
+    floors: u32,
+    r: &mut Rng,
+    id: Label,
+    out: &mut Vec<ObjectDesc>,
+) {
     let (cols, _) = columns(s, f.len);
     let parity = r.int(0, 1);
     let fence = Label {
@@ -323,7 +356,10 @@ fn balcony_columns(s: &Style, f: Facade, floors: u32, r: &mut Rng, id: Label, ou
         let at = place(f.c, f.heading, [x, 0.0, s.floor_m]);
         let up = [(floors - 1, [0.0, 0.0, s.floor_m])];
         for (kind, l) in [("balcony", id), ("railing", fence)] {
-            out.push(repeated(instance(&prefab_name(s, kind), at, f.heading, &[], l), &up));
+            out.push(repeated(
+                instance(&prefab_name(s, kind), at, f.heading, &[], l),
+                &up,
+            ));
         }
     }
 }

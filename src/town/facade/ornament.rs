@@ -39,12 +39,22 @@ pub fn railing(s: &Style) -> Vec<ObjectDesc> {
     let mut out = Vec::new();
     let m = "facade_railing";
     // Top rails: front and two sides.
-    out.push(boxed([-hw, -d, RAIL_M - 0.04], [hw, -d + 0.04, RAIL_M], m, f));
+    out.push(boxed(
+        [-hw, -d, RAIL_M - 0.04],
+        [hw, -d + 0.04, RAIL_M],
+        m,
+        f,
+    ));
     let side = boxed([-hw, -d, RAIL_M - 0.04], [-hw + 0.04, 0.0, RAIL_M], m, f);
     out.push(repeated(side, &[(2, [2.0 * hw - 0.04, 0.0, 0.0])]));
     // Bars along the front and down each side.
     let n_front = ((2.0 * hw - BAR_M) / BAR_STEP_M).floor() as u32 + 1;
-    let bar = boxed([-hw, -d, 0.0], [-hw + BAR_M, -d + BAR_M, RAIL_M - 0.04], m, f);
+    let bar = boxed(
+        [-hw, -d, 0.0],
+        [-hw + BAR_M, -d + BAR_M, RAIL_M - 0.04],
+        m,
+        f,
+    );
     out.push(repeated(bar, &[(n_front, [BAR_STEP_M, 0.0, 0.0])]));
     let n_side = ((d - 0.1) / BAR_STEP_M).floor() as u32;
     let bar = boxed(
@@ -55,7 +65,10 @@ pub fn railing(s: &Style) -> Vec<ObjectDesc> {
     );
     out.push(repeated(
         bar,
-        &[(2, [2.0 * hw - BAR_M, 0.0, 0.0]), (n_side, [0.0, BAR_STEP_M, 0.0])],
+        &[
+            (2, [2.0 * hw - BAR_M, 0.0, 0.0]),
+            (n_side, [0.0, BAR_STEP_M, 0.0]),
+        ],
     ));
     out
 }
@@ -74,7 +87,14 @@ pub fn roof_units() -> Vec<(&'static str, Vec<ObjectDesc>)> {
     let mut tank = vec![cylinder(1.0, 1.8, 16, [0.0, 0.0, 0.8], "facade_wood", b)];
     let leg = boxed([-0.7, -0.7, 0.0], [-0.6, -0.6, 0.8], "facade_metal_dark", b);
     tank.push(repeated(leg, &[(2, [1.3, 0.0, 0.0]), (2, [0.0, 1.3, 0.0])]));
-    tank.push(cylinder(1.05, 0.1, 16, [0.0, 0.0, 2.6], "facade_metal_dark", b));
+    tank.push(cylinder(
+        1.05,
+        0.1,
+        16,
+        [0.0, 0.0, 2.6],
+        "facade_metal_dark",
+        b,
+    ));
     let hut = vec![
         boxed([-1.2, -1.5, 0.0], [1.2, 1.5, 2.4], "concrete", b),
         boxed([-1.3, -1.6, 2.4], [1.3, 1.6, 2.55], "roof", b),
@@ -90,13 +110,7 @@ pub fn roof_units() -> Vec<(&'static str, Vec<ObjectDesc>)> {
 
 /// Roof units on the flat roof over `roof` (top at `z`): up to `max`
 /// units on distinct cells of a 4 m grid inset 1.5 m from the edge.
-pub fn place_roof_units(
-    roof: &Rect,
-    z: f64,
-    max: u32,
-    r: &mut Rng,
-    id: Label,
-) -> Vec<ObjectDesc> {
+pub fn place_roof_units(roof: &Rect, z: f64, max: u32, r: &mut Rng, id: Label) -> Vec<ObjectDesc> {
     let [w, d] = roof.size();
     let (nx, ny) = (((w - 3.0) / 4.0).floor(), ((d - 3.0) / 4.0).floor());
     if max == 0 || nx < 1.0 || ny < 1.0 {
@@ -126,9 +140,21 @@ pub fn place_roof_units(
 
 /// Cornice, string courses and parapet of a flat-roofed building on
 /// `plot`, `floors` floors of style `s` (height `h`), walls of `wall`.
-pub fn bands(s: &Style, wall: &str, plot: &Rect, floors: u32, flat: bool, id: Label) -> Vec<ObjectDesc> {
+pub fn bands(
+    s: &Style,
+    wall: &str,
+    plot: &Rect,
+    floors: u32,
+    flat: bool,
+    id: Label,
+) -> Vec<ObjectDesc> {
     let h = floors as f64 * s.floor_m;
-    let grow = |e: f64| ([plot.min[0] - e, plot.min[1] - e], [plot.max[0] + e, plot.max[1] + e]);
+    let grow = |e: f64| {
+        (
+            [plot.min[0] - e, plot.min[1] - e],
+            [plot.max[0] + e, plot.max[1] + e],
+        )
+    };
     let mut out = Vec::new();
     if s.string_course && floors > 1 {
         let (lo, hi) = grow(0.08);

@@ -10,7 +10,9 @@ use super::*;
 use crate::scene::desc::ShapeDesc;
 
 fn town(name: &str) -> TownDesc {
-    crate::town::source::load_named_town(name, None).unwrap().desc
+    crate::town::source::load_named_town(name, None)
+        .unwrap()
+        .desc
 }
 
 const ID: Label = Label {
@@ -62,10 +64,18 @@ fn every_style_is_reachable_and_suits_its_floor_count() {
         let mut r = Rng::new(&[5, 1]);
         for _ in 0..400 {
             let tower = r.chance(desc.tower_fraction);
-            let [lo, hi] = if tower { desc.tower_floors } else { desc.floors };
+            let [lo, hi] = if tower {
+                desc.tower_floors
+            } else {
+                desc.floors
+            };
             let floors = r.int(lo, hi);
             let s = style::choose(&desc, floors, tower, &mut r);
-            assert!((s.floors[0]..=s.floors[1]).contains(&floors), "{name} {floors} {}", s.name);
+            assert!(
+                (s.floors[0]..=s.floors[1]).contains(&floors),
+                "{name} {floors} {}",
+                s.name
+            );
             seen.insert(s.name);
         }
     }
@@ -89,9 +99,21 @@ fn window_bay_parts_stay_inside_their_bay_and_the_glass_is_recessed() {
             for p in &parts {
                 let (lo, hi) = bounds(p);
                 let eps = 1e-9;
-                assert!(lo[0] >= -s.bay_m / 2.0 - eps && hi[0] <= s.bay_m / 2.0 + eps, "{} {p:?}", s.name);
-                assert!(lo[2] >= -0.07 && hi[2] <= s.floor_m + eps, "{} {p:?}", s.name);
-                assert!(lo[1] >= -0.06 - eps && hi[1] <= SKIN_M + eps, "{} {p:?}", s.name);
+                assert!(
+                    lo[0] >= -s.bay_m / 2.0 - eps && hi[0] <= s.bay_m / 2.0 + eps,
+                    "{} {p:?}",
+                    s.name
+                );
+                assert!(
+                    lo[2] >= -0.07 && hi[2] <= s.floor_m + eps,
+                    "{} {p:?}",
+                    s.name
+                );
+                assert!(
+                    lo[1] >= -0.06 - eps && hi[1] <= SKIN_M + eps,
+                    "{} {p:?}",
+                    s.name
+                );
             }
             let glass: Vec<_> = parts
                 .iter()
@@ -120,7 +142,11 @@ fn window_bay_parts_stay_inside_their_bay_and_the_glass_is_recessed() {
                 let inside = plo[0] < -o.half_w + 0.1 && phi[0] > o.half_w - 0.1;
                 let in_front = plo[1] < s.recess_m - 0.04 - 1e-9;
                 let mid = plo[2] < (o.z0 + o.z1) / 2.0 && phi[2] > (o.z0 + o.z1) / 2.0;
-                assert!(!(inside && in_front && mid), "{} blocks the glass: {p:?}", s.name);
+                assert!(
+                    !(inside && in_front && mid),
+                    "{} blocks the glass: {p:?}",
+                    s.name
+                );
             }
         }
     }
@@ -136,12 +162,19 @@ fn the_lit_panel_hangs_just_below_the_unlit_one_inside_the_room() {
             .find(|p| p.material.as_deref() == Some("facade_lamp_off"))
             .map(bounds)
             .unwrap();
-        assert!(light.1[2] < off.0[2] && off.0[2] - light.1[2] < 0.005, "{}", s.name);
+        assert!(
+            light.1[2] < off.0[2] && off.0[2] - light.1[2] < 0.005,
+            "{}",
+            s.name
+        );
         assert_eq!(light.0[2], light.1[2]);
         assert!(light.0[0] > off.0[0] && light.1[0] < off.1[0]);
         assert!(light.0[1] > bay::front_depth(s.recess_m) && light.1[1] < SKIN_M);
         // Both face down: the lit one is a single quad.
-        assert!(matches!(bay::room_light(s)[0].shape, ShapeDesc::Quad { .. }));
+        assert!(matches!(
+            bay::room_light(s)[0].shape,
+            ShapeDesc::Quad { .. }
+        ));
     }
 }
 
@@ -152,14 +185,21 @@ fn columns_tile_the_wall_with_solid_ends() {
             let (cols, end) = columns(s, len);
             assert!((cols as f64 * s.bay_m + 2.0 * end - len).abs() < 1e-9);
             assert!(end >= END_MIN_M - 1e-12 || cols == 0, "{} {len}", s.name);
-            assert!(end < END_MIN_M + s.bay_m, "{} {len}: one more column fits", s.name);
+            assert!(
+                end < END_MIN_M + s.bay_m,
+                "{} {len}: one more column fits",
+                s.name
+            );
         }
     }
 }
 
 #[test]
 fn shop_units_partition_the_front_with_one_door_each_and_a_sign_that_fits() {
-    let shops: Vec<&Style> = STYLES.iter().filter(|s| s.ground == Ground::Shops).collect();
+    let shops: Vec<&Style> = STYLES
+        .iter()
+        .filter(|s| s.ground == Ground::Shops)
+        .collect();
     assert!(shops.len() >= 3);
     let mut r = Rng::new(&[11]);
     for s in shops {
@@ -173,7 +213,9 @@ fn shop_units_partition_the_front_with_one_door_each_and_a_sign_that_fits() {
                 let bays = &plan[u.first as usize..(u.first + u.cols) as usize];
                 let doors = bays.iter().filter(|b| **b == GroundBay::Door).count();
                 assert_eq!(doors, 1, "{bays:?}");
-                assert!(bays.iter().all(|b| matches!(b, GroundBay::Door | GroundBay::Shop)));
+                assert!(bays
+                    .iter()
+                    .all(|b| matches!(b, GroundBay::Door | GroundBay::Shop)));
                 if let Some(k) = u.name {
                     assert!(front::sign_width(k) <= u.cols as f64 * s.bay_m - 0.3);
                 }
@@ -185,7 +227,12 @@ fn shop_units_partition_the_front_with_one_door_each_and_a_sign_that_fits() {
     let (plan, units) = front::ground_plan(&STYLES[0], 5, &mut r);
     assert!(units.is_empty());
     assert_eq!(plan[2], GroundBay::Door);
-    assert!(plan.iter().filter(|b| matches!(b, GroundBay::Window(_))).count() == 4);
+    assert!(
+        plan.iter()
+            .filter(|b| matches!(b, GroundBay::Window(_)))
+            .count()
+            == 4
+    );
 }
 
 #[test]
@@ -198,8 +245,14 @@ fn sign_letters_sit_on_the_board_face() {
         };
         assert!(!positions.is_empty());
         for p in positions {
-            assert!(p[0] > lo[0] && p[0] < hi[0] && p[2] > lo[2] && p[2] < hi[2], "{p:?}");
-            assert!(p[1] <= lo[1] + 1e-12 && p[1] >= lo[1] - 0.03 - 1e-12, "{p:?}");
+            assert!(
+                p[0] > lo[0] && p[0] < hi[0] && p[2] > lo[2] && p[2] < hi[2],
+                "{p:?}"
+            );
+            assert!(
+                p[1] <= lo[1] + 1e-12 && p[1] >= lo[1] - 0.03 - 1e-12,
+                "{p:?}"
+            );
         }
     }
 }
@@ -207,11 +260,17 @@ fn sign_letters_sit_on_the_board_face() {
 #[test]
 fn balcony_railing_is_fence_bars_at_their_spacing() {
     for s in STYLES.iter().filter(|s| s.balcony > 0.0) {
-        assert_eq!(ornament::balcony(s)[0].semantic.as_deref(), Some("building"));
+        assert_eq!(
+            ornament::balcony(s)[0].semantic.as_deref(),
+            Some("building")
+        );
         let parts = ornament::railing(s);
         assert!(parts.iter().all(|p| p.semantic.as_deref() == Some("fence")));
         let front_bars = &parts[2];
-        assert_eq!(front_bars.repeat[0].offset, [ornament::BAR_STEP_M, 0.0, 0.0]);
+        assert_eq!(
+            front_bars.repeat[0].offset,
+            [ornament::BAR_STEP_M, 0.0, 0.0]
+        );
         let (lo, hi) = bounds(front_bars);
         let hw = s.bay_m / 2.0 - 0.2;
         assert!(lo[0] >= -hw && hi[0] <= hw + 1e-9 && hi[0] > hw - ornament::BAR_STEP_M);
@@ -238,7 +297,8 @@ fn a_building_is_deterministic_per_seed_and_labelled_as_one() {
     for o in &a {
         assert_eq!(o.instance, Some(1001), "{o:?}");
         // Balcony railings are `fence`, everything else `building`.
-        let railing = matches!(&o.shape, ShapeDesc::Instance { prefab, .. } if prefab.ends_with("railing"));
+        let railing =
+            matches!(&o.shape, ShapeDesc::Instance { prefab, .. } if prefab.ends_with("railing"));
         let want = if railing { "fence" } else { "building" };
         assert_eq!(o.semantic.as_deref(), Some(want), "{o:?}");
     }
@@ -255,12 +315,22 @@ fn shopfronts_and_doors_never_share_a_column() {
                 continue;
             };
             let t = o.transform.translate.unwrap();
-            let ground_bay = ["_shop", "_door", "_roller", "_window_0", "_window_1", "_window_2"]
-                .iter()
-                .any(|k| prefab.ends_with(k));
+            let ground_bay = [
+                "_shop",
+                "_door",
+                "_roller",
+                "_window_0",
+                "_window_1",
+                "_window_2",
+            ]
+            .iter()
+            .any(|k| prefab.ends_with(k));
             if t[2] == 0.0 && o.repeat.is_empty() && ground_bay {
                 // One bay per position along the front (x in mm).
-                assert!(ground.insert((t[0] * 1000.0).round() as i64, ), "seed {seed}: two bays at {t:?}");
+                assert!(
+                    ground.insert((t[0] * 1000.0).round() as i64,),
+                    "seed {seed}: two bays at {t:?}"
+                );
             }
         }
     }
@@ -301,4 +371,86 @@ fn print_prefab_triangles() {
             .sum();
         println!("{} {} objs {n} tris", p.name, p.objects.len());
     }
+}
+
+/// Triangles of one object's own shape (instances: 0), times its repeats.
+fn own_triangles(o: &ObjectDesc) -> u64 {
+    let n = match &o.shape {
+        ShapeDesc::Box { .. } => 12,
+        ShapeDesc::Quad { .. } => 2,
+        ShapeDesc::Mesh { triangles, .. } => triangles.len() as u64,
+        ShapeDesc::Cylinder {
+            segments, capped, ..
+        } => crate::scene::mesh::cylinder_triangles(*segments, *capped),
+        ShapeDesc::Ellipsoid {
+            segments, rings, ..
+        } => crate::scene::mesh::ellipsoid_triangles(*segments, *rings),
+        _ => 0,
+    };
+    n * crate::scene::transform::repeat_count(&o.repeat)
+}
+
+#[test]
+#[ignore]
+fn print_town_facade_triangles() {
+    let prefabs = facade_prefabs();
+    let tris = |name: &str| -> u64 {
+        prefabs
+            .iter()
+            .find(|p| p.name == name)
+            .map_or(0, |p| p.objects.iter().map(own_triangles).sum())
+    };
+    let stored: u64 = prefabs.iter().map(|p| tris(&p.name)).sum();
+    for name in ["town03", "town10", "town02"] {
+        let desc = town(name);
+        let scene = crate::town::town_scene(&desc, 0, 0, crate::town::CameraConfig::Normal);
+        let (mut unique, mut placed, mut placements) = (0u64, 0u64, 0u64);
+        for o in &scene.objects {
+            if o.semantic.as_deref() != Some("building") && o.semantic.as_deref() != Some("fence") {
+                continue;
+            }
+            match &o.shape {
+                ShapeDesc::Instance { prefab, .. } if prefab.starts_with("facade_") => {
+                    let n = crate::scene::transform::repeat_count(&o.repeat);
+                    placements += n;
+                    placed += n * tris(prefab);
+                }
+                _ => unique += own_triangles(o),
+            }
+        }
+        println!("{name}: building unique {unique} tris, facade prefab placements {placements} = {placed} tris flattened; facade prefabs stored once {stored} tris ({} prefabs)", prefabs.len());
+    }
+}
+
+/// Writes a street close-up of a shop-row building (for looking at).
+#[test]
+#[ignore]
+fn write_close_up_scene() {
+    let desc = town("town03");
+    let plot = Rect {
+        min: [0.0, 0.0],
+        max: [21.0, 14.0],
+    };
+    let mut out = Vec::new();
+    for seed in 0.. {
+        out.clear();
+        let mut r = Rng::new(&[seed]);
+        let s = building(&desc, &plot, true, 3, false, &mut r, ID, &mut out);
+        if s.name == "shop_row" && out.iter().any(|o| matches!(&o.shape, ShapeDesc::Instance { prefab, .. } if prefab.contains("sign"))) {
+            break;
+        }
+    }
+    out.push(crate::town::parts::ground_quad(
+        [-30.0, -30.0],
+        [50.0, 30.0],
+        0.0,
+        "sidewalk",
+        crate::town::parts::class("sidewalk"),
+    ));
+    let mut scene = crate::town::town_scene(&desc, 0, 0, crate::town::CameraConfig::Normal);
+    scene.objects = out;
+    scene.camera.position = [6.0, -9.0, 1.7];
+    scene.camera.yaw_deg = 90.0;
+    scene.camera.pitch_deg = -20.0;
+    std::fs::write("/tmp/h4/close.toml", crate::scene::serialize_scene(&scene)).unwrap();
 }
