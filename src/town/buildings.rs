@@ -195,7 +195,6 @@ mod tests {
             .desc
     }
 
-
     #[test]
     fn floors_stay_in_their_range_and_most_buildings_are_short() {
         let mut desc = town01();
