@@ -1,12 +1,11 @@
 //! Buildings and parks on the blocks: rows of lots along the two streets of
-//! each block, each lot holding a building (body, roof, floor ledges, windows
-//! on every facade, a door and shop windows on the street side) or planting;
-//! towers get a glass curtain wall with mullions. Some window runs show a
-//! lit room (an always-on warm emitter). Some blocks are parks.
+//! each block, each lot holding a building or planting; a building's
+//! massing (tower or not, floor count) is drawn here and the façade
+//! generator (`town::facade`) builds its style, walls, windows, ground
+//! floor, roof and ornament. Some blocks are parks.
 //!
 //! A building's front faces the street its row lines (−y for the south row,
-//! +y for the north row). Floor height 3.2 m; windows come from the "window"
-//! prefab (facade in its local x–z plane, facing −y).
+//! +y for the north row).
 
 use std::ops::Range;
 
@@ -14,13 +13,10 @@ use crate::scene::desc::ObjectDesc;
 
 use super::desc::{TerrainKind, TownDesc};
 use super::layout::{Layout, Rect};
-use super::materials::{TOWER_FRAMES, WALLS};
-use super::parts::{class, cuboid, ground_quad, instance, repeated, slab, Label};
+use super::parts::{class, cuboid, ground_quad, instance, Label};
 use super::rng::{tag, Rng};
 use super::vegetation::{self, Plant};
 
-/// Floor height, metres.
-pub const FLOOR_M: f64 = 3.2;
 /// Gap between a building and the sidewalk, metres.
 const SETBACK_M: f64 = 1.0;
 /// First instance id of buildings.
@@ -138,8 +134,8 @@ fn park(desc: &TownDesc, l: &Layout, lot: &Rect, r: &mut Rng, out: &mut Vec<Obje
     }
 }
 
-/// One building on `plot`: body, roof, balconies, floor ledges, then each
-/// facade's windows (or a tower's curtain wall) and the street front.
+/// One building on `plot`: its massing (tower or not, floor count), then
+/// its style, walls, roof and ornament from the façade generator.
 fn building(
     desc: &TownDesc,
     plot: &Rect,
@@ -150,51 +146,7 @@ fn building(
 ) {
     let tower = r.chance(desc.tower_fraction);
     let floors = floor_count(desc, tower, r);
-    let h = floors as f64 * FLOOR_M;
-    let [w, d] = plot.size();
-    let (cx, cy) = (plot.center()[0], plot.center()[1]);
-    let wall = if tower {
-        TOWER_FRAMES[r.index(TOWER_FRAMES.len())]
-    } else {
-        WALLS[r.index(WALLS.len())]
-    };
-    out.push(slab(plot.min, plot.max, 0.0, h, wall, id));
-    out.push(roof(plot, h, tower, floors, r, id));
-    if !tower && floors >= 3 && r.chance(0.4) {
-        balconies(plot, south, floors, id, out);
-    }
-    if floors > 1 {
-        let ledge = cuboid(
-            [w + 0.3, d + 0.3, 0.2],
-            [cx, cy, FLOOR_M],
-            0.0,
-            "window_frame",
-            id,
-        );
-        out.push(repeated(ledge, &[(floors - 1, [0.0, 0.0, FLOOR_M])]));
-    }
-    // Facades: (centre of the wall line, heading of the window prefab, length).
-    let facades = [
-        ([cx, plot.min[1]], 0.0, w, south),
-        ([plot.max[0], cy], 90.0, d, false),
-        ([cx, plot.max[1]], 180.0, w, !south),
-        ([plot.min[0], cy], 270.0, d, false),
-    ];
-    // Lit rooms: a per-building fraction of window rows shows a lit run.
-    let mut lit = Rng::new(&[r.next_u64(), tag::LIT_WINDOWS]);
-    let lit_fraction = lit.range(0.0, 0.35);
-    for (c, heading, len, front) in facades {
-        if tower {
-            curtain_wall(c, heading, len, floors, id, out);
-            continue;
-        }
-        let first_row = if front { 1 } else { 0 };
-        let lit = (&mut lit, lit_fraction);
-        facade_windows(c, heading, len, first_row..floors, lit, id, out);
-        if front {
-            shop_front(c, heading, len, id, out);
-        }
-    }
+    super::facade::building(desc, plot, south, floors, tower, r, id, out);
 }
 
 /// Floors of a building (a tower's from the tower range), skewed towards
@@ -210,99 +162,6 @@ fn floor_count(desc: &TownDesc, tower: bool, r: &mut Rng) -> u32 {
         .min((hi - lo) as f64) as u32
 }
 
-/// The roof at height `h`: mostly a gable on low, shallow houses, else a
-/// flat slab overhanging the walls by 0.2 m.
-fn roof(plot: &Rect, h: f64, tower: bool, floors: u32, r: &mut Rng, id: Label) -> ObjectDesc {
-    let d = plot.size()[1];
-    if !tower && floors <= 2 && d <= 14.0 && r.chance(0.7) {
-        gable_roof(plot, h, id)
-    } else {
-        let roof = [plot.min[0] - 0.2, plot.min[1] - 0.2];
-        let roof_max = [plot.max[0] + 0.2, plot.max[1] + 0.2];
-        slab(roof, roof_max, h, h + 0.4, "roof", id)
-    }
-}
-
-/// Windows every 3 m along the facade centred at `c` (window prefab heading
-/// `heading`, wall length `len`) over the floors `rows`; in each row, with
-/// the building's chance, a run of up to four lit rooms (`lit`: the
-/// building's lit-room stream and fraction).
-fn facade_windows(
-    c: [f64; 2],
-    heading: f64,
-    len: f64,
-    rows: Range<u32>,
-    (lit, lit_fraction): (&mut Rng, f64),
-    id: Label,
-    out: &mut Vec<ObjectDesc>,
-) {
-    let cols = ((len - 1.5) / 3.0).floor().max(0.0) as u32;
-    if cols == 0 || rows.is_empty() {
-        return;
-    }
-    let along = heading_dir(heading);
-    let start = -(cols as f64 - 1.0) * 3.0 / 2.0;
-    let at = [
-        c[0] + along[0] * start,
-        c[1] + along[1] * start,
-        rows.start as f64 * FLOOR_M + 1.7,
-    ];
-    let win = instance("window", at, heading, &[], id);
-    let step = [along[0] * 3.0, along[1] * 3.0, 0.0];
-    let floors = rows.end - rows.start;
-    out.push(repeated(
-        win,
-        &[(cols, step), (floors, [0.0, 0.0, FLOOR_M])],
-    ));
-    for row in rows {
-        if !lit.chance(lit_fraction) {
-            continue;
-        }
-        let c0 = lit.int(0, cols - 1);
-        let run = lit.int(1, (cols - c0).min(4));
-        let a = start + c0 as f64 * 3.0;
-        let at = [
-            c[0] + along[0] * a,
-            c[1] + along[1] * a,
-            row as f64 * FLOOR_M + 1.7,
-        ];
-        let light = instance("window_light", at, heading, &[], id);
-        out.push(repeated(light, &[(run, step)]));
-    }
-}
-
-/// The street front of the facade centred at `c`: a door in the middle,
-/// shop windows (glass before a dark interior) either side where the wall
-/// is long enough, and a canopy over the door.
-fn shop_front(c: [f64; 2], heading: f64, len: f64, id: Label, out: &mut Vec<ObjectDesc>) {
-    let along = heading_dir(heading);
-    let n = normal_out(heading);
-    let door_at = [c[0] + n[0] * 0.03, c[1] + n[1] * 0.03, 1.25];
-    out.push(cuboid([1.6, 0.1, 2.5], door_at, heading, "door", id));
-    for side in [-1.0, 1.0] {
-        let off = side * (len / 4.0 + 0.4);
-        if len / 2.0 - 1.6 > 2.0 {
-            let shop_w = (len / 2.0 - 2.4).min(6.0);
-            let at = [
-                c[0] + along[0] * off + n[0] * 0.05,
-                c[1] + along[1] * off + n[1] * 0.05,
-                1.6,
-            ];
-            out.push(cuboid([shop_w, 0.04, 2.0], at, heading, "glass", id));
-            let back = [at[0] - n[0] * 0.035, at[1] - n[1] * 0.035, 1.6];
-            out.push(cuboid([shop_w, 0.02, 2.0], back, heading, "interior", id));
-        }
-    }
-    let canopy = [c[0] + n[0] * 0.6, c[1] + n[1] * 0.6, 2.85];
-    out.push(cuboid(
-        [2.4, 1.2, 0.12],
-        canopy,
-        heading,
-        "window_frame",
-        id,
-    ));
-}
-
 /// A 45° gable roof with its ridge along x (houses and barns): a square
 /// prism turned 45° about x whose upper half (a triangle of half-width d/2) stands on the walls; the
 /// lower half lies inside the body (or below the ground).
@@ -315,92 +174,6 @@ pub fn gable_roof(plot: &Rect, h: f64, id: Label) -> ObjectDesc {
     o
 }
 
-/// Balconies (slab and railing) on the street facade, every other window
-/// column, from the second floor up.
-fn balconies(plot: &Rect, south: bool, floors: u32, id: Label, out: &mut Vec<ObjectDesc>) {
-    let w = plot.size()[0];
-    let cols = ((w - 1.5) / 6.0).floor() as u32;
-    if cols == 0 || floors < 3 {
-        return;
-    }
-    let (wall_y, sign) = if south {
-        (plot.min[1], -1.0)
-    } else {
-        (plot.max[1], 1.0)
-    };
-    let x0 = plot.center()[0] - (cols as f64 - 1.0) * 3.0;
-    let slab_at = [x0, wall_y + sign * 0.6, 2.0 * FLOOR_M + 0.08];
-    let rail_at = [x0, wall_y + sign * 1.17, 2.0 * FLOOR_M + 0.6];
-    let levels = [(cols, [6.0, 0.0, 0.0]), (floors - 2, [0.0, 0.0, FLOOR_M])];
-    out.push(repeated(
-        cuboid([2.4, 1.2, 0.15], slab_at, 0.0, "concrete", id),
-        &levels,
-    ));
-    out.push(repeated(
-        cuboid([2.4, 0.05, 0.9], rail_at, 0.0, "steel_dark", id),
-        &levels,
-    ));
-}
-
-/// A tower facade: a glass band over the upper floors with mullions every 1.5 m.
-fn curtain_wall(
-    c: [f64; 2],
-    heading: f64,
-    len: f64,
-    floors: u32,
-    id: Label,
-    out: &mut Vec<ObjectDesc>,
-) {
-    let n = normal_out(heading);
-    let along = heading_dir(heading);
-    let h = (floors - 1) as f64 * FLOOR_M;
-    let z = FLOOR_M + h / 2.0;
-    let glass_at = [c[0] + n[0] * 0.06, c[1] + n[1] * 0.06, z];
-    out.push(cuboid(
-        [len - 1.0, 0.04, h - 0.4],
-        glass_at,
-        heading,
-        "glass_tower",
-        id,
-    ));
-    let cols = ((len - 1.0) / 1.5).floor() as u32;
-    if cols > 1 {
-        let start = -(cols as f64 - 1.0) * 1.5 / 2.0;
-        let at = [
-            c[0] + along[0] * start + n[0] * 0.1,
-            c[1] + along[1] * start + n[1] * 0.1,
-            z,
-        ];
-        let mullion = cuboid([0.08, 0.12, h - 0.4], at, heading, "steel_dark", id);
-        out.push(repeated(
-            mullion,
-            &[(cols, [along[0] * 1.5, along[1] * 1.5, 0.0])],
-        ));
-    }
-    // Ground floor: a glazed lobby.
-    let lobby = [c[0] + n[0] * 0.03, c[1] + n[1] * 0.03, 1.5];
-    out.push(cuboid(
-        [len - 2.0, 0.04, 2.6],
-        lobby,
-        heading,
-        "glass_tower",
-        id,
-    ));
-}
-
-/// Unit vector along a facade whose window prefab has heading `deg` (the
-/// prefab's local +x in the world).
-fn heading_dir(deg: f64) -> [f64; 2] {
-    let a = deg.to_radians();
-    [a.cos().round(), a.sin().round()]
-}
-
-/// Outward normal of a facade (the prefab's local −y in the world).
-fn normal_out(deg: f64) -> [f64; 2] {
-    let a = deg.to_radians();
-    [a.sin().round(), -a.cos().round()]
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -410,11 +183,6 @@ mod tests {
             .unwrap()
             .desc
     }
-
-    const ID: Label = Label {
-        class: "building",
-        instance: 1001,
-    };
 
     #[test]
     fn floors_stay_in_their_range_and_most_buildings_are_short() {
@@ -460,76 +228,5 @@ mod tests {
                 assert!(n0 - s1 >= gap - 1e-9, "rows {rows:?}");
             }
         }
-    }
-
-    #[test]
-    fn facade_windows_fill_the_wall_and_lit_runs_stay_in_their_row() {
-        // A 10 m wall facing −y centred at (20, 5): two columns 3 m apart
-        // ((10 − 1.5) / 3 = 2.8), rows on floors 1, 2 and 3.
-        let (c, len) = ([20.0, 5.0], 10.0);
-        let mut out = Vec::new();
-        let mut dark = Rng::new(&[7]);
-        facade_windows(c, 0.0, len, 1..4, (&mut dark, 0.0), ID, &mut out);
-        assert_eq!(out.len(), 1);
-        let counts: Vec<u32> = out[0].repeat.iter().map(|r| r.count).collect();
-        assert_eq!(counts, vec![2, 3]);
-        assert_eq!(out[0].repeat[0].offset, [3.0, 0.0, 0.0]);
-        assert_eq!(out[0].transform.translate, Some([18.5, 5.0, FLOOR_M + 1.7]));
-        // Every row lit: one run per row, at its height, inside the columns.
-        let mut out = Vec::new();
-        let mut lit = Rng::new(&[7]);
-        facade_windows(c, 0.0, len, 1..4, (&mut lit, 1.0), ID, &mut out);
-        assert_eq!(out.len(), 4);
-        for (row, o) in (1..4).zip(&out[1..]) {
-            let t = o.transform.translate.unwrap();
-            assert_eq!(t[2], row as f64 * FLOOR_M + 1.7);
-            let run = o.repeat.first().map_or(1, |r| r.count);
-            assert!(
-                t[0] >= 18.5 && t[0] + 3.0 * (run - 1) as f64 <= 21.5,
-                "{t:?} × {run}"
-            );
-        }
-        // No rows (a one-floor front) or a wall too short for a column: nothing.
-        for (rows, len) in [(1..1, 10.0), (0..3, 4.0)] {
-            let mut out = Vec::new();
-            facade_windows(c, 0.0, len, rows, (&mut lit, 1.0), ID, &mut out);
-            assert!(out.is_empty(), "{len} m: {out:?}");
-        }
-    }
-
-    #[test]
-    fn shop_windows_stand_only_on_a_long_front_with_glass_before_the_interior() {
-        let front = |len: f64| {
-            let mut out = Vec::new();
-            shop_front([0.0, 5.0], 0.0, len, ID, &mut out);
-            out
-        };
-        let long = front(20.0);
-        let names: Vec<&str> = long
-            .iter()
-            .map(|o| o.material.as_deref().unwrap())
-            .collect();
-        assert_eq!(
-            names,
-            [
-                "door",
-                "glass",
-                "interior",
-                "glass",
-                "interior",
-                "window_frame"
-            ]
-        );
-        // Heading 0: the wall faces −y, so the glass lies further out (lower y).
-        let y = |o: &ObjectDesc| o.transform.translate.unwrap()[1];
-        assert!(y(&long[1]) < y(&long[2]) && y(&long[2]) < 5.0);
-        // The canopy stands 0.6 m out over the door.
-        assert!((y(&long[5]) - 4.4).abs() < 1e-12);
-        let short = front(6.0);
-        let names: Vec<&str> = short
-            .iter()
-            .map(|o| o.material.as_deref().unwrap())
-            .collect();
-        assert_eq!(names, ["door", "window_frame"]);
     }
 }

@@ -151,6 +151,7 @@ pub fn town_materials(desc: &TownDesc) -> Vec<MaterialDesc> {
     [
         ground_materials(desc),
         building_materials(),
+        super::facade::facade_materials(),
         vegetation_materials(),
         super::vegetation::materials(),
         pole_materials(),

@@ -20,6 +20,7 @@ pub mod buildings;
 pub mod desc;
 pub mod drape;
 pub mod export;
+pub mod facade;
 pub mod farms;
 pub mod furniture;
 pub mod grade;

@@ -1,15 +1,14 @@
-//! Prefabs of the street scene: a facade window (and the lit room that
-//! some windows show), a street light with an emissive lamp panel, a traffic light (two
+//! Prefabs of the street scene: the façade prefabs (`town::facade`), a
+//! street light with an emissive lamp panel, a traffic light (two
 //! heads whose lens materials are slots the frame's signal phase fills,
 //! see `signals`), a stop sign, a pedestrian.
 //!
-//! Local frames: z up, origin on the ground; a window's facade is the local
-//! x–z plane with the window standing out towards −y; a street light's arm
+//! Local frames: z up, origin on the ground; a street light's arm
 //! reaches towards local −y, a traffic light's towards local +y (over the road).
 
 use crate::scene::desc::{ObjectDesc, PrefabDesc};
 
-use super::parts::{blob, class, cuboid, cylinder, repeated, Label};
+use super::parts::{blob, class, cuboid, cylinder, Label};
 
 /// Material slots of a traffic light's lenses, top to bottom (red, amber,
 /// green); both heads of the prefab use them.
@@ -24,61 +23,17 @@ fn prefab(name: &str, objects: Vec<ObjectDesc>) -> PrefabDesc {
 
 /// Every street prefab.
 pub fn street_prefabs() -> Vec<PrefabDesc> {
-    vec![
-        prefab("window", window()),
-        prefab("window_light", window_light()),
+    let street = vec![
         prefab("street_light", street_light()),
         prefab("traffic_light", traffic_light()),
         prefab("stop_sign", stop_sign()),
         prefab("info_sign", info_sign()),
         prefab("pedestrian", pedestrian(class("pedestrian"))),
-    ]
-}
-
-/// A facade window: a dark interior panel on the wall behind a glass pane,
-/// the frame proud of it.
-fn window() -> Vec<ObjectDesc> {
-    let b = class("building");
-    vec![
-        cuboid([1.2, 0.02, 1.6], [0.0, -0.02, 0.0], 0.0, "interior", b),
-        cuboid([1.2, 0.02, 1.6], [0.0, -0.05, 0.0], 0.0, "glass", b),
-        cuboid(
-            [1.4, 0.15, 0.1],
-            [0.0, -0.075, 0.85],
-            0.0,
-            "window_frame",
-            b,
-        ),
-        cuboid(
-            [1.55, 0.25, 0.1],
-            [0.0, -0.125, -0.85],
-            0.0,
-            "window_frame",
-            b,
-        ),
-        repeated(
-            cuboid(
-                [0.1, 0.15, 1.6],
-                [-0.65, -0.075, 0.0],
-                0.0,
-                "window_frame",
-                b,
-            ),
-            &[(2, [1.3, 0.0, 0.0])],
-        ),
-    ]
-}
-
-/// A warm lit room behind a window pane: between the interior panel
-/// (front at y = −0.03) and the glass (back at y = −0.04).
-fn window_light() -> Vec<ObjectDesc> {
-    vec![cuboid(
-        [1.16, 0.004, 1.56],
-        [0.0, -0.035, 0.0],
-        0.0,
-        "window_lit",
-        class("building"),
-    )]
+    ];
+    street
+        .into_iter()
+        .chain(super::facade::facade_prefabs())
+        .collect()
 }
 
 /// An 8 m pole with an arm towards local −y and a lamp housing over an

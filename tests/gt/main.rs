@@ -7,6 +7,7 @@ mod common;
 
 mod determinism;
 mod exactness;
+mod facade;
 mod instancing;
 mod occlusion;
 mod rain;
