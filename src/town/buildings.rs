@@ -13,7 +13,7 @@ use crate::scene::desc::ObjectDesc;
 
 use super::desc::{TerrainKind, TownDesc};
 use super::layout::{Layout, Rect};
-use super::parts::{class, cuboid, ground_quad, instance, Label};
+use super::parts::{class, cuboid, ground_quad, Label};
 use super::rng::{tag, Rng};
 use super::vegetation::{self, Plant};
 

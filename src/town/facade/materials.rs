@@ -1,7 +1,7 @@
 //! The façade materials, named by what they are (brick, plaster, stone,
 //! concrete, glass, painted metal, wood, cloth) with a `facade_` prefix;
-//! today's kinds (diffuse with the brick/plaster/concrete textures, GGX
-//! glass and metal), to be switched to textured kinds with relief later.
+//! walls, glass, metal and wood carry the texture kind of what they are
+//! (albedo, roughness and relief); rooms, signs and awnings are plain.
 //! Linear RGB albedos.
 
 use crate::scene::desc::{
@@ -23,46 +23,65 @@ fn textured(name: &str, albedo: [f64; 3], kind: TextureKindDesc, seed: u32) -> M
             kind,
             scale: 1.0,
             seed,
+            bump: 1.0,
         }),
         ..diffuse(name, albedo)
     }
 }
 
+/// `material` with the texture `kind`.
+fn with_texture(material: MaterialDesc, kind: TextureKindDesc, seed: u32) -> MaterialDesc {
+    MaterialDesc {
+        texture: textured("", [0.0; 3], kind, seed).texture,
+        ..material
+    }
+}
+
 /// Every façade material (names unique, all prefixed `facade_`).
 pub fn facade_materials() -> Vec<MaterialDesc> {
-    use TextureKindDesc::{Brick, Concrete, Plaster};
+    use TextureKindDesc::{
+        BrickFlemish, Concrete, Glass, MetalBrushed, MetalPainted, Plaster, Stone, Wood,
+    };
     vec![
         // Walls.
-        textured("facade_brick_yellow", [0.55, 0.45, 0.28], Brick, 201),
+        textured("facade_brick_yellow", [0.55, 0.45, 0.28], BrickFlemish, 201),
         textured("facade_plaster_pink", [0.7, 0.5, 0.45], Plaster, 202),
-        textured("facade_sandstone", [0.62, 0.52, 0.36], Concrete, 203),
+        textured("facade_sandstone", [0.62, 0.52, 0.36], Stone, 203),
         textured("facade_concrete_dark", [0.3, 0.3, 0.29], Concrete, 204),
-        diffuse("facade_cladding", [0.32, 0.38, 0.42]),
-        diffuse("facade_wood_siding", [0.62, 0.6, 0.52]),
+        textured("facade_cladding", [0.32, 0.38, 0.42], MetalPainted, 206),
+        textured("facade_wood_siding", [0.62, 0.6, 0.52], Wood, 207),
         textured("facade_step", [0.5, 0.49, 0.46], Concrete, 205),
         // Glass: clear, slightly green at the edges of thick panes.
-        MaterialDesc {
-            kind: MaterialKindDesc::Dielectric {
-                ior: 1.5,
-                roughness: 0.0,
-                tint: [0.92, 0.96, 0.95],
+        with_texture(
+            MaterialDesc {
+                kind: MaterialKindDesc::Dielectric {
+                    ior: 1.5,
+                    roughness: 0.0,
+                    tint: [0.92, 0.96, 0.95],
+                },
+                ..diffuse("facade_glass", [0.0; 3])
             },
-            ..diffuse("facade_glass", [0.0; 3])
-        },
+            Glass,
+            208,
+        ),
         // Painted and bare metal, wood.
-        diffuse("facade_metal_dark", [0.07, 0.075, 0.08]),
-        MaterialDesc {
-            kind: MaterialKindDesc::Conductor {
-                preset: Some(ConductorPreset::Aluminium),
-                eta: None,
-                k: None,
-                roughness: 0.55,
+        textured("facade_metal_dark", [0.07, 0.075, 0.08], MetalPainted, 209),
+        with_texture(
+            MaterialDesc {
+                kind: MaterialKindDesc::Conductor {
+                    preset: Some(ConductorPreset::Aluminium),
+                    eta: None,
+                    k: None,
+                    roughness: 0.55,
+                },
+                ..diffuse("facade_metal_grey", [0.0; 3])
             },
-            ..diffuse("facade_metal_grey", [0.0; 3])
-        },
-        diffuse("facade_railing", [0.04, 0.04, 0.045]),
-        diffuse("facade_pipe", [0.15, 0.15, 0.15]),
-        diffuse("facade_wood", [0.3, 0.18, 0.09]),
+            MetalBrushed,
+            210,
+        ),
+        textured("facade_railing", [0.04, 0.04, 0.045], MetalPainted, 211),
+        textured("facade_pipe", [0.15, 0.15, 0.15], MetalPainted, 212),
+        textured("facade_wood", [0.3, 0.18, 0.09], Wood, 213),
         // Rooms behind the glass.
         diffuse("facade_room_wall", [0.6, 0.56, 0.48]),
         diffuse("facade_room_floor", [0.25, 0.16, 0.09]),
