@@ -1,19 +1,18 @@
 //! Prefabs of the street scene: a facade window (and the lit room that
-//! some windows show), trees of two shapes, a
-//! bush, a street light with an emissive lamp panel, a traffic light (two
-//! heads whose lens materials are slots the frame's signal phase fills,
-//! see `signals`), a stop sign, a pedestrian.
+//! some windows show), trees of two shapes, a bush, a pedestrian, and the
+//! street furniture of `street` (lamps, traffic lights whose lens
+//! materials are slots the frame's signal phase fills, see `signals`,
+//! signs, fixtures, fences and wires).
 //!
 //! Local frames: z up, origin on the ground; a window's facade is the local
-//! x–z plane with the window standing out towards −y; a street light's arm
-//! reaches towards local −y, a traffic light's towards local +y (over the road).
+//! x–z plane with the window standing out towards −y.
 
 use crate::scene::desc::{ObjectDesc, PrefabDesc};
 
 use super::parts::{blob, class, cuboid, cylinder, repeated, Label};
 
 /// Material slots of a traffic light's lenses, top to bottom (red, amber,
-/// green); both heads of the prefab use them.
+/// green); every head of the traffic-light prefabs uses them.
 pub const LENS_SLOTS: [&str; 3] = ["signal_red", "signal_amber", "signal_green"];
 
 fn prefab(name: &str, objects: Vec<ObjectDesc>) -> PrefabDesc {
@@ -31,12 +30,11 @@ pub fn street_prefabs() -> Vec<PrefabDesc> {
         prefab("tree_round", tree_round()),
         prefab("tree_cone", tree_cone()),
         prefab("bush", bush()),
-        prefab("street_light", street_light()),
-        prefab("traffic_light", traffic_light()),
-        prefab("stop_sign", stop_sign()),
-        prefab("info_sign", info_sign()),
         prefab("pedestrian", pedestrian(class("pedestrian"))),
     ]
+    .into_iter()
+    .chain(super::street::furniture_prefabs())
+    .collect()
 }
 
 /// A facade window: a dark interior panel on the wall behind a glass pane,
@@ -114,68 +112,6 @@ fn bush() -> Vec<ObjectDesc> {
         blob([0.9, 0.9, 0.6], [0.0, 0.0, 0.5], "foliage", v),
         blob([0.6, 0.6, 0.5], [0.5, 0.3, 0.6], "foliage_light", v),
     ]
-}
-
-/// An 8 m pole with an arm towards local −y and a lamp housing over an
-/// emitting panel.
-fn street_light() -> Vec<ObjectDesc> {
-    let p = class("pole");
-    vec![
-        cylinder(0.09, 8.0, 12, [0.0, 0.0, 0.0], "pole_metal", p),
-        cuboid([0.1, 2.2, 0.1], [0.0, -1.1, 7.9], 0.0, "pole_metal", p),
-        cuboid([0.35, 0.6, 0.14], [0.0, -2.1, 7.8], 0.0, "pole_metal", p),
-        // The emitting panel under the housing (1 mm gap, no shared faces).
-        cuboid([0.3, 0.5, 0.02], [0.0, -2.1, 7.719], 0.0, "lamp_emit", p),
-    ]
-}
-
-/// Pole on the corner, mast arm over the approach lanes (local +y), heads
-/// facing −x (towards the traffic that approaches along +x).
-fn traffic_light() -> Vec<ObjectDesc> {
-    let (p, tl) = (class("pole"), class("traffic_light"));
-    let mut traffic_light = vec![
-        cylinder(0.11, 6.0, 12, [0.0, 0.0, 0.0], "pole_paint", p),
-        cuboid([0.14, 4.5, 0.14], [0.0, 2.25, 5.8], 0.0, "pole_paint", p),
-        cuboid([0.3, 0.4, 1.1], [0.0, 4.0, 5.15], 0.0, "signal_housing", tl),
-        cuboid([0.3, 0.4, 1.1], [0.0, -0.3, 2.8], 0.0, "signal_housing", tl),
-    ];
-    // Lenses top to bottom, 1 mm proud of the housing (no shared faces).
-    // Their materials are slots: dark glass here, and `signals` maps the
-    // lit one of each frame to its emitter on the instance.
-    for (k, m) in LENS_SLOTS.iter().enumerate() {
-        let z = 5.5 - 0.33 * k as f64;
-        for (y, dz) in [(4.0, 0.0), (-0.3, -2.35)] {
-            traffic_light.push(cuboid([0.03, 0.24, 0.24], [-0.166, y, z + dz], 0.0, m, tl));
-        }
-    }
-    traffic_light
-}
-
-/// An octagonal stop sign facing −x.
-fn stop_sign() -> Vec<ObjectDesc> {
-    let (p, ts) = (class("pole"), class("traffic_sign"));
-    vec![
-        cylinder(0.04, 2.3, 8, [0.0, 0.0, 0.0], "pole_metal", p),
-        sign_disc(0.38, [-0.05, 0.0, 2.3], "sign_red", ts),
-        sign_disc(0.3, [-0.07, 0.0, 2.3], "sign_white", ts),
-    ]
-}
-
-/// A square blue information sign facing −x.
-fn info_sign() -> Vec<ObjectDesc> {
-    let (p, ts) = (class("pole"), class("traffic_sign"));
-    vec![
-        cylinder(0.04, 2.4, 8, [0.0, 0.0, 0.0], "pole_metal", p),
-        cuboid([0.04, 0.6, 0.6], [-0.05, 0.0, 2.3], 0.0, "sign_blue", ts),
-    ]
-}
-
-/// An octagon (8-sided cylinder) facing −x, centred at `at`.
-fn sign_disc(r: f64, at: [f64; 3], mat: &str, l: Label) -> ObjectDesc {
-    let mut o = cylinder(r, 0.02, 8, [0.0; 3], mat, l);
-    o.transform.translate = Some(at);
-    o.transform.rotate_deg = Some([0.0, 90.0, 0.0]);
-    o
 }
 
 /// A walking figure about 1.75 m tall facing +x; shirt material "shirt".
