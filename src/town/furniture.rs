@@ -46,7 +46,8 @@ pub fn furniture_objects(
     let style = StreetStyle::of(desc);
     let mut out = street_lines(desc, l, seed);
     out.extend(place::highway_runs(desc, l, style, sites, seed));
-    out.extend(place::park_fences(blocks));
+    out.extend(place::enclosures(blocks));
+    place::corner_railings(l, &mut out);
     // Nothing but street lights on bridges.
     if let Some(band) = l.river_band() {
         out.retain(|o| {

@@ -21,6 +21,8 @@ pub const PALISADE_M: f64 = 2.5;
 pub const FARM_FENCE_M: f64 = 3.0;
 /// Length of one pedestrian-railing panel, metres.
 pub const RAILING_M: f64 = 2.0;
+/// Panels of the kerb railing run at a junction corner (`railing_run`).
+pub const RAILING_PANELS: usize = 3;
 /// Guard-rail units: (prefab, length in metres), longest first.
 pub const GUARD_RAILS: [(&str, f64); 2] = [("guard_rail_32", 32.0), ("guard_rail_4", 4.0)];
 /// Distance between utility poles (one wire span), metres.
@@ -62,18 +64,28 @@ fn farm_fence() -> Vec<ObjectDesc> {
     k.objects()
 }
 
-/// Pedestrian railing: round post, top and bottom rails, eight bars.
-fn railing() -> Vec<ObjectDesc> {
+/// Pedestrian railing of `panels` panels: per panel a round post, top
+/// and bottom rails and eight square bars; a closing post at the end of a run.
+fn railing(panels: usize) -> Vec<ObjectDesc> {
     let mut k = Kit::default();
     let (m, f) = ("street_galvanised", "fence");
-    k.rod(m, f, DVec3::ZERO, DVec3::Z * 1.05, 0.03, 8);
-    for z in [0.2, 1.0] {
-        let a = DVec3::new(0.03, 0.0, z);
-        k.rod(m, f, a, a + DVec3::X * (RAILING_M - 0.06), 0.02, 8);
+    for p in 0..panels {
+        let x0 = p as f64 * RAILING_M;
+        let post = DVec3::X * x0;
+        k.rod(m, f, post, post + DVec3::Z * 1.05, 0.03, 8);
+        for z in [0.2, 1.0] {
+            let a = DVec3::new(x0 + 0.03, 0.0, z);
+            k.rod(m, f, a, a + DVec3::X * (RAILING_M - 0.06), 0.02, 6);
+        }
+        // Square bars between the rails (their ends inside the rails).
+        for i in 1..9 {
+            let x = x0 + i as f64 * RAILING_M / 9.0;
+            k.block(m, f, [0.016, 0.016, 0.8], [x, 0.0, 0.6]);
+        }
     }
-    for i in 1..9 {
-        let a = DVec3::new(i as f64 * RAILING_M / 9.0, 0.0, 0.22);
-        k.rod(m, f, a, a + DVec3::Z * 0.76, 0.01, 6);
+    if panels > 1 {
+        let end = DVec3::X * (panels as f64 * RAILING_M);
+        k.rod(m, f, end, end + DVec3::Z * 1.05, 0.03, 8);
     }
     k.objects()
 }
@@ -157,7 +169,8 @@ pub fn barrier_prefabs() -> Vec<PrefabDesc> {
     let mut out = vec![
         prefab("fence_palisade", palisade()),
         prefab("fence_farm", farm_fence()),
-        prefab("railing", railing()),
+        prefab("railing", railing(1)),
+        prefab("railing_run", railing(RAILING_PANELS)),
         prefab("utility_pole", utility_pole()),
         prefab("wire_span", wire_span()),
     ];

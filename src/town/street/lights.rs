@@ -32,6 +32,8 @@ pub const LAMP_HIGHWAY: &str = "lamp_highway";
 /// Traffic light whose arm carries one head per lane of a two-lane
 /// approach (`lanes_per_direction` ≥ 2).
 pub const SIGNAL_MAST: &str = "traffic_light_mast";
+/// Sides of a lens disc (a capped cylinder: 4 triangles per side).
+pub const LENS_SEGMENTS: u32 = 12;
 /// Vertical spacing of a head's lenses, metres.
 const LENS_STEP_M: f64 = 0.33;
 
@@ -109,7 +111,7 @@ fn head(kit: &mut Kit, y: f64, z: f64) {
     for (k, slot) in LENS_SLOTS.iter().enumerate() {
         let lz = z + LENS_STEP_M * (1.0 - k as f64);
         // A lens disc 1.5 cm proud of the housing's face at x = −0.11.
-        let mut lens = cylinder(0.1, 0.02, 16, [-0.125, y, lz], slot, class(TL));
+        let mut lens = cylinder(0.1, 0.02, LENS_SEGMENTS, [-0.125, y, lz], slot, class(TL));
         lens.transform.rotate_deg = Some([0.0, 90.0, 0.0]);
         kit.object(lens);
         kit.block(h, TL, [0.2, 0.26, 0.012], [-0.21, y, lz + 0.125]);

@@ -92,8 +92,10 @@ mod gallery {
     use crate::town::{source::load_named_town, town_scene, CameraConfig};
 
     /// Writes a scene with every furniture prefab in a row along +y, faces
-    /// towards −x, seen from x = −`PARALLAX_GALLERY_DIST` (default 8 m), to
-    /// the file `PARALLAX_GALLERY`: `cargo test --release --lib gallery --
+    /// towards −x, seen from x = −`PARALLAX_GALLERY_DIST` (default 8 m),
+    /// y = `PARALLAX_GALLERY_Y`, height `PARALLAX_GALLERY_Z`, pitch
+    /// `PARALLAX_GALLERY_PITCH` (degrees, positive down), to the file
+    /// `PARALLAX_GALLERY`: `cargo test --release --lib gallery --
     /// --ignored`, then `parallax render FILE`.
     #[test]
     #[ignore]
@@ -101,14 +103,13 @@ mod gallery {
         let Ok(path) = std::env::var("PARALLAX_GALLERY") else {
             return;
         };
-        let dist: f64 = std::env::var("PARALLAX_GALLERY_DIST")
-            .ok()
-            .and_then(|d| d.parse().ok())
-            .unwrap_or(8.0);
-        let at_y: f64 = std::env::var("PARALLAX_GALLERY_Y")
-            .ok()
-            .and_then(|d| d.parse().ok())
-            .unwrap_or(0.0);
+        let var = |name: &str, default: f64| -> f64 {
+            std::env::var(name)
+                .ok()
+                .and_then(|d| d.parse().ok())
+                .unwrap_or(default)
+        };
+        let (dist, at_y) = (var("PARALLAX_GALLERY_DIST", 8.0), var("PARALLAX_GALLERY_Y", 0.0));
         let desc = load_named_town("town03", None).unwrap().desc;
         let mut scene = town_scene(&desc, 0, 0, CameraConfig::Normal);
         let mut objects = vec![ground_quad([-40.0, -20.0], [40.0, 200.0], 0.0, "sidewalk", class("sidewalk"))];
@@ -118,12 +119,15 @@ mod gallery {
             y += 4.0;
         }
         scene.objects = objects;
-        scene.camera.position = [-dist, at_y, 1.8];
+        scene.camera.position = [-dist, at_y, var("PARALLAX_GALLERY_Z", 1.8)];
         scene.camera.yaw_deg = 0.0;
-        scene.camera.pitch_deg = -8.0;
+        scene.camera.pitch_deg = var("PARALLAX_GALLERY_PITCH", -8.0);
         std::fs::write(path, serialize_scene(&scene)).unwrap();
         for (k, p) in super::furniture_prefabs().iter().enumerate() {
             eprintln!("{k:3} y={:5.0} {}", 4.0 * k as f64, p.name);
         }
     }
 }
+
+#[cfg(test)]
+mod tests;

@@ -14,7 +14,7 @@ use crate::town::ramps::RampSite;
 use crate::town::rng::{tag, Rng};
 
 pub use super::barriers::WIRE_SPAN_M;
-use super::barriers::{GUARD_RAILS, PALISADE_M};
+use super::barriers::{FARM_FENCE_M, GUARD_RAILS, PALISADE_M};
 use super::names::SLOGANS;
 use super::StreetStyle;
 
@@ -209,10 +209,81 @@ pub fn highway_runs(
     out
 }
 
+/// Kerb railings at every junction of a town with sidewalks: at each
+/// corner, a `railing_run` 0.3 m behind the kerb of both roads, from 4 m
+/// past the junction's edge (beyond the crosswalk) outwards; none along a
+/// road that ends at the junction (the outer x-roads' T junctions).
+pub fn corner_railings(l: &Layout, out: &mut Vec<ObjectDesc>) {
+    if !l.sidewalks {
+        return;
+    }
+    let hw = l.road_w_m / 2.0;
+    let (from, kerb) = (hw + 4.0, hw + 0.3);
+    let f = class("fence");
+    for j in 0..=l.ny {
+        for i in 0..=l.nx {
+            let (x, y) = (i as f64 * l.pitch_m, j as f64 * l.pitch_m);
+            for (sx, sy) in [(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)] {
+                // Along the x-road, then along the y-road where it goes on.
+                let hx = if sx > 0.0 { 0.0 } else { 180.0 };
+                out.push(instance("railing_run", [x + sx * from, y + sy * kerb, l.walk_z()], hx, &[], f));
+                let ends = (j == 0 && sy < 0.0) || (j == l.ny && sy > 0.0);
+                if !ends {
+                    let hy = if sy > 0.0 { 90.0 } else { 270.0 };
+                    let at = [x + sx * kerb, y + sy * from, l.walk_z()];
+                    out.push(instance("railing_run", at, hy, &[], f));
+                }
+            }
+        }
+    }
+}
+
+/// Fences of the park and field blocks among `blocks`: palisades round
+/// every park lawn (`park_fences`) and farm fences round every field.
+pub fn enclosures(blocks: &[ObjectDesc]) -> Vec<ObjectDesc> {
+    let mut out = park_fences(blocks);
+    out.extend(field_fences(blocks));
+    out
+}
+
+/// Farm fences on the west, north and east sides of every ploughed field
+/// among `blocks` (its repeated ridges of material `crop`), 1 m outside
+/// the ridges; the south side has its hedge.
+fn field_fences(blocks: &[ObjectDesc]) -> Vec<ObjectDesc> {
+    let mut out = Vec::new();
+    for o in blocks {
+        let (Some("crop"), ShapeDesc::Box { size }) = (o.material.as_deref(), &o.shape) else {
+            continue;
+        };
+        let c = o.transform.translate.unwrap_or_default();
+        let rows = o.repeat.first().map_or(1, |r| r.count);
+        let pitch = o.repeat.first().map_or(0.0, |r| r.offset[1]);
+        let (x0, x1) = (c[0] - size[0] / 2.0 - 1.0, c[0] + size[0] / 2.0 + 1.0);
+        let y0 = c[1] - size[1] / 2.0 - 0.5;
+        let y1 = c[1] + size[1] / 2.0 + (rows - 1) as f64 * pitch + 1.0;
+        // (start, direction, length, heading): rails on each run's −y
+        // side, that is inside the field.
+        let runs = [
+            ([x0, y0], [0.0, 1.0], y1 - y0, 90.0),
+            ([x1, y1], [0.0, -1.0], y1 - y0, 270.0),
+            ([x0, y1], [1.0, 0.0], x1 - x0, 0.0),
+        ];
+        for (p, d, len, heading) in runs {
+            let n = (len / FARM_FENCE_M).floor() as usize;
+            for k in 0..n {
+                let s = k as f64 * FARM_FENCE_M;
+                let at = [p[0] + d[0] * s, p[1] + d[1] * s, 0.0];
+                out.push(instance("fence_farm", at, heading, &[], class("fence")));
+            }
+        }
+    }
+    out
+}
+
 /// Palisade fences round every park lawn among `blocks` (the quads of
 /// material `lawn`), 0.3 m inside its edge, with a 3 m gate in the middle
 /// of each side.
-pub fn park_fences(blocks: &[ObjectDesc]) -> Vec<ObjectDesc> {
+fn park_fences(blocks: &[ObjectDesc]) -> Vec<ObjectDesc> {
     let mut out = Vec::new();
     for o in blocks {
         let (Some("lawn"), ShapeDesc::Quad { size }) = (o.material.as_deref(), &o.shape) else {
