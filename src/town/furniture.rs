@@ -142,8 +142,17 @@ fn junction_signs(l: &Layout, seed: u64, out: &mut Vec<ObjectDesc>) {
         pool.swap(k, r.index(k + 1));
     }
     let name_at = |k: usize| name_plate_prefab(pool[k % STREET_NAME_COUNT]);
-    let heads = if l.lanes >= 2 { SIGNAL_MAST } else { signals::PREFAB };
-    let corner = l.road_w_m / 2.0 + if l.sidewalks { l.sidewalk_m - 0.5 } else { l.sidewalk_m + 1.0 };
+    let heads = if l.lanes >= 2 {
+        SIGNAL_MAST
+    } else {
+        signals::PREFAB
+    };
+    let corner = l.road_w_m / 2.0
+        + if l.sidewalks {
+            l.sidewalk_m - 0.5
+        } else {
+            l.sidewalk_m + 1.0
+        };
     for j in 0..=l.ny {
         for i in 0..=l.nx {
             let (x, y) = (i as f64 * p, j as f64 * p);
@@ -167,7 +176,13 @@ fn junction_signs(l: &Layout, seed: u64, out: &mut Vec<ObjectDesc>) {
             let ts = class("traffic_sign");
             out.push(instance(POSTS[2], at, 0.0, &[], class("pole")));
             out.push(instance(&name_at(j), at, 90.0, &[], ts));
-            out.push(instance(&name_at(l.ny + 1 + i), [at[0], at[1], z - 0.22], 0.0, &[], ts));
+            out.push(instance(
+                &name_at(l.ny + 1 + i),
+                [at[0], at[1], z - 0.22],
+                0.0,
+                &[],
+                ts,
+            ));
         }
     }
     if let Some(ctr) = l.roundabout_center() {
@@ -213,14 +228,32 @@ fn line(
     let first = out.len();
     if style.wires() {
         let blocked = |a: f64| near_junction(a) || on_bridge(a);
-        let pole_off = if l.sidewalks { 0.25 } else { l.sidewalk_m + 0.8 };
+        let pole_off = if l.sidewalks {
+            0.25
+        } else {
+            l.sidewalk_m + 0.8
+        };
         let phase = fx.range(0.0, place::WIRE_SPAN_M);
-        place::pole_line(a0 + phase, a1, &|a| place(a, pole_off), side.run_heading, &blocked, out);
+        place::pole_line(
+            a0 + phase,
+            a1,
+            &|a| place(a, pole_off),
+            side.run_heading,
+            &blocked,
+            out,
+        );
     }
-    let poles: Vec<f64> = out[first..].iter().map(|o| (side.along)(anchor(o))).collect();
+    let poles: Vec<f64> = out[first..]
+        .iter()
+        .map(|o| (side.along)(anchor(o)))
+        .collect();
     // Street lights every 30 m, offset per side so the two rows alternate;
     // behind the guard rail on highways, clear of utility poles.
-    let lamp_off = if style == StreetStyle::Highway { l.sidewalk_m + 0.6 } else { 0.35 };
+    let lamp_off = if style == StreetStyle::Highway {
+        l.sidewalk_m + 0.6
+    } else {
+        0.35
+    };
     let mut a = a0 + r.range(5.0, 30.0);
     while a < a1 {
         if !near_junction(a) && !poles.iter().any(|p| (p - a).abs() < 2.5) {
@@ -255,7 +288,11 @@ fn line(
             a += spacing * r.range(0.8, 1.2);
         }
     }
-    let sign_off = if style == StreetStyle::Highway { l.sidewalk_m + 0.3 } else { 0.3 };
+    let sign_off = if style == StreetStyle::Highway {
+        l.sidewalk_m + 0.3
+    } else {
+        0.3
+    };
     let mut a = a0 + r.range(20.0, 120.0);
     while a < a1 {
         if !near_junction(a) {
@@ -265,13 +302,25 @@ fn line(
         a += r.range(80.0, 200.0);
     }
     if l.sidewalks {
-        let taken: Vec<f64> = out[first..].iter().map(|o| (side.along)(anchor(o))).collect();
+        let taken: Vec<f64> = out[first..]
+            .iter()
+            .map(|o| (side.along)(anchor(o)))
+            .collect();
         let free = |a: f64, half: f64| {
             !near_junction(a - half)
                 && !near_junction(a + half)
                 && !taken.iter().any(|t| (t - a).abs() < half + 1.0)
         };
-        place::sidewalk_fixtures(l, style, fx, (a0, a1), place, lamp_heading + 90.0, &free, out);
+        place::sidewalk_fixtures(
+            l,
+            style,
+            fx,
+            (a0, a1),
+            place,
+            lamp_heading + 90.0,
+            &free,
+            out,
+        );
     }
 }
 

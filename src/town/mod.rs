@@ -179,7 +179,12 @@ fn number_objects(objects: &mut [ObjectDesc]) {
         let numbered = matches!(
             o.semantic.as_deref(),
             Some(
-                "pole" | "vegetation" | "traffic_sign" | "traffic_light" | "static" | "fence"
+                "pole"
+                    | "vegetation"
+                    | "traffic_sign"
+                    | "traffic_light"
+                    | "static"
+                    | "fence"
                     | "guard_rail"
             )
         );

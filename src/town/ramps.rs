@@ -239,7 +239,11 @@ impl RampSite {
                 let p = [t, t + len].map(|t| self.world(self.edge(t, true, inset)));
                 // The beam faces local −y, the right of the unit's run: run
                 // east north of the road, west south of it.
-                let (a, b) = if self.side > 0.0 { (p[0], p[1]) } else { (p[1], p[0]) };
+                let (a, b) = if self.side > 0.0 {
+                    (p[0], p[1])
+                } else {
+                    (p[1], p[0])
+                };
                 let heading = (b[1] - a[1]).atan2(b[0] - a[0]).to_degrees();
                 let g = crate::town::parts::class("guard_rail");
                 crate::town::parts::instance(name, [a[0], a[1], 0.0], heading, &[], g)

@@ -74,7 +74,10 @@ fn speed_signs_show_seeded_limits_up_to_the_town_speed_and_furniture_follows_the
         assert!(speeds.len() >= 3, "{name}: {speeds:?}");
         for s in &speeds {
             assert!(SPEED_LIMITS.contains(s), "{name}: {s}");
-            assert!(*s as f64 <= desc.speed_kmh, "{name}: {s} over the town speed");
+            assert!(
+                *s as f64 <= desc.speed_kmh,
+                "{name}: {s} over the town speed"
+            );
         }
         assert_eq!(objects, static_objects(&desc, SEED));
         assert_ne!(objects, static_objects(&desc, SEED + 1));
@@ -123,7 +126,10 @@ fn a_railing_bar_seen_by_the_camera_has_exact_depth() {
     let mut checked = 0;
     for j in 0..h {
         for i in 0..w {
-            let (u, v) = (i as f64 + 0.5 - w as f64 / 2.0, j as f64 + 0.5 - h as f64 / 2.0);
+            let (u, v) = (
+                i as f64 + 0.5 - w as f64 / 2.0,
+                j as f64 + 0.5 - h as f64 / 2.0,
+            );
             let d = DVec3::new(1.0, -u / f, -v / f);
             let Some(t) = bars
                 .iter()
@@ -141,7 +147,10 @@ fn a_railing_bar_seen_by_the_camera_has_exact_depth() {
             }
             let k = (j * w + i) as usize;
             let got = r.out.left.depth_z[k];
-            assert!((got - t).abs() <= 1e-6 * t, "pixel ({i}, {j}): {got} vs {t}");
+            assert!(
+                (got - t).abs() <= 1e-6 * t,
+                "pixel ({i}, {j}): {got} vs {t}"
+            );
             assert_eq!(r.out.left.semantic[k], fence, "pixel ({i}, {j})");
             checked += 1;
         }

@@ -6,8 +6,8 @@
 mod common;
 
 mod cli;
-mod furniture;
 mod export;
+mod furniture;
 mod generation;
 mod grade;
 mod gt;

@@ -13,13 +13,13 @@ use glam::DVec3;
 use parallax::light::LightSet;
 use parallax::scene::build_scene;
 use parallax::scene::desc::{MaterialDesc, MaterialKindDesc, ObjectDesc, PrefabDesc, ShapeDesc};
+use parallax::scene::mesh::cylinder_triangles;
 use parallax::town::layout::Layout;
 use parallax::town::materials::town_materials;
-use parallax::scene::mesh::cylinder_triangles;
 use parallax::town::props::{street_prefabs, LENS_SLOTS};
-use parallax::town::street::lights::LENS_SEGMENTS;
 use parallax::town::routes::{RouteKind, STOP_LINE_AT_M};
 use parallax::town::signals::{self, Approach, Lamp, Signal, SignalSite};
+use parallax::town::street::lights::LENS_SEGMENTS;
 use parallax::town::traffic::{Plan, Schedule, VehiclePose};
 use parallax::town::{
     frame_at, load_town_frame, static_objects, town_scene, CameraConfig, TownDesc,
@@ -60,7 +60,11 @@ impl Library {
             .into_iter()
             .filter(|p| signals::PREFABS.contains(&p.name.as_str()))
             .collect();
-        assert_eq!(prefabs.len(), signals::PREFABS.len(), "traffic-light prefabs");
+        assert_eq!(
+            prefabs.len(),
+            signals::PREFABS.len(),
+            "traffic-light prefabs"
+        );
         Library {
             materials: town_materials(desc),
             prefabs,
@@ -72,7 +76,10 @@ impl Library {
         let ShapeDesc::Instance { prefab, .. } = &o.shape else {
             panic!("not an instance");
         };
-        self.prefabs.iter().find(|p| &p.name == prefab).expect("a traffic-light prefab")
+        self.prefabs
+            .iter()
+            .find(|p| &p.name == prefab)
+            .expect("a traffic-light prefab")
     }
 }
 

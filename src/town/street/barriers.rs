@@ -44,7 +44,12 @@ fn palisade() -> Vec<ObjectDesc> {
     let (m, f) = ("street_paint_black", "fence");
     k.block(m, f, [0.06, 0.06, 1.3], [0.0, 0.0, 0.65]);
     for z in [0.15, 1.05] {
-        k.block(m, f, [PALISADE_M - 0.06, 0.03, 0.04], [PALISADE_M / 2.0, 0.0, z]);
+        k.block(
+            m,
+            f,
+            [PALISADE_M - 0.06, 0.03, 0.04],
+            [PALISADE_M / 2.0, 0.0, z],
+        );
     }
     for i in 1..20 {
         let x = i as f64 * PALISADE_M / 20.0;
@@ -59,7 +64,12 @@ fn farm_fence() -> Vec<ObjectDesc> {
     let (m, f) = ("street_wood", "fence");
     k.block(m, f, [0.1, 0.1, 1.2], [0.0, 0.0, 0.6]);
     for z in [0.35, 0.7, 1.05] {
-        k.block(m, f, [FARM_FENCE_M, 0.04, 0.1], [FARM_FENCE_M / 2.0, -0.07, z]);
+        k.block(
+            m,
+            f,
+            [FARM_FENCE_M, 0.04, 0.1],
+            [FARM_FENCE_M / 2.0, -0.07, z],
+        );
     }
     k.objects()
 }
@@ -108,8 +118,18 @@ fn guard_rail(len: f64) -> Vec<ObjectDesc> {
     }
     let mut x = 0.0;
     while x < len - 1e-9 {
-        k.block("street_steel_dark", g, [0.1, 0.15, 0.8], [x + 0.05, 0.25, 0.4]);
-        k.block("street_steel_dark", g, [0.1, 0.17, 0.3], [x + 0.05, 0.09, 0.555]);
+        k.block(
+            "street_steel_dark",
+            g,
+            [0.1, 0.15, 0.8],
+            [x + 0.05, 0.25, 0.4],
+        );
+        k.block(
+            "street_steel_dark",
+            g,
+            [0.1, 0.17, 0.3],
+            [x + 0.05, 0.09, 0.555],
+        );
         x += 2.0;
     }
     k.objects()
@@ -118,11 +138,25 @@ fn guard_rail(len: f64) -> Vec<ObjectDesc> {
 /// A wooden utility pole with a crossarm along y and three insulators.
 fn utility_pole() -> Vec<ObjectDesc> {
     let mut k = Kit::default();
-    k.rod("street_wood_pole", "pole", DVec3::ZERO, DVec3::Z * 9.4, 0.13, 10);
+    k.rod(
+        "street_wood_pole",
+        "pole",
+        DVec3::ZERO,
+        DVec3::Z * 9.4,
+        0.13,
+        10,
+    );
     k.block("street_wood_pole", "pole", [0.1, 2.0, 0.1], [0.0, 0.0, 8.9]);
     for y in WIRE_Y_M {
         let a = DVec3::new(0.0, y, 8.95);
-        k.rod("street_insulator", "pole", a, a + DVec3::Z * (WIRE_Z_M - 8.95), 0.04, 8);
+        k.rod(
+            "street_insulator",
+            "pole",
+            a,
+            a + DVec3::Z * (WIRE_Z_M - 8.95),
+            0.04,
+            8,
+        );
     }
     k.objects()
 }

@@ -28,7 +28,13 @@ fn bench_wood() -> Vec<ObjectDesc> {
     }
     let tilt = DQuat::from_rotation_y(-0.26);
     for z in [0.62, 0.76] {
-        k.block_turned("street_wood", ST, [0.035, 1.8, 0.1], DVec3::new(0.22, 0.0, z), tilt);
+        k.block_turned(
+            "street_wood",
+            ST,
+            [0.035, 1.8, 0.1],
+            DVec3::new(0.22, 0.0, z),
+            tilt,
+        );
     }
     k.objects()
 }
@@ -50,7 +56,14 @@ fn bin_round() -> Vec<ObjectDesc> {
     k.rod(g, ST, DVec3::ZERO, DVec3::Z * 0.2, 0.05, 8);
     k.rod(g, ST, DVec3::Z * 0.2, DVec3::Z * 0.95, 0.24, 16);
     k.rod(g, ST, DVec3::Z * 0.9, DVec3::Z * 0.95, 0.26, 16);
-    k.rod("street_paint_black", ST, DVec3::Z * 0.95, DVec3::Z * 1.0, 0.2, 16);
+    k.rod(
+        "street_paint_black",
+        ST,
+        DVec3::Z * 0.95,
+        DVec3::Z * 1.0,
+        0.2,
+        16,
+    );
     k.objects()
 }
 
@@ -58,17 +71,48 @@ fn bin_round() -> Vec<ObjectDesc> {
 fn bin_box() -> Vec<ObjectDesc> {
     let mut k = Kit::default();
     k.block("street_paint_black", ST, [0.5, 0.5, 0.9], [0.0, 0.0, 0.45]);
-    k.block("street_paint_grey", ST, [0.54, 0.54, 0.05], [0.0, 0.0, 0.925]);
-    k.block("street_plastic_black", ST, [0.02, 0.3, 0.1], [-0.255, 0.0, 0.75]);
+    k.block(
+        "street_paint_grey",
+        ST,
+        [0.54, 0.54, 0.05],
+        [0.0, 0.0, 0.925],
+    );
+    k.block(
+        "street_plastic_black",
+        ST,
+        [0.02, 0.3, 0.1],
+        [-0.255, 0.0, 0.75],
+    );
     k.objects()
 }
 
 /// Steel bollard with a reflective band and a cap.
 fn bollard_steel() -> Vec<ObjectDesc> {
     let mut k = Kit::default();
-    k.rod("street_galvanised", ST, DVec3::ZERO, DVec3::Z * 0.9, 0.1, 12);
-    k.rod("street_paint_yellow", ST, DVec3::Z * 0.72, DVec3::Z * 0.8, 0.103, 12);
-    k.rod("street_galvanised", ST, DVec3::Z * 0.9, DVec3::Z * 0.94, 0.112, 12);
+    k.rod(
+        "street_galvanised",
+        ST,
+        DVec3::ZERO,
+        DVec3::Z * 0.9,
+        0.1,
+        12,
+    );
+    k.rod(
+        "street_paint_yellow",
+        ST,
+        DVec3::Z * 0.72,
+        DVec3::Z * 0.8,
+        0.103,
+        12,
+    );
+    k.rod(
+        "street_galvanised",
+        ST,
+        DVec3::Z * 0.9,
+        DVec3::Z * 0.94,
+        0.112,
+        12,
+    );
     k.objects()
 }
 
@@ -76,8 +120,18 @@ fn bollard_steel() -> Vec<ObjectDesc> {
 fn bollard_concrete() -> Vec<ObjectDesc> {
     let mut k = Kit::default();
     let c = "street_concrete";
-    k.add(c, ST, prism(&regular(8, 0.2, 0.0), 0.0, 0.6), Default::default());
-    k.add(c, ST, prism(&regular(8, 0.15, 0.0), 0.6, 0.68), Default::default());
+    k.add(
+        c,
+        ST,
+        prism(&regular(8, 0.2, 0.0), 0.0, 0.6),
+        Default::default(),
+    );
+    k.add(
+        c,
+        ST,
+        prism(&regular(8, 0.15, 0.0), 0.6, 0.68),
+        Default::default(),
+    );
     k.objects()
 }
 
@@ -101,10 +155,32 @@ fn hydrant() -> Vec<ObjectDesc> {
 /// A parking meter: post, head and display facing −x.
 fn parking_meter() -> Vec<ObjectDesc> {
     let mut k = Kit::default();
-    k.rod("street_paint_grey", ST, DVec3::ZERO, DVec3::Z * 1.1, 0.04, 8);
-    k.block("street_steel_dark", ST, [0.18, 0.22, 0.34], [0.0, 0.0, 1.27]);
-    k.block("street_plastic_black", ST, [0.01, 0.13, 0.07], [-0.095, 0.0, 1.36]);
-    k.block("street_galvanised", ST, [0.01, 0.05, 0.02], [-0.095, 0.0, 1.22]);
+    k.rod(
+        "street_paint_grey",
+        ST,
+        DVec3::ZERO,
+        DVec3::Z * 1.1,
+        0.04,
+        8,
+    );
+    k.block(
+        "street_steel_dark",
+        ST,
+        [0.18, 0.22, 0.34],
+        [0.0, 0.0, 1.27],
+    );
+    k.block(
+        "street_plastic_black",
+        ST,
+        [0.01, 0.13, 0.07],
+        [-0.095, 0.0, 1.36],
+    );
+    k.block(
+        "street_galvanised",
+        ST,
+        [0.01, 0.05, 0.02],
+        [-0.095, 0.0, 1.22],
+    );
     k.objects()
 }
 
@@ -118,7 +194,12 @@ fn bus_shelter() -> Vec<ObjectDesc> {
         let a = DVec3::new(x, y, 0.0);
         k.rod(m, ST, a, a + DVec3::Z * h, 0.04, 8);
     }
-    k.block("street_paint_grey", ST, [1.7, 3.9, 0.1], [0.0, 0.0, h + 0.05]);
+    k.block(
+        "street_paint_grey",
+        ST,
+        [1.7, 3.9, 0.1],
+        [0.0, 0.0, h + 0.05],
+    );
     // Glass panels between a bottom and a top rail (no shared faces).
     k.block("street_glass", ST, [0.012, 3.5, 1.8], [hx, 0.0, 1.2]);
     for z in [0.25, 2.15] {
@@ -140,7 +221,12 @@ fn bus_shelter() -> Vec<ObjectDesc> {
         0.12,
         [0.0, 0.0],
     );
-    sign.build_as(&mut k, face_frame(-0.85, -1.2, h + 0.2), ST, "sign_back_grey");
+    sign.build_as(
+        &mut k,
+        face_frame(-0.85, -1.2, h + 0.2),
+        ST,
+        "sign_back_grey",
+    );
     k.objects()
 }
 
@@ -159,7 +245,12 @@ fn billboard(k: usize) -> Vec<ObjectDesc> {
     let face = FaceDesign::new(rect(6.0, 3.0, [0.0, 0.0]), "sign_print_cream")
         .shape(band, rect(5.8, 0.7, [0.0, -1.0]))
         .text("sign_ink_black", SLOGANS[k], 0.45, [0.0, 0.35]);
-    face.build_as(&mut kit, face_frame(0.025, 0.0, 6.0), ST, "street_paint_grey");
+    face.build_as(
+        &mut kit,
+        face_frame(0.025, 0.0, 6.0),
+        ST,
+        "street_paint_grey",
+    );
     kit.objects()
 }
 

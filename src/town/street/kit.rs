@@ -80,7 +80,9 @@ pub fn ring_prism(outer: &[[f64; 2]], inner: Option<&[[f64; 2]]>, w0: f64, w1: f
             m.positions.extend(inner.iter().map(|&p| at(p, w1)));
         }
         None => {
-            let c = outer.iter().fold([0.0, 0.0], |a, p| [a[0] + p[0], a[1] + p[1]]);
+            let c = outer
+                .iter()
+                .fold([0.0, 0.0], |a, p| [a[0] + p[0], a[1] + p[1]]);
             let c = [c[0] / n as f64, c[1] / n as f64];
             m.positions.extend([at(c, w0), at(c, w1)]);
         }
@@ -170,7 +172,15 @@ impl Kit {
     }
 
     /// A round rod of radius `r` from `a` to `b` (capped, `segments` sides).
-    pub fn rod(&mut self, material: &str, class: &'static str, a: DVec3, b: DVec3, r: f64, segments: u32) {
+    pub fn rod(
+        &mut self,
+        material: &str,
+        class: &'static str,
+        a: DVec3,
+        b: DVec3,
+        r: f64,
+        segments: u32,
+    ) {
         let d = b - a;
         let rot = DQuat::from_rotation_arc(DVec3::Z, d.normalize());
         let t = DAffine3::from_rotation_translation(rot, a);
@@ -243,7 +253,11 @@ mod tests {
     #[test]
     fn prisms_and_rings_are_closed_outward_solids_of_the_right_volume() {
         // A unit square 0.1 thick: 0.1 m³; a square band 2×2 minus 1×1: 0.3.
-        let sq = regular(4, std::f64::consts::FRAC_1_SQRT_2, std::f64::consts::FRAC_PI_4);
+        let sq = regular(
+            4,
+            std::f64::consts::FRAC_1_SQRT_2,
+            std::f64::consts::FRAC_PI_4,
+        );
         assert!((volume(&prism(&sq, 0.0, 0.1)) - 0.1).abs() < 1e-12);
         let big: Vec<[f64; 2]> = sq.iter().map(|p| [2.0 * p[0], 2.0 * p[1]]).collect();
         let band = ring_prism(&big, Some(&sq), 0.2, 0.3);
@@ -255,8 +269,14 @@ mod tests {
         let f = face_frame(1.0, 2.0, 3.0);
         assert!((f.matrix3.determinant() - 1.0).abs() < 1e-15);
         // Out of the face (w) is −x; u (the viewer's right) is −y; v is up.
-        assert_eq!(f.transform_point3(DVec3::new(0.0, 0.0, 0.5)), DVec3::new(0.5, 2.0, 3.0));
-        assert_eq!(f.transform_point3(DVec3::new(1.0, 1.0, 0.0)), DVec3::new(1.0, 1.0, 4.0));
+        assert_eq!(
+            f.transform_point3(DVec3::new(0.0, 0.0, 0.5)),
+            DVec3::new(0.5, 2.0, 3.0)
+        );
+        assert_eq!(
+            f.transform_point3(DVec3::new(1.0, 1.0, 0.0)),
+            DVec3::new(1.0, 1.0, 4.0)
+        );
         // A turned rod keeps its length; a kit merges parts per material.
         let mut kit = Kit::default();
         kit.rod("m", "pole", DVec3::ZERO, DVec3::new(3.0, 4.0, 0.0), 0.1, 6);

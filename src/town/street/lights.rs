@@ -41,10 +41,21 @@ const LENS_STEP_M: f64 = 0.33;
 /// housing over a 1 mm gap over the emitting panel.
 fn cobra_head(kit: &mut Kit, y: f64, z: f64) {
     let housing = DQuat::from_rotation_x(0.05_f64.copysign(-y));
-    kit.block_turned("street_paint_grey", POLE, [0.42, 0.8, 0.16], DVec3::new(0.0, y, z), housing);
+    kit.block_turned(
+        "street_paint_grey",
+        POLE,
+        [0.42, 0.8, 0.16],
+        DVec3::new(0.0, y, z),
+        housing,
+    );
     let panel_z = z - 0.08 - 0.03 - 0.011;
     kit.block("lamp_emit", POLE, [0.3, 0.5, 0.02], [0.0, y, panel_z]);
-    kit.block("street_paint_grey", POLE, [0.34, 0.54, 0.03], [0.0, y, panel_z + 0.026]);
+    kit.block(
+        "street_paint_grey",
+        POLE,
+        [0.34, 0.54, 0.03],
+        [0.0, y, panel_z + 0.026],
+    );
 }
 
 /// Modern: tapered galvanised pole, rising arm, cobra head 2.7 m out.
@@ -70,19 +81,39 @@ fn lamp_cobra() -> Vec<ObjectDesc> {
 fn lamp_heritage() -> Vec<ObjectDesc> {
     let mut k = Kit::default();
     let g = "street_paint_green";
-    k.add(g, POLE, prism(&regular(8, 0.2, 0.0), 0.0, 0.55), Default::default());
+    k.add(
+        g,
+        POLE,
+        prism(&regular(8, 0.2, 0.0), 0.0, 0.55),
+        Default::default(),
+    );
     k.rod(g, POLE, DVec3::Z * 0.55, DVec3::Z * 3.7, 0.07, 16);
     for z in [0.55, 1.2, 3.55] {
         k.rod(g, POLE, DVec3::Z * z, DVec3::Z * (z + 0.08), 0.1, 16);
     }
-    k.add(g, POLE, prism(&regular(4, 0.17, 0.785), 3.7, 3.78), Default::default());
+    k.add(
+        g,
+        POLE,
+        prism(&regular(4, 0.17, 0.785), 3.7, 3.78),
+        Default::default(),
+    );
     for c in regular(4, 0.17, 0.785) {
         let p = DVec3::new(c[0] * 0.85, c[1] * 0.85, 3.78);
         k.rod(g, POLE, p, p + DVec3::Z * 0.52, 0.012, 6);
     }
     k.block("lamp_emit", POLE, [0.16, 0.16, 0.36], [0.0, 0.0, 4.04]);
-    k.add(g, POLE, prism(&regular(4, 0.25, 0.785), 4.3, 4.36), Default::default());
-    k.add(g, POLE, prism(&regular(4, 0.16, 0.785), 4.36, 4.46), Default::default());
+    k.add(
+        g,
+        POLE,
+        prism(&regular(4, 0.25, 0.785), 4.3, 4.36),
+        Default::default(),
+    );
+    k.add(
+        g,
+        POLE,
+        prism(&regular(4, 0.16, 0.785), 4.36, 4.46),
+        Default::default(),
+    );
     k.rod(g, POLE, DVec3::Z * 4.46, DVec3::Z * 4.62, 0.02, 6);
     k.objects()
 }
@@ -91,7 +122,12 @@ fn lamp_heritage() -> Vec<ObjectDesc> {
 fn lamp_highway() -> Vec<ObjectDesc> {
     let mut k = Kit::default();
     let m = "street_galvanised";
-    k.add("street_concrete", POLE, prism(&regular(4, 0.42, 0.785), 0.0, 0.4), Default::default());
+    k.add(
+        "street_concrete",
+        POLE,
+        prism(&regular(4, 0.42, 0.785), 0.0, 0.4),
+        Default::default(),
+    );
     k.rod(m, POLE, DVec3::Z * 0.4, DVec3::Z * 7.0, 0.13, 12);
     k.rod(m, POLE, DVec3::Z * 7.0, DVec3::Z * 12.1, 0.09, 12);
     for s in [-1.0, 1.0] {
@@ -116,7 +152,12 @@ fn head(kit: &mut Kit, y: f64, z: f64) {
         kit.object(lens);
         kit.block(h, TL, [0.2, 0.26, 0.012], [-0.21, y, lz + 0.125]);
         for s in [-1.0, 1.0] {
-            kit.block(h, TL, [0.2, 0.012, 0.14], [-0.21, y + s * 0.124, lz + 0.063]);
+            kit.block(
+                h,
+                TL,
+                [0.2, 0.012, 0.14],
+                [-0.21, y + s * 0.124, lz + 0.063],
+            );
         }
     }
 }
@@ -131,8 +172,22 @@ fn traffic_light() -> (Vec<ObjectDesc>, Vec<ObjectDesc>) {
     let m = "street_paint_grey";
     k.rod(m, POLE, DVec3::ZERO, DVec3::Z * 0.5, 0.15, 12);
     k.rod(m, POLE, DVec3::Z * 0.5, DVec3::Z * 6.3, 0.1, 12);
-    k.rod(m, POLE, DVec3::new(0.0, 0.0, 5.95), DVec3::new(0.0, 4.6, 5.95), 0.06, 8);
-    k.rod(m, POLE, DVec3::new(0.0, 4.0, 5.95), DVec3::new(0.0, 4.0, 5.7), 0.03, 6);
+    k.rod(
+        m,
+        POLE,
+        DVec3::new(0.0, 0.0, 5.95),
+        DVec3::new(0.0, 4.6, 5.95),
+        0.06,
+        8,
+    );
+    k.rod(
+        m,
+        POLE,
+        DVec3::new(0.0, 4.0, 5.95),
+        DVec3::new(0.0, 4.0, 5.7),
+        0.03,
+        6,
+    );
     k.block(m, POLE, [0.06, 0.12, 0.06], [0.0, -0.14, 3.2]);
     let mut h = Kit::default();
     head(&mut h, 4.0, 5.2);
@@ -149,11 +204,32 @@ fn traffic_light_mast() -> (Vec<ObjectDesc>, Vec<ObjectDesc>) {
     let m = "street_paint_grey";
     k.rod(m, POLE, DVec3::ZERO, DVec3::Z * 0.6, 0.2, 12);
     k.rod(m, POLE, DVec3::Z * 0.6, DVec3::Z * 7.4, 0.13, 12);
-    k.rod(m, POLE, DVec3::new(0.0, 0.0, 6.4), DVec3::new(0.0, 7.0, 6.4), 0.075, 10);
-    k.rod(m, POLE, DVec3::new(0.0, 0.0, 7.3), DVec3::new(0.0, 4.2, 6.45), 0.03, 6);
+    k.rod(
+        m,
+        POLE,
+        DVec3::new(0.0, 0.0, 6.4),
+        DVec3::new(0.0, 7.0, 6.4),
+        0.075,
+        10,
+    );
+    k.rod(
+        m,
+        POLE,
+        DVec3::new(0.0, 0.0, 7.3),
+        DVec3::new(0.0, 4.2, 6.45),
+        0.03,
+        6,
+    );
     k.block(m, POLE, [0.06, 0.14, 0.06], [0.0, -0.15, 3.2]);
     for y in [2.25, 5.75] {
-        k.rod(m, POLE, DVec3::new(0.0, y, 6.4), DVec3::new(0.0, y, 6.2), 0.03, 6);
+        k.rod(
+            m,
+            POLE,
+            DVec3::new(0.0, y, 6.4),
+            DVec3::new(0.0, y, 6.2),
+            0.03,
+            6,
+        );
         head(&mut h, y, 5.7);
     }
     head(&mut h, POLE_HEAD.0, POLE_HEAD.1);

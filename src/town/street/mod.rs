@@ -109,10 +109,19 @@ mod gallery {
                 .and_then(|d| d.parse().ok())
                 .unwrap_or(default)
         };
-        let (dist, at_y) = (var("PARALLAX_GALLERY_DIST", 8.0), var("PARALLAX_GALLERY_Y", 0.0));
+        let (dist, at_y) = (
+            var("PARALLAX_GALLERY_DIST", 8.0),
+            var("PARALLAX_GALLERY_Y", 0.0),
+        );
         let desc = load_named_town("town03", None).unwrap().desc;
         let mut scene = town_scene(&desc, 0, 0, CameraConfig::Normal);
-        let mut objects = vec![ground_quad([-40.0, -20.0], [40.0, 200.0], 0.0, "sidewalk", class("sidewalk"))];
+        let mut objects = vec![ground_quad(
+            [-40.0, -20.0],
+            [40.0, 200.0],
+            0.0,
+            "sidewalk",
+            class("sidewalk"),
+        )];
         let mut y = 0.0;
         for p in super::furniture_prefabs() {
             objects.push(instance(&p.name, [0.0, y, 0.0], 0.0, &[], class("static")));

@@ -28,7 +28,11 @@ pub fn street_names() -> Vec<String> {
     let mut r = Rng::new(&[NAME_SEED]);
     let mut out: Vec<String> = Vec::new();
     while out.len() < STREET_NAME_COUNT {
-        let name = format!("{} {}", FIRST[r.index(FIRST.len())], KIND[r.index(KIND.len())]);
+        let name = format!(
+            "{} {}",
+            FIRST[r.index(FIRST.len())],
+            KIND[r.index(KIND.len())]
+        );
         if !out.contains(&name) {
             out.push(name);
         }

@@ -86,12 +86,34 @@ pub fn sidewalk_fixtures(
         };
         let shift = |at: [f64; 3], d: f64| [at[0] + step[0] * d, at[1] + step[1] * d, at[2]];
         if city && u < 0.15 && sw >= 3.0 && free(a, 2.2) {
-            out.push(instance("bus_shelter", place(a, sw - 0.95), facing, &[], st));
-            out.push(instance(bin, shift(place(a, sw - 0.4), 2.8), facing, &[], st));
+            out.push(instance(
+                "bus_shelter",
+                place(a, sw - 0.95),
+                facing,
+                &[],
+                st,
+            ));
+            out.push(instance(
+                bin,
+                shift(place(a, sw - 0.4), 2.8),
+                facing,
+                &[],
+                st,
+            ));
         } else if u < 0.45 && free(a, 1.6) {
-            let bench = if r.chance(0.6) { "bench_wood" } else { "bench_steel" };
+            let bench = if r.chance(0.6) {
+                "bench_wood"
+            } else {
+                "bench_steel"
+            };
             out.push(instance(bench, place(a, sw - 0.45), facing, &[], st));
-            out.push(instance(bin, shift(place(a, sw - 0.4), 1.4), facing, &[], st));
+            out.push(instance(
+                bin,
+                shift(place(a, sw - 0.4), 1.4),
+                facing,
+                &[],
+                st,
+            ));
         } else if u < 0.6 && free(a, 0.5) {
             out.push(instance("hydrant", place(a, 0.45), facing, &[], st));
         } else if city && u < 0.8 && free(a, 9.5) {
@@ -100,7 +122,11 @@ pub fn sidewalk_fixtures(
                 out.push(instance("parking_meter", at, facing, &[], st));
             }
         } else if u < 0.9 && free(a, 2.0) {
-            let b = if city { "bollard_steel" } else { "bollard_concrete" };
+            let b = if city {
+                "bollard_steel"
+            } else {
+                "bollard_concrete"
+            };
             for k in 0..3 {
                 let at = shift(place(a, 0.35), -1.3 + 1.3 * k as f64);
                 out.push(instance(b, at, facing, &[], st));
@@ -138,7 +164,11 @@ fn rail_run(x0: f64, x1: f64, y: f64, side: f64, out: &mut Vec<ObjectDesc>) {
     let mut x = x0;
     for (name, len) in GUARD_RAILS {
         while x + len <= x1 + 1e-9 {
-            let (at, heading) = if side > 0.0 { (x, 0.0) } else { (x + len, 180.0) };
+            let (at, heading) = if side > 0.0 {
+                (x, 0.0)
+            } else {
+                (x + len, 180.0)
+            };
             out.push(instance(name, [at, y, 0.0], heading, &[], g));
             x += len;
         }
@@ -201,7 +231,13 @@ pub fn highway_runs(
                 let k = r.index(SLOGANS.len());
                 let at = [a, y + outer * (hw + beyond), 0.0];
                 let heading = if outer > 0.0 { 90.0 } else { 270.0 };
-                out.push(instance(&format!("billboard_{k}"), at, heading, &[], class("static")));
+                out.push(instance(
+                    &format!("billboard_{k}"),
+                    at,
+                    heading,
+                    &[],
+                    class("static"),
+                ));
             }
             a += r.range(150.0, 300.0);
         }
@@ -226,7 +262,13 @@ pub fn corner_railings(l: &Layout, out: &mut Vec<ObjectDesc>) {
             for (sx, sy) in [(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)] {
                 // Along the x-road, then along the y-road where it goes on.
                 let hx = if sx > 0.0 { 0.0 } else { 180.0 };
-                out.push(instance("railing_run", [x + sx * from, y + sy * kerb, l.walk_z()], hx, &[], f));
+                out.push(instance(
+                    "railing_run",
+                    [x + sx * from, y + sy * kerb, l.walk_z()],
+                    hx,
+                    &[],
+                    f,
+                ));
                 let ends = (j == 0 && sy < 0.0) || (j == l.ny && sy > 0.0);
                 if !ends {
                     let hy = if sy > 0.0 { 90.0 } else { 270.0 };
@@ -339,7 +381,14 @@ mod tests {
             .iter()
             .map(|o| (prefab_of(o).unwrap(), o.transform.translate.unwrap()[0]))
             .collect();
-        assert_eq!(got, vec![("guard_rail_32", 10.0), ("guard_rail_4", 42.0), ("guard_rail_4", 46.0)]);
+        assert_eq!(
+            got,
+            vec![
+                ("guard_rail_32", 10.0),
+                ("guard_rail_4", 42.0),
+                ("guard_rail_4", 46.0)
+            ]
+        );
         // South of the road the units run west from their east ends.
         out.clear();
         rail_run(10.0, 17.0, -3.0, -1.0, &mut out);

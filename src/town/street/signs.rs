@@ -51,7 +51,12 @@ impl FaceDesign {
 
     /// A printed band between two scalings of the outline.
     pub fn border(mut self, mat: &'static str, outer: f64, inner: f64) -> Self {
-        let s = |k: f64| self.outline.iter().map(|p| [p[0] * k, p[1] * k]).collect::<Vec<_>>();
+        let s = |k: f64| {
+            self.outline
+                .iter()
+                .map(|p| [p[0] * k, p[1] * k])
+                .collect::<Vec<_>>()
+        };
         let (o, i) = (s(outer), s(inner));
         self.prints
             .push((mat, ring_prism(&o, Some(&i), PRINT_W0_M, PRINT_TOP_M)));
@@ -60,7 +65,8 @@ impl FaceDesign {
 
     /// A printed convex polygon.
     pub fn shape(mut self, mat: &'static str, poly: Vec<[f64; 2]>) -> Self {
-        self.prints.push((mat, prism(&poly, PRINT_W0_M, PRINT_TOP_M)));
+        self.prints
+            .push((mat, prism(&poly, PRINT_W0_M, PRINT_TOP_M)));
         self
     }
 
@@ -84,8 +90,17 @@ impl FaceDesign {
     /// labelled `class`.
     pub fn build_as(&self, kit: &mut Kit, frame: DAffine3, class: &'static str, back: &str) {
         kit.add(back, class, prism(&self.outline, 0.0, PLATE_M), frame);
-        let sheet: Vec<[f64; 2]> = self.outline.iter().map(|p| [p[0] * 0.985, p[1] * 0.985]).collect();
-        kit.add(self.sheet, class, prism(&sheet, PLATE_M - 0.0005, SHEET_M), frame);
+        let sheet: Vec<[f64; 2]> = self
+            .outline
+            .iter()
+            .map(|p| [p[0] * 0.985, p[1] * 0.985])
+            .collect();
+        kit.add(
+            self.sheet,
+            class,
+            prism(&sheet, PLATE_M - 0.0005, SHEET_M),
+            frame,
+        );
         for (mat, m) in &self.prints {
             kit.add(mat, class, m.clone(), frame);
         }
@@ -94,7 +109,12 @@ impl FaceDesign {
 
 /// A `w` × `h` rectangle centred at `c`, counter-clockwise.
 pub fn rect(w: f64, h: f64, c: [f64; 2]) -> Vec<[f64; 2]> {
-    let (x0, x1, y0, y1) = (c[0] - w / 2.0, c[0] + w / 2.0, c[1] - h / 2.0, c[1] + h / 2.0);
+    let (x0, x1, y0, y1) = (
+        c[0] - w / 2.0,
+        c[0] + w / 2.0,
+        c[1] - h / 2.0,
+        c[1] + h / 2.0,
+    );
     vec![[x0, y0], [x1, y0], [x1, y1], [x0, y1]]
 }
 
@@ -150,7 +170,11 @@ pub fn crossing_face() -> FaceDesign {
 pub fn direction_face(place: &str, right: bool) -> FaceDesign {
     let s = if right { 1.0 } else { -1.0 };
     let head = vec![[s * 0.44, 0.1], [s * 0.44, -0.1], [s * 0.55, 0.0]];
-    let head = if right { head } else { head.into_iter().rev().collect() };
+    let head = if right {
+        head
+    } else {
+        head.into_iter().rev().collect()
+    };
     FaceDesign::new(rect(1.2, 0.4, [0.0, 0.0]), "sign_face_green")
         .border("sign_face_white", 0.975, 0.94)
         .shape("sign_face_white", rect(0.15, 0.05, [s * 0.37, 0.0]))
@@ -182,7 +206,12 @@ fn face_prefab(name: &str, face: &FaceDesign, z: f64) -> PrefabDesc {
     if z == FACE_Z_M {
         // The clamps that hold it to the post.
         for dz in [-0.15, 0.15] {
-            kit.block("street_galvanised", TS, [0.025, 0.09, 0.05], [-0.0475, 0.0, z + dz]);
+            kit.block(
+                "street_galvanised",
+                TS,
+                [0.025, 0.09, 0.05],
+                [-0.0475, 0.0, z + dz],
+            );
         }
     }
     prefab(name, kit.objects())
@@ -192,11 +221,25 @@ fn face_prefab(name: &str, face: &FaceDesign, z: f64) -> PrefabDesc {
 fn post_prefabs() -> Vec<PrefabDesc> {
     let g = "street_galvanised";
     let mut one = Kit::default();
-    one.rod(g, POLE, DVec3::ZERO, DVec3::Z * (FACE_Z_M + 0.35), POST_R, 10);
+    one.rod(
+        g,
+        POLE,
+        DVec3::ZERO,
+        DVec3::Z * (FACE_Z_M + 0.35),
+        POST_R,
+        10,
+    );
     let mut pair = Kit::default();
     for y in [-0.4, 0.4] {
         let a = DVec3::new(0.0, y, 0.0);
-        pair.rod(g, POLE, a, a + DVec3::Z * (DIRECTION_Z_M + 0.25), POST_R, 10);
+        pair.rod(
+            g,
+            POLE,
+            a,
+            a + DVec3::Z * (DIRECTION_Z_M + 0.25),
+            POST_R,
+            10,
+        );
     }
     let mut name = Kit::default();
     name.rod(g, POLE, DVec3::ZERO, DVec3::Z * 2.75, 0.03, 10);
@@ -235,7 +278,11 @@ pub fn faces() -> Vec<(String, FaceDesign, f64)> {
     ];
     out.extend(SPEED_LIMITS.map(|s| (speed_prefab(s), speed_face(s), FACE_Z_M)));
     for (k, place) in PLACES.iter().enumerate() {
-        out.push((direction_prefab(k), direction_face(place, k % 2 == 0), DIRECTION_Z_M));
+        out.push((
+            direction_prefab(k),
+            direction_face(place, k % 2 == 0),
+            DIRECTION_Z_M,
+        ));
     }
     out
 }

@@ -21,7 +21,12 @@ fn points(o: &ObjectDesc) -> Vec<DVec3> {
             let c = DVec3::from(o.transform.translate.unwrap());
             [-1.0, 1.0]
                 .iter()
-                .flat_map(|s| [c + DVec3::new(0.0, s * radius, s * radius), c + DVec3::X * 0.02])
+                .flat_map(|s| {
+                    [
+                        c + DVec3::new(0.0, s * radius, s * radius),
+                        c + DVec3::X * 0.02,
+                    ]
+                })
                 .collect()
         }
         other => panic!("unexpected part {other:?}"),
@@ -31,15 +36,35 @@ fn points(o: &ObjectDesc) -> Vec<DVec3> {
 /// (name prefix, envelope min, max, stands on the ground).
 const ENVELOPES: [(&str, [f64; 3], [f64; 3], bool); 20] = [
     ("sign_post", [-0.05, -0.45, 0.0], [0.05, 0.45, 2.8], true),
-    ("street_name_post", [-0.05, -0.05, 0.0], [0.05, 0.05, 2.8], true),
-    ("sign_direction", [-0.1, -0.61, 2.29], [0.0, 0.61, 2.71], false),
+    (
+        "street_name_post",
+        [-0.05, -0.05, 0.0],
+        [0.05, 0.05, 2.8],
+        true,
+    ),
+    (
+        "sign_direction",
+        [-0.1, -0.61, 2.29],
+        [0.0, 0.61, 2.71],
+        false,
+    ),
     ("sign_", [-0.1, -0.53, 1.6], [0.0, 0.53, 2.6], false),
     ("street_name_", [-0.03, -0.7, 2.5], [0.03, 0.7, 2.7], false),
     ("lamp_cobra", [-0.25, -3.2, 0.0], [0.25, 0.2, 9.4], true),
     ("lamp_heritage", [-0.3, -0.3, 0.0], [0.3, 0.3, 4.7], true),
     ("lamp_highway", [-0.45, -3.1, 0.0], [0.45, 3.1, 12.5], true),
-    ("traffic_light_mast_pole", [-0.25, -0.25, 0.0], [0.25, 7.1, 7.5], true),
-    ("traffic_light_pole", [-0.2, -0.25, 0.0], [0.2, 4.7, 6.4], true),
+    (
+        "traffic_light_mast_pole",
+        [-0.25, -0.25, 0.0],
+        [0.25, 7.1, 7.5],
+        true,
+    ),
+    (
+        "traffic_light_pole",
+        [-0.2, -0.25, 0.0],
+        [0.2, 4.7, 6.4],
+        true,
+    ),
     ("traffic_light", [-0.32, -0.6, 2.2], [0.15, 6.0, 6.3], false),
     ("bench", [-0.3, -0.95, 0.0], [0.3, 0.95, 0.9], true),
     ("bin", [-0.3, -0.3, 0.0], [0.3, 0.3, 1.05], true),
@@ -67,7 +92,9 @@ fn prefab_parts_lie_within_their_envelopes_standing_ones_on_the_ground() {
             assert!(inside, "{}: {q} outside {lo:?}..{hi:?}", p.name);
         }
         // On the ground: the lowest point at z = 0 exactly; else above it.
-        let standing = ["fence", "railing", "utility_pole"].iter().any(|n| p.name.starts_with(n));
+        let standing = ["fence", "railing", "utility_pole"]
+            .iter()
+            .any(|n| p.name.starts_with(n));
         if *stands || standing {
             assert!(min_z.abs() < 1e-12, "{}: lowest point {min_z}", p.name);
         } else {
@@ -88,10 +115,16 @@ fn check_face(name: &str, f: &FaceDesign) {
     assert!(!f.prints.is_empty(), "{name}: nothing printed");
     for (mat, m) in &f.prints {
         for p in &m.positions {
-            assert!(inside(&f.outline, p.x, p.y), "{name}: {mat} at {p} off the face");
+            assert!(
+                inside(&f.outline, p.x, p.y),
+                "{name}: {mat} at {p} off the face"
+            );
             // On the face: from inside the sheet to at most 1.5 mm above
             // the print top (the walker on the crossing's triangle).
-            assert!(p.z >= PRINT_W0_M - 1e-12 && p.z <= PRINT_TOP_M + 0.0015 + 1e-12, "{name}: {p}");
+            assert!(
+                p.z >= PRINT_W0_M - 1e-12 && p.z <= PRINT_TOP_M + 0.0015 + 1e-12,
+                "{name}: {p}"
+            );
         }
     }
 }
@@ -111,19 +144,35 @@ fn speed_signs_print_their_number_centred() {
     for kmh in SPEED_LIMITS {
         let text = kmh.to_string();
         let f = speed_face(kmh);
-        let (_, ink) = f.prints.iter().find(|(m, _)| *m == "sign_ink_black").unwrap();
+        let (_, ink) = f
+            .prints
+            .iter()
+            .find(|(m, _)| *m == "sign_ink_black")
+            .unwrap();
         let cap = if text.len() > 2 { 0.16 } else { 0.2 };
         // One box (12 triangles) per laid-out rectangle of the number.
-        assert_eq!(ink.triangles.len(), 12 * layout(&text, cap).rects.len(), "{kmh}");
-        let (lo, hi) = ink.positions.iter().fold(
-            (DVec3::INFINITY, DVec3::NEG_INFINITY),
-            |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+        assert_eq!(
+            ink.triangles.len(),
+            12 * layout(&text, cap).rects.len(),
+            "{kmh}"
         );
+        let (lo, hi) = ink
+            .positions
+            .iter()
+            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(*p), hi.max(*p))
+            });
         // Centred by its layout box (a glyph may leave its edge columns
         // empty, as "1" does): ink within ± width / 2, less than a cell in.
         let (half, cell) = (layout(&text, cap).width / 2.0, cap / 7.0);
-        assert!(lo.x >= -half - 1e-9 && lo.x <= -half + cell + 1e-9, "{kmh}: {lo}");
-        assert!(hi.x <= half + 1e-9 && hi.x >= half - cell - 1e-9, "{kmh}: {hi}");
+        assert!(
+            lo.x >= -half - 1e-9 && lo.x <= -half + cell + 1e-9,
+            "{kmh}: {lo}"
+        );
+        assert!(
+            hi.x <= half + 1e-9 && hi.x >= half - cell - 1e-9,
+            "{kmh}: {hi}"
+        );
         assert!((lo.y + hi.y).abs() < 1e-9, "{kmh}: {lo} {hi}");
         assert!((hi.y - lo.y - cap).abs() < 1e-9, "{kmh}");
     }
