@@ -159,6 +159,7 @@ pub fn town_materials(desc: &TownDesc) -> Vec<MaterialDesc> {
         sign_materials(),
         vehicle_materials(),
         pedestrian_materials(),
+        super::street::materials::street_materials(),
     ]
     .concat()
 }

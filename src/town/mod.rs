@@ -39,6 +39,7 @@ pub mod roundabout;
 pub mod routes;
 pub mod signals;
 pub mod source;
+pub mod street;
 pub mod terrain;
 pub mod traffic;
 pub mod vegetation;
@@ -106,7 +107,7 @@ impl<'a> StaticTown<'a> {
         let (desc, seed, l) = (self.desc, self.seed, &self.layout);
         let mut out = roads::road_objects(l, &self.sites);
         out.extend(buildings::block_objects(desc, l, seed));
-        let mut furniture = furniture::furniture_objects(desc, l, &self.sites, seed);
+        let mut furniture = furniture::furniture_objects(desc, l, &self.sites, seed, &out);
         // Nothing stands on the roundabout's ring or sidewalk, nor in the
         // square of a curved loop corner (its arc and the cut-off corner).
         furniture.retain(|o| {
@@ -172,14 +173,23 @@ pub fn static_objects(desc: &TownDesc, seed: u64) -> Vec<ObjectDesc> {
     StaticTown::new(desc, seed).objects()
 }
 
-/// Gives every pole, tree, bush, sign and traffic light its own instance
+/// Gives every pole, tree, bush, sign, traffic light, fixture, fence and
+/// guard rail its own instance
 /// id, in generation order (deterministic), from `FURNITURE_ID_BASE`.
 fn number_objects(objects: &mut [ObjectDesc]) {
     let mut next = FURNITURE_ID_BASE;
     for o in objects.iter_mut() {
         let numbered = matches!(
             o.semantic.as_deref(),
-            Some("pole" | "vegetation" | "traffic_sign" | "traffic_light")
+            Some(
+                "pole"
+                    | "vegetation"
+                    | "traffic_sign"
+                    | "traffic_light"
+                    | "static"
+                    | "fence"
+                    | "guard_rail"
+            )
         );
         if numbered && o.instance.is_none() && next < VEHICLE_ID_BASE {
             o.instance = Some(next as u16);

@@ -224,6 +224,34 @@ impl RampSite {
     }
 }
 
+impl RampSite {
+    /// Guard rails along the ramp's outer shoulder, 0.5 m inside its far
+    /// edge, from the end of one taper to the start of the other: 4 m
+    /// units (`street::barriers::GUARD_RAILS`) on the chords between
+    /// stations 4 m apart, the beam towards the ramp.
+    pub fn guard_rail_objects(&self) -> Vec<ObjectDesc> {
+        let (name, len) = crate::town::street::barriers::GUARD_RAILS[1];
+        let inset = -(self.shoulder_m - 0.5);
+        let n = ((self.len_m() - 2.0 * TAPER_M) / len).floor() as usize;
+        (0..n)
+            .map(|k| {
+                let t = TAPER_M + k as f64 * len;
+                let p = [t, t + len].map(|t| self.world(self.edge(t, true, inset)));
+                // The beam faces local −y, the right of the unit's run: run
+                // east north of the road, west south of it.
+                let (a, b) = if self.side > 0.0 {
+                    (p[0], p[1])
+                } else {
+                    (p[1], p[0])
+                };
+                let heading = (b[1] - a[1]).atan2(b[0] - a[0]).to_degrees();
+                let g = crate::town::parts::class("guard_rail");
+                crate::town::parts::instance(name, [a[0], a[1], 0.0], heading, &[], g)
+            })
+            .collect()
+    }
+}
+
 /// Triangle soup builder for flat meshes, wound counter-clockwise from above.
 struct Flat<'a> {
     site: &'a RampSite,

@@ -21,8 +21,11 @@ use super::props::LENS_SLOTS;
 use super::routes::{Route, RouteKind, Segment};
 use super::traffic::{Plan, Schedule};
 
-/// Name of the traffic-light prefab (`props`).
+/// Name of the traffic-light prefab of one-lane approaches (`street::lights`).
 pub const PREFAB: &str = "traffic_light";
+/// Every traffic-light prefab: the corner pole with a short arm, and the
+/// mast arm with one head per lane of two-lane approaches.
+pub const PREFABS: [&str; 2] = [PREFAB, super::street::lights::SIGNAL_MAST];
 /// How far before a junction's edge a route's straight counts as one of
 /// its approaches, metres.
 const APPROACH_M: f64 = 20.0;
@@ -237,7 +240,7 @@ pub fn set_lamps(desc: &TownDesc, frame: u64, objects: &mut [ObjectDesc]) {
         else {
             continue;
         };
-        if prefab != PREFAB {
+        if !PREFABS.contains(&prefab.as_str()) {
             continue;
         }
         let at = o.transform.translate.unwrap_or_default();

@@ -1,12 +1,13 @@
 //! The procedural towns: generation, terrain, grades, highway loop, ramps,
-//! overpass, traffic and signals, ground truth of town frames, OBJ export and
-//! the town command line.
+//! overpass, traffic and signals, street furniture, ground truth of town
+//! frames, OBJ export and the town command line.
 
 #[path = "../common/mod.rs"]
 mod common;
 
 mod cli;
 mod export;
+mod furniture;
 mod generation;
 mod grade;
 mod gt;

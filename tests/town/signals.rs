@@ -13,11 +13,13 @@ use glam::DVec3;
 use parallax::light::LightSet;
 use parallax::scene::build_scene;
 use parallax::scene::desc::{MaterialDesc, MaterialKindDesc, ObjectDesc, PrefabDesc, ShapeDesc};
+use parallax::scene::mesh::cylinder_triangles;
 use parallax::town::layout::Layout;
 use parallax::town::materials::town_materials;
 use parallax::town::props::{street_prefabs, LENS_SLOTS};
 use parallax::town::routes::{RouteKind, STOP_LINE_AT_M};
 use parallax::town::signals::{self, Approach, Lamp, Signal, SignalSite};
+use parallax::town::street::lights::LENS_SEGMENTS;
 use parallax::town::traffic::{Plan, Schedule, VehiclePose};
 use parallax::town::{
     frame_at, load_town_frame, static_objects, town_scene, CameraConfig, TownDesc,
@@ -41,27 +43,53 @@ fn traffic_lights(desc: &TownDesc) -> Vec<ObjectDesc> {
     static_objects(desc, SEED)
         .into_iter()
         .filter(
-            |o| matches!(&o.shape, ShapeDesc::Instance { prefab, .. } if prefab == signals::PREFAB),
+            |o| matches!(&o.shape, ShapeDesc::Instance { prefab, .. } if signals::PREFABS.contains(&prefab.as_str())),
         )
         .collect()
 }
 
-/// The town's materials and the traffic-light prefab.
+/// The town's materials and the traffic-light prefabs.
 struct Library {
     materials: Vec<MaterialDesc>,
-    prefab: PrefabDesc,
+    prefabs: Vec<PrefabDesc>,
 }
 
 impl Library {
     fn new(desc: &TownDesc) -> Self {
-        let prefab = street_prefabs()
+        let prefabs: Vec<PrefabDesc> = street_prefabs()
             .into_iter()
-            .find(|p| p.name == signals::PREFAB)
-            .expect("traffic-light prefab");
+            .filter(|p| signals::PREFABS.contains(&p.name.as_str()))
+            .collect();
+        assert_eq!(
+            prefabs.len(),
+            signals::PREFABS.len(),
+            "traffic-light prefabs"
+        );
         Library {
             materials: town_materials(desc),
-            prefab,
+            prefabs,
         }
+    }
+
+    /// The prefab an instance places.
+    fn prefab(&self, o: &ObjectDesc) -> &PrefabDesc {
+        let ShapeDesc::Instance { prefab, .. } = &o.shape else {
+            panic!("not an instance");
+        };
+        self.prefabs
+            .iter()
+            .find(|p| &p.name == prefab)
+            .expect("a traffic-light prefab")
+    }
+}
+
+/// Heads of a traffic-light prefab: two (arm and pole) on the corner
+/// pole, three (two lanes and pole) on the mast arm.
+fn heads_of(prefab: &str) -> usize {
+    if prefab == signals::PREFAB {
+        2
+    } else {
+        3
     }
 }
 
@@ -73,7 +101,7 @@ fn lit_per_head(lib: &Library, o: &ObjectDesc) -> Vec<Vec<Lamp>> {
     };
     let materials = &lib.materials;
     let mut heads: Vec<(f64, Vec<Lamp>)> = Vec::new();
-    for part in &lib.prefab.objects {
+    for part in &lib.prefab(o).objects {
         let slot = part.material.as_deref().unwrap_or_default();
         let Some(k) = LENS_SLOTS.iter().position(|s| *s == slot) else {
             continue;
@@ -159,7 +187,8 @@ fn every_head_lights_exactly_one_lamp_in_every_frame_of_a_cycle() {
             signals::set_lamps(&desc, k, &mut frame);
             for o in &frame {
                 let heads = lit_per_head(&lib, o);
-                assert_eq!(heads.len(), 2, "{name}: two heads per pole");
+                let want = heads_of(&lib.prefab(o).name);
+                assert_eq!(heads.len(), want, "{name}: {want} heads per pole");
                 for lit in heads {
                     assert_eq!(lit.len(), 1, "{name} frame {k}: lit {lit:?}");
                     seen.push(lit[0]);
@@ -195,7 +224,7 @@ fn the_generated_frame_carries_the_lamps_of_its_signals() {
             else {
                 continue;
             };
-            if prefab != signals::PREFAB {
+            if !signals::PREFABS.contains(&prefab.as_str()) {
                 continue;
             }
             n += 1;
@@ -426,25 +455,27 @@ fn lit_lenses_are_emitters_at_signal_luminance_in_the_light_set() {
         assert!(!matches!(dark.kind, MaterialKindDesc::Emissive { .. }));
     }
     // The light set of a built frame holds one more emitter per lit lens
-    // triangle: 2 heads × 12 triangles per traffic light.
+    // triangle: per traffic light, its heads × a lens disc's triangles.
     let s = &Plan::new(&desc).schedule;
     let k = ((s.moving_s() + 1.0) * desc.fps).round() as u64;
     let loaded = load_town_frame(&desc, SEED, k, CameraConfig::Normal, Path::new("t.toml"))
         .unwrap_or_else(|e| panic!("{e}"));
     let mut dark = loaded.clone();
-    let mut lights = 0;
+    let mut heads = 0;
     for o in &mut dark.desc.objects {
         if let ShapeDesc::Instance {
             prefab,
             material_map,
         } = &mut o.shape
         {
-            if prefab == signals::PREFAB {
+            if signals::PREFABS.contains(&prefab.as_str()) {
                 material_map.clear();
-                lights += 1;
+                heads += heads_of(prefab);
             }
         }
     }
     let count = |ls| LightSet::build(&build_scene(ls, DVec3::ZERO).unwrap()).len();
-    assert_eq!(count(&loaded) - count(&dark), lights * 24);
+    let lens = cylinder_triangles(LENS_SEGMENTS, true) as usize;
+    assert_eq!(lens, 48);
+    assert_eq!(count(&loaded) - count(&dark), heads * lens);
 }
