@@ -25,13 +25,14 @@ use common::towns::town;
 
 const SEED: u64 = 5;
 
-/// Semantic ids present among the built meshes of `name`'s frame 0.
+/// Semantic ids present among the built meshes of `name`'s frame 0,
+/// instances included.
 fn built_classes(name: &str) -> Vec<u8> {
     let desc = town(name);
     let loaded = load_town_frame(&desc, SEED, 0, CameraConfig::Normal, Path::new("t.toml"))
         .unwrap_or_else(|e| panic!("{e}"));
     let scene = build_scene(&loaded, DVec3::ZERO).expect("town builds");
-    let mut ids: Vec<u8> = scene.meshes.iter().map(|m| m.semantic).collect();
+    let mut ids: Vec<u8> = scene.flattened_meshes().map(|m| m.semantic).collect();
     ids.sort_unstable();
     ids.dedup();
     ids
