@@ -282,24 +282,6 @@ impl Scene {
         flat.chain(placed)
     }
 
-    /// Replaces every semantic class id (meshes, prototypes, instance
-    /// overrides, spheres) by `f(id)`.
-    pub fn map_semantic(&mut self, f: impl Fn(u8) -> u8) {
-        let meshes = self
-            .meshes
-            .iter_mut()
-            .chain(self.prototypes.iter_mut().flat_map(|p| p.meshes.iter_mut()));
-        for m in meshes {
-            m.semantic = f(m.semantic);
-        }
-        for i in &mut self.instances {
-            i.semantic = i.semantic.map(&f);
-        }
-        for s in &mut self.spheres {
-            s.semantic = f(s.semantic);
-        }
-    }
-
     /// What shading reads of this scene: materials, wetness, render origin.
     #[inline]
     pub fn material_view(&self) -> MaterialView<'_> {

@@ -48,7 +48,8 @@ pub const PAINTS: &[&str] = &[
     "paint_darkblue",
 ];
 
-fn diffuse(name: &str, albedo: [f64; 3]) -> MaterialDesc {
+/// A plain diffuse material (linear RGB albedo).
+pub fn diffuse(name: &str, albedo: [f64; 3]) -> MaterialDesc {
     MaterialDesc {
         name: name.to_string(),
         mask: None,
@@ -58,19 +59,20 @@ fn diffuse(name: &str, albedo: [f64; 3]) -> MaterialDesc {
 }
 
 /// A diffuse material with a procedural texture of real-world feature size.
-fn textured(name: &str, albedo: [f64; 3], kind: TextureKindDesc, seed: u32) -> MaterialDesc {
+pub fn textured(name: &str, albedo: [f64; 3], kind: TextureKindDesc, seed: u32) -> MaterialDesc {
     with_texture(diffuse(name, albedo), kind, seed)
 }
 
 /// `m` with a procedural texture of real-world feature size.
-fn with_texture(m: MaterialDesc, kind: TextureKindDesc, seed: u32) -> MaterialDesc {
+pub fn with_texture(m: MaterialDesc, kind: TextureKindDesc, seed: u32) -> MaterialDesc {
     MaterialDesc {
         texture: Some(TextureDesc::new(kind, seed)),
         ..m
     }
 }
 
-fn metal(name: &str, preset: ConductorPreset, roughness: f64) -> MaterialDesc {
+/// A rough conductor of a preset metal.
+pub fn metal(name: &str, preset: ConductorPreset, roughness: f64) -> MaterialDesc {
     MaterialDesc {
         name: name.to_string(),
         mask: None,

@@ -47,38 +47,10 @@ pub fn gt_frame(
     (rig, out)
 }
 
-/// The semantic ids before CARLA's table (issue 21): what every CARLA id
-/// the towns use was called then. Pinned town hashes computed before the
-/// switch stay valid through it, which shows that the switch relabelled
-/// classes one for one and moved nothing.
-pub fn pre_carla_id(id: u8) -> u8 {
-    match id {
-        0 => 0,        // unlabeled was `other`
-        1 => 1,        // road
-        24 => 2,       // road_line was `lane_marking`
-        2 => 3,        // sidewalk
-        3 | 26 => 4,   // building; bridges were labelled building
-        9 => 5,        // vegetation
-        10 => 6,       // terrain
-        6 => 7,        // pole
-        7 => 8,        // traffic_light
-        8 => 9,        // traffic_sign
-        14..=16 => 10, // car, truck, bus were `vehicle`
-        12 => 11,      // pedestrian
-        23 => 12,      // water
-        11 => 13,      // sky
-        other => panic!("class {other} did not exist before CARLA's table"),
-    }
-}
-
-/// `scene` with its meshes' semantic ids as they were before CARLA's table.
-pub fn with_pre_carla_ids(mut scene: Scene) -> Scene {
-    scene.map_semantic(pre_carla_id);
-    scene
-}
-
 /// A description's `Debug` text with class names as they were before
-/// CARLA's table (see [`pre_carla_id`]).
+/// CARLA's table (issue 21): pinned hashes of descriptions computed before
+/// the switch stay valid through it, which shows that the switch relabelled
+/// classes one for one.
 pub fn pre_carla_names(debug: &str) -> String {
     debug
         .replace("\"road_line\"", "\"lane_marking\"")

@@ -4,38 +4,8 @@
 //! (albedo, roughness and relief); rooms, signs and awnings are plain.
 //! Linear RGB albedos.
 
-use crate::scene::desc::{
-    ConductorPreset, MaterialDesc, MaterialKindDesc, TextureDesc, TextureKindDesc,
-};
-
-fn diffuse(name: &str, albedo: [f64; 3]) -> MaterialDesc {
-    MaterialDesc {
-        name: name.to_string(),
-        mask: None,
-        texture: None,
-        kind: MaterialKindDesc::Diffuse { albedo },
-    }
-}
-
-fn textured(name: &str, albedo: [f64; 3], kind: TextureKindDesc, seed: u32) -> MaterialDesc {
-    MaterialDesc {
-        texture: Some(TextureDesc {
-            kind,
-            scale: 1.0,
-            seed,
-            bump: 1.0,
-        }),
-        ..diffuse(name, albedo)
-    }
-}
-
-/// `material` with the texture `kind`.
-fn with_texture(material: MaterialDesc, kind: TextureKindDesc, seed: u32) -> MaterialDesc {
-    MaterialDesc {
-        texture: textured("", [0.0; 3], kind, seed).texture,
-        ..material
-    }
-}
+use crate::scene::desc::{ConductorPreset, MaterialDesc, MaterialKindDesc, TextureKindDesc};
+use crate::town::materials::{diffuse, textured, with_texture};
 
 /// Every façade material (names unique, all prefixed `facade_`).
 pub fn facade_materials() -> Vec<MaterialDesc> {

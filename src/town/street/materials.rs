@@ -6,46 +6,13 @@
 //! and the lamp emitter (`lamp_emit`) stay in `town::materials`, which
 //! lists these with one line.
 
-use crate::scene::desc::{
-    ConductorPreset, MaterialDesc, MaterialKindDesc, TextureDesc, TextureKindDesc,
-};
+use crate::scene::desc::{ConductorPreset, MaterialDesc, MaterialKindDesc, TextureKindDesc};
+use crate::town::materials::{diffuse, metal, with_texture};
 
 fn named(name: &str, kind: MaterialKindDesc) -> MaterialDesc {
     MaterialDesc {
-        name: name.to_string(),
-        mask: None,
-        texture: None,
         kind,
-    }
-}
-
-fn diffuse(name: &str, albedo: [f64; 3]) -> MaterialDesc {
-    named(name, MaterialKindDesc::Diffuse { albedo })
-}
-
-fn metal(name: &str, preset: ConductorPreset, roughness: f64) -> MaterialDesc {
-    let (eta, k) = (None, None);
-    named(
-        name,
-        MaterialKindDesc::Conductor {
-            preset: Some(preset),
-            eta,
-            k,
-            roughness,
-        },
-    )
-}
-
-/// `material` with the texture `kind` (seeded by `seed`).
-fn textured(material: MaterialDesc, kind: TextureKindDesc, seed: u32) -> MaterialDesc {
-    MaterialDesc {
-        texture: Some(TextureDesc {
-            kind,
-            scale: 1.0,
-            seed,
-            bump: 1.0,
-        }),
-        ..material
+        ..diffuse(name, [0.0; 3])
     }
 }
 
@@ -53,52 +20,52 @@ fn textured(material: MaterialDesc, kind: TextureKindDesc, seed: u32) -> Materia
 /// or `sign_`).
 pub fn street_materials() -> Vec<MaterialDesc> {
     vec![
-        textured(
+        with_texture(
             metal("street_galvanised", ConductorPreset::Aluminium, 0.55),
             TextureKindDesc::MetalBrushed,
             301,
         ),
-        textured(
+        with_texture(
             metal("street_steel_dark", ConductorPreset::Iron, 0.45),
             TextureKindDesc::MetalBrushed,
             302,
         ),
-        textured(
+        with_texture(
             diffuse("street_paint_black", [0.025, 0.025, 0.025]),
             TextureKindDesc::MetalPainted,
             303,
         ),
-        textured(
+        with_texture(
             diffuse("street_paint_green", [0.03, 0.09, 0.05]),
             TextureKindDesc::MetalPainted,
             304,
         ),
-        textured(
+        with_texture(
             diffuse("street_paint_grey", [0.22, 0.23, 0.23]),
             TextureKindDesc::MetalPainted,
             305,
         ),
-        textured(
+        with_texture(
             diffuse("street_paint_red", [0.5, 0.04, 0.03]),
             TextureKindDesc::MetalPainted,
             306,
         ),
-        textured(
+        with_texture(
             diffuse("street_paint_yellow", [0.7, 0.52, 0.04]),
             TextureKindDesc::MetalPainted,
             307,
         ),
-        textured(
+        with_texture(
             diffuse("street_wood", [0.36, 0.22, 0.12]),
             TextureKindDesc::Wood,
             308,
         ),
-        textured(
+        with_texture(
             diffuse("street_wood_pole", [0.2, 0.14, 0.09]),
             TextureKindDesc::Wood,
             309,
         ),
-        textured(
+        with_texture(
             diffuse("street_concrete", [0.5, 0.49, 0.46]),
             TextureKindDesc::Concrete,
             310,
@@ -106,7 +73,7 @@ pub fn street_materials() -> Vec<MaterialDesc> {
         diffuse("street_plastic_black", [0.04, 0.04, 0.04]),
         diffuse("street_wire", [0.02, 0.02, 0.02]),
         diffuse("street_insulator", [0.6, 0.6, 0.58]),
-        textured(
+        with_texture(
             named(
                 "street_glass",
                 MaterialKindDesc::Dielectric {
@@ -119,7 +86,7 @@ pub fn street_materials() -> Vec<MaterialDesc> {
             312,
         ),
         // Sign faces (retroreflective sheeting read as diffuse) and inks.
-        textured(
+        with_texture(
             diffuse("sign_back_grey", [0.3, 0.31, 0.31]),
             TextureKindDesc::MetalBrushed,
             311,

@@ -18,11 +18,11 @@ pub mod species;
 use std::sync::OnceLock;
 
 use crate::scene::desc::{
-    MaterialDesc, MaterialKindDesc, ObjectDesc, PrefabDesc, ScaleDesc, ShapeDesc, TextureDesc,
-    TextureKindDesc, TransformDesc,
+    MaterialDesc, ObjectDesc, PrefabDesc, ScaleDesc, ShapeDesc, TextureKindDesc, TransformDesc,
 };
 
 use super::desc::TownDesc;
+use super::materials;
 use super::parts::{class, instance};
 use super::rng::{tag, Rng};
 use grow::{grow, Grown};
@@ -248,16 +248,10 @@ fn diffuse(
     albedo: [f64; 3],
     texture: Option<(TextureKindDesc, u32)>,
 ) -> MaterialDesc {
-    MaterialDesc {
-        name,
-        mask: None,
-        texture: texture.map(|(kind, seed)| TextureDesc {
-            kind,
-            scale: 1.0,
-            seed,
-            bump: 1.0,
-        }),
-        kind: MaterialKindDesc::Diffuse { albedo },
+    let plain = materials::diffuse(&name, albedo);
+    match texture {
+        Some((kind, seed)) => materials::with_texture(plain, kind, seed),
+        None => plain,
     }
 }
 
