@@ -6,6 +6,7 @@
 use crate::common::dataset;
 
 use std::collections::BTreeMap;
+use std::os::unix::process::CommandExt;
 use std::path::Path;
 use std::process::{Output, Stdio};
 use std::time::{Duration, Instant};
@@ -156,11 +157,19 @@ fn interrupted_rerender_leaves_the_earlier_render_whole() {
     // A render long enough to be stopped while it runs (minutes at 2 cores).
     let args = street_args(&out, 640, 360, 4096, &["--baselines", "10,54,100"]);
     let args: Vec<&str> = args.iter().map(String::as_str).collect();
-    let mut child = parallax(&args)
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap();
+    let mut cmd = parallax(&args);
+    cmd.stdout(Stdio::null()).stderr(Stdio::null());
+    // A background job of a non-interactive shell (`nohup cargo test &`)
+    // inherits SIGINT ignored; the render must see it as a terminal's
+    // Ctrl-C would.
+    // SAFETY: between fork and exec, only the async-signal-safe signal(2).
+    unsafe {
+        cmd.pre_exec(|| {
+            libc::signal(libc::SIGINT, libc::SIG_DFL);
+            Ok(())
+        });
+    }
+    let mut child = cmd.spawn().unwrap();
     let staging_seen = || {
         top_level(dir.path())
             .iter()
