@@ -14,9 +14,7 @@ use super::{parse_baselines, show, thread_pool, CliError};
 use crate::accel::{Accel, Backend};
 use crate::render::recipe::{draw_seed, FrameRecipe, FrameSource, FrameSpec, Overrides};
 use crate::town::export::{write_cameras, ExportCameras};
-use crate::town::report::{
-    objects_per_class, peak_rss_bytes, BuildSeconds, ContentReport, GeometryCounts,
-};
+use crate::town::report::{objects_per_class, peak_rss_bytes, BuildSeconds, ContentReport};
 use crate::town::{load_named_town, CameraConfig};
 
 /// Arguments of `parallax town`.
@@ -112,7 +110,7 @@ pub fn run(a: TownArgs) -> Result<(), CliError> {
                 config: a.config.to_string(),
                 objects: loaded.desc.objects.len(),
                 objects_per_class: objects_per_class(&loaded.desc),
-                geometry: GeometryCounts::of(&built.scene),
+                geometry: content.clone(),
                 seconds: BuildSeconds {
                     generate: gen_s,
                     scene: scene_s,

@@ -17,6 +17,7 @@
 use std::collections::{BTreeMap, HashMap};
 
 use glam::{DAffine3, DVec3};
+use serde::Serialize;
 
 use super::desc::ShapeDesc;
 use super::load::{LoadedScene, SceneError};
@@ -169,8 +170,9 @@ pub(super) fn place_mesh(m: &Mesh, inst: &Instance) -> Mesh {
     }
 }
 
-/// What a built scene holds (`Scene::content`).
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
+/// What a built scene holds (`Scene::content`); serialised as the content
+/// report's `geometry` (without the per-class mesh counts).
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize)]
 pub struct Content {
     /// Flat meshes.
     pub meshes: u64,
@@ -187,6 +189,7 @@ pub struct Content {
     /// Objects per semantic class id: flat meshes, spheres and instances
     /// each count one (an instance with its own class counts there, else
     /// under its prototype's first mesh's class).
+    #[serde(skip)]
     pub objects_per_class: BTreeMap<u8, u64>,
 }
 

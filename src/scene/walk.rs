@@ -53,6 +53,19 @@ struct Frame<'a> {
     via: String,
 }
 
+impl Frame<'_> {
+    /// The scene's own frame: world coordinates, no renames or overrides.
+    fn top() -> Self {
+        Frame {
+            world_from_parent: DAffine3::IDENTITY,
+            maps: Vec::new(),
+            semantic: None,
+            instance: None,
+            via: String::new(),
+        }
+    }
+}
+
 /// Calls `visit` for every leaf object. With `expand_repeats` false each
 /// object is visited once (its first copy), which is all validation needs.
 /// Prefab references must already be checked (known names, no cycles).
@@ -61,13 +74,7 @@ pub fn walk<'a, E>(
     expand_repeats: bool,
     visit: &mut dyn FnMut(Placed<'a>) -> Result<(), E>,
 ) -> Result<(), E> {
-    let top = Frame {
-        world_from_parent: DAffine3::IDENTITY,
-        maps: Vec::new(),
-        semantic: None,
-        instance: None,
-        via: String::new(),
-    };
+    let top = Frame::top();
     for (i, object) in desc.objects.iter().enumerate() {
         walk_object(
             desc,
@@ -87,13 +94,7 @@ pub fn walk_top<'a, E>(
     i: usize,
     visit: &mut dyn FnMut(Placed<'a>) -> Result<(), E>,
 ) -> Result<(), E> {
-    let top = Frame {
-        world_from_parent: DAffine3::IDENTITY,
-        maps: Vec::new(),
-        semantic: None,
-        instance: None,
-        via: String::new(),
-    };
+    let top = Frame::top();
     walk_object(
         desc,
         &desc.objects[i],

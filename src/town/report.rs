@@ -10,7 +10,7 @@ use std::path::Path;
 use serde::Serialize;
 
 use crate::scene::desc::{ObjectDesc, SceneDesc, ShapeDesc};
-use crate::scene::Scene;
+use crate::scene::Content;
 
 /// What a town frame holds and what it cost to build.
 #[derive(Clone, Debug, Serialize)]
@@ -28,45 +28,14 @@ pub struct ContentReport {
     /// Top-level objects per semantic class; an object made of parts of
     /// several classes (a traffic light: pole and head) counts once in each.
     pub objects_per_class: BTreeMap<String, usize>,
-    /// Triangle meshes, prototypes, instances and triangles of the built scene.
-    pub geometry: GeometryCounts,
+    /// Flat meshes, prototypes, instances, unique and instanced triangles
+    /// and spheres of the built scene.
+    pub geometry: Content,
     /// Build time per stage, seconds.
     pub seconds: BuildSeconds,
     /// Peak resident memory of the process so far (bytes; None where the
     /// platform does not say).
     pub peak_rss_bytes: Option<u64>,
-}
-
-/// Geometry of the built scene.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct GeometryCounts {
-    /// Flat (not instanced) triangle meshes.
-    pub meshes: usize,
-    /// Prototype meshes shared by instances.
-    pub prototypes: usize,
-    /// Placed instances of prototypes.
-    pub instances: usize,
-    /// Triangles stored: flat meshes plus each prototype once.
-    pub unique_triangles: usize,
-    /// Triangles as if every instance were flattened.
-    pub instanced_triangles: usize,
-    /// Analytic spheres.
-    pub spheres: usize,
-}
-
-impl GeometryCounts {
-    /// The counts of a built scene.
-    pub fn of(scene: &Scene) -> Self {
-        let c = scene.content();
-        GeometryCounts {
-            meshes: c.meshes as usize,
-            prototypes: c.prototypes as usize,
-            instances: c.instances as usize,
-            unique_triangles: c.unique_triangles as usize,
-            instanced_triangles: c.instanced_triangles as usize,
-            spheres: c.spheres as usize,
-        }
-    }
 }
 
 /// Seconds spent generating the description, building the scene and the
