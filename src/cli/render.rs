@@ -31,6 +31,10 @@ pub struct RenderArgs {
     /// pose at the town's frame rate (a camera file's `town.frame`).
     #[arg(long, default_value_t = 0, requires = "town")]
     pub frame: u32,
+    /// Drive of the town (with --town): the ego's route and the traffic's
+    /// time window; a dataset sequence's drive (docs/drives.md).
+    #[arg(long, default_value_t = 0, requires = "town")]
+    pub sequence: u64,
     /// Camera configuration on the ego vehicle (with --town): normal, roll05,
     /// roll15, roll30, pitch00, pitch30.
     #[arg(long, default_value = "normal", requires = "town")]
@@ -159,7 +163,7 @@ pub fn run(a: RenderArgs) -> Result<(), CliError> {
             let t =
                 crate::town::load_named_town(name, a.scenes.as_deref()).map_err(CliError::input)?;
             let seed = a.seed.unwrap_or_else(draw_seed);
-            let source = FrameSource::town(&t, seed, a.frame as u64, a.config)
+            let source = FrameSource::town(&t, seed, (a.sequence, a.frame as u64), a.config)
                 .map_err(|e| CliError::input(e.to_string()))?;
             (source, a.frame)
         }

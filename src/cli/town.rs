@@ -1,5 +1,6 @@
 //! `parallax town NAME [--seed S] [--frame K] [--config C] [--export FILE.obj]
-//! [--report FILE.json]`: generates one town frame, reports its size and
+//! [--report FILE.json] [--sequence N] [--trajectory COUNT]`: generates one
+//! town frame of drive N, reports its size and
 //! build times, optionally writes its content report (`town::report`) and
 //! its geometry as OBJ + MTL with the frame's cameras beside it. Without `--seed` a seed is drawn and printed (as `render
 //! --town` draws and records one).
@@ -8,6 +9,9 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use clap::Args;
+
+#[path = "town_trajectory.rs"]
+mod trajectory;
 
 use super::render::recipe_error;
 use super::{parse_baselines, show, thread_pool, CliError};
@@ -31,6 +35,15 @@ pub struct TownArgs {
     /// town's frame rate (a camera file's `town.frame`).
     #[arg(long, default_value_t = 0)]
     pub frame: u64,
+    /// Drive: the ego's route and the traffic's time window (a dataset
+    /// sequence's drive, docs/drives.md).
+    #[arg(long, default_value_t = 0)]
+    pub sequence: u64,
+    /// Print the ego pose of the drive's first COUNT frames as JSON lines
+    /// (frame, time, position, rotation [roll, pitch, yaw] degrees, speed)
+    /// instead of building the frame.
+    #[arg(long, value_name = "COUNT")]
+    pub trajectory: Option<u64>,
     /// Camera configuration: normal, roll05, roll15, roll30, pitch00, pitch30.
     #[arg(long, default_value = "normal")]
     pub config: CameraConfig,
@@ -72,11 +85,19 @@ pub fn run(a: TownArgs) -> Result<(), CliError> {
     if let Some(path) = &a.report {
         check_report_path(path)?;
     }
+    if let Some(count) = a.trajectory {
+        trajectory::check_count(count)?;
+        let seed = a.seed.unwrap_or_else(draw_seed);
+        for line in trajectory::lines(&town, seed, a.sequence, count) {
+            println!("{line}");
+        }
+        return Ok(());
+    }
     let seed = a.seed.unwrap_or_else(draw_seed);
     let pool = thread_pool(a.threads)?;
     pool.install(|| {
         let t0 = Instant::now();
-        let source = FrameSource::town(&town, seed, a.frame, a.config)
+        let source = FrameSource::town(&town, seed, (a.sequence, a.frame), a.config)
             .map_err(|e| CliError::input(e.to_string()))?;
         let recipe = FrameRecipe::new(source, &a.spec()).map_err(recipe_error)?;
         let gen_s = t0.elapsed().as_secs_f64();

@@ -11,7 +11,7 @@ use std::path::Path;
 use super::config::DatasetConfig;
 use super::layouts::write_extra_layouts;
 use super::manifest::{DisparityRecord, ManifestLine, RenderRecord};
-use super::plan::{frame_seed, sequence_seed, town_frame, town_seed, Job};
+use super::plan::{drive_index, frame_seed, sequence_seed, town_frame, town_seed, Job};
 use crate::accel::Backend;
 use crate::camera::StereoRig;
 use crate::output::frame::{write_native_frame, CameraFile, WriteOptions};
@@ -102,7 +102,9 @@ pub fn render_job(
     let town = towns.get(&job.town)?;
     let t_frame = town_frame(config, job);
     let t_seed = town_seed(config.seed, &job.town);
-    let source = FrameSource::town(town, t_seed, t_frame, job.config).map_err(|e| e.to_string())?;
+    let drive = drive_index(config, job);
+    let source = FrameSource::town(town, t_seed, (drive, t_frame), job.config)
+        .map_err(|e| e.to_string())?;
     let spec = FrameSpec {
         overrides: Overrides {
             spp: Some(quality.spp),

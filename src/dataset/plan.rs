@@ -3,8 +3,8 @@
 //! list order), and every random choice derives from the master seed by
 //! named streams, so any shard can compute any frame on its own.
 //!
-//! A sequence is a stretch of one drive through its town: dataset frame `f`
-//! of sequence `s` is town frame `(s · frames_per_sequence + f) · stride`.
+//! A sequence is one drive through its town (`drive_index`): dataset frame
+//! `f` of a sequence is frame `f · stride` of its drive.
 
 use std::path::PathBuf;
 
@@ -128,10 +128,25 @@ pub fn frame_seed(seed: u64, job: &Job) -> u64 {
     ])
 }
 
-/// The town frame (time step at the town's fps) of a job.
+/// The town frame of a job: its time step (at the town's fps) from the
+/// start of its drive (`drive_index`).
 pub fn town_frame(config: &DatasetConfig, job: &Job) -> u64 {
-    (job.sequence as u64 * config.frames_per_sequence as u64 + job.frame as u64)
-        * config.stride as u64
+    job.frame as u64 * config.stride as u64
+}
+
+/// The drive of a job's sequence (`parallax render --town T --sequence N`):
+/// a counter over the (configuration, weather, sequence) of a town,
+/// `(c · 7 + w) · sequences + s` with c the configuration's index in
+/// DATASET.md order (0..6), w the weather's in `Weather::ALL` (0..7), s
+/// the sequence, so no two sequences of a town share a drive. The town's
+/// seed (`town_seed`) carries the master seed and the town.
+pub fn drive_index(config: &DatasetConfig, job: &Job) -> u64 {
+    let w = Weather::ALL
+        .iter()
+        .position(|&x| x == job.weather)
+        .unwrap_or(0) as u64;
+    let c = config_index(job.config) * Weather::ALL.len() as u64 + w;
+    c * config.sequences as u64 + job.sequence as u64
 }
 
 /// Every job of the configuration in the stable order.

@@ -51,7 +51,7 @@ use std::path::Path;
 pub use desc::{load_town, parse_town_str, TownDesc};
 pub use rig::{rig_desc, CameraConfig, CONFIGS};
 pub use source::{load_named_town, town_path, NamedTown, TownSource};
-pub use traffic::{frame_at, TownFrame, VehiclePose};
+pub use traffic::{drive_frame_at, frame_at, TownFrame, VehiclePose};
 
 use crate::scene::desc::{ObjectDesc, RenderDesc, SceneDesc};
 use crate::scene::{LoadedScene, Scene, SceneError};
@@ -230,14 +230,26 @@ pub fn dynamic_objects(frame: &TownFrame) -> Vec<ObjectDesc> {
     out
 }
 
-/// The resolved scene description of one town frame seen from `config`,
-/// generated meshes included.
+/// The resolved scene description of one town frame (of drive 0) seen
+/// from `config`, generated meshes included.
 pub fn town_scene(desc: &TownDesc, seed: u64, frame: u64, config: CameraConfig) -> SceneDesc {
-    let tf = frame_at(desc, seed, frame);
+    town_drive_scene(desc, seed, 0, frame, config)
+}
+
+/// `town_scene` of frame `frame` of drive `drive` (`drive_frame_at`).
+pub fn town_drive_scene(
+    desc: &TownDesc,
+    seed: u64,
+    drive: u64,
+    frame: u64,
+    config: CameraConfig,
+) -> SceneDesc {
+    let tf = drive_frame_at(desc, seed, drive, frame);
     let town = StaticTown::new(desc, seed);
     let mut objects = town.objects();
     objects.extend(dynamic_objects(&tf));
-    signals::set_lamps(desc, frame, &mut objects);
+    // The lamps follow the drive's traffic clock.
+    signals::set_lamps(desc, tf.frame, &mut objects);
     // Meshes last, after the moving objects: keeps geometry ids and
     // `geometry_hash` values as they were.
     objects.extend(town.meshes());
@@ -263,7 +275,8 @@ pub fn town_scene(desc: &TownDesc, seed: u64, frame: u64, config: CameraConfig) 
     }
 }
 
-/// The town frame as a validated scene, named `town_file` in messages.
+/// The town frame (of drive 0) as a validated scene, named `town_file` in
+/// messages.
 pub fn load_town_frame(
     desc: &TownDesc,
     seed: u64,
@@ -271,7 +284,19 @@ pub fn load_town_frame(
     config: CameraConfig,
     town_file: &Path,
 ) -> Result<LoadedScene, SceneError> {
-    let scene = town_scene(desc, seed, frame, config);
+    load_town_drive_frame(desc, seed, 0, frame, config, town_file)
+}
+
+/// `load_town_frame` of frame `frame` of drive `drive`.
+pub fn load_town_drive_frame(
+    desc: &TownDesc,
+    seed: u64,
+    drive: u64,
+    frame: u64,
+    config: CameraConfig,
+    town_file: &Path,
+) -> Result<LoadedScene, SceneError> {
+    let scene = town_drive_scene(desc, seed, drive, frame, config);
     let (objs, triangle_estimate) = crate::scene::validate::validate(&scene, town_file)?;
     Ok(LoadedScene {
         path: town_file.to_path_buf(),

@@ -32,6 +32,7 @@ use super::layout::{Layout, LoopCorner};
 use super::roundabout::arm_start_m;
 use super::vehicles::BodyKind;
 
+pub mod drive;
 mod turns;
 
 pub use turns::{fits_corridor, fits_turn, Turns};

@@ -23,6 +23,7 @@
 //! any of their m_r stands stay empty. Crosswalks on interior roads are
 //! therefore clear while everything stands (pedestrians cross then).
 
+mod ego;
 mod profile;
 
 use std::sync::Arc;
@@ -37,6 +38,7 @@ use super::routes::{routes, Route, RouteKind, Turns};
 use super::vehicles::{BodyKind, BODIES, BODY_WEIGHTS};
 use super::walkers;
 
+pub use ego::{drive_start_frame, start_link, CHUNK_FRAMES, DRIVE_WINDOW_FRAMES};
 pub use profile::{Limits, SpeedProfile};
 
 /// Gap kept between consecutive bodies of a route at the closest, metres.
@@ -328,45 +330,6 @@ fn route_plan(s: &Schedule, route: Route, profile: SpeedProfile) -> RoutePlan {
     }
 }
 
-/// Where the ego drives: (route index, slot index).
-pub fn ego_slot(desc: &TownDesc, seed: u64) -> (usize, usize) {
-    let l = Layout::new(desc);
-    let plan = Plan::new(desc);
-    let mut r = Rng::new(&[seed, tag::EGO]);
-    // A block away from the town edge when there is one.
-    let pick = |n: usize, r: &mut Rng| {
-        if n >= 3 {
-            r.int(1, n as u32 - 2) as usize
-        } else {
-            0
-        }
-    };
-    let mut ij = (pick(l.nx, &mut r), pick(l.ny, &mut r));
-    if l.block_touches_roundabout(ij.0, ij.1) {
-        // The ego keeps to plain blocks: any other block.
-        let free: Vec<(usize, usize)> = (0..l.ny)
-            .flat_map(|j| (0..l.nx).map(move |i| (i, j)))
-            .filter(|&(i, j)| !l.block_touches_roundabout(i, j))
-            .collect();
-        ij = free[r.index(free.len())];
-    }
-    let (i, j) = ij;
-    let k = r.int(0, l.lanes - 1);
-    let route = plan
-        .routes
-        .iter()
-        .position(|p| p.route.kind == RouteKind::Block { i, j } && p.route.lane == k)
-        .expect("the ego route exists");
-    let open: Vec<usize> = plan.routes[route]
-        .slots
-        .iter()
-        .enumerate()
-        .filter(|(_, (_, ok))| *ok)
-        .map(|(n, _)| n)
-        .collect();
-    (route, open[r.index(open.len())])
-}
-
 fn weighted_body(r: &mut Rng, allowed: &[BodyKind]) -> BodyKind {
     let weight = |b: &BodyKind| {
         BODIES
@@ -385,22 +348,66 @@ fn weighted_body(r: &mut Rng, allowed: &[BodyKind]) -> BodyKind {
     allowed[0]
 }
 
-/// Every object's pose at `frame` (time frame / fps), in closed form.
+/// Every object's pose at `frame` of drive 0 (`drive_frame_at`).
 pub fn frame_at(desc: &TownDesc, seed: u64, frame: u64) -> TownFrame {
+    drive_frame_at(desc, seed, 0, frame)
+}
+
+/// Every object's pose at `frame` of drive `drive`: the background traffic
+/// and pedestrians in closed form at the drive's traffic time (town frame
+/// `ego::drive_start_frame(drive)` + `frame`, which `TownFrame::frame`
+/// holds), without those the drive removes from its way, and the ego
+/// (`ego::ego_at`). Computed in the level grid, then set on the ground.
+pub fn drive_frame_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> TownFrame {
     let l = Layout::new(desc);
     let plan = Plan::new(desc);
-    let sched = &plan.schedule;
-    let t = frame as f64 / desc.fps;
-    let driven = sched.driven_s(t);
-    let (ego_route, ego_slot_n) = ego_slot(desc, seed);
+    let clock = ego::drive_start_frame(drive) + frame;
+    let t = clock as f64 / desc.fps;
+    let me = ego::ego_at(desc, seed, drive, frame);
     let grade = Grade::new(desc, seed);
     let overpass = Overpass::new(desc, &l);
-    let ego_body = if sched.turns.bodies.contains(&BodyKind::Sedan) {
-        BodyKind::Sedan
-    } else {
-        sched.turns.bodies[0]
-    };
-    let mut ego = None;
+    let vehicles = background(desc, seed, &plan, overpass.as_ref(), t)
+        .into_iter()
+        .filter(|v| !me.removed.contains(&v.id))
+        .map(|v| match (&overpass, plan.routes[v.route].route.kind) {
+            (Some(_), RouteKind::Overpass) => v,
+            _ => on_ground(v, grade.as_ref()),
+        })
+        .collect();
+    let mut pedestrians = walkers::pedestrians(desc, &l, &plan.schedule, seed, t);
+    pedestrians.retain(|p| !me.removed_pedestrians.contains(&p.id));
+    if let Some(g) = &grade {
+        for p in &mut pedestrians {
+            p.position[2] += g.height_m(p.position[0], p.position[1]);
+        }
+    }
+    TownFrame {
+        frame: clock,
+        time_s: t,
+        ego: on_ground(me.pose, grade.as_ref()),
+        vehicles,
+        pedestrians,
+    }
+}
+
+/// The ego's pose (set on the ground) and speed (m/s) at `frame` of drive
+/// `drive`: what `parallax town --trajectory` prints.
+pub fn ego_pose(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> (VehiclePose, f64) {
+    let me = ego::ego_at(desc, seed, drive, frame);
+    let grade = Grade::new(desc, seed);
+    (on_ground(me.pose, grade.as_ref()), me.speed_mps)
+}
+
+/// Every background vehicle at time `t` in closed form: level grid
+/// positions, z and pitch set on the overpass only.
+fn background(
+    desc: &TownDesc,
+    seed: u64,
+    plan: &Plan,
+    overpass: Option<&Overpass>,
+    t: f64,
+) -> Vec<VehiclePose> {
+    let driven = plan.schedule.driven_s(t);
     let mut vehicles = Vec::new();
     let mut next_id = 1u32;
     for (ri, rp) in plan.routes.iter().enumerate() {
@@ -413,10 +420,8 @@ pub fn frame_at(desc: &TownDesc, seed: u64, frame: u64) -> TownFrame {
         for (n, &(offset, open)) in rp.slots.iter().enumerate() {
             let id = next_id;
             next_id += 1;
-            let is_ego = ri == ego_route && n == ego_slot_n;
             let mut r = Rng::new(&[seed, tag::SLOT, ri as u64, n as u64]);
-            let ego_here = is_ego.then_some(ego_body);
-            let Some(body) = slot_body(desc, rp, (n, open), &mut r, ego_here) else {
+            let Some(body) = slot_body(desc, rp, (n, open), &mut r, None) else {
                 continue;
             };
             let paint = PAINTS[r.index(PAINTS.len())];
@@ -431,30 +436,13 @@ pub fn frame_at(desc: &TownDesc, seed: u64, frame: u64) -> TownFrame {
                 roll_deg: 0.0,
                 route: ri,
             };
-            let pose = match (&overpass, rp.route.kind) {
+            vehicles.push(match (overpass, rp.route.kind) {
                 (Some(o), RouteKind::Overpass) => on_overpass(pose, o),
-                _ => on_ground(pose, grade.as_ref()),
-            };
-            if is_ego {
-                ego = Some(pose);
-            } else {
-                vehicles.push(pose);
-            }
+                _ => pose,
+            });
         }
     }
-    let mut pedestrians = walkers::pedestrians(desc, &l, sched, seed, t);
-    if let Some(g) = &grade {
-        for p in &mut pedestrians {
-            p.position[2] += g.height_m(p.position[0], p.position[1]);
-        }
-    }
-    TownFrame {
-        frame,
-        time_s: t,
-        ego: ego.expect("the ego slot is always occupied"),
-        vehicles,
-        pedestrians,
-    }
+    vehicles
 }
 
 /// The body in slot `n` (`open`: not kept free) of route plan `rp`, drawn

@@ -21,7 +21,7 @@ use crate::film::apply_sensor_noise;
 use crate::output::frame::{camera_file, CameraFile, FrameSeeds, TownFrameRecord};
 use crate::scene::desc::SensorNoiseDesc;
 use crate::scene::{LoadedScene, SceneError};
-use crate::town::{load_town_frame, CameraConfig, NamedTown};
+use crate::town::{load_town_drive_frame, CameraConfig, NamedTown};
 use crate::weather::{Weather, WeatherParams};
 
 /// Why a recipe could not be followed.
@@ -90,15 +90,16 @@ impl FrameSource {
         }
     }
 
-    /// Town frame `frame` of `town` generated with `seed`, seen from `config`.
+    /// Town frame `frame` of drive `drive` of `town` generated with
+    /// `seed`, seen from `config`.
     pub fn town(
         town: &NamedTown,
         seed: u64,
-        frame: u64,
+        (drive, frame): (u64, u64),
         config: CameraConfig,
     ) -> Result<FrameSource, SceneError> {
         Ok(FrameSource {
-            loaded: load_town_frame(&town.desc, seed, frame, config, &town.path)?,
+            loaded: load_town_drive_frame(&town.desc, seed, drive, frame, config, &town.path)?,
             origin: FrameOrigin {
                 seeds: FrameSeeds::town(seed),
                 town: Some(town.source.frame_record(frame, config)),

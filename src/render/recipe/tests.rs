@@ -232,7 +232,7 @@ fn a_rendered_frame_carries_its_noise_seeds_and_settings() {
 #[test]
 fn a_town_source_records_its_seeds_and_frame() {
     let town = crate::town::load_named_town("town01", None).unwrap();
-    let s = FrameSource::town(&town, 42, 3, CameraConfig::Roll05).unwrap();
+    let s = FrameSource::town(&town, 42, (0, 3), CameraConfig::Roll05).unwrap();
     let seeds = s.origin.seeds;
     assert_eq!((seeds.town, seeds.traffic), (Some(42), Some(42)));
     assert_eq!((seeds.weather, seeds.samples), (None, None));
@@ -246,7 +246,7 @@ fn a_town_source_records_its_seeds_and_frame() {
     let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/town01.toml");
     let text = std::fs::read(file).unwrap();
     assert_eq!(record.sha256, crate::output::sha256_bytes(&text));
-    let again = FrameSource::town(&town, 42, 3, CameraConfig::Roll05).unwrap();
+    let again = FrameSource::town(&town, 42, (0, 3), CameraConfig::Roll05).unwrap();
     assert_eq!(s.loaded.desc.camera, again.loaded.desc.camera);
 }
 
