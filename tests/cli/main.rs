@@ -12,3 +12,4 @@ mod filter;
 mod preview;
 mod render_output_dir;
 mod stats;
+mod trajectory;

@@ -18,3 +18,4 @@ mod signals;
 mod terrain;
 mod traffic;
 mod traffic_motion;
+mod drives;

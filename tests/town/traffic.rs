@@ -16,7 +16,7 @@ use crate::common;
 use common::towns::{town, TOWNS};
 
 /// Separating-axis test of two convex quads (touching does not count).
-fn quads_overlap(a: &[[f64; 2]; 4], b: &[[f64; 2]; 4]) -> bool {
+pub(crate) fn quads_overlap(a: &[[f64; 2]; 4], b: &[[f64; 2]; 4]) -> bool {
     for poly in [a, b] {
         for k in 0..4 {
             let (p, q) = (poly[k], poly[(k + 1) % 4]);
@@ -61,7 +61,7 @@ fn overlaps(vs: &[&VehiclePose]) -> Vec<(u32, u32)> {
 /// Whether the footprint's outline (sampled every 10 cm) lies on roads, on
 /// the roundabout's ring (between its island and outer kerb), on a curved
 /// loop corner (town04) or on the overpass road and its loops (town06).
-fn on_road(l: &Layout, roads: &[Rect], over: Option<&Overpass>, v: &VehiclePose) -> bool {
+pub(crate) fn on_road(l: &Layout, roads: &[Rect], over: Option<&Overpass>, v: &VehiclePose) -> bool {
     let ring = |x: f64, y: f64| {
         l.roundabout_center().is_some_and(|c| {
             let (r_in, r_out) = l.roundabout_radii();

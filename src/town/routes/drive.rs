@@ -112,6 +112,16 @@ impl DrivePath {
         let all = links(l);
         let (from, dir) = all[start % all.len()];
         let lane = rng.int(0, l.lanes - 1);
+        // Mid-way along the link's straight (between loop-corner curves).
+        let to = [from.0 as i64 + DIRS[dir][0], from.1 as i64 + DIRS[dir][1]];
+        let curve = |j: [i64; 2]| {
+            if l.loop_corner_at(j[0] as usize, j[1] as usize) {
+                l.loop_radius_m
+            } else {
+                0.0
+            }
+        };
+        let at_m = (curve([from.0 as i64, from.1 as i64]) + l.pitch_m - curve(to)) / 2.0;
         let mut p = DrivePath {
             segments: Vec::new(),
             starts_m: Vec::new(),
@@ -123,7 +133,7 @@ impl DrivePath {
             from: [from.0 as i64, from.1 as i64],
             dir,
             lane,
-            at_m: l.pitch_m / 2.0,
+            at_m,
         };
         p.extend();
         p
@@ -172,10 +182,7 @@ impl DrivePath {
         match self.segments.last() {
             Some(s) => s.at(s.length_m()),
             None => {
-                let e = self.e(self.lane);
-                let (u, r) = (unit(self.dir), right(self.dir));
-                let p = self.point(self.from, self.dir, e, self.at_m);
-                let _ = (u, r);
+                let p = self.point(self.from, self.dir, self.e(self.lane), self.at_m);
                 (p, (self.dir as f64) * FRAC_PI_2)
             }
         }

@@ -1,0 +1,162 @@
+//! The ego's drives over whole dataset sequences (59 frames × stride 10 =
+//! 590 town frames): its footprint never overlaps another vehicle's on its
+//! level nor a pedestrian's, it stays on the road and within the speed
+//! limit, it passes stop lines only when their lamp is not red and waits
+//! at red ones; drives differ and drive 0 is `frame_at`.
+
+use parallax::town::layout::{Layout, Rect};
+use parallax::town::overpass::Overpass;
+use parallax::town::signals::{signals_at, Lamp};
+use parallax::town::{drive_frame_at, frame_at, TownFrame};
+
+use crate::common::towns::town;
+use crate::traffic::{on_road, quads_overlap};
+
+const FRAMES: u64 = 590;
+
+fn drive(name: &str, seed: u64, drive: u64) -> Vec<TownFrame> {
+    let desc = town(name);
+    (0..FRAMES)
+        .map(|k| drive_frame_at(&desc, seed, drive, k))
+        .collect()
+}
+
+#[test]
+fn drives_never_overlap_and_stay_on_the_road_over_whole_sequences() {
+    for (name, seed, d) in [
+        ("town01", 11, 5),
+        ("town03", 11, 0),
+        ("town03", 3, 17),
+        ("town04", 11, 2),
+        ("town06", 7, 1),
+        ("town10", 5, 40),
+    ] {
+        let desc = town(name);
+        let l = Layout::new(&desc);
+        let roads = l.road_rects();
+        let over = Overpass::new(&desc, &l);
+        let step_max = desc.speed_kmh / 3.6 / desc.fps;
+        let frames = drive(name, seed, d);
+        let mut travelled = 0.0;
+        for (k, f) in frames.iter().enumerate() {
+            let e = &f.ego;
+            let me = e.corners();
+            for v in f.vehicles.iter().filter(|v| v.same_level(e)) {
+                assert!(
+                    !quads_overlap(&me, &v.corners()),
+                    "{name} seed {seed} drive {d} frame {k}: the ego meets vehicle {}",
+                    v.id
+                );
+            }
+            for p in &f.pedestrians {
+                let feet = Rect::centered([p.position[0], p.position[1]], [0.5, 0.5]);
+                let sq = [
+                    [feet.min[0], feet.min[1]],
+                    [feet.max[0], feet.min[1]],
+                    [feet.max[0], feet.max[1]],
+                    [feet.min[0], feet.max[1]],
+                ];
+                assert!(
+                    !quads_overlap(&sq, &me),
+                    "{name} drive {d} frame {k}: pedestrian {} under the ego",
+                    p.id
+                );
+            }
+            assert!(
+                on_road(&l, &roads, over.as_ref(), e),
+                "{name} drive {d} frame {k}: the ego is off the road at {:?}",
+                e.position
+            );
+            if k > 0 {
+                let p = frames[k - 1].ego.position;
+                let step = (e.position[0] - p[0]).hypot(e.position[1] - p[1]);
+                assert!(step <= step_max + 1e-9, "{name} frame {k}: step {step}");
+                travelled += step;
+            }
+        }
+        // It drives: at least a fifth of the way at the speed limit.
+        let limit = step_max * FRAMES as f64;
+        assert!(
+            travelled > limit / 5.0,
+            "{name} drive {d}: {travelled} m of {limit}"
+        );
+    }
+}
+
+#[test]
+fn the_ego_passes_stop_lines_on_green_or_amber_and_waits_at_red() {
+    let (mut passed, mut waited) = (0, 0);
+    for name in ["town03", "town05", "town10"] {
+        let desc = town(name);
+        let l = Layout::new(&desc);
+        let hw = l.road_w_m / 2.0;
+        let line = -(hw + 4.2);
+        for d in 0..4 {
+            let frames = drive(name, 1, d);
+            let half = frames[0].ego.body.footprint_m()[0] / 2.0;
+            // The ego's front relative to a site: (along its traffic, to
+            // the right of it), when heading its way.
+            let front = |f: &TownFrame, s: &parallax::town::signals::SignalSite| {
+                let e = &f.ego;
+                let dh = (e.heading_deg - s.heading_deg).rem_euclid(360.0);
+                if dh.min(360.0 - dh) > 5.0 {
+                    return None;
+                }
+                let h = e.heading_deg.to_radians();
+                let p = [
+                    e.position[0] + half * h.cos(),
+                    e.position[1] + half * h.sin(),
+                ];
+                let (c, u) = (s.centre(&l), s.dir());
+                let r = [p[0] - c[0], p[1] - c[1]];
+                let lateral = r[0] * u[1] - r[1] * u[0];
+                (lateral > 0.0 && lateral < hw).then_some(r[0] * u[0] + r[1] * u[1])
+            };
+            for w in frames.windows(2) {
+                let lamps = signals_at(&desc, w[0].frame);
+                for sig in &lamps {
+                    let (Some(a), Some(b)) = (front(&w[0], &sig.site), front(&w[1], &sig.site))
+                    else {
+                        continue;
+                    };
+                    // Past the line: the front 1 cm beyond it (standing at
+                    // it is not passing).
+                    if a <= line + 0.01 && b > line + 0.01 {
+                        assert_ne!(
+                            sig.lamp,
+                            Lamp::Red,
+                            "{name} drive {d} frame {}: passed a red light at {:?}",
+                            w[1].frame,
+                            sig.site.junction
+                        );
+                        passed += 1;
+                    }
+                    if a == b && sig.lamp == Lamp::Red && (line - 0.5..=line + 0.01).contains(&b) {
+                        waited += 1;
+                    }
+                }
+            }
+        }
+    }
+    assert!(passed >= 5, "only {passed} stop lines passed");
+    assert!(waited > 0, "the ego never waited at a red light");
+}
+
+#[test]
+fn drives_differ_and_drive_0_is_frame_at() {
+    let desc = town("town02");
+    let starts: Vec<[f64; 3]> = (0..30)
+        .map(|d| drive_frame_at(&desc, 4, d, 0).ego.position)
+        .collect();
+    for (a, p) in starts.iter().enumerate() {
+        for q in &starts[a + 1..] {
+            assert_ne!(p, q, "two of 30 drives start at {p:?}");
+        }
+    }
+    assert_eq!(drive_frame_at(&desc, 4, 0, 33), frame_at(&desc, 4, 33));
+    // Each drive keeps its own traffic window.
+    assert_ne!(
+        drive_frame_at(&desc, 4, 1, 0).frame,
+        drive_frame_at(&desc, 4, 2, 0).frame
+    );
+}
