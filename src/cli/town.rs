@@ -44,6 +44,11 @@ pub struct TownArgs {
     /// instead of building the frame.
     #[arg(long, value_name = "COUNT")]
     pub trajectory: Option<u64>,
+    /// Print the lane length that drives 0..DRIVES (59 frames at stride 10
+    /// each, as the stereocarla preset's sequences) pass, instead of
+    /// building the frame (the preset plans 294 drives per town).
+    #[arg(long, value_name = "DRIVES")]
+    pub coverage: Option<u64>,
     /// Camera configuration: normal, roll05, roll15, roll30, pitch00, pitch30.
     #[arg(long, default_value = "normal")]
     pub config: CameraConfig,
@@ -84,6 +89,11 @@ pub fn run(a: TownArgs) -> Result<(), CliError> {
     let town = load_named_town(&a.name, a.scenes.as_deref()).map_err(CliError::input)?;
     if let Some(path) = &a.report {
         check_report_path(path)?;
+    }
+    if let Some(drives) = a.coverage {
+        let seed = a.seed.unwrap_or_else(draw_seed);
+        println!("{}", trajectory::coverage_line(&town, seed, drives)?);
+        return Ok(());
     }
     if let Some(count) = a.trajectory {
         trajectory::check_count(count)?;
@@ -147,7 +157,7 @@ pub fn run(a: TownArgs) -> Result<(), CliError> {
         if let Some(obj) = &a.export {
             let stats = crate::town::export::write_obj(loaded, &built.scene, obj)
                 .map_err(|e| CliError::failure(format!("--export {}: {e}", show(obj))))?;
-            let record = town.source.frame_record(a.frame, a.config);
+            let record = town.source.frame_record((a.sequence, a.frame), a.config);
             let cameras = ExportCameras::new(&prepared.rig, seed, record);
             let cam_path = write_cameras(obj, &cameras)
                 .map_err(|e| CliError::failure(format!("--export {}: {e}", show(obj))))?;

@@ -127,8 +127,12 @@ pub struct TownFrameRecord {
     pub source: String,
     /// SHA-256 of the description's text.
     pub sha256: String,
-    /// Town frame (time step at the town's fps) of the vehicles and pedestrians.
+    /// Town frame (time step at the town's fps from the drive's start) of
+    /// the vehicles and pedestrians.
     pub frame: u64,
+    /// The drive (`render --sequence`): the ego's route and the traffic's
+    /// time window.
+    pub sequence: u64,
     /// Camera configuration on the ego vehicle.
     pub config: String,
 }

@@ -23,6 +23,7 @@
 //! any of their m_r stands stay empty. Crosswalks on interior roads are
 //! therefore clear while everything stands (pedestrians cross then).
 
+pub mod coverage;
 mod ego;
 mod profile;
 

@@ -100,9 +100,12 @@ fn a_dataset_frame_re_renders_and_exports_from_its_recorded_seeds() {
         seed(&cam, "weather"),
         seed(&cam, "samples"),
     );
+    // The sequence's drive (`drive_index`): roll05 is configuration 1,
+    // storm weather 5 of 7, one sequence: (1 · 7 + 5) · 1 + 0.
+    assert_eq!(cam["town"]["sequence"].as_u64(), Some(12));
     #[rustfmt::skip]
     parallax_ok(dir.path(), &[
-        "render", "--town", "town01", "--seed", &town, "--frame", "5", "--config", "roll05",
+        "render", "--town", "town01", "--seed", &town, "--sequence", "12", "--frame", "5", "--config", "roll05",
         "--weather", "storm", "--weather-seed", &weather, "--sample-seed", &samples,
         "--sample-frame", "1", "--width", "32", "--height", "18", "--hfov", "70",
         "--baselines", "10,54", "--spp", "1", "--max-depth", "2", "--threads", "1", "-o", "again",

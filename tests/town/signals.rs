@@ -170,8 +170,12 @@ fn front_on_approach(l: &Layout, site: &SignalSite, v: &VehiclePose) -> Option<f
     (lat > 0.0 && lat < hw && a > -hw - 25.0 && a < -hw).then_some(front)
 }
 
+/// Whether `v` rides a block loop (the ego rides no route: its stops
+/// are checked in `drives`).
 fn is_block(plan: &Plan, v: &VehiclePose) -> bool {
-    matches!(plan.routes[v.route].route.kind, RouteKind::Block { .. })
+    plan.routes
+        .get(v.route)
+        .is_some_and(|r| matches!(r.route.kind, RouteKind::Block { .. }))
 }
 
 #[test]

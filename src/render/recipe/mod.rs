@@ -102,7 +102,7 @@ impl FrameSource {
             loaded: load_town_drive_frame(&town.desc, seed, drive, frame, config, &town.path)?,
             origin: FrameOrigin {
                 seeds: FrameSeeds::town(seed),
-                town: Some(town.source.frame_record(frame, config)),
+                town: Some(town.source.frame_record((drive, frame), config)),
             },
         })
     }

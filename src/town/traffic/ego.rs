@@ -101,14 +101,16 @@ struct Drive {
     chunks: Vec<Chunk>,
 }
 
+/// Every drive simulated so far, per (description, seed, drive).
+type Drives = Mutex<BTreeMap<(String, u64, u64), Arc<Mutex<Drive>>>>;
+static DRIVES: OnceLock<Drives> = OnceLock::new();
+
 /// The ego of `frame` (counted from the drive's start) of drive `drive`.
 pub fn ego_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> EgoFrame {
-    type Cache = Mutex<BTreeMap<(String, u64, u64), Arc<Mutex<Drive>>>>;
-    static CACHE: OnceLock<Cache> = OnceLock::new();
     let key = (format!("{desc:?}"), seed, drive);
     let ctx = Ctx::new(desc, seed, drive);
     let entry = {
-        let mut c = CACHE.get_or_init(Default::default).lock().expect("drive cache");
+        let mut c = DRIVES.get_or_init(Default::default).lock().expect("drive cache");
         c.entry(key)
             .or_insert_with(|| {
                 let l = &ctx.layout;
@@ -444,4 +446,21 @@ fn quads_overlap(a: &[[f64; 2]; 4], b: &[[f64; 2]; 4]) -> bool {
             a1 > b0 && b1 > a0
         })
     })
+}
+
+/// Junction turns (left or right, roundabout exits included) the ego has
+/// completed by `frame` of drive `drive`.
+pub fn turns_by(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> usize {
+    // Simulates (and caches) the drive up to the frame first.
+    let _ = ego_at(desc, seed, drive, frame);
+    let cache = DRIVES.get().expect("drive cache");
+    let d = cache.lock().expect("drive cache")[&(format!("{desc:?}"), seed, drive)].clone();
+    let d = d.lock().expect("drive");
+    let c = &d.chunks[(frame / CHUNK_FRAMES) as usize];
+    let s = c.s[(frame % CHUNK_FRAMES) as usize];
+    d.path
+        .crossings
+        .iter()
+        .filter(|x| x.clear_m <= s && x.turn != crate::town::routes::drive::Move::Straight)
+        .count()
 }
