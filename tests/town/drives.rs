@@ -160,3 +160,84 @@ fn drives_differ_and_drive_0_is_frame_at() {
         drive_frame_at(&desc, 4, 2, 0).frame
     );
 }
+
+/// The path a drive walks is continuous in position and heading (no
+/// radius under 3 m), makes every kind of move, goes round the roundabout
+/// and changes lanes in town03, and follows the curves of town04.
+#[test]
+fn drive_paths_are_continuous_and_make_every_move() {
+    use parallax::town::routes::drive::{links, DrivePath, Move};
+    use parallax::town::routes::Turns;
+    use parallax::town::rng::Rng;
+    use std::f64::consts::PI;
+    for name in ["town03", "town04"] {
+        let desc = town(name);
+        let l = Layout::new(&desc);
+        let turns = Turns::new(l.lane_w_m);
+        let mut path = DrivePath::new(&l, &turns, 7 % links(&l).len(), Rng::new(&[9]));
+        path.reach(20_000.0);
+        let step = 0.25;
+        let (mut p0, mut h0) = path.pose(0.0);
+        let (mut lateral_moves, mut on_curve) = (0, 0);
+        for k in 1..(path.length_m() / step) as usize {
+            let (p, h) = path.pose(k as f64 * step);
+            let d = (p[0] - p0[0]).hypot(p[1] - p0[1]);
+            assert!(d <= step + 1e-9, "{name}: jump of {d} m at {}", k as f64 * step);
+            let mut dh = h - h0;
+            dh -= (dh / (2.0 * PI)).round() * 2.0 * PI;
+            assert!(dh.abs() <= step / 3.0 + 1e-9, "{name}: heading jump {dh}");
+            // Off the grid's axes: a lane change or a turn.
+            if (h.sin() * h.cos()).abs() > 1e-6 {
+                lateral_moves += 1;
+            }
+            if l.on_loop_curve(p) {
+                on_curve += 1;
+            }
+            (p0, h0) = (p, h);
+        }
+        assert!(lateral_moves > 0);
+        let moves = |m: Move| path.crossings.iter().filter(|c| c.turn == m).count();
+        let corner = |c: &&parallax::town::routes::drive::Crossing| {
+            l.loop_corner_at(c.junction.0, c.junction.1)
+        };
+        // Every crossing's zone lies ahead of its stop line.
+        for c in &path.crossings {
+            assert!(c.clear_m > c.stop_m, "{c:?}");
+        }
+        if name == "town03" {
+            for m in [Move::Right, Move::Straight, Move::Left] {
+                assert!(moves(m) > 5, "{name}: {m:?} only {} times", moves(m));
+            }
+            let ring = path
+                .crossings
+                .iter()
+                .filter(|c| Some(c.junction) == l.roundabout)
+                .count();
+            assert!(ring > 0, "never round the roundabout");
+        } else {
+            // Round the curved corners; they record no stop line.
+            assert!(on_curve > 100, "{name}: {on_curve} samples on the curves");
+            assert!(path.crossings.iter().filter(corner).count() == 0);
+        }
+    }
+}
+
+#[test]
+fn lane_length_is_every_lane_between_junction_edges_and_the_preset_covers_most() {
+    use parallax::town::traffic::coverage::coverage;
+    let desc = town("town02");
+    let l = Layout::new(&desc);
+    // Directed links: two per block edge of the (nx+1) × (ny+1) grid.
+    let links = 2 * ((l.ny + 1) * l.nx + (l.nx + 1) * l.ny);
+    let want = (links * l.lanes as usize) as f64 * (l.pitch_m - l.road_w_m);
+    // The preset's 6 × 7 × 7 drives of 59 frames at stride 10.
+    let c = coverage(&desc, 0, 0..294, 590);
+    assert!((c.lane_m - want).abs() < 1e-6, "{} vs {want}", c.lane_m);
+    assert!(c.fraction() >= 0.6, "covered {}", c.fraction());
+    assert_eq!(c.drives, 294);
+    assert_eq!(c.distinct_drives, 294);
+    assert!(c.turns_per_drive > 1.0, "{}", c.turns_per_drive);
+    // One drive covers a little of it, all of it lies on the lanes.
+    let one = coverage(&desc, 0, 3..4, 590);
+    assert!(one.covered_m > 50.0 && one.fraction() < 0.2, "{one:?}");
+}
