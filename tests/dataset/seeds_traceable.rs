@@ -140,7 +140,7 @@ fn a_dataset_frame_re_renders_and_exports_from_its_recorded_seeds() {
     // `town --export` of the same frame writes the frame's cameras beside the OBJ.
     #[rustfmt::skip]
     let o = parallax_ok(dir.path(), &[
-        "town", "town01", "--seed", &town, "--frame", "5", "--config", "roll05",
+        "town", "town01", "--seed", &town, "--sequence", "12", "--frame", "5", "--config", "roll05",
         "--width", "32", "--height", "18", "--hfov", "70", "--baselines", "10,54",
         "--threads", "1", "--export", "exp/frame.obj",
     ]);

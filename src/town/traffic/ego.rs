@@ -189,7 +189,7 @@ impl<'a> Ctx<'a> {
             body: self.body,
             paint: PAINTS[r.index(PAINTS.len())],
             position: [p[0], p[1], 0.0],
-            heading_deg: h.to_degrees(),
+            heading_deg: heading_deg(h),
             pitch_deg: 0.0,
             roll_deg: 0.0,
             route: usize::MAX,
@@ -402,6 +402,17 @@ impl<'a> Ctx<'a> {
             }
         }
         out
+    }
+}
+
+/// Heading `h` radians as degrees in [0, 360) (a heading a hair below 0
+/// or 2π rounds to 0, not 360).
+fn heading_deg(h: f64) -> f64 {
+    let d = h.to_degrees().rem_euclid(360.0);
+    if d >= 360.0 {
+        0.0
+    } else {
+        d
     }
 }
 
