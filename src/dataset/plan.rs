@@ -202,6 +202,25 @@ mod tests {
     }
 
     #[test]
+    fn every_sequence_of_a_town_gets_its_own_drive_and_frames_count_from_its_start() {
+        let c = super::super::presets::stereocarla();
+        let mut drives = std::collections::BTreeMap::new();
+        for j in plan(&c).iter().filter(|j| j.frame == 0) {
+            let d = drive_index(&c, j);
+            let key = (j.config, j.weather, j.sequence);
+            assert_eq!(*drives.entry((j.town.clone(), d)).or_insert(key), key, "{j:?}");
+        }
+        // Per town: the 6 × 7 × 7 sequences take drives 0..294, each once.
+        for town in &c.towns {
+            let d: Vec<u64> = drives.keys().filter(|k| &k.0 == town).map(|k| k.1).collect();
+            assert_eq!(d, (0..294).collect::<Vec<u64>>(), "{town}");
+        }
+        let j = job("town01", CameraConfig::Roll15, Weather::Night, 1, 3);
+        assert_eq!(drive_index(&c, &j), (2 * 7 + 4) * 7 + 1);
+        assert_eq!(town_frame(&c, &j), 3 * c.stride as u64);
+    }
+
+    #[test]
     fn plan_is_stable_ordered_and_counted() {
         let c = super::super::presets::demo();
         let a = plan(&c);
