@@ -103,8 +103,8 @@ pub fn render_job(
     let t_frame = town_frame(config, job);
     let t_seed = town_seed(config.seed, &job.town);
     let drive = drive_index(config, job);
-    let source = FrameSource::town(town, t_seed, (drive, t_frame), job.config)
-        .map_err(|e| e.to_string())?;
+    let source =
+        FrameSource::town(town, t_seed, (drive, t_frame), job.config).map_err(|e| e.to_string())?;
     let spec = FrameSpec {
         overrides: Overrides {
             spp: Some(quality.spp),

@@ -208,11 +208,19 @@ mod tests {
         for j in plan(&c).iter().filter(|j| j.frame == 0) {
             let d = drive_index(&c, j);
             let key = (j.config, j.weather, j.sequence);
-            assert_eq!(*drives.entry((j.town.clone(), d)).or_insert(key), key, "{j:?}");
+            assert_eq!(
+                *drives.entry((j.town.clone(), d)).or_insert(key),
+                key,
+                "{j:?}"
+            );
         }
         // Per town: the 6 × 7 × 7 sequences take drives 0..294, each once.
         for town in &c.towns {
-            let d: Vec<u64> = drives.keys().filter(|k| &k.0 == town).map(|k| k.1).collect();
+            let d: Vec<u64> = drives
+                .keys()
+                .filter(|k| &k.0 == town)
+                .map(|k| k.1)
+                .collect();
             assert_eq!(d, (0..294).collect::<Vec<u64>>(), "{town}");
         }
         let j = job("town01", CameraConfig::Roll15, Weather::Night, 1, 3);

@@ -45,7 +45,11 @@ pub struct TownSource {
 impl TownSource {
     /// The camera-file record of town frame `frame` of drive `sequence`
     /// seen from `config`.
-    pub fn frame_record(&self, (sequence, frame): (u64, u64), config: CameraConfig) -> TownFrameRecord {
+    pub fn frame_record(
+        &self,
+        (sequence, frame): (u64, u64),
+        config: CameraConfig,
+    ) -> TownFrameRecord {
         TownFrameRecord {
             sequence,
             name: self.name.clone(),

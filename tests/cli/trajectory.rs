@@ -89,5 +89,8 @@ fn a_bad_trajectory_count_exits_2_naming_it() {
     }
     let (code, err) = parallax_status(&["town", "town01", "--trajectory", "many"]);
     assert_eq!(code, 2, "{err}");
-    assert!(err.contains("--trajectory") && err.contains("many"), "{err}");
+    assert!(
+        err.contains("--trajectory") && err.contains("many"),
+        "{err}"
+    );
 }

@@ -166,9 +166,9 @@ fn drives_differ_and_drive_0_is_frame_at() {
 /// and changes lanes in town03, and follows the curves of town04.
 #[test]
 fn drive_paths_are_continuous_and_make_every_move() {
+    use parallax::town::rng::Rng;
     use parallax::town::routes::drive::{links, DrivePath, Move};
     use parallax::town::routes::Turns;
-    use parallax::town::rng::Rng;
     use std::f64::consts::PI;
     for name in ["town03", "town04"] {
         let desc = town(name);
@@ -182,7 +182,11 @@ fn drive_paths_are_continuous_and_make_every_move() {
         for k in 1..(path.length_m() / step) as usize {
             let (p, h) = path.pose(k as f64 * step);
             let d = (p[0] - p0[0]).hypot(p[1] - p0[1]);
-            assert!(d <= step + 1e-9, "{name}: jump of {d} m at {}", k as f64 * step);
+            assert!(
+                d <= step + 1e-9,
+                "{name}: jump of {d} m at {}",
+                k as f64 * step
+            );
             let mut dh = h - h0;
             dh -= (dh / (2.0 * PI)).round() * 2.0 * PI;
             assert!(dh.abs() <= step / 3.0 + 1e-9, "{name}: heading jump {dh}");

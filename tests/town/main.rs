@@ -6,6 +6,7 @@
 mod common;
 
 mod cli;
+mod drives;
 mod export;
 mod furniture;
 mod generation;
@@ -18,4 +19,3 @@ mod signals;
 mod terrain;
 mod traffic;
 mod traffic_motion;
-mod drives;

@@ -61,7 +61,12 @@ fn overlaps(vs: &[&VehiclePose]) -> Vec<(u32, u32)> {
 /// Whether the footprint's outline (sampled every 10 cm) lies on roads, on
 /// the roundabout's ring (between its island and outer kerb), on a curved
 /// loop corner (town04) or on the overpass road and its loops (town06).
-pub(crate) fn on_road(l: &Layout, roads: &[Rect], over: Option<&Overpass>, v: &VehiclePose) -> bool {
+pub(crate) fn on_road(
+    l: &Layout,
+    roads: &[Rect],
+    over: Option<&Overpass>,
+    v: &VehiclePose,
+) -> bool {
     let ring = |x: f64, y: f64| {
         l.roundabout_center().is_some_and(|c| {
             let (r_in, r_out) = l.roundabout_radii();

@@ -245,7 +245,10 @@ impl DrivePath {
     /// Appends one link's remaining straight (with lane changes) and the
     /// move at its end junction.
     fn extend(&mut self) {
-        let to = [self.from[0] + DIRS[self.dir][0], self.from[1] + DIRS[self.dir][1]];
+        let to = [
+            self.from[0] + DIRS[self.dir][0],
+            self.from[1] + DIRS[self.dir][1],
+        ];
         let lanes = self.l.lanes;
         // Legal moves at `to` (no U-turns, no stubs).
         let options: Vec<(Move, usize)> = [(Move::Right, 3), (Move::Straight, 0), (Move::Left, 1)]

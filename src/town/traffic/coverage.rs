@@ -96,12 +96,7 @@ fn pieces(l: &Layout) -> Vec<Piece> {
 }
 
 /// Coverage of drives `drives` of `frames` town frames each.
-pub fn coverage(
-    desc: &TownDesc,
-    seed: u64,
-    drives: std::ops::Range<u64>,
-    frames: u64,
-) -> Coverage {
+pub fn coverage(desc: &TownDesc, seed: u64, drives: std::ops::Range<u64>, frames: u64) -> Coverage {
     let l = Layout::new(desc);
     let ps = pieces(&l);
     let w = l.lane_w_m;

@@ -110,7 +110,10 @@ pub fn ego_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> EgoFrame {
     let key = (format!("{desc:?}"), seed, drive);
     let ctx = Ctx::new(desc, seed, drive);
     let entry = {
-        let mut c = DRIVES.get_or_init(Default::default).lock().expect("drive cache");
+        let mut c = DRIVES
+            .get_or_init(Default::default)
+            .lock()
+            .expect("drive cache");
         c.entry(key)
             .or_insert_with(|| {
                 let l = &ctx.layout;
@@ -396,7 +399,9 @@ impl<'a> Ctx<'a> {
             let t = self.time(f);
             for w in walkers::pedestrians(self.desc, &self.layout, sched, self.seed, t) {
                 let q = [w.position[0], w.position[1]];
-                if (q[0] - p[0]).hypot(q[1] - p[1]) < 10.0 && rect_distance(&ego, q) < 0.25 + MARGIN_M {
+                if (q[0] - p[0]).hypot(q[1] - p[1]) < 10.0
+                    && rect_distance(&ego, q) < 0.25 + MARGIN_M
+                {
                     out.insert(w.id);
                 }
             }
