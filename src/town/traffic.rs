@@ -1,7 +1,7 @@
 //! Traffic over time in closed form, and the ego's drives (`ego`: a
 //! seeded route over the whole grid, simulated from the drive's start,
-//! with the background vehicles in its way removed; docs/drives.md). Vehicles ride the closed routes of
-//! `routes` (block loops turning right at every corner or round the
+//! with the background vehicles in its way removed; docs/drives.md).
+//! Vehicles ride the closed routes of `routes` (block loops turning right at every corner or round the
 //! roundabout, the ring turning left around the town and going straight
 //! through its T junctions). Every vehicle of route r follows the same
 //! speed profile s(τ) (`profile`: slower in curves, accelerating out) at
