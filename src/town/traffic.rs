@@ -4,8 +4,8 @@
 //! Vehicles ride the closed routes of `routes` (block loops turning right
 //! at every corner or round the roundabout, the ring turning left around
 //! the town and going straight through its T junctions). Every vehicle
-//! of route r follows the same speed profile s(τ) (`profile`: slower in curves, accelerating out) at
-//! its own time offset c_n: s_n(t) = s(ρ_r·G(t) + c_n), where G is one
+//! of route r follows the same speed profile s(τ) (`profile`: slower in
+//! curves, accelerating out) at its own time offset c_n: s_n(t) = s(ρ_r·G(t) + c_n), where G is one
 //! town-wide stop-and-go clock (ramp up, drive, ramp down, stand) and ρ_r
 //! ≤ 1 scales the route so it advances exactly 1/m_r lap per cycle; the
 //! ring (on the outer roads, without crossers) ignores the clock. The
