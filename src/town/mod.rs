@@ -217,7 +217,10 @@ pub fn dynamic_objects(frame: &TownFrame) -> Vec<ObjectDesc> {
         let plate = v.body.plate_prefab(v.id % vehicles::plates::PLATE_VARIANTS);
         let shared = o.clone();
         out.push(o);
-        for name in std::iter::once(v.body.parts_prefab()).chain(plate) {
+        for name in [v.body.parts_prefab(), v.body.lamps_prefab()]
+            .into_iter()
+            .chain(plate)
+        {
             let mut p = shared.clone();
             p.shape = parts::instance(&name, v.position, 0.0, &[], l).shape;
             out.push(p);

@@ -16,14 +16,14 @@ use super::spec::Spec;
 pub const PAINT: &str = "car_paint";
 
 /// Stations of the lower body along x per metre, and round its section.
-const LOFT_PER_M: f64 = 24.0;
-const SECTION_STEPS: usize = 56;
+const LOFT_PER_M: f64 = 20.0;
+const SECTION_STEPS: usize = 48;
 
 /// Body panels in paint into `paint`, glass, trim and seams into `parts`.
 pub fn body(s: &Spec, class: &'static str, paint: &mut Kit, parts: &mut Kit) {
     let hl = s.hl();
     let id = DAffine3::IDENTITY;
-    let nx = ((s.length * LOFT_PER_M) as usize).clamp(60, 160);
+    let nx = ((s.length * LOFT_PER_M) as usize).clamp(60, 110);
     let lower = |x: f64, th: f64| s.lower(x, th);
     paint.add(
         PAINT,
@@ -60,7 +60,7 @@ pub fn body(s: &Spec, class: &'static str, paint: &mut Kit, parts: &mut Kit) {
 fn glass_house(s: &Spec, class: &'static str, paint: &mut Kit, parts: &mut Kit) {
     let id = DAffine3::IDENTITY;
     let (x0, x1) = (s.rear_x, s.ws_x);
-    let nx = (((x1 - x0) * 20.0) as usize).clamp(24, 200);
+    let nx = (((x1 - x0) * 20.0) as usize).clamp(24, 110);
     let outer = |x: f64, th: f64| s.glass(x, th, 0.0);
     let inner = |x: f64, th: f64| s.glass(x, th, 0.006);
     parts.add(

@@ -46,6 +46,7 @@ fn write_vehicle_gallery_scene() {
         let paint = [("car_paint", paints[k % paints.len()])];
         objects.push(instance(b.prefab(), at, heading, &paint, l));
         objects.push(instance(&b.parts_prefab(), at, heading, &[], l));
+        objects.push(instance(&b.lamps_prefab(), at, heading, &[], l));
         if let Some(p) = b.plate_prefab(0) {
             objects.push(instance(&p, at, heading, &[], l));
         }

@@ -99,6 +99,11 @@ impl BodyKind {
         format!("{}_parts", self.prefab())
     }
 
+    /// Prefab name of the glowing lamp lenses (emitters, kept flat).
+    pub fn lamps_prefab(self) -> String {
+        format!("{}_lamps", self.prefab())
+    }
+
     /// Prefab name of registration `k` (< `plates::PLATE_VARIANTS`), or
     /// none for a bicycle.
     pub fn plate_prefab(self, k: u32) -> Option<String> {
@@ -148,8 +153,17 @@ impl BodyKind {
     }
 }
 
-/// The prefabs of every body type: panels, parts and registrations.
+/// The emissive materials of vehicle lamps.
+pub const EMITTERS: [&str; 2] = ["headlight_emit", "taillight_emit"];
+
+/// The prefabs of every body type: panels, parts, lamps and
+/// registrations (generated once per process: they depend on nothing).
 pub fn vehicle_prefabs() -> Vec<PrefabDesc> {
+    static PREFABS: std::sync::OnceLock<Vec<PrefabDesc>> = std::sync::OnceLock::new();
+    PREFABS.get_or_init(generate_prefabs).clone()
+}
+
+fn generate_prefabs() -> Vec<PrefabDesc> {
     let mut out = Vec::new();
     for b in BODIES {
         let (paint, parts) = build(b);
@@ -157,9 +171,19 @@ pub fn vehicle_prefabs() -> Vec<PrefabDesc> {
             name: b.prefab().to_string(),
             objects: paint.objects(),
         });
+        // Emitters go apart: a prefab holding one stays flat (the light
+        // set finds emitters among flat meshes only), so it must be small.
+        let (lamps, rest): (Vec<_>, Vec<_>) = parts
+            .objects()
+            .into_iter()
+            .partition(|o| o.material.as_deref().is_some_and(|m| EMITTERS.contains(&m)));
         out.push(PrefabDesc {
             name: b.parts_prefab(),
-            objects: parts.objects(),
+            objects: rest,
+        });
+        out.push(PrefabDesc {
+            name: b.lamps_prefab(),
+            objects: lamps,
         });
         for k in 0..plates::PLATE_VARIANTS {
             if let Some(name) = b.plate_prefab(k) {

@@ -40,3 +40,40 @@ fn every_part_stays_inside_the_footprint_and_above_the_ground() {
     }
     assert!(bad.is_empty(), "{bad:#?}");
 }
+
+/// Triangles of every prefab of a model (panels, parts, one plate).
+fn triangles_of(kind: BodyKind) -> [usize; 3] {
+    let prefabs = vehicle_prefabs();
+    let count = |name: &str| -> usize {
+        let p = prefabs.iter().find(|p| p.name == name).unwrap();
+        meshes(&p.objects).map(|(_, _, t)| t.len()).sum()
+    };
+    let plate = kind.plate_prefab(0).map_or(0, |p| count(&p));
+    let lamps = count(&kind.lamps_prefab());
+    assert!(
+        lamps <= 800,
+        "{kind:?}: {lamps} emitter triangles, kept flat per vehicle"
+    );
+    [
+        count(kind.prefab()),
+        count(&kind.parts_prefab()) + lamps,
+        plate,
+    ]
+}
+
+#[test]
+fn a_grown_car_has_at_least_20000_triangles_and_no_model_too_many() {
+    for kind in BODIES {
+        let [paint, parts, plate] = triangles_of(kind);
+        eprintln!("{kind:?}: {paint} painted + {parts} parts + {plate} plate");
+        let total = paint + parts + plate;
+        if !matches!(kind, BodyKind::Motorcycle | BodyKind::Bicycle) {
+            assert!(total >= 20_000, "{kind:?}: {total} triangles");
+        }
+        // Painted panels repeat per paint (a prototype each): keep them lean.
+        assert!(
+            paint <= 16_000 && total <= 60_000,
+            "{kind:?}: {paint}, {total}"
+        );
+    }
+}

@@ -118,7 +118,7 @@ pub fn motorcycle(class: &'static str, plate_text: Option<&str>, paint: &mut Kit
     parts.add(
         "headlight_emit",
         class,
-        ellipsoid([0.05, 0.085, 0.085], 16, 8),
+        ellipsoid([0.05, 0.085, 0.085], 12, 6),
         at(MOTO_LAMP[0], 0.0, MOTO_LAMP[2]),
     );
     parts.add(
