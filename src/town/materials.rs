@@ -391,7 +391,7 @@ fn sign_materials() -> Vec<MaterialDesc> {
 }
 
 /// Car paints (the `PAINTS` palette), cargo boxes, tyres, hubs and trim.
-fn vehicle_materials() -> Vec<MaterialDesc> {
+pub fn vehicle_materials() -> Vec<MaterialDesc> {
     vec![
         paint("paint_red", Some([0.55, 0.04, 0.03]), None),
         paint("paint_blue", Some([0.05, 0.12, 0.45]), None),

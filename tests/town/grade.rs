@@ -40,7 +40,7 @@ fn static_frame(desc: &TownDesc, name: &str) -> LoadedScene {
     loaded.desc.objects.retain(|o| {
         !matches!(
             o.semantic.as_deref(),
-            Some("car" | "bus" | "truck" | "pedestrian")
+            Some("car" | "bus" | "truck" | "motorcycle" | "bicycle" | "pedestrian")
         )
     });
     loaded

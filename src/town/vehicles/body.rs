@@ -16,8 +16,8 @@ use super::spec::Spec;
 pub const PAINT: &str = "car_paint";
 
 /// Stations of the lower body along x per metre, and round its section.
-const LOFT_PER_M: f64 = 20.0;
-const SECTION_STEPS: usize = 48;
+const LOFT_PER_M: f64 = 16.0;
+const SECTION_STEPS: usize = 40;
 
 /// Body panels in paint into `paint`, glass, trim and seams into `parts`.
 pub fn body(s: &Spec, class: &'static str, paint: &mut Kit, parts: &mut Kit) {

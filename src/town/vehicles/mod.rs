@@ -123,11 +123,13 @@ impl BodyKind {
     }
 
     /// Footprint length and width, metres: the body, mirrors, bumpers and
-    /// plates all stay inside it.
+    /// plates all stay inside it. A two-wheeler (and its rider) takes a
+    /// small car's length of lane: it keeps a car's spacing in traffic and
+    /// lines up at stop lines like one.
     pub fn footprint_m(self) -> [f64; 2] {
         match self {
-            BodyKind::Motorcycle => [2.0, 0.9],
-            BodyKind::Bicycle => [1.8, 0.7],
+            BodyKind::Motorcycle => [TWO_WHEEL_SLOT_M, 1.0],
+            BodyKind::Bicycle => [TWO_WHEEL_SLOT_M, 0.8],
             k => {
                 let s = spec::spec_of(k).expect("a four-wheeled body");
                 [s.length + 0.1, s.width + 2.0 * body::MIRROR_REACH_M + 0.02]
@@ -152,6 +154,10 @@ impl BodyKind {
         BODIES.iter().position(|&b| b == self).expect("listed")
     }
 }
+
+/// Lane length a two-wheeler takes (its footprint's length), metres: a
+/// little more than a hatchback's.
+pub const TWO_WHEEL_SLOT_M: f64 = 4.2;
 
 /// The emissive materials of vehicle lamps.
 pub const EMITTERS: [&str; 2] = ["headlight_emit", "taillight_emit"];

@@ -77,3 +77,4 @@ fn a_grown_car_has_at_least_20000_triangles_and_no_model_too_many() {
         );
     }
 }
+
