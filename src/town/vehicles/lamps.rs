@@ -38,7 +38,7 @@ pub fn lamps(s: &Spec, class: &'static str, parts: &mut Kit) {
         parts.add(
             "headlight_emit",
             class,
-            ellipsoid([0.05, 0.15, 0.055], 12, 6),
+            ellipsoid([0.05, 0.15, 0.055], 8, 4),
             at(p),
         );
         parts.add(
@@ -61,7 +61,7 @@ pub fn lamps(s: &Spec, class: &'static str, parts: &mut Kit) {
         parts.add(
             "taillight_emit",
             class,
-            ellipsoid([0.04, 0.14, 0.05], 12, 6),
+            ellipsoid([0.04, 0.14, 0.05], 8, 4),
             at(p),
         );
         parts.add(

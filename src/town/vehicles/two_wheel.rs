@@ -118,7 +118,7 @@ pub fn motorcycle(class: &'static str, plate_text: Option<&str>, paint: &mut Kit
     parts.add(
         "headlight_emit",
         class,
-        ellipsoid([0.05, 0.085, 0.085], 12, 6),
+        ellipsoid([0.05, 0.085, 0.085], 8, 4),
         at(MOTO_LAMP[0], 0.0, MOTO_LAMP[2]),
     );
     parts.add(
@@ -130,7 +130,7 @@ pub fn motorcycle(class: &'static str, plate_text: Option<&str>, paint: &mut Kit
     parts.add(
         "taillight_emit",
         class,
-        ellipsoid([0.02, 0.06, 0.03], 12, 6),
+        ellipsoid([0.02, 0.06, 0.03], 8, 4),
         at(-0.83, 0.0, 0.84),
     );
     for y in [-0.15, 0.15] {
@@ -189,7 +189,7 @@ pub fn bicycle(class: &'static str, paint: &mut Kit, parts: &mut Kit) {
     parts.add(
         "headlight_emit",
         class,
-        ellipsoid([0.025, 0.03, 0.025], 10, 6),
+        ellipsoid([0.025, 0.03, 0.025], 8, 4),
         at(BIKE_LAMP[0], 0.0, BIKE_LAMP[2]),
     );
     parts.add(
