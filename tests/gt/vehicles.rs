@@ -147,7 +147,11 @@ fn depth_and_disparity_exact_on_a_car_with_sub_pixel_spokes_and_mirrors() {
                 // Which part the true first hit is on: the same depth from
                 // that part's triangles alone.
                 let on = |set: &[u32]| {
-                    let sub: Vec<u32> = cand[k].iter().copied().filter(|t| set.contains(t)).collect();
+                    let sub: Vec<u32> = cand[k]
+                        .iter()
+                        .copied()
+                        .filter(|t| set.contains(t))
+                        .collect();
                     matches!(trace(c, dir(i, j), &tris, &sub), (Some(t), false) if t == zt)
                 };
                 let dz = dir(i, j).z;
@@ -171,6 +175,9 @@ fn depth_and_disparity_exact_on_a_car_with_sub_pixel_spokes_and_mirrors() {
         "{checked} pixels checked, {car_px} on the car (left), {rim_px} on rims, {mirror_px} on mirror glass, {ties} edge ties"
     );
     assert!(car_px > 1000, "the car fills {car_px} pixels");
-    assert!(rim_px >= 20 && mirror_px >= 1, "{rim_px} rim, {mirror_px} mirror pixels");
+    assert!(
+        rim_px >= 20 && mirror_px >= 1,
+        "{rim_px} rim, {mirror_px} mirror pixels"
+    );
     assert!(ties * 100 <= checked, "{ties} edge ties");
 }

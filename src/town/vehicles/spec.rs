@@ -344,7 +344,6 @@ pub fn spec_of(kind: super::BodyKind) -> Option<Spec> {
             section_n: 10.0,
             doors: 1,
             cargo_front_x: Some(1.95),
-            ..car
         },
         K::Bus => Spec {
             length: 11.5,

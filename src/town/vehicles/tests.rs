@@ -78,7 +78,6 @@ fn a_grown_car_has_at_least_20000_triangles_and_no_model_too_many() {
     }
 }
 
-
 #[test]
 fn lofted_bodies_are_closed_outward_solids_of_a_plausible_volume() {
     for kind in BODIES {
@@ -87,7 +86,13 @@ fn lofted_bodies_are_closed_outward_solids_of_a_plausible_volume() {
         };
         let f = |x: f64, th: f64| s.lower(x, th);
         let hl = s.hl();
-        let m = loft::grid(&f, (-hl, hl, 200), (0.0, std::f64::consts::TAU, 64), 0.0, true);
+        let m = loft::grid(
+            &f,
+            (-hl, hl, 200),
+            (0.0, std::f64::consts::TAU, 64),
+            0.0,
+            true,
+        );
         let v = loft::volume(&m);
         // Between a third and all of the box from the floor to the waist.
         let bound = s.length * s.width * (s.belt_z - s.floor_z);
@@ -96,7 +101,10 @@ fn lofted_bodies_are_closed_outward_solids_of_a_plausible_volume() {
         for x in [s.rear_x + 0.2, (s.rear_x + s.ws_x) / 2.0, s.ws_x - 0.2] {
             let [_, y, z] = s.glass(x, 0.0, 0.0);
             assert!(y <= s.lower_half_width_at(x, z) + 1e-9, "{kind:?} at {x}");
-            assert!(s.roof_z(x) > z && s.roof_z(x) <= s.height + 1e-9, "{kind:?} at {x}");
+            assert!(
+                s.roof_z(x) > z && s.roof_z(x) <= s.height + 1e-9,
+                "{kind:?} at {x}"
+            );
         }
     }
 }
@@ -125,7 +133,13 @@ fn headlights_are_two_spots_per_car_one_per_two_wheeler_ahead_and_along_the_head
     use crate::town::parts::{class, instance};
     use crate::weather::Weather;
     let objects = vec![
-        instance("sedan", [10.0, 5.0, 0.0], 90.0, &[("car_paint", "paint_red")], class("car")),
+        instance(
+            "sedan",
+            [10.0, 5.0, 0.0],
+            90.0,
+            &[("car_paint", "paint_red")],
+            class("car"),
+        ),
         instance("sedan_parts", [10.0, 5.0, 0.0], 90.0, &[], class("car")),
         instance("bicycle", [0.0, 0.0, 0.0], 0.0, &[], class("bicycle")),
     ];
@@ -133,18 +147,26 @@ fn headlights_are_two_spots_per_car_one_per_two_wheeler_ahead_and_along_the_head
     assert_eq!(spots.len(), 3);
     for l in &spots[..2] {
         let LightDesc::Spot {
-            position, direction, ..
+            position,
+            direction,
+            ..
         } = l
         else {
             panic!("spot lights");
         };
         // Heading 90°: forward is +y; the lamps stand ahead of the centre,
         // either side of it, low, and aim along +y, slightly down.
-        assert!(position[1] > 5.0 + 2.0 && (position[0] - 10.0).abs() > 0.4, "{position:?}");
+        assert!(
+            position[1] > 5.0 + 2.0 && (position[0] - 10.0).abs() > 0.4,
+            "{position:?}"
+        );
         assert!(position[2] > 0.3 && position[2] < 0.9);
         assert!(direction[1] > 0.99 && direction[2] < 0.0 && direction[0].abs() < 1e-9);
     }
-    let weathers: Vec<Weather> = Weather::ALL.into_iter().filter(|&w| needs_headlights(w)).collect();
+    let weathers: Vec<Weather> = Weather::ALL
+        .into_iter()
+        .filter(|&w| needs_headlights(w))
+        .collect();
     assert_eq!(weathers, [Weather::Night, Weather::Sunset]);
 }
 
@@ -154,7 +176,9 @@ fn paints_are_drawn_like_real_traffic() {
     let n = 100_000;
     let mut count = std::collections::HashMap::new();
     for k in 0..n {
-        *count.entry(draw_paint((k as f64 + 0.5) / n as f64)).or_insert(0usize) += 1;
+        *count
+            .entry(draw_paint((k as f64 + 0.5) / n as f64))
+            .or_insert(0usize) += 1;
     }
     let share = |p: &str| *count.get(p).unwrap_or(&0) as f64 / n as f64;
     let neutral: f64 = ["paint_white", "paint_black", "paint_grey", "paint_silver"]
