@@ -47,6 +47,22 @@ pub const PAINTS: &[&str] = &[
     "paint_orange",
     "paint_darkblue",
 ];
+/// How often each of `PAINTS` is drawn: like real traffic, mostly white,
+/// black, grey and silver (~80 %), some blue and red, few others.
+pub const PAINT_WEIGHTS: [f64; 10] = [0.07, 0.06, 0.34, 0.19, 0.1, 0.17, 0.015, 0.01, 0.01, 0.035];
+
+/// The paint of `PAINTS` that a uniform `u` ∈ [0, 1) draws by `PAINT_WEIGHTS`.
+pub fn draw_paint(u: f64) -> &'static str {
+    let total: f64 = PAINT_WEIGHTS.iter().sum();
+    let mut left = u * total;
+    for (p, w) in PAINTS.iter().zip(PAINT_WEIGHTS) {
+        if left < w {
+            return p;
+        }
+        left -= w;
+    }
+    PAINTS[PAINTS.len() - 1]
+}
 
 /// A plain diffuse material (linear RGB albedo).
 pub fn diffuse(name: &str, albedo: [f64; 3]) -> MaterialDesc {
@@ -375,7 +391,7 @@ fn sign_materials() -> Vec<MaterialDesc> {
 }
 
 /// Car paints (the `PAINTS` palette), cargo boxes, tyres, hubs and trim.
-fn vehicle_materials() -> Vec<MaterialDesc> {
+pub fn vehicle_materials() -> Vec<MaterialDesc> {
     vec![
         paint("paint_red", Some([0.55, 0.04, 0.03]), None),
         paint("paint_blue", Some([0.05, 0.12, 0.45]), None),
@@ -391,6 +407,22 @@ fn vehicle_materials() -> Vec<MaterialDesc> {
         diffuse("rubber", [0.03, 0.03, 0.03]),
         metal("chrome", ConductorPreset::Chrome, 0.05),
         diffuse("plastic_black", [0.05, 0.05, 0.05]),
+        // Vehicle parts: tinted glass, trim, seams, cabin, rims, lenses
+        // (amber and red when off), plates.
+        glass("car_glass", [0.72, 0.78, 0.78]),
+        diffuse("trim_black", [0.025, 0.025, 0.025]),
+        diffuse("grille", [0.012, 0.012, 0.012]),
+        diffuse("seam", [0.004, 0.004, 0.004]),
+        diffuse("car_interior", [0.04, 0.038, 0.035]),
+        metal("mirror", ConductorPreset::Silver, 0.0),
+        metal("rim", ConductorPreset::Aluminium, 0.2),
+        lens("lamp_amber", [0.35, 0.14, 0.01]),
+        lens("lamp_red", [0.25, 0.01, 0.01]),
+        diffuse("plate", [0.78, 0.78, 0.74]),
+        diffuse("plate_ink", [0.02, 0.02, 0.02]),
+        diffuse("frame_dark", [0.04, 0.04, 0.045]),
+        metal("engine", ConductorPreset::Aluminium, 0.45),
+        diffuse("seat_leather", [0.02, 0.018, 0.016]),
     ]
 }
 

@@ -212,7 +212,19 @@ pub fn dynamic_objects(frame: &TownFrame) -> Vec<ObjectDesc> {
             let r = grade::body_rotation_deg(v.heading_deg, v.pitch_deg, v.roll_deg);
             o.transform.rotate_deg = Some(r);
         }
+        // The unpainted parts and a registration share the body's pose:
+        // one prototype per model for them, one per (model, paint) above.
+        let plate = v.body.plate_prefab(v.id % vehicles::plates::PLATE_VARIANTS);
+        let shared = o.clone();
         out.push(o);
+        for name in [v.body.parts_prefab(), v.body.lamps_prefab()]
+            .into_iter()
+            .chain(plate)
+        {
+            let mut p = shared.clone();
+            p.shape = parts::instance(&name, v.position, 0.0, &[], l).shape;
+            out.push(p);
+        }
     }
     for p in &frame.pedestrians {
         let l = Label {

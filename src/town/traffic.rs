@@ -34,7 +34,6 @@ use std::sync::Arc;
 use super::desc::TownDesc;
 use super::grade::Grade;
 use super::layout::{Layout, Rect};
-use super::materials::PAINTS;
 use super::overpass::Overpass;
 use super::rng::{tag, Rng};
 use super::routes::{routes, Route, RouteKind, Turns};
@@ -427,7 +426,7 @@ fn background(
             let Some(body) = slot_body(desc, rp, (n, open), &mut r, None) else {
                 continue;
             };
-            let paint = PAINTS[r.index(PAINTS.len())];
+            let paint = super::materials::draw_paint(r.f64());
             let (p, heading) = slot_pose(rp, tau + offset, body);
             let pose = VehiclePose {
                 id,

@@ -13,4 +13,5 @@ mod occlusion;
 mod rain;
 mod street;
 mod vegetation;
+mod vehicles;
 mod weather;

@@ -17,8 +17,8 @@ use parallax::scene::serialize_scene;
 use parallax::town::parts::{class, instance};
 use parallax::town::vegetation::{self, Species};
 
-const W: u32 = 96;
-const H: u32 = 54;
+pub(super) const W: u32 = 96;
+pub(super) const H: u32 = 54;
 const BASELINES_M: [f64; 2] = [0.54, 3.0];
 const AT: [f64; 3] = [25.0, 1.0, 0.0];
 const TURN_DEG: f64 = 37.0;
@@ -26,13 +26,13 @@ const SCALE: f64 = 1.05;
 /// Ray-to-edge distance below which a pixel is an edge tie, metres.
 const TIE_M: f64 = 1e-5;
 
-fn f_px() -> f64 {
+pub(super) fn f_px() -> f64 {
     (W as f64 / 2.0) / 30f64.to_radians().tan()
 }
 
 /// Ray direction with x component 1 (so t = depth Z) through pixel (i, j)
 /// of a level camera looking along +x.
-fn dir(i: u32, j: u32) -> DVec3 {
+pub(super) fn dir(i: u32, j: u32) -> DVec3 {
     let f = f_px();
     DVec3::new(
         1.0,
@@ -79,7 +79,7 @@ fn tree_triangles() -> (Vec<[DVec3; 3]>, usize) {
 /// Nearest hit of the ray c + t·d (Möller–Trumbore in f64) and whether it
 /// is a tie: some triangle's boundary passes within `TIE_M` of the ray
 /// before the nearest clear hit.
-fn trace(c: DVec3, d: DVec3, tris: &[[DVec3; 3]], cand: &[u32]) -> (Option<f64>, bool) {
+pub(super) fn trace(c: DVec3, d: DVec3, tris: &[[DVec3; 3]], cand: &[u32]) -> (Option<f64>, bool) {
     let mut best: Option<f64> = None;
     let mut near_edges: Vec<f64> = Vec::new();
     for &k in cand {
@@ -125,14 +125,14 @@ fn trace(c: DVec3, d: DVec3, tris: &[[DVec3; 3]], cand: &[u32]) -> (Option<f64>,
 
 /// Triangle indices whose projected bounding box covers each pixel of a
 /// camera at `c` (every vertex is ahead of it).
-fn buckets(c: DVec3, tris: &[[DVec3; 3]]) -> Vec<Vec<u32>> {
+pub(super) fn buckets(c: DVec3, tris: &[[DVec3; 3]]) -> Vec<Vec<u32>> {
     let f = f_px();
     let mut out = vec![Vec::new(); (W * H) as usize];
     for (k, t) in tris.iter().enumerate() {
         let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
         for p in t {
             let d = *p - c;
-            assert!(d.x > 1.0, "tree vertex behind the camera");
+            assert!(d.x > 1.0, "vertex behind the camera");
             let uv = [
                 W as f64 / 2.0 - f * d.y / d.x,
                 H as f64 / 2.0 - f * d.z / d.x,

@@ -247,6 +247,7 @@ fn ground_truth_on_the_bridge_lies_on_its_planes() {
     let bridge = class_id("bridge").unwrap();
     let ego = drive_frame_at(&desc, seed, drive, frame).ego;
     let east = o.x_m + HALF_WIDTH_M + PARAPET_M.0;
+    let west = o.x_m - HALF_WIDTH_M - PARAPET_M.0;
     for config in [CONFIGS[0], CONFIGS[3], CONFIGS[4]] {
         let (rig, out) = gt_frame(
             &scene,
@@ -268,16 +269,20 @@ fn ground_truth_on_the_bridge_lies_on_its_planes() {
                 }
                 let (u, v) = (i as f64 + 0.5, j as f64 + 0.5);
                 let p = cam.center + cam.dir(u, v) * z + scene.origin_world;
-                if (p.x - o.x_m).abs() > 8.0 || p.y < o.deck.0 - 1.0 || p.y > o.deck.1 + 1.0 {
+                // The deck's span and its end faces: past them the approaches'
+                // parapets slope down with the ramps.
+                if (p.x - o.x_m).abs() > 8.0 || p.y < o.deck.0 - 0.01 || p.y > o.deck.1 + 0.01 {
                     continue;
                 }
                 let tol = 1e-5 * z;
-                // Every plane of the structure's faces seen from the east.
+                // Every plane of the structure's faces (the parapets' outer faces
+                // on both sides: the drive may pass west of the bridge).
                 let under_z = TOP_M - parallax::town::overpass::DECK_M;
                 let (xo, yp) = (o.x_m, o.pier_y_m);
                 let zs = [under_z, under_z - 0.8, TOP_M + PARAPET_M.1];
                 let xs = [
                     east,
+                    west,
                     xo + HALF_WIDTH_M,
                     xo - HALF_WIDTH_M,
                     xo + 3.1,

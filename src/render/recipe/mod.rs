@@ -239,6 +239,10 @@ impl FrameRecipe {
         });
         if let Some(p) = &weather {
             crate::weather::apply(&mut loaded.desc, p);
+            // A town's vehicles drive with head-lights on at night and dusk.
+            if origin.town.is_some() && crate::town::vehicles::needs_headlights(p.preset) {
+                crate::town::vehicles::add_headlights(&mut loaded.desc);
+            }
         }
         if !spec.filter {
             loaded.desc.turn_image_filters_off();

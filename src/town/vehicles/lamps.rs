@@ -1,0 +1,91 @@
+//! Lamps of a four-wheeled body: domed head-lamp lenses (emitters) in a
+//! chrome reflector, red tail lamps (emitters) in black housings, amber
+//! indicator lenses front and rear and a high-mounted brake lens, each
+//! set into the body's surface where `Spec::end_x` finds it.
+
+use glam::{DAffine3, DVec3};
+
+use crate::scene::mesh::ellipsoid;
+use crate::town::street::kit::Kit;
+
+use super::spec::Spec;
+
+/// Head-lamp lens centres (left, right) in the body frame: set 3 cm into
+/// the nose under the bonnet line, 30 cm in from each side.
+pub fn headlamp_points(s: &Spec) -> [[f64; 3]; 2] {
+    let z = s.nose_z - 0.1;
+    let y = s.width / 2.0 - 0.3;
+    let x = s.end_x(1.0, y, z) - 0.03;
+    [[x, y, z], [x, -y, z]]
+}
+
+/// Tail-lamp centres (left, right): 20 cm in from each side, 10 cm under
+/// the boot deck.
+pub fn taillamp_points(s: &Spec) -> [[f64; 3]; 2] {
+    let z = s.deck_z - 0.12;
+    let y = s.width / 2.0 - 0.22;
+    let x = s.end_x(-1.0, y, z) + 0.025;
+    [[x, y, z], [x, -y, z]]
+}
+
+fn at(p: [f64; 3]) -> DAffine3 {
+    DAffine3::from_translation(DVec3::from(p))
+}
+
+/// Every lamp of the body into `parts`.
+pub fn lamps(s: &Spec, class: &'static str, parts: &mut Kit) {
+    for p in headlamp_points(s) {
+        parts.add(
+            "headlight_emit",
+            class,
+            ellipsoid([0.05, 0.15, 0.055], 8, 4),
+            at(p),
+        );
+        parts.add(
+            "chrome",
+            class,
+            ellipsoid([0.035, 0.17, 0.07], 20, 8),
+            at(p),
+        );
+        // The indicator beside it, towards the corner.
+        let y = p[1].signum() * (s.width / 2.0 - 0.09);
+        let x = s.end_x(1.0, y, p[2]) - 0.02;
+        parts.add(
+            "lamp_amber",
+            class,
+            ellipsoid([0.03, 0.045, 0.03], 12, 6),
+            at([x, y, p[2]]),
+        );
+    }
+    for p in taillamp_points(s) {
+        parts.add(
+            "taillight_emit",
+            class,
+            ellipsoid([0.04, 0.14, 0.05], 8, 4),
+            at(p),
+        );
+        parts.add(
+            "trim_black",
+            class,
+            ellipsoid([0.03, 0.16, 0.065], 20, 8),
+            at(p),
+        );
+        let y = p[1].signum() * (s.width / 2.0 - 0.42);
+        let x = s.end_x(-1.0, y, p[2]) + 0.02;
+        parts.add(
+            "lamp_amber",
+            class,
+            ellipsoid([0.03, 0.06, 0.03], 12, 6),
+            at([x, y, p[2]]),
+        );
+    }
+    // The high-mounted brake lens on the boot or tailgate top.
+    let z = s.deck_z - 0.03;
+    let x = s.end_x(-1.0, 0.0, z) + 0.01;
+    parts.add(
+        "lamp_red",
+        class,
+        ellipsoid([0.02, 0.12, 0.018], 12, 6),
+        at([x, 0.0, z]),
+    );
+}
