@@ -160,7 +160,7 @@ pub fn town_materials(desc: &TownDesc) -> Vec<MaterialDesc> {
         emitter_materials(),
         sign_materials(),
         vehicle_materials(),
-        pedestrian_materials(),
+        super::people::people_materials(),
         super::street::materials::street_materials(),
     ]
     .concat()
@@ -391,16 +391,6 @@ fn vehicle_materials() -> Vec<MaterialDesc> {
         diffuse("rubber", [0.03, 0.03, 0.03]),
         metal("chrome", ConductorPreset::Chrome, 0.05),
         diffuse("plastic_black", [0.05, 0.05, 0.05]),
-    ]
-}
-
-/// Skin and clothes of pedestrians.
-fn pedestrian_materials() -> Vec<MaterialDesc> {
-    vec![
-        diffuse("skin", [0.55, 0.38, 0.28]),
-        diffuse("cloth_dark", [0.08, 0.08, 0.1]),
-        diffuse("cloth_blue", [0.1, 0.15, 0.35]),
-        diffuse("cloth_red", [0.45, 0.08, 0.06]),
     ]
 }
 

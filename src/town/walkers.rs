@@ -9,6 +9,7 @@
 
 use super::desc::TownDesc;
 use super::layout::Layout;
+use super::people::{Person, VARIANTS};
 use super::rng::{tag, Rng};
 use super::traffic::{PedestrianPose, Schedule};
 
@@ -22,13 +23,11 @@ const CROSSER_ID_BASE: u32 = 5000;
 const CROSS_AT_M: f64 = 2.0;
 /// How far onto the sidewalk a crossing starts and ends, metres.
 const ONTO_WALK_M: f64 = 0.8;
-const SHIRTS: &[&str] = &[
-    "cloth_blue",
-    "cloth_red",
-    "cloth_dark",
-    "paint_white",
-    "paint_yellow",
-];
+
+/// Walk-cycle phase of variant `variant` after walking `walked_m` metres.
+fn phase(variant: u32, walked_m: f64) -> f64 {
+    (walked_m / Person::variant(variant).body.stride_m()).rem_euclid(1.0)
+}
 
 /// Every pedestrian at time `t` (none on country roads without sidewalks).
 pub fn pedestrians(
@@ -64,7 +63,7 @@ fn walkers(desc: &TownDesc, l: &Layout, seed: u64, t: f64, out: &mut Vec<Pedestr
                     continue;
                 }
                 let dir = if r.chance(0.5) { 1.0 } else { -1.0 };
-                let shirt = SHIRTS[r.index(SHIRTS.len())];
+                let variant = r.index(VARIANTS as usize) as u32;
                 let s0 = slot as f64 * perimeter / WALK_SLOTS as f64;
                 // Opposite walkers use the two halves of the sidewalk.
                 let lane = dir * 0.45;
@@ -80,7 +79,9 @@ fn walkers(desc: &TownDesc, l: &Layout, seed: u64, t: f64, out: &mut Vec<Pedestr
                 let id = ((j * l.nx + i) as u64 * WALK_SLOTS + slot) as u32;
                 out.push(PedestrianPose {
                     id: id.min(CROSSER_ID_BASE - 1),
-                    shirt,
+                    variant,
+                    // Always walking: the cycle runs with the distance.
+                    phase: Some(phase(variant, s0 + WALK_MPS * t)),
                     position: [x, y, l.walk_z()],
                     heading_deg,
                 });
@@ -100,6 +101,26 @@ fn crossings(l: &Layout, x: f64, y: f64) -> [([f64; 2], [f64; 2]); 4] {
         ([x - a, y + b], [x - a, y - b]),
         ([x - b, y - a], [x + b, y - a]),
     ]
+}
+
+/// Metres a crosser has walked by time `t`: every cycle adds the corner
+/// (while traffic drives) and the crossing (while it stands), each cut short
+/// where the phase ends first; the four corners and crossings of a junction
+/// are the same lengths.
+fn crosser_walked(l: &Layout, sched: &Schedule, t: f64) -> f64 {
+    let [(a, b), (_, d)] = [crossings(l, 0.0, 0.0)[0], crossings(l, 0.0, 0.0)[3]];
+    let dist = |p: [f64; 2], q: [f64; 2]| (q[0] - p[0]).hypot(q[1] - p[1]);
+    let (cross, corner) = (dist(a, b), dist(d, a));
+    let (cycle, moving) = (sched.cycle_s(), sched.moving_s());
+    let n = (t / cycle).floor();
+    let tau = t - n * cycle;
+    let per_cycle = corner.min(WALK_MPS * moving) + cross.min(WALK_MPS * (cycle - moving));
+    let this_cycle = if tau < moving {
+        corner.min(WALK_MPS * tau)
+    } else {
+        corner.min(WALK_MPS * moving) + cross.min(WALK_MPS * (tau - moving))
+    };
+    n * per_cycle + this_cycle
 }
 
 fn lerp(p: [f64; 2], q: [f64; 2], u: f64) -> [f64; 2] {
@@ -133,28 +154,36 @@ fn crossers(
                 if !r.chance((desc.traffic_density * 1.5).min(1.0)) {
                     continue;
                 }
-                let shirt = SHIRTS[r.index(SHIRTS.len())];
+                let variant = r.index(VARIANTS as usize) as u32;
                 let first = r.int(0, 3) as i64 + 2 * slot as i64;
                 // Crossing c happens in the standing phase of cycle n.
                 let c = (n as i64 + first).rem_euclid(4) as usize;
-                let (p, heading) = if tau >= sched.moving_s() {
+                let (p, heading, u) = if tau >= sched.moving_s() {
                     let (a, b) = walks[c];
                     let len = ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt();
                     let u = (WALK_MPS * (tau - sched.moving_s()) / len).min(1.0);
-                    (lerp(a, b, u), (b[1] - a[1]).atan2(b[0] - a[0]))
+                    (lerp(a, b, u), (b[1] - a[1]).atan2(b[0] - a[0]), u)
                 } else {
                     // Round the corner from the previous crossing's end.
                     let prev = (c + 3) % 4;
                     let (from, to) = (walks[prev].1, walks[c].0);
                     let len = ((to[0] - from[0]).powi(2) + (to[1] - from[1]).powi(2)).sqrt();
                     let u = (WALK_MPS * tau / len).min(1.0);
-                    (lerp(from, to, u), (to[1] - from[1]).atan2(to[0] - from[0]))
+                    (
+                        lerp(from, to, u),
+                        (to[1] - from[1]).atan2(to[0] - from[0]),
+                        u,
+                    )
                 };
+                // Waiting at the kerb (end of a leg) they stand.
+                let walking = u < 1.0;
+                let walked = crosser_walked(l, sched, t);
                 let on_road = (p[0] - x).abs() < hw || (p[1] - y).abs() < hw;
                 let z = if on_road { 0.008 } else { l.walk_z() };
                 out.push(PedestrianPose {
                     id,
-                    shirt,
+                    variant,
+                    phase: walking.then(|| phase(variant, walked)),
                     position: [p[0], p[1], z],
                     heading_deg: heading.to_degrees().rem_euclid(360.0),
                 });
