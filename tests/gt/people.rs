@@ -173,7 +173,11 @@ fn depth_and_disparity_exact_on_the_limbs_of_posed_people() {
     }
     let scene = scene_from_toml(&serialize_scene(&desc));
     let r = render(&scene, Backend::default_backend(), 0);
-    assert_eq!(r.scene.prototypes.len(), 1, "the alike pair shares a prototype");
+    assert_eq!(
+        r.scene.prototypes.len(),
+        1,
+        "the alike pair shares a prototype"
+    );
 
     let tris = people_triangles();
     let f = f_px();
@@ -254,7 +258,9 @@ fn depth_and_disparity_exact_on_the_limbs_of_posed_people() {
             }
         }
     }
-    eprintln!("{checked} pixels checked, {person_px} on people ({legs_px} legs, left), {ties} edge ties");
+    eprintln!(
+        "{checked} pixels checked, {person_px} on people ({legs_px} legs, left), {ties} edge ties"
+    );
     assert!(person_px > 150, "the people fill {person_px} pixels");
     assert!(legs_px > 30, "the legs fill {legs_px} pixels");
     assert!(ties * 100 <= checked, "{ties} edge ties");

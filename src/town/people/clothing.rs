@@ -205,7 +205,7 @@ pub fn dress(body: &Body, k: &Skeleton, o: &Outfit, parts: &mut Parts) {
     if o.hair == Hair::Bun {
         parts.ellipsoid(
             &o.hair_mat,
-            head + DVec3::new(-1.0 * hr, 0.0, 0.35 * hr),
+            head + DVec3::new(-hr, 0.0, 0.35 * hr),
             DVec3::splat(0.35 * hr),
             8,
             4,
