@@ -176,7 +176,7 @@ pub fn town_materials(desc: &TownDesc) -> Vec<MaterialDesc> {
         emitter_materials(),
         sign_materials(),
         vehicle_materials(),
-        pedestrian_materials(),
+        super::people::people_materials(),
         super::street::materials::street_materials(),
     ]
     .concat()
@@ -423,16 +423,6 @@ pub fn vehicle_materials() -> Vec<MaterialDesc> {
         diffuse("frame_dark", [0.04, 0.04, 0.045]),
         metal("engine", ConductorPreset::Aluminium, 0.45),
         diffuse("seat_leather", [0.02, 0.018, 0.016]),
-    ]
-}
-
-/// Skin and clothes of pedestrians.
-fn pedestrian_materials() -> Vec<MaterialDesc> {
-    vec![
-        diffuse("skin", [0.55, 0.38, 0.28]),
-        diffuse("cloth_dark", [0.08, 0.08, 0.1]),
-        diffuse("cloth_blue", [0.1, 0.15, 0.35]),
-        diffuse("cloth_red", [0.45, 0.08, 0.06]),
     ]
 }
 

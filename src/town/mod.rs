@@ -29,6 +29,7 @@ pub mod lettering;
 pub mod materials;
 pub mod overpass;
 pub mod parts;
+pub mod people;
 pub mod props;
 pub mod ramps;
 pub mod report;
@@ -231,13 +232,8 @@ pub fn dynamic_objects(frame: &TownFrame) -> Vec<ObjectDesc> {
             class: "pedestrian",
             instance: (PEDESTRIAN_ID_BASE + p.id).min(u16::MAX as u32) as u16,
         };
-        out.push(instance(
-            "pedestrian",
-            p.position,
-            p.heading_deg,
-            &[("shirt", p.shirt)],
-            l,
-        ));
+        let prefab = people::prefab_name(p.variant, p.phase.map(people::phase_index));
+        out.push(instance(&prefab, p.position, p.heading_deg, &[], l));
     }
     out
 }
@@ -266,6 +262,7 @@ pub fn town_drive_scene(
     // `geometry_hash` values as they were.
     objects.extend(town.meshes());
     let mut prefabs = props::street_prefabs();
+    prefabs.extend(people::people_prefabs());
     prefabs.extend(vehicles::vehicle_prefabs());
     prefabs.extend(vegetation::vegetation_prefabs());
     SceneDesc {

@@ -118,8 +118,11 @@ impl VehiclePose {
 pub struct PedestrianPose {
     /// Stable id across frames.
     pub id: u32,
-    /// Shirt material name.
-    pub shirt: &'static str,
+    /// Look (body and outfit) of the person, `people::VARIANTS` of them.
+    pub variant: u32,
+    /// Walk-cycle phase (distance walked / stride, cycles), or `None`
+    /// standing still.
+    pub phase: Option<f64>,
     /// Position of the feet, world metres.
     pub position: [f64; 3],
     /// Heading, degrees counter-clockwise from +x.

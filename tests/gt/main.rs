@@ -10,6 +10,7 @@ mod exactness;
 mod facade;
 mod instancing;
 mod occlusion;
+mod people;
 mod rain;
 mod street;
 mod vegetation;
