@@ -394,6 +394,7 @@ pub fn frame_at(desc: &TownDesc, seed: u64, frame: u64) -> TownFrame {
     let driven = sched.driven_s(t);
     let (ego_route, ego_slot_n) = ego_slot(desc, seed);
     let grade = Grade::new(desc, seed);
+    let warp = super::organic::Warp::new(desc, seed);
     let overpass = Overpass::new(desc, &l);
     let ego_body = if sched.turns.bodies.contains(&BodyKind::Sedan) {
         BodyKind::Sedan
@@ -433,7 +434,8 @@ pub fn frame_at(desc: &TownDesc, seed: u64, frame: u64) -> TownFrame {
             };
             let pose = match (&overpass, rp.route.kind) {
                 (Some(o), RouteKind::Overpass) => on_overpass(pose, o),
-                _ => on_ground(pose, grade.as_ref()),
+                // Organic towns bend the level pose first (a planar warp).
+                _ => on_ground(bent(warp.as_ref(), pose), grade.as_ref()),
             };
             if is_ego {
                 ego = Some(pose);
@@ -443,6 +445,9 @@ pub fn frame_at(desc: &TownDesc, seed: u64, frame: u64) -> TownFrame {
         }
     }
     let mut pedestrians = walkers::pedestrians(desc, &l, sched, seed, t);
+    if let Some(w) = &warp {
+        pedestrians = pedestrians.into_iter().map(|p| w.pedestrian(p)).collect();
+    }
     if let Some(g) = &grade {
         for p in &mut pedestrians {
             p.position[2] += g.height_m(p.position[0], p.position[1]);
@@ -500,6 +505,14 @@ fn on_overpass(mut v: VehiclePose, o: &Overpass) -> VehiclePose {
     v.position[2] = z;
     v.pitch_deg = pitch;
     v
+}
+
+/// The level pose bent by an organic town's warp (unchanged without one).
+fn bent(warp: Option<&super::organic::Warp>, v: VehiclePose) -> VehiclePose {
+    match warp {
+        Some(w) => w.vehicle(v),
+        None => v,
+    }
 }
 
 /// The pose set on the ground field: z from h at the footprint centre,
