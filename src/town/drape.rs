@@ -123,12 +123,16 @@ impl Grid {
 pub type Place<'a> = &'a dyn Fn([f64; 2], f64) -> DVec3;
 
 /// Adds one layer of the grid at heights `dz` placed by `place`, facing up
-/// or down; returns the index of its first vertex.
-fn layer(m: &mut LocalMesh, g: &Grid, place: Place, dz: f64, up: bool) -> u32 {
+/// or down (`Some(up)`), or only its vertices (`None`); returns the index
+/// of its first vertex.
+fn layer(m: &mut LocalMesh, g: &Grid, place: Place, dz: f64, up: Option<bool>) -> u32 {
     let base = m.positions.len() as u32;
     for p in &g.xy {
         m.positions.push(place(*p, dz));
     }
+    let Some(up) = up else {
+        return base;
+    };
     for j in 0..g.n[1] {
         for i in 0..g.n[0] {
             let [a, b, c, d] = [
@@ -150,20 +154,21 @@ fn layer(m: &mut LocalMesh, g: &Grid, place: Place, dz: f64, up: bool) -> u32 {
 
 /// Appends a flat piece (a surface, or a box between two layers; size,
 /// bottom and top z in its level frame at `at`, turned by `heading_deg`)
-/// cut into pieces ≤ `step` metres, each grid point placed by `place`.
+/// cut into pieces ≤ `step` metres, each grid point placed by `place`;
+/// a box without `floor` has walls and top only.
 pub fn piece_mesh(
     m: &mut LocalMesh,
     (size, bottom, top): ([f64; 2], f64, f64),
     (at, heading_deg): ([f64; 2], f64),
-    step: f64,
+    (step, floor): (f64, bool),
     place: Place,
 ) {
     let g = Grid::new(size, at, heading_deg, step);
-    let t = layer(m, &g, place, top, true);
+    let t = layer(m, &g, place, top, Some(true));
     if top == bottom {
         return;
     }
-    let b = layer(m, &g, place, bottom, false);
+    let b = layer(m, &g, place, bottom, floor.then_some(false));
     // Walls: each boundary edge (counter-clockwise from above) with the
     // outside on its right.
     let ring = g.ring();
@@ -213,7 +218,7 @@ pub fn drape_objects(objects: Vec<ObjectDesc>, grade: &Grade) -> Vec<ObjectDesc>
                     &mut slot.1,
                     (size, b + off.z, tp + off.z),
                     (at, heading),
-                    STEP_M,
+                    (STEP_M, true),
                     &place,
                 );
             }

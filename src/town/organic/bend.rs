@@ -34,6 +34,9 @@ pub const LONG_M: f64 = 6.0;
 /// `drape::STEP_M` for the grade).
 pub const STEP_M: f64 = 10.0;
 
+/// Ground cover (class `terrain`) is cut into pieces this many times `step`.
+const TERRAIN_STEPS: f64 = 2.0;
+
 /// The flat piece to bend: (size x, size y, bottom z, top z) in its level
 /// frame, or `None` for a building part, a short piece or a piece that is
 /// not a quad or box turned only about z.
@@ -81,10 +84,18 @@ pub fn bend_objects(objects: Vec<ObjectDesc>, w: &Warp, step: f64) -> Vec<Object
                 (out.len() - 1, LocalMesh::default())
             });
             let heading = heading_only(&o.transform).unwrap_or(0.0);
+            // Ground cover (lots, fields, crop ridges, gravel) lies beside
+            // the roads: twice the step keeps its edges within ~15 cm.
+            let step = match o.semantic.as_deref() {
+                Some("terrain") => TERRAIN_STEPS * step,
+                _ => step,
+            };
             for off in repeat_offsets(&o.repeat) {
                 let at = [t[0] + off.x, t[1] + off.y];
                 let piece = (size, bottom + off.z, top + off.z);
-                piece_mesh(&mut slot.1, piece, (at, heading), step, &place);
+                // A box standing on (or sunk into) the ground needs no floor.
+                let floor = bottom + off.z > 0.0;
+                piece_mesh(&mut slot.1, piece, (at, heading), (step, floor), &place);
             }
             continue;
         }
