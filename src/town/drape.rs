@@ -211,9 +211,8 @@ pub fn drape_objects(objects: Vec<ObjectDesc>, grade: &Grade) -> Vec<ObjectDesc>
             for off in repeat_offsets(&o.repeat) {
                 let at = [t[0] + off.x, t[1] + off.y];
                 let (size, b, tp) = piece;
-                let place = |p: [f64; 2], dz: f64| {
-                    DVec3::new(p[0], p[1], grade.height_m(p[0], p[1]) + dz)
-                };
+                let place =
+                    |p: [f64; 2], dz: f64| DVec3::new(p[0], p[1], grade.height_m(p[0], p[1]) + dz);
                 piece_mesh(
                     &mut slot.1,
                     (size, b + off.z, tp + off.z),
@@ -230,7 +229,9 @@ pub fn drape_objects(objects: Vec<ObjectDesc>, grade: &Grade) -> Vec<ObjectDesc>
         }
         // A world-space mesh on the level ground (a piece bent by the
         // organic warp, cut ≤ STEP_M) follows h at every vertex.
-        if matches!(o.shape, ShapeDesc::Mesh { .. }) && o.transform.is_identity() && o.repeat.is_empty()
+        if matches!(o.shape, ShapeDesc::Mesh { .. })
+            && o.transform.is_identity()
+            && o.repeat.is_empty()
         {
             let mut one = [o];
             drape_meshes(&mut one, grade);

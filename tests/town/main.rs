@@ -12,6 +12,7 @@ mod generation;
 mod grade;
 mod gt;
 mod highway_loop;
+mod organic;
 mod overpass;
 mod ramps;
 mod signals;

@@ -67,7 +67,10 @@ impl Shear {
         ])
     }
     fn value(&self, t: f64) -> f64 {
-        self.0.iter().map(|w| w.amp_m * (w.k * t + w.phase).sin()).sum()
+        self.0
+            .iter()
+            .map(|w| w.amp_m * (w.k * t + w.phase).sin())
+            .sum()
     }
     fn slope(&self, t: f64) -> f64 {
         self.0

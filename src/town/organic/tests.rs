@@ -65,7 +65,10 @@ fn jacobian_stays_near_a_rotation_and_lanes_keep_their_width() {
             let [[a, b], [c, d]] = w.jacobian(p);
             // Singular values of J: √ of the eigenvalues of JᵀJ.
             let (p11, p12, p22) = (a * a + c * c, a * b + c * d, b * b + d * d);
-            let (m, r) = ((p11 + p22) / 2.0, (((p11 - p22) / 2.0).powi(2) + p12 * p12).sqrt());
+            let (m, r) = (
+                (p11 + p22) / 2.0,
+                (((p11 - p22) / 2.0).powi(2) + p12 * p12).sqrt(),
+            );
             let (hi, lo) = ((m + r).sqrt(), (m - r).sqrt());
             // Near a rotation: J = R·S; S's largest stretch hi peaks where
             // a′ = b′ = ±s: tr JᵀJ = (1 + s²)² + 2s² + 1 = T and hi² =
@@ -73,7 +76,10 @@ fn jacobian_stays_near_a_rotation_and_lanes_keep_their_width() {
             let t = (1.0 + s * s).powi(2) + 2.0 * s * s + 1.0;
             let bound = (t / 2.0 + (t * t / 4.0 - 1.0).sqrt()).sqrt();
             assert!(bound < 1.17);
-            assert!(hi <= bound + 1e-12 && (lo * hi - 1.0).abs() < 1e-12, "{hi} {lo}");
+            assert!(
+                hi <= bound + 1e-12 && (lo * hi - 1.0).abs() < 1e-12,
+                "{hi} {lo}"
+            );
             largest = largest.max(hi);
             // Widths of x-roads and y-roads: 1 / |J·t| (area kept).
             let wx = 1.0 / a.hypot(c);
@@ -114,7 +120,8 @@ fn streets_curve_visibly_with_a_bounded_radius() {
         // on the bent road by the turn of its heading per metre.
         assert!(w.max_bend() < 1.0 / 280.0, "{}", w.max_bend());
         for i in 0..400 {
-            let turn = w.heading_deg([i as f64 + 1.0, 0.0], 0.0) - w.heading_deg([i as f64, 0.0], 0.0);
+            let turn =
+                w.heading_deg([i as f64 + 1.0, 0.0], 0.0) - w.heading_deg([i as f64, 0.0], 0.0);
             let run = {
                 let (p, q) = (w.map([i as f64, 0.0]), w.map([i as f64 + 1.0, 0.0]));
                 (q[0] - p[0]).hypot(q[1] - p[1])
@@ -142,10 +149,31 @@ fn inverse_and_heading_round_trip() {
 fn bent_pieces_follow_the_warp_and_buildings_stay_rigid() {
     let w = warps()[0];
     let road = ground_quad([0.0, -7.0], [60.0, 7.0], 0.0, "asphalt", class("road"));
-    let line = slab([0.0, -0.06], [60.0, 0.06], 0.0, 0.008, "paint", class("road_line"));
-    let mut house = slab([20.0, 20.0], [30.0, 28.0], 0.0, 6.0, "brick", class("building"));
+    let line = slab(
+        [0.0, -0.06],
+        [60.0, 0.06],
+        0.0,
+        0.008,
+        "paint",
+        class("road_line"),
+    );
+    let mut house = slab(
+        [20.0, 20.0],
+        [30.0, 28.0],
+        0.0,
+        6.0,
+        "brick",
+        class("building"),
+    );
     house.instance = Some(1000);
-    let mut roof = slab([21.0, 21.0], [29.0, 27.0], 6.0, 7.0, "tile", class("building"));
+    let mut roof = slab(
+        [21.0, 21.0],
+        [29.0, 27.0],
+        6.0,
+        7.0,
+        "tile",
+        class("building"),
+    );
     roof.instance = Some(1000);
     let out = bend_objects(vec![road, line, house.clone(), roof.clone()], &w, 10.0);
     assert_eq!(out.len(), 4);

@@ -1,0 +1,138 @@
+//! Organic towns (`road_style = "organic"`, town07): the bent town builds
+//! and validates, its roads lie where the warp takes the level roads, its
+//! vehicles stay on the bent roads and never overlap over a long horizon
+//! (frames 0–400 and 20 000–20 100, exact rectangle test in the bent
+//! world), their speed stays within the warp's stretch of the speed limit,
+//! and everything is deterministic and seeded.
+
+use parallax::scene::desc::ShapeDesc;
+use parallax::town::layout::{Layout, Rect};
+use parallax::town::organic::{Warp, MAX_SHEAR};
+use parallax::town::{frame_at, load_town_frame, static_objects, CameraConfig, TownFrame};
+
+use crate::common;
+use common::towns::{town, town_file};
+
+/// Largest stretch of a length along a street (module header of `organic`).
+fn max_stretch() -> f64 {
+    let s = MAX_SHEAR;
+    ((1.0 + s * s).powi(2) + s * s).sqrt()
+}
+
+/// Whether the two vehicles' rectangles overlap (separating axes of both).
+fn overlap(a: &[[f64; 2]; 4], b: &[[f64; 2]; 4]) -> bool {
+    for poly in [a, b] {
+        for k in 0..4 {
+            let (p, q) = (poly[k], poly[(k + 1) % 4]);
+            let n = [q[1] - p[1], p[0] - q[0]];
+            let span = |v: &[[f64; 2]; 4]| {
+                let d: Vec<f64> = v.iter().map(|c| c[0] * n[0] + c[1] * n[1]).collect();
+                (
+                    d.iter().copied().fold(f64::MAX, f64::min),
+                    d.iter().copied().fold(f64::MIN, f64::max),
+                )
+            };
+            let ((a0, a1), (b0, b1)) = (span(a), span(b));
+            if a1 <= b0 + 1e-9 || b1 <= a0 + 1e-9 {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+fn check_frame(f: &TownFrame, w: &Warp, roads: &[Rect]) {
+    let all: Vec<_> = std::iter::once(&f.ego).chain(&f.vehicles).collect();
+    for (i, a) in all.iter().enumerate() {
+        for b in &all[i + 1..] {
+            assert!(
+                !overlap(&a.corners(), &b.corners()),
+                "frame {}: vehicles {} and {} overlap",
+                f.frame,
+                a.id,
+                b.id
+            );
+        }
+        // Every bent corner, carried back to the level grid, lies on a road.
+        for c in a.corners() {
+            let l = w.unmap(c);
+            let at = Rect::centered(l, [0.0, 0.0]);
+            assert!(
+                roads.iter().any(|r| r.contains(&at, 1e-6)),
+                "frame {}: vehicle {} leaves the bent road at {c:?} (level {l:?})",
+                f.frame,
+                a.id
+            );
+        }
+    }
+}
+
+#[test]
+fn organic_vehicles_stay_on_the_bent_roads_and_never_overlap() {
+    let desc = town("town07");
+    let w = Warp::new(&desc, 11).expect("town07 is organic");
+    let roads = Layout::new(&desc).road_rects();
+    let v_max = desc.speed_kmh / 3.6 / desc.fps;
+    let (mut fastest, mut turned): (f64, f64) = (0.0, 0.0);
+    for range in [0..400u64, 20_000..20_100] {
+        let mut prev: Option<TownFrame> = None;
+        for k in range {
+            let f = frame_at(&desc, 11, k);
+            check_frame(&f, &w, &roads);
+            if let Some(p) = &prev {
+                for (a, b) in f
+                    .vehicles
+                    .iter()
+                    .zip(&p.vehicles)
+                    .filter(|(a, b)| a.id == b.id)
+                {
+                    let step = (a.position[0] - b.position[0]).hypot(a.position[1] - b.position[1]);
+                    fastest = fastest.max(step);
+                }
+            }
+            for v in &f.vehicles {
+                // Headings leave the grid's four directions on bent roads.
+                let off = (v.heading_deg.rem_euclid(90.0) + 45.0).rem_euclid(90.0) - 45.0;
+                turned = turned.max(off.abs());
+            }
+            prev = Some(f);
+        }
+    }
+    assert!(
+        fastest <= v_max * max_stretch() + 1e-9,
+        "{fastest} > {v_max}"
+    );
+    assert!(fastest > 0.9 * v_max, "{fastest}");
+    assert!(turned > 3.0, "headings stay on the grid: {turned}");
+}
+
+#[test]
+fn organic_town_builds_bent_roads_and_is_deterministic() {
+    let desc = town("town07");
+    let w = Warp::new(&desc, 3).unwrap();
+    let loaded = load_town_frame(&desc, 3, 0, CameraConfig::Normal, &town_file("town07"))
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert!(loaded.triangle_estimate > 0);
+    let objects = static_objects(&desc, 3);
+    assert_eq!(objects, static_objects(&desc, 3));
+    assert_ne!(objects, static_objects(&desc, 4));
+    assert_eq!(frame_at(&desc, 3, 77), frame_at(&desc, 3, 77));
+    // Every road vertex carried back lies on the level road grid (the
+    // asphalt's own rectangles, within the bend's cut error).
+    let roads = Layout::new(&desc).road_rects();
+    let mut vertices = 0;
+    for o in objects
+        .iter()
+        .filter(|o| o.semantic.as_deref() == Some("road"))
+    {
+        let ShapeDesc::Mesh { positions, .. } = &o.shape else {
+            panic!("a long road piece was not bent: {o:?}")
+        };
+        for p in positions {
+            let at = Rect::centered(w.unmap([p[0], p[1]]), [0.0, 0.0]);
+            assert!(roads.iter().any(|r| r.contains(&at, 1e-6)), "{p:?}");
+            vertices += 1;
+        }
+    }
+    assert!(vertices > 500, "{vertices}");
+}
