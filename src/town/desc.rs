@@ -17,7 +17,7 @@ pub struct TownDesc {
     /// Road network style: `grid` (straight streets), `organic` (the grid
     /// bent by a smooth seeded warp into curving streets, see `organic`;
     /// no `ramps` or `overpass`) or `highway` (twin-arm masts, guard rails
-    /// and highway signs along the roads, see docs/towns.md).
+    /// and billboards along the roads, see docs/towns.md).
     #[serde(default)]
     pub road_style: RoadStyle,
     /// Size of the road grid along x and y, metres (rounded to whole blocks).
@@ -142,7 +142,7 @@ pub enum RoadStyle {
     /// warp (streets keep their width within 3.3 %, headings turn ≤ 8.7°).
     Organic,
     /// Fast roads: highway street furniture (twin-arm masts, guard rails
-    /// along the outer roads, highway signs) whatever the speed.
+    /// along the outer roads, billboards) whatever the speed.
     Highway,
 }
 
@@ -282,6 +282,12 @@ impl TownDesc {
                 return Err("roundabout: needs 2 × 3 blocks or more and block_size_m ≥ 80".into());
             }
         }
+        if self.road_style == RoadStyle::Organic && (self.ramps || self.overpass) {
+            return Err(format!(
+                "road_style: \"organic\" bends every street, so it allows no ramps or overpass (got ramps = {}, overpass = {})",
+                self.ramps, self.overpass
+            ));
+        }
         let ramp_block = super::ramps::min_ramp_block_m(self);
         if self.ramps && self.block_size_m < ramp_block {
             return Err(format!(
@@ -290,12 +296,6 @@ impl TownDesc {
             ));
         }
         self.validate_loop_corners()?;
-        if self.road_style == RoadStyle::Organic && (self.ramps || self.overpass) {
-            return Err(format!(
-                "road_style: \"organic\" bends every street, so it allows no ramps or overpass (got ramps = {}, overpass = {})",
-                self.ramps, self.overpass
-            ));
-        }
         let [lo, hi] = self.floors;
         if !(1 <= lo && lo <= hi && hi <= 12) {
             return Err(format!("floors: need 1 ≤ min ≤ max ≤ 12, got [{lo}, {hi}]"));

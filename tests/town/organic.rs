@@ -136,3 +136,14 @@ fn organic_town_builds_bent_roads_and_is_deterministic() {
     }
     assert!(vertices > 500, "{vertices}");
 }
+
+#[test]
+fn organic_towns_refuse_ramps_and_overpass_by_name() {
+    let text = std::fs::read_to_string(town_file("town07")).unwrap();
+    let bad = format!("{text}\nramps = true\n");
+    let err = parallax::town::parse_town_str(&bad, std::path::Path::new("t.toml")).unwrap_err();
+    assert!(
+        err.starts_with("t.toml: road_style: \"organic\"") && err.contains("ramps = true"),
+        "{err}"
+    );
+}
