@@ -106,7 +106,10 @@ fn organic_vehicles_stay_on_the_bent_roads_and_never_overlap() {
             prev = Some(f);
         }
     }
-    assert!(fastest <= v_max * max_stretch() + 1e-9, "{fastest} > {v_max}");
+    assert!(
+        fastest <= v_max * max_stretch() + 1e-9,
+        "{fastest} > {v_max}"
+    );
     assert!(fastest > 0.9 * v_max, "{fastest}");
     assert!(worst < 1.0, "a vehicle moves {worst}° off its heading");
     assert!(bent > 100, "only {bent} vehicle steps on bent straights");
