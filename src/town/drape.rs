@@ -36,7 +36,7 @@ const LONG_BOX_M: f64 = 6.0;
 
 /// A heading about z, or `None` when the transform also turns about x or
 /// y or scales (such pieces are moved, never draped).
-fn heading_only(t: &TransformDesc) -> Option<f64> {
+pub fn heading_only(t: &TransformDesc) -> Option<f64> {
     if t.scale.is_some() {
         return None;
     }
@@ -48,7 +48,7 @@ fn heading_only(t: &TransformDesc) -> Option<f64> {
 }
 
 /// Whether a building part: labelled with a building's instance id.
-fn building_id(o: &ObjectDesc) -> Option<u16> {
+pub fn building_id(o: &ObjectDesc) -> Option<u16> {
     o.instance
         .filter(|&i| i >= BUILDING_ID_BASE && (i as u32) < FURNITURE_ID_BASE)
 }
@@ -77,13 +77,19 @@ struct Grid {
     xy: Vec<[f64; 2]>,
 }
 
+/// Longest side of one piece of a flat piece of `size` metres cut into
+/// pieces of at most `step` (wide ground sheets: twice that).
+fn piece_step(size: [f64; 2], step: f64) -> f64 {
+    if size[0].min(size[1]) > 100.0 {
+        step * (SHEET_STEP_M / STEP_M)
+    } else {
+        step
+    }
+}
+
 impl Grid {
-    fn new(size: [f64; 2], at: [f64; 2], heading_deg: f64) -> Grid {
-        let step = if size[0].min(size[1]) > 100.0 {
-            SHEET_STEP_M
-        } else {
-            STEP_M
-        };
+    fn new(size: [f64; 2], at: [f64; 2], heading_deg: f64, step: f64) -> Grid {
+        let step = piece_step(size, step);
         let n = size.map(|s| (s / step).ceil().max(1.0) as usize);
         let h = heading_deg.to_radians();
         let (c, s) = (h.cos(), h.sin());
@@ -112,14 +118,21 @@ impl Grid {
     }
 }
 
-/// Adds one layer of the grid at heights h + `dz`, facing up or down;
-/// returns the index of its first vertex.
-fn layer(m: &mut LocalMesh, g: &Grid, grade: &Grade, dz: f64, up: bool) -> u32 {
+/// Where a point of a level piece goes: world (x, y) and height above
+/// the level ground → world position.
+pub type Place<'a> = &'a dyn Fn([f64; 2], f64) -> DVec3;
+
+/// Adds one layer of the grid at heights `dz` placed by `place`, facing up
+/// or down (`Some(up)`), or only its vertices (`None`); returns the index
+/// of its first vertex.
+fn layer(m: &mut LocalMesh, g: &Grid, place: Place, dz: f64, up: Option<bool>) -> u32 {
     let base = m.positions.len() as u32;
     for p in &g.xy {
-        m.positions
-            .push(DVec3::new(p[0], p[1], grade.height_m(p[0], p[1]) + dz));
+        m.positions.push(place(*p, dz));
     }
+    let Some(up) = up else {
+        return base;
+    };
     for j in 0..g.n[1] {
         for i in 0..g.n[0] {
             let [a, b, c, d] = [
@@ -139,20 +152,23 @@ fn layer(m: &mut LocalMesh, g: &Grid, grade: &Grade, dz: f64, up: bool) -> u32 {
     base
 }
 
-/// Appends the draped piece (a surface, or a box between two layers) to `m`.
-fn drape_piece(
+/// Appends a flat piece (a surface, or a box between two layers; size,
+/// bottom and top z in its level frame at `at`, turned by `heading_deg`)
+/// cut into pieces ≤ `step` metres, each grid point placed by `place`;
+/// a box without `floor` has walls and top only.
+pub fn piece_mesh(
     m: &mut LocalMesh,
-    grade: &Grade,
     (size, bottom, top): ([f64; 2], f64, f64),
-    at: [f64; 2],
-    heading_deg: f64,
+    (at, heading_deg): ([f64; 2], f64),
+    (step, floor): (f64, bool),
+    place: Place,
 ) {
-    let g = Grid::new(size, at, heading_deg);
-    let t = layer(m, &g, grade, top, true);
+    let g = Grid::new(size, at, heading_deg, step);
+    let t = layer(m, &g, place, top, Some(true));
     if top == bottom {
         return;
     }
-    let b = layer(m, &g, grade, bottom, false);
+    let b = layer(m, &g, place, bottom, floor.then_some(false));
     // Walls: each boundary edge (counter-clockwise from above) with the
     // outside on its right.
     let ring = g.ring();
@@ -195,18 +211,32 @@ pub fn drape_objects(objects: Vec<ObjectDesc>, grade: &Grade) -> Vec<ObjectDesc>
             for off in repeat_offsets(&o.repeat) {
                 let at = [t[0] + off.x, t[1] + off.y];
                 let (size, b, tp) = piece;
-                drape_piece(
+                let place =
+                    |p: [f64; 2], dz: f64| DVec3::new(p[0], p[1], grade.height_m(p[0], p[1]) + dz);
+                piece_mesh(
                     &mut slot.1,
-                    grade,
                     (size, b + off.z, tp + off.z),
-                    at,
-                    heading,
+                    (at, heading),
+                    (STEP_M, true),
+                    &place,
                 );
             }
             continue;
         }
         if let Some(id) = building_id(&o) {
             out.push(lifted(o, base[&id]));
+            continue;
+        }
+        // A world-space mesh on the level ground (a piece bent by the
+        // organic warp, cut ≤ STEP_M) follows h at every vertex.
+        if matches!(o.shape, ShapeDesc::Mesh { .. })
+            && o.transform.is_identity()
+            && o.repeat.is_empty()
+        {
+            let mut one = [o];
+            drape_meshes(&mut one, grade);
+            let [o] = one;
+            out.push(o);
             continue;
         }
         // Repeat copies spread over the ground each stand at their own point.

@@ -9,6 +9,8 @@
 //! front edge of its roof, so the `normal` view does not see it). A graded
 //! town (`road_grade_m`) is generated level, then laid onto its ground
 //! field (`grade`, `drape`); vehicles take z, pitch and roll from it. An
+//! organic town is generated as a grid, then bent by a planar warp
+//! (`organic`) before the grade. An
 //! overpass (`overpass`) adds its road, deck and traffic loop on top.
 //!
 //! Instance ids: buildings from 1000, every pole, tree, bush, sign and
@@ -27,6 +29,7 @@ pub mod grade;
 pub mod layout;
 pub mod lettering;
 pub mod materials;
+pub mod organic;
 pub mod overpass;
 pub mod parts;
 pub mod people;
@@ -82,6 +85,8 @@ pub struct StaticTown<'a> {
     pub grade: Option<grade::Grade>,
     /// The overpass (`None` without one).
     pub overpass: Option<overpass::Overpass>,
+    /// The organic warp (`None` unless `road_style = "organic"`).
+    pub warp: Option<organic::Warp>,
 }
 
 impl<'a> StaticTown<'a> {
@@ -99,6 +104,7 @@ impl<'a> StaticTown<'a> {
             terrain,
             grade: grade::Grade::new(desc, seed),
             overpass,
+            warp: organic::Warp::new(desc, seed),
         }
     }
 
@@ -124,6 +130,14 @@ impl<'a> StaticTown<'a> {
             clear_for_overpass(o, &mut out);
         }
         number_objects(&mut out);
+        if let Some(w) = &self.warp {
+            // Graded towns cut finer, for the grade's chord error.
+            let step = match self.grade {
+                Some(_) => drape::STEP_M,
+                None => organic::bend::STEP_M,
+            };
+            out = organic::bend::bend_objects(out, w, step);
+        }
         match &self.grade {
             Some(g) => drape::drape_objects(out, g),
             None => out,
@@ -135,6 +149,9 @@ impl<'a> StaticTown<'a> {
     pub fn meshes(&self) -> Vec<ObjectDesc> {
         let mut out: Vec<ObjectDesc> = self.terrain.iter().map(|t| t.object()).collect();
         out.extend(ramps::ramp_meshes(&self.sites));
+        if let Some(w) = &self.warp {
+            organic::bend::bend_meshes(&mut out, w);
+        }
         if let Some(g) = &self.grade {
             drape::drape_meshes(&mut out, g);
         }

@@ -370,17 +370,22 @@ pub fn drive_frame_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> Tow
     let t = clock as f64 / desc.fps;
     let me = ego::ego_at(desc, seed, drive, frame);
     let grade = Grade::new(desc, seed);
+    let warp = super::organic::Warp::new(desc, seed);
     let overpass = Overpass::new(desc, &l);
     let vehicles = background(desc, seed, &plan, overpass.as_ref(), t)
         .into_iter()
         .filter(|v| !me.removed.contains(&v.id))
         .map(|v| match (&overpass, plan.routes[v.route].route.kind) {
             (Some(_), RouteKind::Overpass) => v,
-            _ => on_ground(v, grade.as_ref()),
+            // Organic towns bend the level pose first (a planar warp).
+            _ => on_ground(bent(warp.as_ref(), v), grade.as_ref()),
         })
         .collect();
     let mut pedestrians = walkers::pedestrians(desc, &l, &plan.schedule, seed, t);
     pedestrians.retain(|p| !me.removed_pedestrians.contains(&p.id));
+    if let Some(w) = &warp {
+        pedestrians = pedestrians.into_iter().map(|p| w.pedestrian(p)).collect();
+    }
     if let Some(g) = &grade {
         for p in &mut pedestrians {
             p.position[2] += g.height_m(p.position[0], p.position[1]);
@@ -389,7 +394,7 @@ pub fn drive_frame_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> Tow
     TownFrame {
         frame: clock,
         time_s: t,
-        ego: on_ground(me.pose, grade.as_ref()),
+        ego: on_ground(bent(warp.as_ref(), me.pose), grade.as_ref()),
         vehicles,
         pedestrians,
     }
@@ -400,7 +405,9 @@ pub fn drive_frame_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> Tow
 pub fn ego_pose(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> (VehiclePose, f64) {
     let me = ego::ego_at(desc, seed, drive, frame);
     let grade = Grade::new(desc, seed);
-    (on_ground(me.pose, grade.as_ref()), me.speed_mps)
+    let warp = super::organic::Warp::new(desc, seed);
+    let pose = on_ground(bent(warp.as_ref(), me.pose), grade.as_ref());
+    (pose, me.speed_mps)
 }
 
 /// Every background vehicle at time `t` in closed form: level grid
@@ -493,6 +500,14 @@ fn on_overpass(mut v: VehiclePose, o: &Overpass) -> VehiclePose {
     v.position[2] = z;
     v.pitch_deg = pitch;
     v
+}
+
+/// The level pose bent by an organic town's warp (unchanged without one).
+fn bent(warp: Option<&super::organic::Warp>, v: VehiclePose) -> VehiclePose {
+    match warp {
+        Some(w) => w.vehicle(v),
+        None => v,
+    }
 }
 
 /// The pose set on the ground field: z from h at the footprint centre,
