@@ -3,10 +3,11 @@
 //!
 //! A prototype's BVH depends only on its meshes in its local frame, not on
 //! the frame's render origin, so the frames of one sequence share every
-//! static prototype. Entries are keyed by the meshes' exact bits (hash, then
-//! a full comparison), never by names: a cached scene is used only for
-//! geometry identical to what it was built from, and Embree's builds are
-//! deterministic, so a cached build gives the bytes a fresh one gives. After
+//! static prototype. Entries are keyed by a 128-bit hash of the meshes'
+//! exact bits (positions and indices; never by names, and no copy of the
+//! data kept): a cached scene is used only for geometry identical to what it
+//! was built from, and Embree's builds are deterministic, so a cached build
+//! gives the bytes a fresh one gives. After
 //! each build the cache keeps exactly that build's prototypes, so it holds
 //! one frame's worth at most (the previous frame's, for the next one).
 
@@ -67,10 +68,9 @@ pub(super) struct Inner {
     reused: usize,
 }
 
-/// One prototype: its meshes' bits and its committed scenes.
+/// One prototype: the hash of its meshes' bits and its committed scenes.
 struct Entry {
-    hash: u64,
-    meshes: Vec<(Vec<u32>, Vec<[u32; 3]>)>,
+    hash: [u64; 2],
     scenes: Pair,
 }
 
@@ -103,9 +103,7 @@ impl Inner {
         for p in 0..geo.prototypes.len() {
             let meshes = &geo.prototypes[p];
             let hash = hash_meshes(meshes);
-            let found = old
-                .iter()
-                .position(|e| e.hash == hash && same_meshes(&e.meshes, meshes));
+            let found = old.iter().position(|e| e.hash == hash);
             let mut entry = match found {
                 Some(i) => {
                     self.reused += 1;
@@ -113,10 +111,6 @@ impl Inner {
                 }
                 None => Entry {
                     hash,
-                    meshes: meshes
-                        .iter()
-                        .map(|m| (bits(m), m.triangles.to_vec()))
-                        .collect(),
                     scenes: (commit(device, geo, p, SceneFlags::ROBUST)?, None),
                 },
             };
@@ -141,30 +135,21 @@ fn commit(
     Ok(Arc::new(commit_scene(device, &g, flags)?))
 }
 
-/// The position bits of a mesh, in order.
-fn bits(m: &TriMeshRef) -> Vec<u32> {
-    m.positions
-        .iter()
-        .flat_map(|p| p.to_array().map(f32::to_bits))
-        .collect()
-}
-
-fn hash_meshes(meshes: &[TriMeshRef]) -> u64 {
-    let mut h = std::collections::hash_map::DefaultHasher::new();
-    meshes.len().hash(&mut h);
-    for m in meshes {
-        bits(m).hash(&mut h);
-        m.triangles.hash(&mut h);
-    }
-    h.finish()
-}
-
-fn same_meshes(held: &[(Vec<u32>, Vec<[u32; 3]>)], meshes: &[TriMeshRef]) -> bool {
-    held.len() == meshes.len()
-        && held
-            .iter()
-            .zip(meshes)
-            .all(|((p, t), m)| t.as_slice() == m.triangles && *p == bits(m))
+/// Two independent 64-bit hashes (SipHash with fixed keys, the second
+/// salted) of every position's bits and every index of `meshes`, in order.
+fn hash_meshes(meshes: &[TriMeshRef]) -> [u64; 2] {
+    [0u8, 1].map(|salt| {
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        (salt, meshes.len()).hash(&mut h);
+        for m in meshes {
+            m.positions.len().hash(&mut h);
+            for p in m.positions {
+                p.to_array().map(f32::to_bits).hash(&mut h);
+            }
+            m.triangles.hash(&mut h);
+        }
+        h.finish()
+    })
 }
 
 #[cfg(test)]
