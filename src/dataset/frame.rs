@@ -62,7 +62,7 @@ impl Towns {
 /// same bytes whether the cache was filled by an earlier job or not.
 #[derive(Default)]
 pub struct StaticCache {
-    town: Mutex<Option<((String, u64), Arc<StaticScene>)>>,
+    town: Mutex<Option<HeldTown>>,
     accel: AccelCache,
 }
 
@@ -83,6 +83,9 @@ impl StaticCache {
         }
     }
 }
+
+/// (town name, seed) and its static part.
+type HeldTown = ((String, u64), Arc<StaticScene>);
 
 /// A rendered frame, still in memory.
 pub struct RenderedFrame {
