@@ -25,8 +25,11 @@ use embree3::{
     BufferUsage, BuildQuality, Device, Format, Geometry, GeometryKind, Hit8, IntersectContext,
     Ray as RtcRay, Ray8, RayHit, RayHit8, Scene, SceneFlags, ValidMask, ValidMaskN, INVALID_ID,
 };
+use std::sync::Arc;
+
 use glam::{Affine3A, Mat3A, Vec3};
 
+use super::embree_cache::PrototypeCache;
 use super::{validate_geometry, Accel, AccelError, AccelGeometry, Hit, Ray};
 
 /// Packet width of the batch path.
@@ -43,8 +46,9 @@ pub struct EmbreeAccel {
     decode: Decode,
     build_seconds: [f64; 2],
     /// Prototype scenes (robust, then shading twins): the instance
-    /// geometries of the scenes above point at them.
-    _prototypes: Vec<Scene<'static>>,
+    /// geometries of the scenes above point at them (shared with a
+    /// `PrototypeCache` when built through one).
+    _prototypes: Vec<Arc<Scene<'static>>>,
 }
 
 /// What turns an Embree hit into a `Hit`: the id of instance 0 and each
@@ -84,7 +88,7 @@ impl std::fmt::Debug for EmbreeAccel {
     }
 }
 
-fn embree_error(what: &str, e: embree3::Error) -> AccelError {
+pub(super) fn embree_error(what: &str, e: embree3::Error) -> AccelError {
     AccelError::Backend(format!("embree: {what}: {e:?}"))
 }
 
@@ -101,9 +105,23 @@ impl EmbreeAccel {
     /// queries (without it they use the watertight scene). Empty meshes are
     /// skipped (their id stays unused).
     pub fn build_with(geo: &AccelGeometry, shading_twin: bool) -> Result<EmbreeAccel, AccelError> {
+        Self::build_cached(geo, shading_twin, &PrototypeCache::default())
+    }
+
+    /// As [`EmbreeAccel::build_with`], taking every prototype scene whose
+    /// meshes are bit for bit those of an earlier build from `cache` (and
+    /// leaving the cache holding exactly this build's prototypes): the
+    /// static world's prototypes are committed once per sequence. Embree's
+    /// builds are deterministic, so the result is the one built fresh.
+    pub fn build_cached(
+        geo: &AccelGeometry,
+        shading_twin: bool,
+        cache: &PrototypeCache,
+    ) -> Result<EmbreeAccel, AccelError> {
         // Embree does not bounds-check indices: validation is a safety matter here.
         validate_geometry(geo)?;
-        let device = Device::new().map_err(|e| embree_error("device", e))?;
+        let mut cache = cache.lock();
+        let device = cache.device()?;
         let mut geometries = geometries(&device, &geo.flat())?;
         let inst_base = geo.sphere_geom_id() + 1;
         let t = std::time::Instant::now();
@@ -111,8 +129,9 @@ impl EmbreeAccel {
         // shared vertices/edges of a closed mesh slip through
         // (`rays_through_shared_edges_and_vertices_never_leak`), which would
         // punch holes into ground-truth depth.
-        let (robust_protos, robust_insts) =
-            instance_geometries(&device, geo, inst_base, SceneFlags::ROBUST)?;
+        let protos = cache.prototypes(&device, geo, shading_twin)?;
+        let robust_protos: Vec<_> = protos.iter().map(|p| p.0.clone()).collect();
+        let robust_insts = instance_geometries(&device, geo, &robust_protos, inst_base)?;
         let flat_len = geometries.len();
         geometries.extend(robust_insts);
         let scene = commit_scene(&device, &geometries, SceneFlags::ROBUST)?;
@@ -120,8 +139,9 @@ impl EmbreeAccel {
         let t = std::time::Instant::now();
         let mut prototypes = robust_protos;
         let shading = if shading_twin {
-            let (protos, insts) = instance_geometries(&device, geo, inst_base, SceneFlags::NONE)?;
-            prototypes.extend(protos);
+            let twins: Vec<_> = protos.iter().filter_map(|p| p.1.clone()).collect();
+            let insts = instance_geometries(&device, geo, &twins, inst_base)?;
+            prototypes.extend(twins);
             geometries.truncate(flat_len);
             geometries.extend(insts);
             Some(commit_scene(&device, &geometries, SceneFlags::NONE)?)
@@ -254,7 +274,7 @@ fn load_lanes(packet: &mut Ray8, rays: &[Ray]) -> ValidMaskN<LANES> {
 }
 
 /// Embree geometries (with their ids) for every non-empty mesh and the sphere set.
-fn geometries(
+pub(super) fn geometries(
     device: &Device,
     geo: &AccelGeometry,
 ) -> Result<Vec<(Geometry<'static>, u32)>, AccelError> {
@@ -287,23 +307,14 @@ fn geometries(
     Ok(out)
 }
 
-/// One committed child scene per prototype (with `flags`) and an instance
-/// geometry (id `inst_base + k`) per placement of a non-empty prototype.
-#[allow(clippy::type_complexity)]
+/// An instance geometry (id `inst_base + k`) per placement of a non-empty
+/// prototype, over the committed prototype scenes `protos`.
 fn instance_geometries(
     device: &Device,
     geo: &AccelGeometry,
+    protos: &[Arc<Scene<'static>>],
     inst_base: u32,
-    flags: SceneFlags,
-) -> Result<(Vec<Scene<'static>>, Vec<(Geometry<'static>, u32)>), AccelError> {
-    if geo.instances.is_empty() {
-        return Ok((Vec::new(), Vec::new()));
-    }
-    let mut protos = Vec::with_capacity(geo.prototypes.len());
-    for p in 0..geo.prototypes.len() {
-        let geometries = geometries(device, &geo.prototype(p))?;
-        protos.push(commit_scene(device, &geometries, flags)?);
-    }
+) -> Result<Vec<(Geometry<'static>, u32)>, AccelError> {
     let empty: Vec<bool> = geo
         .prototypes
         .iter()
@@ -321,7 +332,7 @@ fn instance_geometries(
         builder.set_transform(0, &column_major(inst.render_from_local));
         out.push((builder.commit(), inst_base + k as u32));
     }
-    Ok((protos, out))
+    Ok(out)
 }
 
 /// A 4×4 column-major matrix of an affine map (Embree's transform format).
@@ -334,7 +345,7 @@ fn column_major(m: Affine3A) -> [f32; 16] {
 }
 
 /// Commits a scene (high build quality) over `geometries` with `flags`.
-fn commit_scene(
+pub(super) fn commit_scene(
     device: &Device,
     geometries: &[(Geometry<'static>, u32)],
     flags: SceneFlags,

@@ -25,6 +25,8 @@ mod bvh;
 mod bvh_build;
 #[cfg(feature = "embree")]
 mod embree;
+#[cfg(feature = "embree")]
+mod embree_cache;
 mod instances;
 mod prim;
 mod soup;
@@ -39,6 +41,8 @@ pub use brute::BruteAccel;
 pub use bvh::BvhAccel;
 #[cfg(feature = "embree")]
 pub use embree::EmbreeAccel;
+#[cfg(feature = "embree")]
+pub use embree_cache::PrototypeCache;
 
 /// A closest-hit record: cheap to copy; the scene turns it into a surface
 /// interaction.
@@ -458,4 +462,50 @@ pub fn build_accel(backend: Backend, geo: &AccelGeometry) -> Result<AnyAccel, Ac
         Backend::Bvh => Ok(AnyAccel::Bvh(BvhAccel::build(geo))),
         Backend::Brute => Ok(AnyAccel::Brute(BruteAccel::build(geo))),
     }
+}
+
+/// What accelerator builds keep for the next build of the same static
+/// world: Embree's committed prototype scenes (`PrototypeCache`); the
+/// pure-Rust backends keep nothing. Send + Sync; one build at a time uses it.
+#[derive(Debug, Default)]
+pub struct AccelCache {
+    #[cfg(feature = "embree")]
+    embree: PrototypeCache,
+}
+
+impl AccelCache {
+    /// Prototype scenes held (Embree; 0 otherwise).
+    pub fn prototypes(&self) -> usize {
+        #[cfg(feature = "embree")]
+        return self.embree.len();
+        #[cfg(not(feature = "embree"))]
+        0
+    }
+
+    /// Prototype scenes the last build took from the cache (Embree; 0 otherwise).
+    pub fn reused(&self) -> usize {
+        #[cfg(feature = "embree")]
+        return self.embree.reused();
+        #[cfg(not(feature = "embree"))]
+        0
+    }
+}
+
+/// As [`build_accel`], reusing what `cache` holds of earlier builds (the
+/// result is the one [`build_accel`] gives); `shading_twin` as in
+/// [`EmbreeAccel::build_with`].
+pub fn build_accel_cached(
+    backend: Backend,
+    geo: &AccelGeometry,
+    shading_twin: bool,
+    cache: &AccelCache,
+) -> Result<AnyAccel, AccelError> {
+    #[cfg(feature = "embree")]
+    if backend == Backend::Embree {
+        validate_geometry(geo)?;
+        let a = EmbreeAccel::build_cached(geo, shading_twin, &cache.embree)?;
+        return Ok(AnyAccel::Embree(a));
+    }
+    let _ = (shading_twin, cache);
+    build_accel(backend, geo)
 }

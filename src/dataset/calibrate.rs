@@ -22,7 +22,7 @@ use std::time::Instant;
 
 use super::config::DatasetConfig;
 use super::estimate::{calibration_job, class_mix, ClassCost};
-use super::frame::{render_job, write_job, Quality, Towns};
+use super::frame::{render_job, write_job, Quality, StaticCache, Towns};
 use super::shard::Shard;
 use crate::accel::Backend;
 
@@ -143,7 +143,15 @@ fn measure(
         }
     };
     let c0 = process_cpu_seconds();
-    let r = render_job(config, towns, job, q, backend, &progress)?;
+    let r = render_job(
+        config,
+        towns,
+        job,
+        q,
+        backend,
+        &StaticCache::default(),
+        &progress,
+    )?;
     let c1 = process_cpu_seconds();
     let take = |m: Mark| m.into_inner().unwrap_or_else(|e| e.into_inner());
     let (Some((cs, ts)), Some((ce, te))) = (take(start), take(end)) else {

@@ -7,12 +7,13 @@
 use std::collections::BTreeMap;
 use std::io;
 use std::path::Path;
+use std::sync::{Arc, Mutex};
 
 use super::config::DatasetConfig;
 use super::layouts::write_extra_layouts;
 use super::manifest::{DisparityRecord, ManifestLine, RenderRecord};
 use super::plan::{drive_index, frame_seed, sequence_seed, town_frame, town_seed, Job};
-use crate::accel::Backend;
+use crate::accel::{AccelCache, Backend};
 use crate::camera::StereoRig;
 use crate::output::frame::{write_native_frame, CameraFile, WriteOptions};
 use crate::output::FileRecord;
@@ -20,7 +21,7 @@ use crate::render::recipe::{
     FrameRecipe, FrameRender, FrameSource, FrameSpec, Overrides, WeatherChoice,
 };
 use crate::render::FrameOutput;
-use crate::town::{load_named_town, NamedTown, TownSource};
+use crate::town::{load_named_town, NamedTown, StaticScene, TownSource};
 
 /// The town descriptions a configuration names, loaded once.
 pub struct Towns {
@@ -53,6 +54,38 @@ impl Towns {
             .collect()
     }
 }
+
+/// What the jobs of one town (name and seed) share, kept while consecutive
+/// jobs render it: the static part of the town (`StaticScene`) and the
+/// accelerators of its prototypes (`AccelCache`). Everything cached is a pure
+/// function of the town, its seed and geometry bits, so a job renders the
+/// same bytes whether the cache was filled by an earlier job or not.
+#[derive(Default)]
+pub struct StaticCache {
+    town: Mutex<Option<HeldTown>>,
+    accel: AccelCache,
+}
+
+impl StaticCache {
+    /// The static part of `town` with `seed`: the one held, else generated
+    /// (dropping what was held for another town or seed).
+    fn scene(&self, name: &str, town: &NamedTown, seed: u64) -> Arc<StaticScene> {
+        let mut held = self.town.lock().unwrap_or_else(|e| e.into_inner());
+        match &*held {
+            Some((key, s)) if key.0 == name && key.1 == seed => s.clone(),
+            _ => {
+                // Drop the old town before generating the new one.
+                *held = None;
+                let s = Arc::new(StaticScene::new(&town.desc, seed));
+                *held = Some(((name.to_string(), seed), s.clone()));
+                s
+            }
+        }
+    }
+}
+
+/// (town name, seed) and its static part.
+type HeldTown = ((String, u64), Arc<StaticScene>);
 
 /// A rendered frame, still in memory.
 pub struct RenderedFrame {
@@ -90,21 +123,25 @@ impl Quality {
     }
 }
 
-/// Renders `job` at `quality`; `progress(views_done, views)` is called as views finish.
+/// Renders `job` at `quality` with what `cache` holds of its town (see
+/// [`StaticCache`]); `progress(views_done, views)` is called as views finish.
 pub fn render_job(
     config: &DatasetConfig,
     towns: &Towns,
     job: &Job,
     quality: Quality,
     backend: Backend,
+    cache: &StaticCache,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<RenderedFrame, String> {
     let town = towns.get(&job.town)?;
     let t_frame = town_frame(config, job);
     let t_seed = town_seed(config.seed, &job.town);
     let drive = drive_index(config, job);
-    let source =
-        FrameSource::town(town, t_seed, (drive, t_frame), job.config).map_err(|e| e.to_string())?;
+    let stat = cache.scene(&job.town, town, t_seed);
+    let source = FrameSource::town_with(&stat, town, t_seed, (drive, t_frame), job.config)
+        .map_err(|e| e.to_string())?;
+    drop(stat);
     let spec = FrameSpec {
         overrides: Overrides {
             spp: Some(quality.spp),
@@ -130,7 +167,9 @@ pub fn render_job(
         backend,
     };
     let recipe = FrameRecipe::new(source, &spec).map_err(|e| e.to_string())?;
-    let prepared = recipe.prepare().map_err(|e| e.to_string())?;
+    let prepared = recipe
+        .prepare_cached(&cache.accel)
+        .map_err(|e| e.to_string())?;
     let FrameRender { out, meta } = prepared.render(progress);
     Ok(RenderedFrame {
         rig: prepared.rig,
@@ -209,3 +248,7 @@ pub fn frame_complete(root: &Path, line: &ManifestLine, check_hashes: bool) -> b
         }
     })
 }
+
+#[cfg(test)]
+#[path = "frame_cache_tests.rs"]
+mod cache_tests;

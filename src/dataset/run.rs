@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use super::config::DatasetConfig;
-use super::frame::{frame_complete, render_job, write_job, Quality, Towns};
+use super::frame::{frame_complete, render_job, write_job, Quality, StaticCache, Towns};
 use super::manifest::{
     append_line, cut_torn_tail, latest_lines, read_manifests, ManifestLine, ReadLine, RenderRecord,
     FAILURES_DIR, MANIFEST_DIR,
@@ -181,6 +181,7 @@ pub fn run_dataset(
         stop,
         manifest: start.manifest,
         progress: Progress::new(jobs.len() as u64, views as u64),
+        cache: StaticCache::default(),
     };
     if start.swept > 0 {
         run.progress.note(&format!(
@@ -297,6 +298,8 @@ struct Run<'a> {
     stop: &'a StopGuard,
     manifest: PathBuf,
     progress: Progress,
+    /// The static world of the town being rendered (jobs come town by town).
+    cache: StaticCache,
 }
 
 impl Run<'_> {
@@ -351,6 +354,7 @@ impl Run<'_> {
             job,
             Quality::of(config),
             self.opts.backend,
+            &self.cache,
             &cb,
         );
         let r = match r {

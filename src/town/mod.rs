@@ -255,6 +255,28 @@ pub fn dynamic_objects(frame: &TownFrame) -> Vec<ObjectDesc> {
     out
 }
 
+/// What a town frame holds that does not depend on the frame: the static
+/// objects (`StaticTown::objects`) and the generated meshes, generated once
+/// per (description, seed) and shared by every frame (`town_scene_with`).
+#[derive(Clone, Debug)]
+pub struct StaticScene {
+    /// Roads, buildings, vegetation and furniture (lamps unlit).
+    pub objects: Vec<ObjectDesc>,
+    /// The generated meshes (hills, ramps, overpass).
+    pub meshes: Vec<ObjectDesc>,
+}
+
+impl StaticScene {
+    /// Generates the static part of the town of `desc` and `seed`.
+    pub fn new(desc: &TownDesc, seed: u64) -> StaticScene {
+        let town = StaticTown::new(desc, seed);
+        StaticScene {
+            objects: town.objects(),
+            meshes: town.meshes(),
+        }
+    }
+}
+
 /// The resolved scene description of one town frame (of drive 0) seen
 /// from `config`, generated meshes included.
 pub fn town_scene(desc: &TownDesc, seed: u64, frame: u64, config: CameraConfig) -> SceneDesc {
@@ -269,15 +291,34 @@ pub fn town_drive_scene(
     frame: u64,
     config: CameraConfig,
 ) -> SceneDesc {
+    town_scene_with(
+        &StaticScene::new(desc, seed),
+        desc,
+        seed,
+        (drive, frame),
+        config,
+    )
+}
+
+/// [`town_scene`] over the static part already generated (`stat` must be
+/// `StaticScene::new(desc, seed)`): adds the frame's moving objects and lamp
+/// states (the same description, object for object).
+pub fn town_scene_with(
+    stat: &StaticScene,
+    desc: &TownDesc,
+    seed: u64,
+    (drive, frame): (u64, u64),
+    config: CameraConfig,
+) -> SceneDesc {
     let tf = drive_frame_at(desc, seed, drive, frame);
-    let town = StaticTown::new(desc, seed);
-    let mut objects = town.objects();
+    let mut objects = Vec::with_capacity(stat.objects.len() + stat.meshes.len() + 64);
+    objects.extend_from_slice(&stat.objects);
     objects.extend(dynamic_objects(&tf));
     // The lamps follow the drive's traffic clock.
     signals::set_lamps(desc, tf.frame, &mut objects);
     // Meshes last, after the moving objects: keeps geometry ids and
     // `geometry_hash` values as they were.
-    objects.extend(town.meshes());
+    objects.extend_from_slice(&stat.meshes);
     let mut prefabs = props::street_prefabs();
     prefabs.extend(people::people_prefabs());
     prefabs.extend(vehicles::vehicle_prefabs());
@@ -322,7 +363,27 @@ pub fn load_town_drive_frame(
     config: CameraConfig,
     town_file: &Path,
 ) -> Result<LoadedScene, SceneError> {
-    let scene = town_drive_scene(desc, seed, drive, frame, config);
+    load_town_frame_with(
+        &StaticScene::new(desc, seed),
+        desc,
+        seed,
+        (drive, frame),
+        config,
+        town_file,
+    )
+}
+
+/// [`load_town_frame`] over the static part already generated (see
+/// [`town_scene_with`]).
+pub fn load_town_frame_with(
+    stat: &StaticScene,
+    desc: &TownDesc,
+    seed: u64,
+    (drive, frame): (u64, u64),
+    config: CameraConfig,
+    town_file: &Path,
+) -> Result<LoadedScene, SceneError> {
+    let scene = town_scene_with(stat, desc, seed, (drive, frame), config);
     let (objs, triangle_estimate) = crate::scene::validate::validate(&scene, town_file)?;
     Ok(LoadedScene {
         path: town_file.to_path_buf(),

@@ -7,7 +7,7 @@ use std::time::Instant;
 use glam::DVec3;
 
 use super::RecipeError;
-use crate::accel::{build_accel, AccelError, AnyAccel, Backend};
+use crate::accel::{build_accel_cached, AccelCache, AnyAccel, Backend};
 use crate::scene::{build_scene, LoadedScene, Scene};
 
 /// A scene built around an origin and its accelerator: the one place
@@ -41,11 +41,38 @@ impl BuiltScene {
         backend: Backend,
         shading_twin: bool,
     ) -> Result<BuiltScene, RecipeError> {
+        Self::build_full(
+            loaded,
+            origin,
+            backend,
+            shading_twin,
+            &AccelCache::default(),
+        )
+    }
+
+    /// As [`BuiltScene::build`], reusing what `cache` holds of the previous
+    /// build (its static prototypes' accelerators): the same result.
+    pub fn build_cached(
+        loaded: &LoadedScene,
+        origin: DVec3,
+        backend: Backend,
+        cache: &AccelCache,
+    ) -> Result<BuiltScene, RecipeError> {
+        Self::build_full(loaded, origin, backend, true, cache)
+    }
+
+    fn build_full(
+        loaded: &LoadedScene,
+        origin: DVec3,
+        backend: Backend,
+        shading_twin: bool,
+        cache: &AccelCache,
+    ) -> Result<BuiltScene, RecipeError> {
         let t = Instant::now();
         let scene = build_scene(loaded, origin).map_err(RecipeError::Scene)?;
         let scene_seconds = t.elapsed().as_secs_f64();
         let t = Instant::now();
-        let accel = accel_for(backend, shading_twin, &scene.accel_geometry())
+        let accel = build_accel_cached(backend, &scene.accel_geometry(), shading_twin, cache)
             .map_err(RecipeError::Accel)?;
         Ok(BuiltScene {
             scene,
@@ -54,19 +81,4 @@ impl BuiltScene {
             accel_seconds: t.elapsed().as_secs_f64(),
         })
     }
-}
-
-/// The backend's accelerator, Embree without its twin if so asked.
-fn accel_for(
-    backend: Backend,
-    shading_twin: bool,
-    geo: &crate::accel::AccelGeometry,
-) -> Result<AnyAccel, AccelError> {
-    #[cfg(feature = "embree")]
-    if backend == Backend::Embree && !shading_twin {
-        return crate::accel::EmbreeAccel::build_with(geo, false).map(AnyAccel::Embree);
-    }
-    #[cfg(not(feature = "embree"))]
-    let _ = shading_twin; // only Embree has a twin
-    build_accel(backend, geo)
 }

@@ -15,13 +15,13 @@ mod built;
 pub use built::BuiltScene;
 
 use super::{render_frame, FrameOutput, RenderSettings};
-use crate::accel::{AccelError, Backend};
+use crate::accel::{AccelCache, AccelError, Backend};
 use crate::camera::StereoRig;
 use crate::film::apply_sensor_noise;
 use crate::output::frame::{camera_file, CameraFile, FrameSeeds, TownFrameRecord};
 use crate::scene::desc::SensorNoiseDesc;
 use crate::scene::{LoadedScene, SceneError};
-use crate::town::{load_town_drive_frame, CameraConfig, NamedTown};
+use crate::town::{load_town_frame_with, CameraConfig, NamedTown, StaticScene};
 use crate::weather::{Weather, WeatherParams};
 
 /// Why a recipe could not be followed.
@@ -98,8 +98,23 @@ impl FrameSource {
         (drive, frame): (u64, u64),
         config: CameraConfig,
     ) -> Result<FrameSource, SceneError> {
+        let stat = StaticScene::new(&town.desc, seed);
+        Self::town_with(&stat, town, seed, (drive, frame), config)
+    }
+
+    /// As [`FrameSource::town`] over the town's static part already
+    /// generated (`stat` = `StaticScene::new(&town.desc, seed)`): the same
+    /// description, without generating the town again.
+    pub fn town_with(
+        stat: &StaticScene,
+        town: &NamedTown,
+        seed: u64,
+        (drive, frame): (u64, u64),
+        config: CameraConfig,
+    ) -> Result<FrameSource, SceneError> {
+        let (desc, path) = (&town.desc, &town.path);
         Ok(FrameSource {
-            loaded: load_town_drive_frame(&town.desc, seed, drive, frame, config, &town.path)?,
+            loaded: load_town_frame_with(stat, desc, seed, (drive, frame), config, path)?,
             origin: FrameOrigin {
                 seeds: FrameSeeds::town(seed),
                 town: Some(town.source.frame_record((drive, frame), config)),
@@ -267,8 +282,15 @@ impl FrameRecipe {
 
     /// The rig, and the scene built around its left camera with its accelerator.
     pub fn prepare(&self) -> Result<PreparedFrame<'_>, RecipeError> {
+        self.prepare_cached(&AccelCache::default())
+    }
+
+    /// As [`FrameRecipe::prepare`], reusing the accelerator parts `cache`
+    /// holds from the previous frame of the same static world (same bytes).
+    pub fn prepare_cached(&self, cache: &AccelCache) -> Result<PreparedFrame<'_>, RecipeError> {
         let rig = StereoRig::from_desc(&self.loaded.desc.camera);
-        let built = BuiltScene::build(&self.loaded, rig.left.center_world, self.backend)?;
+        let origin = rig.left.center_world;
+        let built = BuiltScene::build_cached(&self.loaded, origin, self.backend, cache)?;
         Ok(PreparedFrame {
             recipe: self,
             rig,

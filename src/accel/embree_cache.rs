@@ -1,0 +1,231 @@
+//! Committed Embree prototype scenes kept from one accelerator build to the
+//! next (issue 21: the static world is built once per sequence).
+//!
+//! A prototype's BVH depends only on its meshes in its local frame, not on
+//! the frame's render origin, so the frames of one sequence share every
+//! static prototype. Entries are keyed by a 128-bit hash of the meshes'
+//! exact bits (positions and indices; never by names, and no copy of the
+//! data kept): a cached scene is used only for geometry identical to what it
+//! was built from, and Embree's builds are deterministic, so a cached build
+//! gives the bytes a fresh one gives. After
+//! each build the cache keeps exactly that build's prototypes, so it holds
+//! one frame's worth at most (the previous frame's, for the next one).
+
+use std::hash::{Hash, Hasher};
+use std::sync::{Arc, Mutex, MutexGuard};
+
+use embree3::{Device, Scene, SceneFlags};
+
+use super::embree::{commit_scene, embree_error, geometries};
+use super::{AccelError, AccelGeometry, TriMeshRef};
+
+/// Prototype scenes shared between Embree builds on one device.
+#[derive(Default)]
+pub struct PrototypeCache {
+    inner: Mutex<Inner>,
+}
+
+impl std::fmt::Debug for PrototypeCache {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let n = self.inner.lock().map(|i| i.entries.len()).unwrap_or(0);
+        f.debug_struct("PrototypeCache")
+            .field("prototypes", &n)
+            .finish()
+    }
+}
+
+impl PrototypeCache {
+    /// Number of prototypes held (those of the last build).
+    pub fn len(&self) -> usize {
+        self.lock().entries.len()
+    }
+
+    /// How many prototype scenes the last build took from the cache.
+    pub fn reused(&self) -> usize {
+        self.lock().reused
+    }
+
+    /// Whether the cache holds nothing.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Exclusive access for one build (builds through one cache serialise).
+    pub(super) fn lock(&self) -> MutexGuard<'_, Inner> {
+        // A panic mid-build leaves only complete entries behind.
+        self.inner.lock().unwrap_or_else(|e| e.into_inner())
+    }
+}
+
+/// The robust scene of a prototype and its shading twin (if built).
+pub(super) type Pair = (Arc<Scene<'static>>, Option<Arc<Scene<'static>>>);
+
+/// The cache's device and entries.
+#[derive(Default)]
+pub(super) struct Inner {
+    device: Option<Device>,
+    entries: Vec<Entry>,
+    reused: usize,
+}
+
+/// One prototype: the hash of its meshes' bits and its committed scenes.
+struct Entry {
+    hash: [u64; 2],
+    scenes: Pair,
+}
+
+impl Inner {
+    /// The device every build through this cache uses (instances must live
+    /// on their prototypes' device).
+    pub(super) fn device(&mut self) -> Result<Device, AccelError> {
+        if self.device.is_none() {
+            self.device = Some(Device::new().map_err(|e| embree_error("device", e))?);
+        }
+        Ok(self.device.clone().expect("device was just created"))
+    }
+
+    /// The committed scenes of every prototype of `geo` (with shading twins
+    /// when `twin`), taken from the cache or built; afterwards the cache
+    /// holds exactly these. None are built for a geometry without instances.
+    pub(super) fn prototypes(
+        &mut self,
+        device: &Device,
+        geo: &AccelGeometry,
+        twin: bool,
+    ) -> Result<Vec<Pair>, AccelError> {
+        self.reused = 0;
+        if geo.instances.is_empty() {
+            self.entries.clear();
+            return Ok(Vec::new());
+        }
+        let mut old = std::mem::take(&mut self.entries);
+        let mut out = Vec::with_capacity(geo.prototypes.len());
+        for p in 0..geo.prototypes.len() {
+            let meshes = &geo.prototypes[p];
+            let hash = hash_meshes(meshes);
+            let found = old.iter().position(|e| e.hash == hash);
+            let mut entry = match found {
+                Some(i) => {
+                    self.reused += 1;
+                    old.swap_remove(i)
+                }
+                None => Entry {
+                    hash,
+                    scenes: (commit(device, geo, p, SceneFlags::ROBUST)?, None),
+                },
+            };
+            if twin && entry.scenes.1.is_none() {
+                entry.scenes.1 = Some(commit(device, geo, p, SceneFlags::NONE)?);
+            }
+            out.push(entry.scenes.clone());
+            self.entries.push(entry);
+        }
+        Ok(out)
+    }
+}
+
+/// Prototype `p` of `geo` committed with `flags`.
+fn commit(
+    device: &Device,
+    geo: &AccelGeometry,
+    p: usize,
+    flags: SceneFlags,
+) -> Result<Arc<Scene<'static>>, AccelError> {
+    let g = geometries(device, &geo.prototype(p))?;
+    Ok(Arc::new(commit_scene(device, &g, flags)?))
+}
+
+/// Two independent 64-bit hashes (SipHash with fixed keys, the second
+/// salted) of every position's bits and every index of `meshes`, in order.
+fn hash_meshes(meshes: &[TriMeshRef]) -> [u64; 2] {
+    [0u8, 1].map(|salt| {
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        (salt, meshes.len()).hash(&mut h);
+        for m in meshes {
+            m.positions.len().hash(&mut h);
+            for p in m.positions {
+                p.to_array().map(f32::to_bits).hash(&mut h);
+            }
+            m.triangles.hash(&mut h);
+        }
+        h.finish()
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::{Affine3A, Vec3};
+
+    use super::*;
+    use crate::accel::Accel;
+    use crate::accel::{EmbreeAccel, InstanceRef, Ray};
+
+    /// Two prototypes (a unit quad at z = `z0` and one at z = `z1`), each
+    /// placed once, side by side.
+    fn hits(z: [f32; 2], cache: &PrototypeCache) -> Vec<Option<f32>> {
+        let p = |z: f32| {
+            vec![
+                Vec3::new(0.0, 0.0, z),
+                Vec3::new(1.0, 0.0, z),
+                Vec3::new(1.0, 1.0, z),
+                Vec3::new(0.0, 1.0, z),
+            ]
+        };
+        let (p0, p1) = (p(z[0]), p(z[1]));
+        let tris = [[0u32, 1, 2], [0, 2, 3]];
+        let inst = |proto: u32, x: f32| {
+            let m = Affine3A::from_translation(Vec3::new(x, 0.0, 0.0));
+            InstanceRef {
+                prototype: proto,
+                render_from_local: m,
+                local_from_render: m.inverse(),
+            }
+        };
+        let instances = [inst(0, 0.0), inst(1, 2.0)];
+        let geo = AccelGeometry {
+            prototypes: vec![
+                vec![TriMeshRef {
+                    positions: &p0,
+                    triangles: &tris,
+                }],
+                vec![TriMeshRef {
+                    positions: &p1,
+                    triangles: &tris,
+                }],
+            ],
+            instances: &instances,
+            ..AccelGeometry::default()
+        };
+        let a = EmbreeAccel::build_cached(&geo, true, cache).unwrap();
+        [0.5f32, 2.5]
+            .iter()
+            .map(|&x| {
+                let r = Ray::new(Vec3::new(x, 0.5, 10.0), Vec3::new(0.0, 0.0, -1.0));
+                let h = a.intersect(&r).map(|h| h.t);
+                assert_eq!(h, a.intersect_shading(&r).map(|h| h.t));
+                h
+            })
+            .collect()
+    }
+
+    #[test]
+    fn cached_prototypes_are_reused_only_for_identical_bits() {
+        let cache = PrototypeCache::default();
+        assert_eq!(hits([1.0, 2.0], &cache), vec![Some(9.0), Some(8.0)]);
+        assert_eq!((cache.len(), cache.reused()), (2, 0));
+        // Same geometry again: both scenes come from the cache.
+        assert_eq!(hits([1.0, 2.0], &cache), vec![Some(9.0), Some(8.0)]);
+        assert_eq!(cache.reused(), 2);
+        // The second prototype moved by 0.25 m: rebuilt, and its
+        // hit is the new one, not the cached scene's.
+        let z = 2.0f32 + 0.25;
+        assert_eq!(hits([1.0, z], &cache), vec![Some(9.0), Some(10.0 - z)]);
+        assert_eq!((cache.len(), cache.reused()), (2, 1));
+        // Swapped order: matched by content, not by index.
+        assert_eq!(hits([z, 1.0], &cache), vec![Some(10.0 - z), Some(9.0)]);
+        assert_eq!(cache.reused(), 2);
+        // Fresh builds agree with the cached ones.
+        let fresh = PrototypeCache::default();
+        assert_eq!(hits([z, 1.0], &fresh), hits([z, 1.0], &cache));
+    }
+}
