@@ -216,6 +216,26 @@ fn number_objects(objects: &mut [ObjectDesc]) {
     }
 }
 
+/// Seated people per two-wheeler body type.
+const RIDER_VARIANTS: u32 = 4;
+
+/// Prefab name of rider `variant` of two-wheeler `body`.
+fn rider_prefab_name(body: vehicles::BodyKind, variant: u32) -> String {
+    format!("{}_rider{variant}", body.prefab())
+}
+
+/// The riders of every two-wheeler body type (`BodyKind::seat`).
+fn rider_prefabs() -> Vec<crate::scene::desc::PrefabDesc> {
+    vehicles::BODIES
+        .iter()
+        .filter_map(|&b| b.seat().map(|seat| (b, seat)))
+        .flat_map(|(b, seat)| {
+            (0..RIDER_VARIANTS)
+                .map(move |k| people::rider::rider_prefab(&rider_prefab_name(b, k), seat, k))
+        })
+        .collect()
+}
+
 /// The vehicles (ego included) and pedestrians of one frame as instances.
 pub fn dynamic_objects(frame: &TownFrame) -> Vec<ObjectDesc> {
     let mut out = Vec::with_capacity(frame.vehicles.len() + frame.pedestrians.len() + 1);
@@ -241,6 +261,15 @@ pub fn dynamic_objects(frame: &TownFrame) -> Vec<ObjectDesc> {
         {
             let mut p = shared.clone();
             p.shape = parts::instance(&name, v.position, 0.0, &[], l).shape;
+            out.push(p);
+        }
+        // A two-wheeler carries its rider (class `rider`, the vehicle's
+        // instance id), posed on the seat in the vehicle's frame.
+        if v.body.seat().is_some() {
+            let mut p = shared.clone();
+            let name = rider_prefab_name(v.body, v.id % RIDER_VARIANTS);
+            p.shape = parts::instance(&name, v.position, 0.0, &[], l).shape;
+            p.semantic = Some("rider".to_string());
             out.push(p);
         }
     }
@@ -322,6 +351,7 @@ pub fn town_scene_with(
     let mut prefabs = props::street_prefabs();
     prefabs.extend(people::people_prefabs());
     prefabs.extend(vehicles::vehicle_prefabs());
+    prefabs.extend(rider_prefabs());
     prefabs.extend(vegetation::vegetation_prefabs());
     SceneDesc {
         camera: rig_desc(config, &tf.ego),
