@@ -319,20 +319,4 @@ mod tests {
         assert!(towns.is_disjoint(&sequences) && towns.is_disjoint(&seeds));
         assert!(sequences.is_disjoint(&seeds));
     }
-
-    #[test]
-    fn sequences_are_consecutive_stretches_of_one_drive() {
-        let mut c = super::super::presets::demo();
-        c.sequences = 3;
-        c.frames_per_sequence = 4;
-        c.stride = 5;
-        let j = Job {
-            town: "town01".into(),
-            config: CameraConfig::Normal,
-            weather: Weather::Clear,
-            sequence: 2,
-            frame: 1,
-        };
-        assert_eq!(town_frame(&c, &j), (2 * 4 + 1) * 5);
-    }
 }

@@ -16,6 +16,7 @@ mod highway_loop;
 mod organic;
 mod overpass;
 mod ramps;
+mod riders;
 mod signals;
 mod terrain;
 mod traffic;
