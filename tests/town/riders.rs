@@ -40,11 +40,8 @@ fn every_two_wheeler_carries_one_rider_in_its_pose() {
             .find(|o| o.instance == Some(id))
             .unwrap_or_else(|| panic!("vehicle {} ({:?}) has no rider", v.id, v.body));
         let at = r.transform.translate.expect("placed");
-        for a in 0..3 {
-            assert!(
-                (at[a] - v.position[a]).abs() < 1e-9,
-                "rider off its vehicle"
-            );
+        for (got, want) in at.iter().zip(v.position) {
+            assert!((got - want).abs() < 1e-9, "rider off its vehicle");
         }
         let heading = r.transform.rotate_deg.map_or(0.0, |q| q[2]);
         assert!(
