@@ -13,6 +13,7 @@ mod occlusion;
 mod people;
 mod rain;
 mod street;
+mod traced;
 mod vegetation;
 mod vehicles;
 mod weather;

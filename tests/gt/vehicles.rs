@@ -7,7 +7,7 @@
 //! shift), the ground plane z = 0 behind (the tracer of `vegetation`).
 
 use crate::common;
-use crate::vegetation::{buckets, dir, f_px, trace, H, W};
+use crate::traced::{check_views, dir, trace, H, W};
 
 use common::{camera_block, render, scene_from_toml, GREY_UNDER_SKY};
 use glam::DVec3;
@@ -92,85 +92,22 @@ fn depth_and_disparity_exact_on_a_car_with_sub_pixel_spokes_and_mirrors() {
     };
     let (rims, mirrors) = (of("rim"), of("mirror"));
     let car = parallax::scene::semantic::class_id("car").expect("class");
-    let cams: Vec<DVec3> = std::iter::once(c_left)
-        .chain(
-            BASELINES_M
-                .iter()
-                .map(|&b| c_left + DVec3::new(0.0, -b, 0.0)),
-        )
-        .collect();
-    let f = f_px();
-    let (mut ties, mut checked, mut car_px) = (0usize, 0usize, 0usize);
     let (mut rim_px, mut mirror_px) = (0usize, 0usize);
-    for (v, &c) in cams.iter().enumerate() {
-        let cand = buckets(c, &tris);
-        for j in 0..H {
-            for i in 0..W {
-                let k = (j * W + i) as usize;
-                let (z_true, tie) = trace(c, dir(i, j), &tris, &cand[k]);
-                if tie {
-                    ties += 1;
-                    continue;
-                }
-                let (z, d) = if v == 0 {
-                    let b = &r.out.baselines;
-                    (
-                        r.out.left.depth_z[k],
-                        b.iter().map(|b| b.disparity_left[k]).collect(),
-                    )
-                } else {
-                    let b = &r.out.baselines[v - 1];
-                    (b.depth_right[k] as f64, vec![b.disparity_right[k]])
-                };
-                checked += 1;
-                let Some(zt) = z_true else {
-                    assert!(z.is_infinite(), "view {v} ({i},{j}): {z}, not sky");
-                    continue;
-                };
-                assert!(
-                    (z - zt).abs() <= 1e-5 * zt,
-                    "view {v} pixel ({i},{j}): Z {z} vs {zt}"
-                );
-                let bs: Vec<f64> = if v == 0 {
-                    BASELINES_M.to_vec()
-                } else {
-                    vec![BASELINES_M[v - 1]]
-                };
-                for (dv, bm) in d.iter().zip(bs) {
-                    let dt = f * bm / zt;
-                    let dv = *dv as f64;
-                    assert!(
-                        (dv - dt).abs() <= 1e-5 * dt + 1e-6,
-                        "view {v} pixel ({i},{j}) B={bm}: d {dv} vs {dt}"
-                    );
-                }
-                // Which part the true first hit is on: the same depth from
-                // that part's triangles alone.
-                let on = |set: &[u32]| {
-                    let sub: Vec<u32> = cand[k]
-                        .iter()
-                        .copied()
-                        .filter(|t| set.contains(t))
-                        .collect();
-                    matches!(trace(c, dir(i, j), &tris, &sub), (Some(t), false) if t == zt)
-                };
-                let dz = dir(i, j).z;
-                let ground = if dz < 0.0 { c.z / -dz } else { f64::INFINITY };
-                let on_car = zt < ground * (1.0 - 1e-12);
-                if v == 0 {
-                    assert_eq!(
-                        r.out.left.semantic[k] == car,
-                        on_car,
-                        "pixel ({i},{j}): semantic {} at Z {zt}",
-                        r.out.left.semantic[k]
-                    );
-                    car_px += on_car as usize;
-                }
-                rim_px += (on_car && on(&rims)) as usize;
-                mirror_px += (on_car && on(&mirrors)) as usize;
-            }
-        }
-    }
+    let (checked, ties, car_px) = check_views(&r.out, c_left, &BASELINES_M, &tris, car, |px| {
+        // Which part the true first hit is on: the same depth from that
+        // part's triangles alone.
+        let on = |set: &[u32]| {
+            let sub: Vec<u32> = px
+                .cand
+                .iter()
+                .copied()
+                .filter(|t| set.contains(t))
+                .collect();
+            matches!(trace(px.c, dir(px.i, px.j), &tris, &sub), (Some(t), false) if t == px.z)
+        };
+        rim_px += (px.on_object && on(&rims)) as usize;
+        mirror_px += (px.on_object && on(&mirrors)) as usize;
+    });
     eprintln!(
         "{checked} pixels checked, {car_px} on the car (left), {rim_px} on rims, {mirror_px} on mirror glass, {ties} edge ties"
     );
