@@ -224,8 +224,15 @@ fn rider_prefab_name(body: vehicles::BodyKind, variant: u32) -> String {
     format!("{}_rider{variant}", body.prefab())
 }
 
-/// The riders of every two-wheeler body type (`BodyKind::seat`).
+/// The riders of every two-wheeler body type (`BodyKind::seat`), generated
+/// once per process.
 fn rider_prefabs() -> Vec<crate::scene::desc::PrefabDesc> {
+    static PREFABS: std::sync::OnceLock<Vec<crate::scene::desc::PrefabDesc>> =
+        std::sync::OnceLock::new();
+    PREFABS.get_or_init(generate_riders).clone()
+}
+
+fn generate_riders() -> Vec<crate::scene::desc::PrefabDesc> {
     vehicles::BODIES
         .iter()
         .filter_map(|&b| b.seat().map(|seat| (b, seat)))

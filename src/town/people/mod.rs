@@ -86,8 +86,14 @@ pub fn person_prefab(v: u32, phase: Option<u32>) -> PrefabDesc {
     }
 }
 
-/// Every person prefab: each variant in each phase and standing.
+/// Every person prefab: each variant in each phase and standing (generated
+/// once per process: every town frame names the same set).
 pub fn people_prefabs() -> Vec<PrefabDesc> {
+    static PREFABS: std::sync::OnceLock<Vec<PrefabDesc>> = std::sync::OnceLock::new();
+    PREFABS.get_or_init(generate_prefabs).clone()
+}
+
+fn generate_prefabs() -> Vec<PrefabDesc> {
     (0..VARIANTS)
         .flat_map(|v| {
             (0..PHASES)
