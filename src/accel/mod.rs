@@ -502,7 +502,7 @@ pub fn build_accel_cached(
 ) -> Result<AnyAccel, AccelError> {
     #[cfg(feature = "embree")]
     if backend == Backend::Embree {
-        validate_geometry(geo)?;
+        // `build_cached` validates the geometry itself.
         let a = EmbreeAccel::build_cached(geo, shading_twin, &cache.embree)?;
         return Ok(AnyAccel::Embree(a));
     }

@@ -93,7 +93,7 @@ pub fn people_prefabs() -> Vec<PrefabDesc> {
     PREFABS.get_or_init(generate_prefabs).clone()
 }
 
-fn generate_prefabs() -> Vec<PrefabDesc> {
+pub(super) fn generate_prefabs() -> Vec<PrefabDesc> {
     (0..VARIANTS)
         .flat_map(|v| {
             (0..PHASES)

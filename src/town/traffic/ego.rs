@@ -98,6 +98,8 @@ struct Chunk {
 
 struct Drive {
     path: DrivePath,
+    body: BodyKind,
+    paint: &'static str,
     chunks: Vec<Chunk>,
 }
 
@@ -108,7 +110,8 @@ static DRIVES: OnceLock<Drives> = OnceLock::new();
 /// The ego of `frame` (counted from the drive's start) of drive `drive`.
 pub fn ego_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> EgoFrame {
     let key = (format!("{desc:?}"), seed, drive);
-    let ctx = Ctx::new(desc, seed, drive);
+    // The simulation's context, built only when a drive or chunk is new.
+    let mut ctx = None;
     let entry = {
         let mut c = DRIVES
             .get_or_init(Default::default)
@@ -116,13 +119,16 @@ pub fn ego_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> EgoFrame {
             .expect("drive cache");
         c.entry(key)
             .or_insert_with(|| {
-                let l = &ctx.layout;
+                let cx = ctx.get_or_insert_with(|| Ctx::new(desc, seed, drive));
+                let l = &cx.layout;
                 let n = links(l).len();
                 let start = start_link(n, seed, drive);
                 let rng = Rng::new(&[seed, tag::EGO, drive, 1]);
-                let path = DrivePath::new(l, &ctx.plan.schedule.turns, start, rng);
+                let path = DrivePath::new(l, &cx.plan.schedule.turns, start, rng);
                 Arc::new(Mutex::new(Drive {
                     path,
+                    body: cx.body,
+                    paint: cx.paint,
                     chunks: Vec::new(),
                 }))
             })
@@ -131,19 +137,34 @@ pub fn ego_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> EgoFrame {
     let mut d = entry.lock().expect("drive");
     let c = (frame / CHUNK_FRAMES) as usize;
     while d.chunks.len() <= c {
+        let cx = ctx.get_or_insert_with(|| Ctx::new(desc, seed, drive));
         let k = d.chunks.len() as u64;
         let start = d.chunks.last().map(|c| c.end);
-        let Drive { path, chunks } = &mut *d;
-        chunks.push(ctx.chunk(path, k, start));
+        let Drive { path, chunks, .. } = &mut *d;
+        chunks.push(cx.chunk(path, k, start));
     }
     let ch = &d.chunks[c];
     let n = (frame % CHUNK_FRAMES) as usize;
     let (p, h) = d.path.pose(ch.s[n]);
     EgoFrame {
-        pose: ctx.pose(p, h),
+        pose: level_pose(p, h, d.body, d.paint),
         speed_mps: ch.v[n],
         removed: ch.removed.clone(),
         removed_pedestrians: ch.pedestrians.clone(),
+    }
+}
+
+/// The ego's pose at (x, y) heading `h` radians, on the level grid.
+fn level_pose(p: [f64; 2], h: f64, body: BodyKind, paint: &'static str) -> VehiclePose {
+    VehiclePose {
+        id: 0,
+        body,
+        paint,
+        position: [p[0], p[1], 0.0],
+        heading_deg: heading_deg(h),
+        pitch_deg: 0.0,
+        roll_deg: 0.0,
+        route: usize::MAX,
     }
 }
 
@@ -156,6 +177,8 @@ struct Ctx<'a> {
     layout: Layout,
     overpass: Option<Overpass>,
     body: BodyKind,
+    /// The ego's paint, one per drive.
+    paint: &'static str,
     v_max: f64,
     dt: f64,
 }
@@ -171,6 +194,7 @@ impl<'a> Ctx<'a> {
         } else {
             bodies[0]
         };
+        let paint = PAINTS[Rng::new(&[seed, tag::EGO, drive, 2]).index(PAINTS.len())];
         Ctx {
             desc,
             seed,
@@ -180,23 +204,14 @@ impl<'a> Ctx<'a> {
             layout,
             overpass,
             body,
+            paint,
             dt: 1.0 / desc.fps,
         }
     }
 
     /// The ego's pose at (x, y) heading `h` radians, on the level grid.
     fn pose(&self, p: [f64; 2], h: f64) -> VehiclePose {
-        let mut r = Rng::new(&[self.seed, tag::EGO, self.drive, 2]);
-        VehiclePose {
-            id: 0,
-            body: self.body,
-            paint: PAINTS[r.index(PAINTS.len())],
-            position: [p[0], p[1], 0.0],
-            heading_deg: heading_deg(h),
-            pitch_deg: 0.0,
-            roll_deg: 0.0,
-            route: usize::MAX,
-        }
+        level_pose(p, h, self.body, self.paint)
     }
 
     /// Traffic time of the drive's frame `f`, seconds.
