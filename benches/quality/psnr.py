@@ -1,0 +1,98 @@
+#!/usr/bin/env python3
+"""Image quality of parallax renders: sRGB PSNR of a town frame's left image
+against a converged plain path-traced reference of the same frame.
+
+    python3 benches/quality/psnr.py --town town03 --frame 40 --weather clear \
+        [--spp N] [--ref-spp 1024] [--size 320x180] [--bin target/release/parallax]
+        [--cache DIR] [--extra "--no-filter"]
+
+The reference is rendered once per (town, frame, weather, size, ref-spp, seed)
+into the cache directory (plain path tracing: --no-filter, sensor noise off) and
+reused. The test image is rendered with the binary's defaults (sensor noise off,
+--baselines 10) plus --extra. Prints one JSON line: psnr_db, mean level error,
+seconds, and the reference's own noise estimate when two references exist
+(--ref-pair renders a second reference with another sample seed: the PSNR
+between the two is about 3 dB below each one's PSNR against the truth).
+"""
+import argparse
+import json
+import os
+import shlex
+import subprocess
+import sys
+import time
+
+import numpy as np
+from PIL import Image
+
+
+def load(path):
+    return np.asarray(Image.open(path).convert("RGB"), dtype=np.float64)
+
+
+def psnr(a, b):
+    mse = np.mean((a - b) ** 2)
+    return float("inf") if mse == 0 else 10.0 * np.log10(255.0**2 / mse)
+
+
+def render(binary, out, args):
+    cmd = [binary, "render"] + args + ["-o", out]
+    t0 = time.time()
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    if r.returncode != 0:
+        sys.exit(f"render failed ({' '.join(cmd)}):\n{r.stderr}")
+    return time.time() - t0
+
+
+def left_png(out, frame):
+    return os.path.join(out, "left", "rgb", f"{frame:06d}.png")
+
+
+def main():
+    p = argparse.ArgumentParser()
+    p.add_argument("--town", default="town03")
+    p.add_argument("--frame", type=int, default=40)
+    p.add_argument("--weather", default="clear")
+    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--size", default="320x180")
+    p.add_argument("--spp", type=int, default=None, help="test spp (default: the binary's)")
+    p.add_argument("--ref-spp", type=int, default=1024)
+    p.add_argument("--ref-pair", action="store_true")
+    p.add_argument("--bin", default="target/release/parallax")
+    p.add_argument("--ref-bin", default=None, help="binary for the reference (default --bin)")
+    p.add_argument("--cache", default="/work/refs")
+    p.add_argument("--extra", default="", help="extra render arguments for the test image")
+    p.add_argument("--out", default=None, help="keep the test render here")
+    a = p.parse_args()
+    w, h = a.size.split("x")
+    common = ["--town", a.town, "--frame", str(a.frame), "--weather", a.weather,
+              "--seed", str(a.seed), "--weather-seed", str(a.seed), "--width", w, "--height", h,
+              "--baselines", "10", "--sensor-noise", "0"]
+    key = f"{a.town}_f{a.frame}_{a.weather}_s{a.seed}_{a.size}_r{a.ref_spp}"
+    refs = []
+    for k, sample_seed in enumerate([1000 + a.seed, 2000 + a.seed][: 2 if a.ref_pair else 1]):
+        d = os.path.join(a.cache, f"{key}_{k}")
+        if not os.path.exists(left_png(d, a.frame)):
+            render(a.ref_bin or a.bin, d + ".tmp", common + ["--spp", str(a.ref_spp), "--no-filter",
+                                               "--sample-seed", str(sample_seed)])
+            os.rename(d + ".tmp", d)
+        refs.append(load(left_png(d, a.frame)))
+    out = a.out or f"/tmp/psnr_{os.getpid()}"
+    args = common + (["--spp", str(a.spp)] if a.spp else []) + shlex.split(a.extra)
+    secs = render(a.bin, out, args)
+    img = load(left_png(out, a.frame))
+    ref = refs[0] if len(refs) == 1 else (refs[0] + refs[1]) / 2
+    res = {"town": a.town, "frame": a.frame, "weather": a.weather, "size": a.size,
+           "spp": a.spp, "extra": a.extra, "psnr_db": round(psnr(img, ref), 2),
+           "mean_abs_levels": round(float(np.mean(np.abs(img - ref))), 2),
+           "bias_levels": round(float(np.mean(img - ref)), 3),
+           "seconds": round(secs, 2), "ref_spp": a.ref_spp * len(refs)}
+    if len(refs) == 2:
+        res["ref_pair_psnr_db"] = round(psnr(refs[0], refs[1]), 2)
+    if not a.out:
+        subprocess.run(["rm", "-rf", out])
+    print(json.dumps(res))
+
+
+if __name__ == "__main__":
+    main()
