@@ -258,6 +258,10 @@ impl FrameRecipe {
             if origin.town.is_some() && crate::town::vehicles::needs_headlights(p.preset) {
                 crate::town::vehicles::add_headlights(&mut loaded.desc);
             }
+            // In rain most pedestrians walk under an umbrella.
+            if origin.town.is_some() && p.rain_mm_per_h > 0.0 {
+                crate::town::people::umbrella::add_umbrellas(&mut loaded.desc);
+            }
         }
         if !spec.filter {
             loaded.desc.turn_image_filters_off();

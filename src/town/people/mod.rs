@@ -1,6 +1,7 @@
 //! People: articulated bodies (19 joints, `body`), posed by a walk cycle or
 //! standing (`pose`), dressed in smooth parts (`clothing`, `mesh`), and
-//! seated riders for two-wheelers (`rider`).
+//! seated riders for two-wheelers (`rider`), and umbrellas in rain
+//! (`umbrella`).
 //!
 //! Cost: a person is one of `VARIANTS` seeded looks (adults and children;
 //! colours baked in, so no material map) in one of `PHASES` quantised walk
@@ -12,6 +13,7 @@ pub mod clothing;
 pub mod mesh;
 pub mod pose;
 pub mod rider;
+pub mod umbrella;
 
 use crate::scene::desc::{MaterialDesc, PrefabDesc};
 
