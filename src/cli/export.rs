@@ -158,12 +158,13 @@ pub fn run(a: ExportArgs) -> Result<(), CliError> {
     };
     let export = write_mitsuba(&recipe.loaded, &scene, &opts, &a.output)
         .map_err(|e| CliError::failure(format!("--output {}: {e}", show(&a.output))))?;
-    let triangles: u64 = export.meshes.iter().map(|m| m.1).sum();
+    let stored: u64 = export.meshes.iter().map(|m| m.1).sum();
     println!(
-        "wrote {} ({} mesh files, {} triangles)",
+        "wrote {} ({} mesh files, {} triangles stored, {} placed)",
         show(&export.xml),
         export.meshes.len(),
-        triangles
+        stored,
+        scene.triangle_count()
     );
     for n in &export.notes {
         eprintln!("parallax: export: {n}");

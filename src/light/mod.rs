@@ -4,7 +4,8 @@
 //! emission (here), the frame's sky and its sun or moon (`sky.rs`), the set
 //! next-event estimation samples and how it picks a light (`set.rs`, with
 //! `entry.rs` per light, `bvh.rs` for many local lights and `fog_sky.rs`
-//! for the sky seen through fog).
+//! for the sky seen through fog), and the sun's cone, exact for any
+//! angular size (`sun_cone.rs`).
 //!
 //! Directions are render space (= world orientation, z up). Sampling returns
 //! radiance arriving at the shading point and a pdf per solid angle.

@@ -206,3 +206,57 @@ fn bad_export_input_exits_2_and_writes_nothing() {
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("--mitsuba"));
 }
+
+#[test]
+fn prefabs_stay_instanced_with_their_placements() {
+    // A 1 m box prefab (12 triangles) placed three times, on a quad.
+    let text = "[camera]\nwidth = 32\nheight = 18\nposition = [0.0, 0.0, 1.5]\n\
+[sky]\nkind = \"constant\"\nle = [1.0, 1.0, 1.0]\n\
+[[material]]\nname = \"grey\"\nkind = \"diffuse\"\nalbedo = [0.5, 0.5, 0.5]\n\
+[[prefab]]\nname = \"crate\"\n[[prefab.object]]\nkind = \"box\"\nsize = [1.0, 1.0, 1.0]\nmaterial = \"grey\"\n\
+[[object]]\nkind = \"quad\"\nsize = [50.0, 50.0]\nmaterial = \"grey\"\n\
+[[object]]\nkind = \"instance\"\nprefab = \"crate\"\ntransform = { translate = [5.0, 0.0, 0.5] }\n\
+[[object]]\nkind = \"instance\"\nprefab = \"crate\"\ntransform = { translate = [8.0, 2.0, 0.5], rotate_deg = [0.0, 0.0, 90.0] }\n\
+[[object]]\nkind = \"instance\"\nprefab = \"crate\"\ntransform = { translate = [11.0, -2.0, 1.0], scale = 2.0 }\n";
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("crates.toml");
+    std::fs::write(&file, text).unwrap();
+    let out = dir.path().join("out");
+    let (code, err) = export(&file, &out, &[]);
+    assert_eq!(code, 0, "{err}");
+    let xml = std::fs::read_to_string(out.join("scene.xml")).unwrap();
+    let doc = roxmltree::Document::parse(&xml).unwrap();
+    let root = doc.root_element();
+    let group = root
+        .children()
+        .find(|n| n.has_tag_name("shape") && n.attribute("type") == Some("shapegroup"))
+        .expect("the prefab as a shape group");
+    let id = group.attribute("id").unwrap();
+    let file = param(group, "string", "filename");
+    let mesh = decode_ply(&std::fs::read(out.join(file)).unwrap()).unwrap();
+    assert_eq!(mesh.triangles.len(), 12, "the box stored once");
+    assert!(mesh.positions.iter().all(|p| p.abs().max_element() <= 0.5 + 1e-6), "local frame");
+    let instances: Vec<Vec<f64>> = root
+        .children()
+        .filter(|n| n.has_tag_name("shape") && n.attribute("type") == Some("instance"))
+        .map(|n| {
+            assert_eq!(n.children().find(|c| c.has_tag_name("ref")).unwrap().attribute("id"), Some(id));
+            floats(n.descendants().find(|c| c.has_tag_name("matrix")).unwrap().attribute("value").unwrap())
+        })
+        .collect();
+    assert_eq!(instances.len(), 3);
+    // Render space: world − (0, 0, 1.5). Translations, the 90° turn, the scale.
+    let t = |m: &Vec<f64>| [m[3], m[7], m[11]];
+    assert!(close(&t(&instances[0]), &[5.0, 0.0, -1.0], 1e-9));
+    assert!(close(&t(&instances[1]), &[8.0, 2.0, -1.0], 1e-9));
+    assert!(close(&t(&instances[2]), &[11.0, -2.0, -0.5], 1e-9));
+    let r = &instances[1];
+    assert!(close(&[r[0], r[4], r[8]], &[0.0, 1.0, 0.0], 1e-12), "local x → world y");
+    assert!((instances[2][0] - 2.0).abs() < 1e-12, "scale 2");
+    // The quad stays flat (render space).
+    let flat: Vec<_> = root
+        .children()
+        .filter(|n| n.has_tag_name("shape") && n.attribute("type") == Some("ply"))
+        .collect();
+    assert_eq!(flat.len(), 1);
+}

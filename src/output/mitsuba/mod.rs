@@ -63,7 +63,8 @@ pub struct MitsubaOptions<'a> {
 pub struct MitsubaExport {
     /// The scene file.
     pub xml: PathBuf,
-    /// Mesh files (relative to the export directory) and their triangle counts.
+    /// Mesh files (relative to the export directory) and their triangle
+    /// counts (a prototype's once, however many instances place it).
     pub meshes: Vec<(String, u64)>,
     /// What the Mitsuba scene leaves out or approximates.
     pub notes: Vec<String>,
@@ -116,14 +117,31 @@ pub fn write_mitsuba(
     let groups = gather_meshes(scene, &table);
     let mut x = xml::Xml::new(scene.origin_world, opts);
     for (i, m) in table.iter().enumerate() {
-        x.bsdf(i, m, &mut notes);
+        x.bsdf(i, m);
     }
+    material_notes(&table, &mut notes);
     let mut meshes = Vec::new();
+    let mut open_group = None;
     for g in &groups {
+        if g.prototype != open_group {
+            if open_group.is_some() {
+                x.end_group();
+            }
+            if let Some(k) = g.prototype {
+                x.begin_group(k);
+            }
+            open_group = g.prototype;
+        }
         let name = format!("meshes/{}.ply", g.file_stem);
         write(dir, &name, &g.mesh.encode())?;
         x.shape(&name, g.material, g.emission);
         meshes.push((name, g.mesh.triangles.len() as u64));
+    }
+    if open_group.is_some() {
+        x.end_group();
+    }
+    for inst in &scene.instances {
+        x.instance(inst.prototype as usize, &inst.render_from_local);
     }
     for s in &scene.spheres {
         x.sphere(s.center.as_vec3(), s.radius, s.material, emission(table[s.material as usize]));
@@ -165,6 +183,32 @@ fn write(dir: &Path, name: &str, bytes: &[u8]) -> Result<(), MitsubaError> {
     crate::output::write_atomic(&dir.join(name), bytes).map_err(MitsubaError::Io)
 }
 
+/// One note per kind of approximation, naming its materials.
+fn material_notes(table: &[&MaterialDesc], notes: &mut Vec<String>) {
+    let names = |f: &dyn Fn(&MaterialDesc) -> bool| -> Vec<&str> {
+        table.iter().filter(|m| f(m)).map(|m| m.name.as_str()).collect()
+    };
+    let kinds: [(&str, Vec<&str>); 3] = [
+        (
+            "procedural textures as their mean albedo",
+            names(&|m| m.texture.is_some()),
+        ),
+        (
+            "coated paint as Mitsuba's plastic (its own coat model)",
+            names(&|m| matches!(m.kind, MaterialKindDesc::Coated { albedo: Some(_), .. })),
+        ),
+        (
+            "coated metal as its bare base (Mitsuba has no coated conductor)",
+            names(&|m| matches!(m.kind, MaterialKindDesc::Coated { albedo: None, .. })),
+        ),
+    ];
+    for (what, list) in kinds {
+        if !list.is_empty() {
+            notes.push(format!("{} materials: {what} ({})", list.len(), list.join(", ")));
+        }
+    }
+}
+
 /// The emitted radiance of a material, if it emits: (radiance, two-sided).
 fn emission(m: &MaterialDesc) -> Option<([f64; 3], bool)> {
     match m.kind {
@@ -176,57 +220,78 @@ fn emission(m: &MaterialDesc) -> Option<([f64; 3], bool)> {
     }
 }
 
-/// One PLY file: the triangles of one material (one face of an emitter).
+/// One PLY file: the triangles of one material (one face of an emitter)
+/// of the flat meshes or of one prototype.
 struct Group {
     file_stem: String,
+    /// The prototype it belongs to (None: flat, render space).
+    prototype: Option<usize>,
     material: usize,
     /// Emitted radiance (an `area` emitter on the shape).
     emission: Option<[f64; 3]>,
     mesh: PlyMesh,
 }
 
-/// Every flattened triangle, grouped per material (and per normals present
-/// or not, as a PLY file has normals for all vertices or none); the back
-/// face of two-sided emitters as its own flipped group.
-fn gather_meshes(scene: &Scene, table: &[&MaterialDesc]) -> Vec<Group> {
-    use std::collections::BTreeMap;
-    // (material, with normals, back face) → mesh
-    let mut by_key: BTreeMap<(usize, bool, bool), PlyMesh> = BTreeMap::new();
-    for m in scene.flattened_meshes() {
-        let with_normals = !m.normals.is_empty();
-        let mut per_material: BTreeMap<usize, Vec<[u32; 3]>> = BTreeMap::new();
-        for (t, &mi) in m.triangles.iter().zip(&m.tri_material) {
-            per_material.entry(mi as usize).or_default().push(*t);
-        }
-        let positions: Vec<Vec3> = m.p_render.iter().map(|p| p.as_vec3()).collect();
-        for (mi, tris) in per_material {
-            let faces: &[bool] = match emission(table[mi]) {
-                Some((_, true)) => &[false, true],
-                _ => &[false],
-            };
-            for &back in faces {
-                by_key.entry((mi, with_normals, back)).or_default().append(
-                    &positions,
-                    &m.normals,
-                    &tris,
-                    back,
-                );
-            }
+/// (material, with normals, back face) → the triangles gathered.
+type Gathered = std::collections::BTreeMap<(usize, bool, bool), PlyMesh>;
+
+/// Adds `m`'s triangles to `by_key`, per material (and per normals present
+/// or not, as a PLY file has normals for all vertices or none), with the
+/// back face of two-sided emitters as its own flipped group.
+fn gather(by_key: &mut Gathered, m: &crate::scene::Mesh, table: &[&MaterialDesc]) {
+    let with_normals = !m.normals.is_empty();
+    let mut per_material: std::collections::BTreeMap<usize, Vec<[u32; 3]>> = Default::default();
+    for (t, &mi) in m.triangles.iter().zip(&m.tri_material) {
+        per_material.entry(mi as usize).or_default().push(*t);
+    }
+    let positions: Vec<Vec3> = m.p_render.iter().map(|p| p.as_vec3()).collect();
+    for (mi, tris) in per_material {
+        let faces: &[bool] = match emission(table[mi]) {
+            Some((_, true)) => &[false, true],
+            _ => &[false],
+        };
+        for &back in faces {
+            by_key
+                .entry((mi, with_normals, back))
+                .or_default()
+                .append(&positions, &m.normals, &tris, back);
         }
     }
-    by_key
-        .into_iter()
-        .map(|((mi, normals, back), mesh)| Group {
-            file_stem: format!(
-                "m{mi:04}{}{}",
-                if normals { "_n" } else { "" },
-                if back { "_back" } else { "" }
-            ),
-            material: mi,
-            emission: emission(table[mi]).map(|(le, _)| le),
-            mesh,
-        })
-        .collect()
+}
+
+/// The flat meshes' groups, then each prototype's (in its local frame;
+/// emitters are never instanced, `scene::instancing` flattens them).
+fn gather_meshes(scene: &Scene, table: &[&MaterialDesc]) -> Vec<Group> {
+    let mut flat = Gathered::new();
+    for m in &scene.meshes {
+        gather(&mut flat, m, table);
+    }
+    let mut sets = vec![(None, flat)];
+    for (k, proto) in scene.prototypes.iter().enumerate() {
+        let mut g = Gathered::new();
+        for m in &proto.meshes {
+            gather(&mut g, m, table);
+        }
+        sets.push((Some(k), g));
+    }
+    let mut groups = Vec::new();
+    for (prototype, set) in sets {
+        for ((mi, normals, back), mesh) in set {
+            let prefix = prototype.map_or(String::new(), |k| format!("p{k:05}_"));
+            groups.push(Group {
+                file_stem: format!(
+                    "{prefix}m{mi:04}{}{}",
+                    if normals { "_n" } else { "" },
+                    if back { "_back" } else { "" }
+                ),
+                prototype,
+                material: mi,
+                emission: emission(table[mi]).map(|(le, _)| le),
+                mesh,
+            });
+        }
+    }
+    groups
 }
 
 /// The sky's radiance on Mitsuba's latitude-longitude map, `width` × `width`/2

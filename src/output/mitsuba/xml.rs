@@ -5,7 +5,7 @@
 
 use std::fmt::Write as _;
 
-use glam::{DMat3, DVec3, Vec3};
+use glam::{DAffine3, DMat3, DVec3, Vec3};
 
 use super::MitsubaOptions;
 use crate::light::Light;
@@ -111,7 +111,7 @@ impl Xml {
     }
 
     /// The BSDF of material `i` (id `m{i}`).
-    pub fn bsdf(&mut self, i: usize, m: &MaterialDesc, notes: &mut Vec<String>) {
+    pub fn bsdf(&mut self, i: usize, m: &MaterialDesc) {
         let name = &m.name;
         let ggx = |r: f64| format!("<string name=\"distribution\" value=\"ggx\"/><float name=\"alpha\" value=\"{}\"/>", r * r);
         let body = match &m.kind {
@@ -158,9 +158,6 @@ impl Xml {
                      <rgb name=\"diffuse_reflectance\" value=\"{}\"/>",
                     v(*albedo)
                 );
-                notes.push(format!(
-                    "material {name}: coated paint as Mitsuba's plastic (its own coat model)"
-                ));
                 two_sided(if *coat_roughness < SMOOTH_ROUGHNESS {
                     format!("<bsdf type=\"plastic\">{common}</bsdf>")
                 } else {
@@ -178,9 +175,6 @@ impl Xml {
                 base_roughness,
                 ..
             } => {
-                notes.push(format!(
-                    "material {name}: coated metal as its bare base (Mitsuba has no coated conductor)"
-                ));
                 let (eta, k) = conductor_eta_k(preset, eta, k);
                 two_sided(conductor(eta, k, *base_roughness, &ggx))
             }
@@ -188,11 +182,6 @@ impl Xml {
                 "<bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0\"/></bsdf>".into(),
             ),
         };
-        if m.texture.is_some() {
-            notes.push(format!(
-                "material {name}: procedural texture as its mean albedo"
-            ));
-        }
         let body = body.replacen("<bsdf ", &format!("<bsdf id=\"m{i}\" "), 1);
         let _ = writeln!(self.out, "\t<!-- {name} -->\n\t{body}");
     }
@@ -205,6 +194,28 @@ impl Xml {
              \t\t<boolean name=\"face_normals\" value=\"{}\"/>\n\t\t<ref id=\"m{material}\"/>{}\n\t</shape>",
             !file.contains("_n"),
             area(emission)
+        );
+    }
+
+    /// Opens the shape group of prototype `k` (id `p{k}`).
+    pub fn begin_group(&mut self, k: usize) {
+        let _ = writeln!(self.out, "\t<shape type=\"shapegroup\" id=\"p{k}\">");
+    }
+
+    /// Closes the open shape group.
+    pub fn end_group(&mut self) {
+        let _ = writeln!(self.out, "\t</shape>");
+    }
+
+    /// An instance of prototype `k` placed by `render_from_local`.
+    pub fn instance(&mut self, k: usize, render_from_local: &DAffine3) {
+        let (m, t) = (render_from_local.matrix3, render_from_local.translation);
+        let _ = writeln!(
+            self.out,
+            "\t<shape type=\"instance\"><ref id=\"p{k}\"/><transform name=\"to_world\"><matrix value=\"{} {} {} {} {} {} {} {} {} {} {} {} 0 0 0 1\"/></transform></shape>",
+            m.x_axis.x, m.y_axis.x, m.z_axis.x, t.x,
+            m.x_axis.y, m.y_axis.y, m.z_axis.y, t.y,
+            m.x_axis.z, m.y_axis.z, m.z_axis.z, t.z
         );
     }
 
