@@ -99,13 +99,18 @@ pub struct RenderArgs {
     /// Camera sensor noise at this ISO (shot, read and PRNU noise on the
     /// linear film, independent per view); overrides a weather preset's. 0
     /// turns a preset's noise off.
-    #[arg(long, value_name = "ISO")]
+    #[arg(long, value_name = "ISO", conflicts_with = "reference")]
     pub sensor_noise: Option<f64>,
     /// Write the plain path-traced images: no image-space filter of sky and
     /// indirect light or of fog light (the scene's `filter_indirect` and
     /// `filter_inscatter` turned off, a weather preset's included).
     #[arg(long)]
     pub no_filter: bool,
+    /// Reference mode: plain, unbiased path tracing, as a reference renderer
+    /// (no image filter, no clamp, no sensor noise, no adaptive sampling;
+    /// the samples are --spp's). Compare with Mitsuba 3: docs/reference.md.
+    #[arg(long)]
+    pub reference: bool,
 }
 
 impl RenderArgs {
@@ -128,6 +133,7 @@ impl RenderArgs {
             }),
             sensor_noise_iso: self.sensor_noise,
             filter: !self.no_filter,
+            reference: self.reference,
             backend: self.backend,
         }
     }

@@ -201,6 +201,8 @@ pub struct FrameSpec {
     pub sensor_noise_iso: Option<f64>,
     /// The description's image-space filters (off: plain path-traced images).
     pub filter: bool,
+    /// Reference mode: plain, unbiased path tracing ([`reference_mode`]).
+    pub reference: bool,
     /// Traversal backend.
     pub backend: Backend,
 }
@@ -213,6 +215,7 @@ impl Default for FrameSpec {
             weather: None,
             sensor_noise_iso: None,
             filter: true,
+            reference: false,
             backend: Backend::default_backend(),
         }
     }
@@ -266,13 +269,15 @@ impl FrameRecipe {
         if !spec.filter {
             loaded.desc.turn_image_filters_off();
         }
-        let noise = sensor_noise(spec.sensor_noise_iso, weather.as_mut())?;
+        let noise_iso = reference_mode(spec.reference, &mut loaded).unwrap_or(spec.sensor_noise_iso);
+        let noise = sensor_noise(noise_iso, weather.as_mut())?;
         origin.seeds.samples = Some(seed);
         let settings = RenderSettings {
             spp: loaded.desc.render.spp,
             max_depth: loaded.desc.render.max_depth,
             seed,
             frame: spec.frame,
+            reference: spec.reference,
         };
         Ok(FrameRecipe {
             loaded,
@@ -301,6 +306,20 @@ impl FrameRecipe {
             built,
         })
     }
+}
+
+/// Reference mode (`render --reference`), decided here and only here: plain,
+/// unbiased path tracing. It turns the description's image-space filters
+/// off and returns the sensor noise override it forces (ISO 0: none, also
+/// over a weather preset's); passes that would bias the estimate (clamps,
+/// denoisers, adaptive sampling) read `RenderSettings::reference`, which the
+/// recipe sets from the same flag. None when `reference` is off.
+pub fn reference_mode(reference: bool, loaded: &mut LoadedScene) -> Option<Option<f64>> {
+    if !reference {
+        return None;
+    }
+    loaded.desc.turn_image_filters_off();
+    Some(Some(0.0))
 }
 
 /// The frame's sensor noise: `iso` (0 = none) over the weather preset's; the
