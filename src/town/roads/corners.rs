@@ -2,7 +2,7 @@
 //! outer roads meet, a quarter circle of radius R about a centre R in from
 //! both outer centrelines replaces the corner junction. Asphalt, markings
 //! (centre line, lane dividers and edge lines as on the straights) and
-//! gravel shoulders follow the arc; the straights end at its tangent points
+//! gravel shoulders (paved on a divided highway) follow the arc; the straights end at its tangent points
 //! (see `roads`), so the corner square outside the arc is left to the ground.
 //!
 //! Pieces are quads and boxes turned about z (road surfaces stay exactly at
@@ -94,7 +94,9 @@ pub fn loop_corner_objects(l: &Layout) -> Vec<ObjectDesc> {
         if l.lanes == 1 {
             out.extend(line(0.0, 0.12, Cut::Dashed(paint), "paint_white_road"));
         } else {
-            for u in [-0.12, 0.12] {
+            // Either side of a divided highway's median barrier.
+            let u = if l.median { 0.45 } else { 0.12 };
+            for u in [-u, u] {
                 out.extend(line(u, 0.12, Cut::Solid(paint), "paint_yellow_road"));
             }
             for k in 1..l.lanes {
@@ -112,16 +114,15 @@ pub fn loop_corner_objects(l: &Layout) -> Vec<ObjectDesc> {
                 "paint_white_road",
             ));
         }
-        // Gravel shoulders, reaching 5 cm under the asphalt's edges.
+        // Shoulders reaching 5 cm under the asphalt's edges: gravel, or
+        // paved hard shoulders on a divided highway.
         let sw = l.sidewalk_m;
+        let (m, label) = match l.median {
+            true => ("asphalt", class("road")),
+            false => ("gravel", class("terrain")),
+        };
         for (r0, r1) in [(r - hw - sw, r - hw + 0.05), (r + hw - 0.05, r + hw + sw)] {
-            out.extend(band(
-                &c,
-                (r0, r1),
-                Cut::Quads(SHOULDER_Z),
-                "gravel",
-                class("terrain"),
-            ));
+            out.extend(band(&c, (r0, r1), Cut::Quads(SHOULDER_Z), m, label));
         }
     }
     out
