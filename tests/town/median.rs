@@ -285,7 +285,10 @@ fn no_drive_and_no_route_crosses_the_median_barrier() {
             while s < path.length_m() {
                 let (q, _) = path.pose(s);
                 let d = e.distance(q);
-                assert!(d >= clear, "{name} drive from link {start}: {d} m from the barrier at {q:?} (s {s})");
+                assert!(
+                    d >= clear,
+                    "{name} drive from link {start}: {d} m from the barrier at {q:?} (s {s})"
+                );
                 s += 0.5;
             }
         }
