@@ -145,10 +145,12 @@ impl<'a> StaticTown<'a> {
     }
 
     /// The generated triangle meshes as inline mesh objects: the hills
-    /// (`terrain::TERRAIN_NAME`) and the ramp surfaces (`ramps::RAMP_MESHES`).
+    /// (`terrain::TERRAIN_NAME`), the ramp surfaces (`ramps::RAMP_MESHES`)
+    /// and a divided highway's median barrier (`roads::median`).
     pub fn meshes(&self) -> Vec<ObjectDesc> {
         let mut out: Vec<ObjectDesc> = self.terrain.iter().map(|t| t.object()).collect();
         out.extend(ramps::ramp_meshes(&self.sites));
+        out.extend(roads::median::median_meshes(&self.layout));
         if let Some(w) = &self.warp {
             organic::bend::bend_meshes(&mut out, w);
         }
