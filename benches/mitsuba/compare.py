@@ -17,6 +17,8 @@ and spot lights, homogeneous fog):
 
 Usage: python3 benches/mitsuba/compare.py [--small] [--parallax BIN]
        [--scenes sunlit,night,fog] [--out DIR] [--spp N] [--seconds S]
+--small (CI): 80x45, 2 x 32 spp, Mitsuba scalar_rgb (no JIT compile), the
+agreement only (equal time needs the LLVM variant).
 Needs `pip install mitsuba numpy`; the LLVM variant needs libLLVM >= 15
 with fminimum support (Debian 12: `apt-get install libllvm19`; found
 automatically, or set DRJIT_LIBLLVM_PATH), else it falls back to scalar_rgb.
