@@ -86,7 +86,11 @@ mod tests {
             };
             let exact = 2.0 * std::f64::consts::PI * one_minus_cos;
             let rel = (c.solid_angle() as f64 - exact).abs() / exact;
-            assert!(rel < 1e-5, "{diameter_deg}°: Ω {} vs {exact}", c.solid_angle());
+            assert!(
+                rel < 1e-5,
+                "{diameter_deg}°: Ω {} vs {exact}",
+                c.solid_angle()
+            );
             assert!(c.pdf().is_finite() && c.radiance(Vec3::ONE).is_finite());
         }
     }

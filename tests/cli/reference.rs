@@ -58,7 +58,11 @@ fn reference_is_the_plain_unfiltered_noiseless_render() {
     ] {
         let r = read(&reference.join(view));
         assert_eq!(r, read(&plain.join(view)), "{view}: --reference vs plain");
-        assert_ne!(r, read(&default.join(view)), "{view}: --reference vs default");
+        assert_ne!(
+            r,
+            read(&default.join(view)),
+            "{view}: --reference vs default"
+        );
     }
 }
 
@@ -69,6 +73,9 @@ fn reference_refuses_a_sensor_noise_override() {
     let o = render_storm(&out, &["--reference", "--sensor-noise", "400"]);
     assert_eq!(o.status.code(), Some(2));
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains("--reference") && err.contains("--sensor-noise"), "{err}");
+    assert!(
+        err.contains("--reference") && err.contains("--sensor-noise"),
+        "{err}"
+    );
     assert!(!out.exists(), "nothing written");
 }

@@ -144,7 +144,12 @@ pub fn write_mitsuba(
         x.instance(inst.prototype as usize, &inst.render_from_local);
     }
     for s in &scene.spheres {
-        x.sphere(s.center.as_vec3(), s.radius, s.material, emission(table[s.material as usize]));
+        x.sphere(
+            s.center.as_vec3(),
+            s.radius,
+            s.material,
+            emission(table[s.material as usize]),
+        );
     }
     for l in &scene.lights {
         x.light(l);
@@ -186,7 +191,11 @@ fn write(dir: &Path, name: &str, bytes: &[u8]) -> Result<(), MitsubaError> {
 /// One note per kind of approximation, naming its materials.
 fn material_notes(table: &[&MaterialDesc], notes: &mut Vec<String>) {
     let names = |f: &dyn Fn(&MaterialDesc) -> bool| -> Vec<&str> {
-        table.iter().filter(|m| f(m)).map(|m| m.name.as_str()).collect()
+        table
+            .iter()
+            .filter(|m| f(m))
+            .map(|m| m.name.as_str())
+            .collect()
     };
     let kinds: [(&str, Vec<&str>); 3] = [
         (
@@ -195,7 +204,15 @@ fn material_notes(table: &[&MaterialDesc], notes: &mut Vec<String>) {
         ),
         (
             "coated paint as Mitsuba's plastic (its own coat model)",
-            names(&|m| matches!(m.kind, MaterialKindDesc::Coated { albedo: Some(_), .. })),
+            names(&|m| {
+                matches!(
+                    m.kind,
+                    MaterialKindDesc::Coated {
+                        albedo: Some(_),
+                        ..
+                    }
+                )
+            }),
         ),
         (
             "coated metal as its bare base (Mitsuba has no coated conductor)",
@@ -204,7 +221,11 @@ fn material_notes(table: &[&MaterialDesc], notes: &mut Vec<String>) {
     ];
     for (what, list) in kinds {
         if !list.is_empty() {
-            notes.push(format!("{} materials: {what} ({})", list.len(), list.join(", ")));
+            notes.push(format!(
+                "{} materials: {what} ({})",
+                list.len(),
+                list.join(", ")
+            ));
         }
     }
 }
@@ -333,6 +354,10 @@ mod tests {
         assert_eq!((w, h), (64, 32));
         let top = px[0];
         assert!(top.x > 0.9 && top.z == 0.0, "top row is the zenith: {top}");
-        assert_eq!(px[(h - 1) * w], Vec3::new(0.0, 0.0, 1.0), "bottom row: ground");
+        assert_eq!(
+            px[(h - 1) * w],
+            Vec3::new(0.0, 0.0, 1.0),
+            "bottom row: ground"
+        );
     }
 }

@@ -157,7 +157,11 @@ mod tests {
         let mut m = PlyMesh::default();
         m.append(&p, &n, &[[0, 1, 2], [2, 1, 4]], false);
         m.append(&p, &n, &[[0, 1, 2]], true);
-        assert_eq!(m.positions.len(), 4 + 3, "vertex 3 unused, second append its own");
+        assert_eq!(
+            m.positions.len(),
+            4 + 3,
+            "vertex 3 unused, second append its own"
+        );
         assert_eq!(m.triangles, vec![[0, 1, 2], [2, 1, 3], [4, 6, 5]]);
         assert_eq!(m.normals[5], -Vec3::Z, "flipped normals");
         let back = decode(&m.encode()).unwrap();

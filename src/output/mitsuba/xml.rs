@@ -113,7 +113,12 @@ impl Xml {
     /// The BSDF of material `i` (id `m{i}`).
     pub fn bsdf(&mut self, i: usize, m: &MaterialDesc) {
         let name = &m.name;
-        let ggx = |r: f64| format!("<string name=\"distribution\" value=\"ggx\"/><float name=\"alpha\" value=\"{}\"/>", r * r);
+        let ggx = |r: f64| {
+            format!(
+                "<string name=\"distribution\" value=\"ggx\"/><float name=\"alpha\" value=\"{}\"/>",
+                r * r
+            )
+        };
         let body = match &m.kind {
             MaterialKindDesc::Diffuse { albedo } => two_sided(format!(
                 "<bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"{}\"/></bsdf>",
@@ -220,7 +225,13 @@ impl Xml {
     }
 
     /// An analytic sphere.
-    pub fn sphere(&mut self, c: Vec3, radius: f64, material: u32, emission: Option<([f64; 3], bool)>) {
+    pub fn sphere(
+        &mut self,
+        c: Vec3,
+        radius: f64,
+        material: u32,
+        emission: Option<([f64; 3], bool)>,
+    ) {
         let _ = writeln!(
             self.out,
             "\t<shape type=\"sphere\">\n\t\t<point name=\"center\" value=\"{}\"/>\n\
@@ -257,7 +268,11 @@ impl Xml {
                 cos_outer,
             } => {
                 let outer = (cos_outer as f64).clamp(-1.0, 1.0).acos().to_degrees();
-                let inner = (cos_inner as f64).clamp(-1.0, 1.0).acos().to_degrees().min(outer);
+                let inner = (cos_inner as f64)
+                    .clamp(-1.0, 1.0)
+                    .acos()
+                    .to_degrees()
+                    .min(outer);
                 let up = if dir.z.abs() < 0.9 { Vec3::Z } else { Vec3::X };
                 format!(
                     "<emitter type=\"spot\"><transform name=\"to_world\"><lookat origin=\"{}\" target=\"{}\" up=\"{}\"/></transform>\
@@ -310,8 +325,16 @@ impl Xml {
             v3(m.albedo),
             m.phase.g
         );
-        let z0 = if m.z_min.is_finite() { m.z_min } else { eye.z - MEDIUM_HALF_WIDTH };
-        let z1 = if m.z_max.is_finite() { m.z_max } else { eye.z + MEDIUM_HALF_WIDTH };
+        let z0 = if m.z_min.is_finite() {
+            m.z_min
+        } else {
+            eye.z - MEDIUM_HALF_WIDTH
+        };
+        let z1 = if m.z_max.is_finite() {
+            m.z_max
+        } else {
+            eye.z + MEDIUM_HALF_WIDTH
+        };
         let (cz, hz) = (0.5 * (z0 + z1), 0.5 * (z1 - z0));
         let _ = writeln!(
             self.out,
@@ -360,7 +383,10 @@ fn conductor(eta: [f64; 3], k: [f64; 3], roughness: f64, ggx: &dyn Fn(f64) -> St
     if roughness < SMOOTH_ROUGHNESS {
         format!("<bsdf type=\"conductor\">{common}</bsdf>")
     } else {
-        format!("<bsdf type=\"roughconductor\">{common}{}</bsdf>", ggx(roughness))
+        format!(
+            "<bsdf type=\"roughconductor\">{common}{}</bsdf>",
+            ggx(roughness)
+        )
     }
 }
 

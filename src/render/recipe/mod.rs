@@ -269,7 +269,8 @@ impl FrameRecipe {
         if !spec.filter {
             loaded.desc.turn_image_filters_off();
         }
-        let noise_iso = reference_mode(spec.reference, &mut loaded).unwrap_or(spec.sensor_noise_iso);
+        let noise_iso =
+            reference_mode(spec.reference, &mut loaded).unwrap_or(spec.sensor_noise_iso);
         let noise = sensor_noise(noise_iso, weather.as_mut())?;
         origin.seeds.samples = Some(seed);
         let settings = RenderSettings {
