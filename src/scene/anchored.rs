@@ -13,7 +13,8 @@
 //! exact local ones carried through the instance's f64 translation, so
 //! depth stays exact wherever the camera is in a town (no far corner is
 //! worse than the centre). Emissive meshes stay flat (the light set
-//! enumerates flat emitters) and so do spheres, moved into render space.
+//! enumerates flat emitters), and so do meshes wider than a tile and
+//! spheres, moved into render space.
 
 use std::collections::BTreeMap;
 
@@ -41,14 +42,15 @@ impl StaticTiles {
     /// `emits[i]` tells whether material `i` emits.
     pub fn add(&mut self, leaves: Leaves, emits: &[bool], origin_world: DVec3, flat: &mut Leaves) {
         for mut m in leaves.meshes {
-            if m.tri_material.iter().any(|&t| emits[t as usize]) {
+            let tile = tile_of(&m);
+            if tile.is_none() || m.tri_material.iter().any(|&t| emits[t as usize]) {
                 for p in &mut m.p_render {
                     *p -= origin_world;
                 }
                 m.p_f32 = m.p_render.iter().map(|p| p.as_vec3()).collect();
                 flat.meshes.push(m);
-            } else {
-                self.tiles.entry(tile_of(&m)).or_default().push(m);
+            } else if let Some(t) = tile {
+                self.tiles.entry(t).or_default().push(m);
             }
         }
         for mut s in leaves.spheres {
@@ -91,19 +93,21 @@ impl StaticTiles {
     }
 }
 
-/// The tile (x, y) holding the centre of `m`'s world bounding box.
-fn tile_of(m: &Mesh) -> (i64, i64) {
+/// The tile (x, y) holding the centre of `m`'s world bounding box; None for
+/// a mesh wider than a tile (ground, hills, ramps): it stays flat, with the
+/// precision of render space near the camera, where its long seams with
+/// other meshes are watertight.
+fn tile_of(m: &Mesh) -> Option<(i64, i64)> {
     let (lo, hi) = m.p_render.iter().fold(
         (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
         |(lo, hi), &p| (lo.min(p), hi.max(p)),
     );
-    let c = if lo.x <= hi.x {
-        (lo + hi) * 0.5
-    } else {
-        DVec3::ZERO
-    };
+    if lo.x > hi.x || (hi - lo).truncate().max_element() > TILE_M {
+        return None;
+    }
+    let c = (lo + hi) * 0.5;
     let cell = |v: f64| (v / TILE_M).floor() as i64;
-    (cell(c.x), cell(c.y))
+    Some((cell(c.x), cell(c.y)))
 }
 
 /// World position of a tile's frame: its centre at z = 0.
