@@ -143,7 +143,7 @@ pub enum RoadStyle {
     /// warp (streets keep their width within 3.3 %, headings turn ≤ 8.7°).
     Organic,
     /// Fast roads: the outer roads are a divided highway (median barrier,
-    /// paved hard shoulders, right-in/right-out junctions) with highway
+    /// gravel hard shoulders, right-in/right-out junctions) with highway
     /// street furniture (twin-arm masts, guard rails along the outer roads,
     /// billboards) whatever the speed.
     Highway,

@@ -5,7 +5,7 @@
 //! terrain around everything. A highway loop's curved outer corners are
 //! built in `corners`; the outer roads' straights end at the arcs. A
 //! divided highway's outer roads get a median barrier (`median`, a mesh)
-//! with a solid yellow line on either side of it, and paved hard shoulders.
+//! with a solid yellow line on either side of it, and gravel shoulders.
 //!
 //! A road segment is described in (along, across) coordinates: `along` runs
 //! with the road's positive direction (+x or +y), `across` points to its left
@@ -369,8 +369,8 @@ fn junction_end(l: &Layout, s: &Segment, end: usize, o: &mut Vec<ObjectDesc>) {
     o.push(repeated(stripe, &[(n, across)]));
 }
 
-/// Curbs and sidewalks (or flat gravel shoulders on country roads, paved
-/// hard shoulders on a divided highway) on both sides, leaving room beside
+/// Curbs and sidewalks (or flat gravel shoulders on country roads and
+/// divided highways) on both sides, leaving room beside
 /// ramp sites for their tapers and gores.
 fn roadsides(l: &Layout, sites: &[RampSite], s: &Segment, o: &mut Vec<ObjectDesc>) {
     let side = class("sidewalk");
@@ -390,10 +390,10 @@ fn roadsides(l: &Layout, sites: &[RampSite], s: &Segment, o: &mut Vec<ObjectDesc
                     [p[0].min(q[0]), p[1].min(q[1])],
                     [p[0].max(q[0]), p[1].max(q[1])],
                 );
-                o.push(match divided(l, s) {
-                    true => ground_quad(min, max, 0.0, "asphalt", class("road")),
-                    false => ground_quad(min, max, 0.0, "gravel", class("terrain")),
-                });
+                // Gravel on divided roads too: a paved (road) shoulder lay
+                // coplanar with the junctions' gravel corners, so which of
+                // road or terrain was seen there depended on traversal.
+                o.push(ground_quad(min, max, 0.0, "gravel", class("terrain")));
                 continue;
             }
             let curb = (sign * hw, sign * (hw + 0.25));
