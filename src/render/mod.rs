@@ -36,10 +36,6 @@ pub struct RenderSettings {
     pub seed: u64,
     /// Frame index (part of every stream key).
     pub frame: u32,
-    /// Reference mode: plain, unbiased path tracing (no image filter, no
-    /// clamp, no sensor noise, no adaptive sampling). Decided in one place,
-    /// `render::recipe::reference_mode`; every biased step checks this flag.
-    pub reference: bool,
 }
 
 /// Ground truth for one baseline.

@@ -42,7 +42,6 @@ pub fn gt_frame(
         max_depth: 1,
         seed,
         frame: frame as u32,
-        reference: false,
     };
     let out = render_frame(scene, accel, &rig, &settings, &|_, _| {});
     (rig, out)

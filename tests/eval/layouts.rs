@@ -114,7 +114,6 @@ fn layouts_written_by_parallax_are_found_by_their_mirrors() {
         max_depth: 4,
         seed: 3,
         frame: 5,
-        reference: false,
     };
     let meta = camera_file(&r.scene, &r.rig, &r.out, &settings, None);
     let key = FrameKey {

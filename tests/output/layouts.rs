@@ -255,7 +255,6 @@ fn settings(frame: u32) -> parallax::render::RenderSettings {
         max_depth: 4,
         seed: 3,
         frame,
-        reference: false,
     }
 }
 

@@ -278,7 +278,6 @@ impl FrameRecipe {
             max_depth: loaded.desc.render.max_depth,
             seed,
             frame: spec.frame,
-            reference: spec.reference,
         };
         Ok(FrameRecipe {
             loaded,
@@ -312,9 +311,10 @@ impl FrameRecipe {
 /// Reference mode (`render --reference`), decided here and only here: plain,
 /// unbiased path tracing. It turns the description's image-space filters
 /// off and returns the sensor noise override it forces (ISO 0: none, also
-/// over a weather preset's); passes that would bias the estimate (clamps,
-/// denoisers, adaptive sampling) read `RenderSettings::reference`, which the
-/// recipe sets from the same flag. None when `reference` is off.
+/// over a weather preset's). Every biased pass today (the image filters,
+/// including the direct-light denoiser) hangs on those filter switches, so
+/// nothing else needs the flag; a new biased pass must be turned off here.
+/// None when `reference` is off.
 pub fn reference_mode(reference: bool, loaded: &mut LoadedScene) -> Option<Option<f64>> {
     if !reference {
         return None;
