@@ -96,14 +96,14 @@ pub fn people_prefabs() -> Vec<PrefabDesc> {
 }
 
 pub(super) fn generate_prefabs() -> Vec<PrefabDesc> {
-    (0..VARIANTS)
-        .flat_map(|v| {
-            (0..PHASES)
-                .map(Some)
-                .chain([None])
-                .map(move |p| person_prefab(v, p))
-        })
+    looks_and_poses()
+        .map(|(v, p)| person_prefab(v, p))
         .collect()
+}
+
+/// Every (variant, quantised phase or standing) a prefab exists for.
+pub fn looks_and_poses() -> impl Iterator<Item = (u32, Option<u32>)> {
+    (0..VARIANTS).flat_map(|v| (0..PHASES).map(Some).chain([None]).map(move |p| (v, p)))
 }
 
 /// The materials people wear.

@@ -13,7 +13,7 @@ use glam::DVec3;
 
 use super::body::Joint;
 use super::pose::{pose, stand_angles, walk_angles};
-use super::{prefab_name, Person, PHASES, VARIANTS};
+use super::{looks_and_poses, prefab_name, Person, PHASES, VARIANTS};
 use crate::scene::desc::{ObjectDesc, PrefabDesc, SceneDesc, ShapeDesc};
 
 /// Canopy colours (cloth materials of `clothing`), picked per variant.
@@ -87,13 +87,8 @@ pub fn umbrella_prefab(v: u32, phase: Option<u32>) -> PrefabDesc {
 fn umbrella_prefabs() -> &'static [PrefabDesc] {
     static PREFABS: OnceLock<Vec<PrefabDesc>> = OnceLock::new();
     PREFABS.get_or_init(|| {
-        (0..VARIANTS)
-            .flat_map(|v| {
-                (0..PHASES)
-                    .map(Some)
-                    .chain([None])
-                    .map(move |p| umbrella_prefab(v, p))
-            })
+        looks_and_poses()
+            .map(|(v, p)| umbrella_prefab(v, p))
             .collect()
     })
 }
