@@ -9,10 +9,8 @@ use super::render::recipe_error;
 use super::{show, CliError};
 use crate::camera::StereoRig;
 use crate::output::mitsuba::{write_mitsuba, MitsubaOptions};
-use crate::render::recipe::{
-    draw_seed, FrameRecipe, FrameSource, FrameSpec, Overrides, WeatherChoice,
-};
-use crate::scene::{build_scene, load_scene};
+use crate::render::recipe::{FrameRecipe, FrameSpec, Overrides, WeatherChoice};
+use crate::scene::build_scene;
 
 /// Which camera of the rig the exported scene looks through.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -88,19 +86,15 @@ pub struct ExportArgs {
 
 /// Runs `parallax export`.
 pub fn run(a: ExportArgs) -> Result<(), CliError> {
-    let source = match (&a.town, &a.scene) {
-        (Some(name), _) => {
-            let t =
-                crate::town::load_named_town(name, a.scenes.as_deref()).map_err(CliError::input)?;
-            let seed = a.seed.unwrap_or_else(draw_seed);
-            FrameSource::town(&t, seed, (a.sequence, a.frame as u64), a.config)
-                .map_err(|e| CliError::input(e.to_string()))?
-        }
-        (None, Some(scene)) => {
-            FrameSource::scene(load_scene(scene).map_err(|e| CliError::input(e.to_string()))?)
-        }
-        (None, None) => return Err(CliError::input("give a SCENE file or --town NAME")),
-    };
+    let (source, _) = super::render::SourceArgs {
+        scene: a.scene.as_deref(),
+        town: a.town.as_deref(),
+        scenes: a.scenes.as_deref(),
+        seed: a.seed,
+        drive_frame: (a.sequence, a.frame),
+        config: a.config,
+    }
+    .load()?;
     if let Some(b) = a.baseline {
         if !(b.is_finite() && b > 0.0) {
             return Err(CliError::input(format!(
