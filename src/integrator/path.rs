@@ -160,6 +160,9 @@ pub(super) struct PathState {
     pub bounces: u32,
     /// Where the denoised part of a surface path splits off.
     pub split: SplitVertex,
+    /// The first surface vertex's Lambertian albedo (None: not Lambertian,
+    /// or not shaded), recorded as it is shaded for the fog's split.
+    pub first_albedo: Option<Vec3>,
 }
 
 impl PathState {
@@ -173,6 +176,7 @@ impl PathState {
             prev_p: o,
             bounces: 0,
             split: SplitVertex::default(),
+            first_albedo: None,
         }
     }
 
@@ -413,6 +417,9 @@ impl<A: Accel> PathContext<'_, A> {
             return None;
         }
         let bsdf = scene.material_view().bsdf(&si, wo, st.prev_delta);
+        if st.bounces == 0 {
+            st.first_albedo = bsdf.diffuse_albedo();
+        }
         if is_two_sided(&bsdf) && !front {
             si.n_geo = -si.n_geo;
             si.n_shading = -si.n_shading;

@@ -145,11 +145,16 @@ impl<A: Accel> PathContext<'_, A> {
                 break;
             };
             vs.lobe_wo = None;
-            if st.bounces == 0 && strategies.split_first && st.bounces < self.max_depth {
-                let rho = self.first_lambert_albedo(&ray, &hit).map(|a| a * st.beta);
+            // The first vertex's albedo as its shading finds it (the
+            // record is read and textured once).
+            let first = (st.bounces == 0 && strategies.split_first && st.bounces < self.max_depth)
+                .then_some(st.beta);
+            let next = self.surface_vertex(&ray, &hit, st, stream, rays);
+            if let Some(beta) = first {
+                let rho = st.first_albedo.map(|a| a * beta);
                 vs.first.surf_fog.at_first_vertex(rho);
             }
-            match self.surface_vertex(&ray, &hit, st, stream, rays) {
+            match next {
                 Some(next) => ray = next,
                 None => break,
             }

@@ -43,7 +43,9 @@ impl<A: Accel> PathContext<'_, A> {
             return;
         }
         let wi_local = frame.to_local(ls.wi);
-        let f = bsdf.eval(wo_local, wi_local) * wi_local.z.abs();
+        // The pdf (for the MIS weight) with f: a relief builds its groove once.
+        let (f, bsdf_pdf) = bsdf.eval_pdf(wo_local, wi_local);
+        let f = f * wi_local.z.abs();
         if f == Vec3::ZERO {
             return;
         }
@@ -52,7 +54,16 @@ impl<A: Accel> PathContext<'_, A> {
             return;
         }
         let coherent = self.lights.distant_is_directional(k);
-        self.push_shadow(vertex, &ls, f, None, coherent, beta, pending, rays);
+        self.push_shadow(
+            vertex,
+            &ls,
+            (f, Some(bsdf_pdf)),
+            None,
+            coherent,
+            beta,
+            pending,
+            rays,
+        );
     }
 
     /// Next-event estimation of the local lights: one light sample kept by
@@ -83,19 +94,29 @@ impl<A: Accel> PathContext<'_, A> {
         let Some(r) = ris::resample(self.lights, self.scene, si.p, u, f_cos) else {
             return;
         };
-        self.push_shadow(vertex, &r.ls, r.f, r.inv_pdf, false, beta, pending, rays);
+        self.push_shadow(
+            vertex,
+            &r.ls,
+            (r.f, None),
+            r.inv_pdf,
+            false,
+            beta,
+            pending,
+            rays,
+        );
     }
 
     /// Leaves the shadow ray of light sample `ls` in `pending` with its
     /// contribution `beta · f · li · w / pdf` (`f` = BSDF × cosine, `w`
-    /// the MIS weight against BSDF sampling by `ls.pdf`); `inv_pdf`, when
+    /// the MIS weight against BSDF sampling by `ls.pdf`, with the BSDF's pdf
+    /// toward the light when the caller has it); `inv_pdf`, when
     /// given, replaces 1/pdf (resampling's weight).
     #[allow(clippy::too_many_arguments)]
     fn push_shadow(
         &self,
         vertex: &Vertex,
         ls: &crate::light::LightSample,
-        f: Vec3,
+        (f, bsdf_pdf): (Vec3, Option<f32>),
         inv_pdf: Option<f32>,
         coherent: bool,
         beta: Vec3,
@@ -118,8 +139,8 @@ impl<A: Accel> PathContext<'_, A> {
         let w = if ls.delta {
             1.0
         } else {
-            let wi_local = frame.to_local(ls.wi);
-            power_heuristic(1.0, ls.pdf, 1.0, bsdf.pdf(wo_local, wi_local))
+            let bsdf_pdf = bsdf_pdf.unwrap_or_else(|| bsdf.pdf(wo_local, frame.to_local(ls.wi)));
+            power_heuristic(1.0, ls.pdf, 1.0, bsdf_pdf)
         };
         let li = match &self.scene.medium {
             // Shadow rays through a medium carry its transmittance.
