@@ -104,12 +104,15 @@ fn emissive_quad_irradiance_matches_lambert_polygon_formula() {
     }));
 }
 
+/// A light: position, intensity, and for a spot (axis, cos inner, cos outer).
+type TestLight = (DVec3, f64, Option<(DVec3, f64, f64)>);
+
 #[test]
 fn many_point_and_spot_lights_sum_their_inverse_square_laws() {
     // Twelve lights (no sun or sky: local lights are all the light, so NEE
     // resamples them from eight candidates): points and spots aimed off
     // the vertical, whose falloff edges cross the plane's pixels.
-    let lights: Vec<(DVec3, f64, Option<(DVec3, f64, f64)>)> = (0..12)
+    let lights: Vec<TestLight> = (0..12)
         .map(|k| {
             let a = k as f64 * 2.399;
             let p = DVec3::new(1.5 * a.cos(), 1.2 * a.sin(), 1.0 + 0.15 * k as f64);
