@@ -299,9 +299,6 @@ struct Strategies {
     /// in-scattering on every segment; later ones only at collisions
     /// (`u32::MAX`: every segment).
     every_segment_bounces: u32,
-    /// The sun lobe is drawn at collisions that are at most this many
-    /// scattering events into the path (`u32::MAX`: at every collision).
-    lobe_bounces: u32,
     /// Split the camera ray's first segment: the surface (or sky) behind it
     /// always traced with weight Tr, the collision's continuation as drawn,
     /// so the binary collide-or-pass choice leaves no noise on surfaces
@@ -316,7 +313,6 @@ impl Default for Strategies {
             sun_lobe: true,
             albedo_roulette: true,
             every_segment_bounces: 1,
-            lobe_bounces: 2,
             split_first: false,
         }
     }

@@ -274,8 +274,7 @@ impl<A: Accel> PathContext<'_, A> {
         let ph = m.phase.sample(wo, u.u_phase);
         st.scatter(m, p, ph.pdf);
         vs.lobe_wo = None;
-        let lobe = st.bounces < self.max_depth && st.bounces <= vs.strategies.lobe_bounces;
-        if let Some(sl) = vs.sun_lobe.filter(|_| lobe) {
+        if let Some(sl) = vs.sun_lobe.filter(|_| st.bounces < self.max_depth) {
             stream.set_dimension(LOBE_DIMS + 2 * st.bounces);
             let (u0, u1) = (stream.next_4d(), stream.next_4d());
             st.l += st.beta * self.sun_lobe_vertex(m, sl, p, wo, u0, u1, rays);

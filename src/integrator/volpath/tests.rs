@@ -204,16 +204,15 @@ fn albedo_roulette_keeps_grey_throughput_and_expected_weight() {
 }
 
 #[test]
-fn collision_only_in_scattering_and_early_sun_lobe_keep_the_mean() {
+fn collision_only_in_scattering_keeps_the_mean() {
     // Defaults (in-scattering on every segment only before the first
-    // scattering event, the sun lobe at the first two) against both on
-    // everywhere: the same expected radiance, toward and across the sun.
+    // scattering event) against it on every segment: the same expected
+    // radiance, toward and across the sun.
     let n = 16384;
     let cheap = samples(Strategies::default(), &DIRS, n);
     let full = samples(
         Strategies {
             every_segment_bounces: u32::MAX,
-            lobe_bounces: u32::MAX,
             ..Strategies::default()
         },
         &DIRS,
@@ -223,7 +222,6 @@ fn collision_only_in_scattering_and_early_sun_lobe_keep_the_mean() {
     let collisions = samples(
         Strategies {
             every_segment_bounces: 0,
-            lobe_bounces: 0,
             ..Strategies::default()
         },
         &DIRS,
