@@ -84,7 +84,7 @@ pub struct LightSet {
 
 /// Local lights are resampled from this many candidates where they matter
 /// (`LightSet::local_candidates`).
-pub const LOCAL_CANDIDATES: usize = 8;
+pub const LOCAL_CANDIDATES: usize = 2;
 
 /// Share of the emitted power from which local lights are resampled from
 /// `LOCAL_CANDIDATES` (night: nearly all of it; under a storm's overcast
