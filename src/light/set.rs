@@ -88,7 +88,7 @@ pub const LOCAL_CANDIDATES: usize = 2;
 
 /// Share of the emitted power from which local lights are resampled from
 /// `LOCAL_CANDIDATES` (night: nearly all of it; under a storm's overcast
-/// they bring 8 %, where eight BVH walks per vertex cost more than the
+/// they bring 8 %, where the extra BVH walks per vertex cost more than the
 /// lamps' noise).
 const LOCAL_SHARE_FOR_RIS: f32 = 0.25;
 /// Share below which a vertex samples the local lights only with
