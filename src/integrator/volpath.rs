@@ -145,11 +145,16 @@ impl<A: Accel> PathContext<'_, A> {
                 break;
             };
             vs.lobe_wo = None;
-            if st.bounces == 0 && strategies.split_first && st.bounces < self.max_depth {
-                let rho = self.first_lambert_albedo(&ray, &hit).map(|a| a * st.beta);
+            // The first vertex's albedo as its shading finds it (the
+            // record is read and textured once).
+            let first = (st.bounces == 0 && strategies.split_first && st.bounces < self.max_depth)
+                .then_some(st.beta);
+            let next = self.surface_vertex(&ray, &hit, st, stream, rays);
+            if let Some(beta) = first {
+                let rho = st.first_albedo.map(|a| a * beta);
                 vs.first.surf_fog.at_first_vertex(rho);
             }
-            match self.surface_vertex(&ray, &hit, st, stream, rays) {
+            match next {
                 Some(next) => ray = next,
                 None => break,
             }
@@ -220,20 +225,24 @@ impl<A: Accel> PathContext<'_, A> {
 
     /// Equiangular sampling of a point on [0, t_end] toward one selected
     /// point or spot light, MIS-weighted against the in-scattering points
-    /// (density σ_t·Tr / (1 − `tr_seg`), `tr_seg` the segment's Tr).
+    /// (density σ_t·Tr / `p_point`: 1 − the segment's Tr when every
+    /// segment draws one, 1 when only collisions do).
     #[allow(clippy::too_many_arguments)]
     fn equiangular(
         &self,
         m: &Medium,
         ray: &Ray,
         t_end: f32,
-        tr_seg: f32,
+        p_point: f32,
         u_sel: f32,
         u_t: f32,
         u_l: Vec2,
         rays: &mut u64,
     ) -> Vec3 {
         let scene = self.scene;
+        if !self.lights.has_delta_local() {
+            return Vec3::ZERO;
+        }
         // Selection does not depend on the point: the light chosen from the
         // ray origin is the light lit from the sampled point.
         let Some(ls0) = self.lights.sample_global(scene, ray.o, u_sel, u_l) else {
@@ -263,7 +272,7 @@ impl<A: Accel> PathContext<'_, A> {
         if self.accel.occluded(&shadow_ray(x, &ls)) {
             return Vec3::ZERO;
         }
-        let pdf_in = m.distance_pdf(ray.o, ray.d, t) / (1.0 - tr_seg);
+        let pdf_in = m.distance_pdf(ray.o, ray.d, t) / p_point;
         let w = power_heuristic(1.0, pdf_eq, 1.0, pdf_in);
         let tr = m.tr(ray.o, ray.d, t) * m.tr(x, ls.wi, ls.dist);
         m.albedo * ls.li * (sigma_t * tr * f * w / (pdf_eq * ls.pdf))
@@ -286,6 +295,10 @@ struct Strategies {
     /// Roulette by the albedo (`PathState::survives_albedo_roulette`); off
     /// is the surface loop's throughput roulette.
     albedo_roulette: bool,
+    /// Segments after fewer scattering events than this estimate their
+    /// in-scattering on every segment; later ones only at collisions
+    /// (`u32::MAX`: every segment).
+    every_segment_bounces: u32,
     /// Split the camera ray's first segment: the surface (or sky) behind it
     /// always traced with weight Tr, the collision's continuation as drawn,
     /// so the binary collide-or-pass choice leaves no noise on surfaces
@@ -299,6 +312,7 @@ impl Default for Strategies {
         Strategies {
             sun_lobe: true,
             albedo_roulette: true,
+            every_segment_bounces: 1,
             split_first: false,
         }
     }

@@ -165,8 +165,13 @@ impl<A: Accel> PathContext<'_, A> {
         if first_segment {
             vs.first.opacity = 1.0 - seg.tr_seg;
         }
+        // Early segments estimate their in-scattering whether or not they
+        // collide; later ones only where they collide (the collision
+        // estimator: same mean, no shadow rays on the segments that pass).
+        // Equiangular sampling runs on every segment either way.
+        let every = vs.st.bounces < strategies.every_segment_bounces;
         if vs.st.bounces < self.max_depth {
-            self.in_scatter(m, ray, t_end, &seg, u, vs, rays);
+            self.in_scatter(m, ray, t_end, &seg, every, u, vs, rays);
         }
         let split = first_segment && strategies.split_first;
         if split && seg.collided {
@@ -185,7 +190,9 @@ impl<A: Accel> PathContext<'_, A> {
 
     /// In-scattering along the whole segment: equiangular sampling toward a
     /// point or spot light, and NEE at the segment's in-scattering point
-    /// (drawn ∝ σ_t·Tr), weighted by (1 − Tr)·albedo; both added to the path.
+    /// (drawn ∝ σ_t·Tr), weighted by (1 − Tr)·albedo when estimated on
+    /// `every` segment, else only where the segment collides, by the albedo
+    /// alone (the collision estimator); both added to the path.
     #[allow(clippy::too_many_arguments)]
     fn in_scatter(
         &self,
@@ -193,16 +200,20 @@ impl<A: Accel> PathContext<'_, A> {
         ray: &Ray,
         t_end: f32,
         seg: &InScatter,
+        every: bool,
         u: &SegmentSamples,
         vs: &mut VolState,
         rays: &mut u64,
     ) {
         let (p, wo) = (ray.at(seg.t), -ray.d);
+        // The in-scattering point's density per metre: σ_t·Tr / (1 − Tr)
+        // drawn on every segment, σ_t·Tr as a collision.
+        let p_point = if every { 1.0 - seg.tr_seg } else { 1.0 };
         let c = self.equiangular(
             m,
             ray,
             t_end,
-            seg.tr_seg,
+            p_point,
             u.u_eq_sel,
             u.u_eq,
             u.u_eq_light,
@@ -210,6 +221,9 @@ impl<A: Accel> PathContext<'_, A> {
         );
         let st = &mut vs.st;
         st.l += st.beta * c;
+        if !every && !seg.collided {
+            return;
+        }
         let lobe_w = vs.lobe_wo.zip(vs.sun_lobe).map(|(wo_prev, sl)| {
             (
                 sl.k,
@@ -221,7 +235,11 @@ impl<A: Accel> PathContext<'_, A> {
             ray,
             t_end,
             seg.t,
-            seg.pdf,
+            if every {
+                seg.pdf
+            } else {
+                seg.pdf * (1.0 - seg.tr_seg)
+            },
             p,
             wo,
             u.u_sel,
@@ -230,7 +248,10 @@ impl<A: Accel> PathContext<'_, A> {
             lobe_w,
             rays,
         );
-        st.l += st.beta * m.albedo * (nee * (1.0 - seg.tr_seg));
+        // Every segment: the point stands for the collision it is with
+        // probability 1 − Tr; a collision's estimate is its own.
+        let w_seg = if every { 1.0 - seg.tr_seg } else { 1.0 };
+        st.l += st.beta * m.albedo * (nee * w_seg);
     }
 
     /// A collision at medium point `p` (incoming `wo`): the phase-sampled

@@ -202,3 +202,45 @@ fn albedo_roulette_keeps_grey_throughput_and_expected_weight() {
         assert!((mean - 0.4 * albedo).abs().max_element() < 1e-5, "{mean}");
     }
 }
+
+#[test]
+fn collision_only_in_scattering_keeps_the_mean() {
+    // Defaults (in-scattering on every segment only before the first
+    // scattering event) against it on every segment: the same expected
+    // radiance, toward and across the sun.
+    let n = 16384;
+    let cheap = samples(Strategies::default(), &DIRS, n);
+    let full = samples(
+        Strategies {
+            every_segment_bounces: u32::MAX,
+            ..Strategies::default()
+        },
+        &DIRS,
+        n,
+    );
+    // Estimated on no segment but collisions, from the camera ray on.
+    let collisions = samples(
+        Strategies {
+            every_segment_bounces: 0,
+            ..Strategies::default()
+        },
+        &DIRS,
+        n,
+    );
+    for (d, ((xa, xb), xc)) in DIRS.iter().zip(full.iter().zip(&cheap).zip(&collisions)) {
+        let (a, b, c) = (mean_var(xa), mean_var(xb), mean_var(xc));
+        for (name, other, x) in [("default", b, xb), ("collisions only", c, xc)] {
+            let se = paired_se(xa, x);
+            eprintln!(
+                "{d}: full {:.4} (var {:.3}), {name} {:.4} (var {:.3}), se {se:.4}",
+                a.0, a.1, other.0, other.1
+            );
+            assert!(
+                (a.0 - other.0).abs() <= 4.0 * se,
+                "{d}: {name} {} vs {} ± {se}",
+                other.0,
+                a.0
+            );
+        }
+    }
+}
