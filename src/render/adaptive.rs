@@ -234,6 +234,9 @@ mod tests {
         // All zero: even shares; fractions carried (budget 7 over 3).
         assert_eq!(allocate(&[0.0; 4], 64, 6, 64), vec![16; 4]);
         assert_eq!(allocate(&[0.0; 3], 7, 1, 8), vec![2, 2, 3]);
+        // Ten shares of 0.1 sum to 0.999… in floating point: the last
+        // sample is settled, not lost.
+        assert_eq!(allocate(&[0.0; 10], 1, 0, 1).iter().sum::<u32>(), 1);
         // Zero errors among positive ones get the minimum.
         let c = allocate(&[0.0, 1.0, 1.0, 0.0], 4 * 16, 6, 64);
         assert_eq!(c, vec![6, 26, 26, 6]);
@@ -249,7 +252,11 @@ mod tests {
             for spp in [4u32, 5, 16, 31] {
                 let budget = n as u64 * spp as u64;
                 let c = allocate(&err, budget, min_spp(spp), max_spp(spp));
-                assert_eq!(c.iter().map(|&c| c as u64).sum::<u64>(), budget, "n {n} spp {spp}");
+                assert_eq!(
+                    c.iter().map(|&c| c as u64).sum::<u64>(),
+                    budget,
+                    "n {n} spp {spp}"
+                );
                 assert!(c.iter().all(|&c| c >= min_spp(spp) && c <= max_spp(spp)));
             }
         }

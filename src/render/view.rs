@@ -96,7 +96,10 @@ impl Tiling {
     /// Tile `t`'s pixel columns and rows.
     fn bounds(&self, t: u32) -> (std::ops::Range<u32>, std::ops::Range<u32>) {
         let (x0, y0) = ((t % self.tiles_x) * TILE_PX, (t / self.tiles_x) * TILE_PX);
-        (x0..(x0 + TILE_PX).min(self.w), y0..(y0 + TILE_PX).min(self.h))
+        (
+            x0..(x0 + TILE_PX).min(self.w),
+            y0..(y0 + TILE_PX).min(self.h),
+        )
     }
 
     /// Raster index of every pixel of tile `t`, in the tile's raster order.
@@ -132,7 +135,11 @@ pub(super) fn render_view<A: Accel>(
     let keep_filter_inputs = ctx.scene.filter_inscatter || ctx.scene.filter_indirect;
     let n_px = w as usize * h as usize;
     let adaptive = adaptive && spp >= adaptive::MIN_ADAPTIVE_SPP;
-    let first = if adaptive { adaptive::pilot_spp(spp) } else { spp };
+    let first = if adaptive {
+        adaptive::pilot_spp(spp)
+    } else {
+        spp
+    };
     let mut tiles: Vec<TileAcc> = (0..tiling.count())
         .map(|t| TileAcc {
             px: vec![PixelAcc::default(); tiling.pixels(t).count()],
