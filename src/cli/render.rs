@@ -119,6 +119,12 @@ pub struct RenderArgs {
     /// the samples are --spp's). Compare with Mitsuba 3: docs/reference.md.
     #[arg(long)]
     pub reference: bool,
+    /// Adaptive sampling: each view's pixels × spp samples shared by a
+    /// pilot pass's per-pixel error estimate instead of --spp in every
+    /// pixel (off by default: it does not gain at the default filters,
+    /// docs/reference.md; reference mode is never adaptive).
+    #[arg(long, conflicts_with = "reference")]
+    pub adaptive: bool,
 }
 
 impl RenderArgs {
@@ -142,6 +148,7 @@ impl RenderArgs {
             sensor_noise_iso: self.sensor_noise,
             filter: !self.no_filter,
             reference: self.reference,
+            adaptive: self.adaptive,
             backend: self.backend,
         }
     }
