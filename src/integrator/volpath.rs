@@ -55,6 +55,12 @@ mod tests;
 
 use segment::{SegmentEnd, SegmentSamples, VolState};
 
+/// Probability that a collision (not the camera segment's in-scattering
+/// point) estimates the sky's NEE; it is divided by it when it does.
+/// Sky light in fog is smooth (the fog-weighted tables draw it well), so
+/// halving its shadow rays deep in a path adds little variance.
+const SKY_NEE_DEEP: f32 = 0.5;
+
 /// First 4D set of the sun-lobe dimensions (two sets per bounce, above
 /// every segment's volume dimensions).
 const LOBE_DIMS: u32 = VOL_DIMS + (1 << 18);
@@ -180,6 +186,7 @@ impl<A: Accel> PathContext<'_, A> {
         u_l: Vec2,
         u_distant: &[Vec2; 4],
         lobe_w: Option<(usize, f32)>,
+        sky_rr: Option<f32>,
         rays: &mut u64,
     ) -> Vec3 {
         let scene = self.scene;
@@ -212,7 +219,19 @@ impl<A: Accel> PathContext<'_, A> {
             .enumerate()
             .take(self.lights.distant_count())
         {
-            let c = one(self.lights.sample_distant(scene, k, p, u), false);
+            // The sky's NEE at a collision: kept with probability
+            // SKY_NEE_DEEP and divided by it (its expected value), so
+            // the MIS weights of phase-sampled sky hits stay as they are.
+            let sky_scale = match sky_rr {
+                Some(u_rr) if !self.lights.distant_is_directional(k) => {
+                    if u_rr >= SKY_NEE_DEEP {
+                        continue;
+                    }
+                    1.0 / SKY_NEE_DEEP
+                }
+                _ => 1.0,
+            };
+            let c = one(self.lights.sample_distant(scene, k, p, u), false) * sky_scale;
             l += match lobe_w {
                 Some((k_sun, w)) if k_sun == k => c * w,
                 _ => c,

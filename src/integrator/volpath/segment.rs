@@ -32,6 +32,8 @@ pub(super) struct SegmentSamples {
     u_light: Vec2,
     /// One 2D sample per distant light.
     u_distant: [Vec2; 4],
+    /// Roulette of the sky's NEE at collisions (`SKY_NEE_DEEP`).
+    u_sky: f32,
 }
 
 impl SegmentSamples {
@@ -45,7 +47,7 @@ impl SegmentSamples {
         // paired at random (about 1.5 % lower RMSE at 16 spp).
         let [u_ff, u_ph0, u_ph1, u_rr] = stream.next_4d();
         let [u_eq, u_eq_sel, u_lx, u_ly] = stream.next_4d();
-        let [u_sel, u_ex, u_ey, _] = stream.next_4d();
+        let [u_sel, u_ex, u_ey, u_sky] = stream.next_4d();
         let [a0, a1, a2, a3] = stream.next_4d();
         let [b0, b1, b2, b3] = stream.next_4d();
         SegmentSamples {
@@ -63,6 +65,7 @@ impl SegmentSamples {
                 Vec2::new(b0, b1),
                 Vec2::new(b2, b3),
             ],
+            u_sky,
         }
     }
 }
@@ -246,6 +249,7 @@ impl<A: Accel> PathContext<'_, A> {
             u.u_light,
             &u.u_distant,
             lobe_w,
+            (!every).then_some(u.u_sky),
             rays,
         );
         // Every segment: the point stands for the collision it is with
