@@ -61,6 +61,12 @@ use segment::{SegmentEnd, SegmentSamples, VolState};
 /// halving its shadow rays deep in a path adds little variance.
 const SKY_NEE_DEEP: f32 = 0.5;
 
+/// Collisions up to this many scattering events always draw the sun lobe;
+/// later ones with probability `LOBE_DEEP`.
+const LOBE_ALWAYS: u32 = 1;
+/// Probability that a deep collision draws the sun lobe.
+const LOBE_DEEP: f32 = 0.5;
+
 /// First 4D set of the sun-lobe dimensions (two sets per bounce, above
 /// every segment's volume dimensions).
 const LOBE_DIMS: u32 = VOL_DIMS + (1 << 18);

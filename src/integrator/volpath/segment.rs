@@ -6,7 +6,7 @@ use glam::{Vec2, Vec3};
 use shaders_cpu::medium::Medium;
 use shaders_cpu::sampling::power_heuristic;
 
-use super::{InScatter, Strategies, SunLobe, LOBE_DIMS, VOL_DIMS, VOL_DIMS_PER_BOUNCE};
+use super::{InScatter, Strategies, SunLobe, LOBE_ALWAYS, LOBE_DEEP, LOBE_DIMS, VOL_DIMS, VOL_DIMS_PER_BOUNCE};
 use crate::accel::{Accel, Hit, Ray};
 use crate::integrator::path::{LiSample, PathState};
 use crate::integrator::{DenoiseSample, PathContext};
@@ -281,7 +281,13 @@ impl<A: Accel> PathContext<'_, A> {
         if let Some(sl) = vs.sun_lobe.filter(|_| st.bounces < self.max_depth) {
             stream.set_dimension(LOBE_DIMS + 2 * st.bounces);
             let (u0, u1) = (stream.next_4d(), stream.next_4d());
-            st.l += st.beta * self.sun_lobe_vertex(m, sl, p, wo, u0, u1, rays);
+            // Deep collisions draw the lobe with probability LOBE_DEEP
+            // (divided by it); the next sun NEE keeps its MIS weight either
+            // way, so the pair's expected value is unchanged.
+            let keep = if st.bounces > LOBE_ALWAYS { LOBE_DEEP } else { 1.0 };
+            if u1[2] < keep {
+                st.l += st.beta * self.sun_lobe_vertex(m, sl, p, wo, u0, u1, rays) / keep;
+            }
             vs.lobe_wo = Some(wo);
         }
         let survives = if vs.strategies.albedo_roulette {
