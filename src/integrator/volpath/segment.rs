@@ -6,7 +6,7 @@ use glam::{Vec2, Vec3};
 use shaders_cpu::medium::Medium;
 use shaders_cpu::sampling::power_heuristic;
 
-use super::{InScatter, Strategies, SunLobe, LOBE_ALWAYS, LOBE_DEEP, LOBE_DIMS, VOL_DIMS, VOL_DIMS_PER_BOUNCE};
+use super::{InScatter, Strategies, SunLobe, LOBE_ALWAYS, LOBE_DIMS, VOL_DIMS, VOL_DIMS_PER_BOUNCE};
 use crate::accel::{Accel, Hit, Ray};
 use crate::integrator::path::{LiSample, PathState};
 use crate::integrator::{DenoiseSample, PathContext};
@@ -32,7 +32,7 @@ pub(super) struct SegmentSamples {
     u_light: Vec2,
     /// One 2D sample per distant light.
     u_distant: [Vec2; 4],
-    /// Roulette of the sky's NEE at collisions (`SKY_NEE_DEEP`).
+    /// Roulette of the sky's NEE at collisions (`Strategies::sky_nee_deep`).
     u_sky: f32,
 }
 
@@ -249,7 +249,7 @@ impl<A: Accel> PathContext<'_, A> {
             u.u_light,
             &u.u_distant,
             lobe_w,
-            (!every).then_some(u.u_sky),
+            (!every).then_some((u.u_sky, vs.strategies.sky_nee_deep)),
             rays,
         );
         // Every segment: the point stands for the collision it is with
@@ -281,10 +281,14 @@ impl<A: Accel> PathContext<'_, A> {
         if let Some(sl) = vs.sun_lobe.filter(|_| st.bounces < self.max_depth) {
             stream.set_dimension(LOBE_DIMS + 2 * st.bounces);
             let (u0, u1) = (stream.next_4d(), stream.next_4d());
-            // Deep collisions draw the lobe with probability LOBE_DEEP
+            // Deep collisions draw the lobe with probability `lobe_deep`
             // (divided by it); the next sun NEE keeps its MIS weight either
             // way, so the pair's expected value is unchanged.
-            let keep = if st.bounces > LOBE_ALWAYS { LOBE_DEEP } else { 1.0 };
+            let keep = if st.bounces > LOBE_ALWAYS {
+                vs.strategies.lobe_deep
+            } else {
+                1.0
+            };
             if u1[2] < keep {
                 st.l += st.beta * self.sun_lobe_vertex(m, sl, p, wo, u0, u1, rays) / keep;
             }
