@@ -6,7 +6,9 @@ use glam::{Vec2, Vec3};
 use shaders_cpu::medium::Medium;
 use shaders_cpu::sampling::power_heuristic;
 
-use super::{InScatter, Strategies, SunLobe, LOBE_ALWAYS, LOBE_DIMS, VOL_DIMS, VOL_DIMS_PER_BOUNCE};
+use super::{
+    InScatter, Strategies, SunLobe, LOBE_ALWAYS, LOBE_DIMS, VOL_DIMS, VOL_DIMS_PER_BOUNCE,
+};
 use crate::accel::{Accel, Hit, Ray};
 use crate::integrator::path::{LiSample, PathState};
 use crate::integrator::{DenoiseSample, PathContext};
