@@ -20,6 +20,9 @@
 //! Roulette at medium vertices goes by the albedo only (analog absorption),
 //! not by the throughput, so paths a surface dimmed are not boosted where
 //! fog carries them to the sky.
+//! Collisions estimate the sky's NEE, and those after the first draw the
+//! sun lobe, each half the time (divided by 1/2: `Strategies::sky_nee_deep`,
+//! `Strategies::lobe_deep`): about 16 % fewer rays in fog.
 //!
 //! Sample dimensions of a segment start at `VOL_DIMS` + 16·bounce (the sun
 //! lobe's at `LOBE_DIMS` + 2·bounce), apart from the surface dimensions, so
@@ -54,6 +57,10 @@ mod surf_fog;
 mod tests;
 
 use segment::{SegmentEnd, SegmentSamples, VolState};
+
+/// Collisions up to this many scattering events always draw the sun lobe
+/// (`Strategies::lobe_deep` after).
+const LOBE_ALWAYS: u32 = 1;
 
 /// First 4D set of the sun-lobe dimensions (two sets per bounce, above
 /// every segment's volume dimensions).
@@ -180,6 +187,7 @@ impl<A: Accel> PathContext<'_, A> {
         u_l: Vec2,
         u_distant: &[Vec2; 4],
         lobe_w: Option<(usize, f32)>,
+        sky_rr: Option<(f32, f32)>,
         rays: &mut u64,
     ) -> Vec3 {
         let scene = self.scene;
@@ -212,7 +220,20 @@ impl<A: Accel> PathContext<'_, A> {
             .enumerate()
             .take(self.lights.distant_count())
         {
-            let c = one(self.lights.sample_distant(scene, k, p, u), false);
+            // The sky's NEE under roulette (`sky_rr`: its number and
+            // survival probability), divided by that probability: its
+            // expected value, so phase-sampled sky hits keep their MIS
+            // weights.
+            let sky_scale = match sky_rr {
+                Some((u_rr, keep)) if !self.lights.distant_is_directional(k) => {
+                    if u_rr >= keep {
+                        continue;
+                    }
+                    1.0 / keep
+                }
+                _ => 1.0,
+            };
+            let c = one(self.lights.sample_distant(scene, k, p, u), false) * sky_scale;
             l += match lobe_w {
                 Some((k_sun, w)) if k_sun == k => c * w,
                 _ => c,
@@ -305,6 +326,17 @@ struct Strategies {
     /// (renders with the fog filter on; about a quarter of the variance
     /// the filter leaves in the foggy street).
     split_first: bool,
+    /// Probability that a collision estimates the sky's NEE (divided by
+    /// it), the camera segment's in-scattering point excepted. Sky light
+    /// through fog is smooth and the fog-weighted tables draw it well:
+    /// half the sky's shadow rays at collisions cost about 0.03 dB in the
+    /// foggy street (town03 frame 40) for 6 % fewer rays.
+    sky_nee_deep: f32,
+    /// Probability that a collision after the first (`LOBE_ALWAYS`) draws
+    /// the sun lobe (divided by it); the next sun NEE keeps its MIS weight
+    /// whether or not it was drawn, so the pair's expected value stays.
+    /// At 1/2: 10 % fewer rays in the foggy street for about 0.06 dB.
+    lobe_deep: f32,
 }
 
 impl Default for Strategies {
@@ -314,6 +346,8 @@ impl Default for Strategies {
             albedo_roulette: true,
             every_segment_bounces: 1,
             split_first: false,
+            sky_nee_deep: 0.5,
+            lobe_deep: 0.5,
         }
     }
 }

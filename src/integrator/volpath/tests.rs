@@ -43,10 +43,24 @@ size = [2000.0, 2000.0]
 material = "ground"
 "#;
 
+/// A sky over the same scene (the medium NEE samples it beside the sun).
+const SKY: &str = r#"
+[sky]
+kind = "gradient"
+zenith = [9.0, 16.0, 38.0]
+horizon = [30.0, 33.0, 37.0]
+ground = [6.0, 5.6, 5.2]
+"#;
+
 /// Per direction, the green radiance of each of `n` camera samples.
 fn samples(strategies: Strategies, dirs: &[Vec3], n: u32) -> Vec<Vec<f64>> {
+    samples_in(SCENE, strategies, dirs, n).0
+}
+
+/// [`samples`] in scene `src`, and the rays they traced.
+fn samples_in(src: &str, strategies: Strategies, dirs: &[Vec3], n: u32) -> (Vec<Vec<f64>>, u64) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/inline.toml");
-    let loaded = parse_scene_str(SCENE, &path).expect("scene parses");
+    let loaded = parse_scene_str(src, &path).expect("scene parses");
     let scene = build_scene(&loaded, DVec3::ZERO).expect("scene builds");
     let accel = build_accel(Backend::Bvh, &scene.accel_geometry()).expect("accel builds");
     let shading = Shading::new(&scene, &accel);
@@ -57,10 +71,11 @@ fn samples(strategies: Strategies, dirs: &[Vec3], n: u32) -> Vec<Vec<f64>> {
         view: 0,
     };
     let o = Vec3::new(0.0, 0.0, 1.5);
-    dirs.iter()
+    let mut rays = 0;
+    let l = dirs
+        .iter()
         .enumerate()
         .map(|(i, &d)| {
-            let mut rays = 0;
             (0..n)
                 .map(|k| {
                     let mut stream = SampleStream::new(key, i as u32, k / 256, k % 256);
@@ -73,7 +88,8 @@ fn samples(strategies: Strategies, dirs: &[Vec3], n: u32) -> Vec<Vec<f64>> {
                 })
                 .collect()
         })
-        .collect()
+        .collect();
+    (l, rays)
 }
 
 /// Mean and variance (of one sample) of `xs`.
@@ -243,4 +259,43 @@ fn collision_only_in_scattering_keeps_the_mean() {
             );
         }
     }
+}
+
+#[test]
+fn deep_sky_and_lobe_roulettes_keep_the_mean() {
+    // Under sun and sky: the defaults (the sky's NEE at collisions and the
+    // sun lobe after the first collision each drawn half the time) against
+    // both always drawn: the same expected radiance, for fewer rays.
+    let n = 16384;
+    let scene = format!("{SCENE}{SKY}");
+    let (rr, rays_rr) = samples_in(&scene, Strategies::default(), &DIRS, n);
+    let (all, rays_all) = samples_in(
+        &scene,
+        Strategies {
+            sky_nee_deep: 1.0,
+            lobe_deep: 1.0,
+            ..Strategies::default()
+        },
+        &DIRS,
+        n,
+    );
+    for (d, (xa, xb)) in DIRS.iter().zip(all.iter().zip(&rr)) {
+        let (a, b) = (mean_var(xa), mean_var(xb));
+        let se = paired_se(xa, xb);
+        eprintln!(
+            "{d}: always {:.4} (var {:.3}), roulette {:.4} (var {:.3}), se {se:.4}",
+            a.0, a.1, b.0, b.1
+        );
+        assert!(
+            (a.0 - b.0).abs() <= 4.0 * se,
+            "{d}: {} vs {} ± {se}",
+            b.0,
+            a.0
+        );
+    }
+    eprintln!("rays: always {rays_all}, roulette {rays_rr}");
+    assert!(
+        (rays_rr as f64) < 0.95 * rays_all as f64,
+        "{rays_rr} vs {rays_all}"
+    );
 }
