@@ -110,6 +110,31 @@ fn paired_se(a: &[f64], b: &[f64]) -> f64 {
     (mean_var(&d).1 / d.len() as f64).sqrt()
 }
 
+/// Asserts per direction that runs `a` and `b` (named, on the same sample
+/// streams) agree in mean within 4 paired standard errors; returns their
+/// variances per direction.
+fn assert_same_means(
+    dirs: &[Vec3],
+    (name_a, a): (&str, &[Vec<f64>]),
+    (name_b, b): (&str, &[Vec<f64>]),
+) -> Vec<(f64, f64)> {
+    let pairs = dirs.iter().zip(a.iter().zip(b));
+    pairs
+        .map(|(d, (xa, xb))| {
+            let ((ma, va), (mb, vb)) = (mean_var(xa), mean_var(xb));
+            let se = paired_se(xa, xb);
+            eprintln!(
+                "{d}: {name_a} {ma:.4} (var {va:.3}), {name_b} {mb:.4} (var {vb:.3}), se {se:.4}"
+            );
+            assert!(
+                (ma - mb).abs() <= 4.0 * se,
+                "{d}: {name_a} {ma} vs {name_b} {mb} ± {se}"
+            );
+            (va, vb)
+        })
+        .collect()
+}
+
 /// Toward the sun's azimuth (level and up), across, and down at the ground.
 const DIRS: [Vec3; 4] = [
     Vec3::new(1.0, 0.3, 0.05),
@@ -131,23 +156,9 @@ fn sun_lobe_keeps_the_mean_and_lowers_the_variance() {
         &dirs,
         n,
     );
-    let (mut var_off, mut var_on) = (0.0, 0.0);
-    for (d, (xa, xb)) in dirs.iter().zip(off.iter().zip(&on)) {
-        let (a, b) = (mean_var(xa), mean_var(xb));
-        let se = paired_se(xa, xb);
-        eprintln!(
-            "{d}: off {:.4} (var {:.3}), on {:.4} (var {:.3}), se {se:.4}",
-            a.0, a.1, b.0, b.1
-        );
-        assert!(
-            (a.0 - b.0).abs() <= 4.0 * se,
-            "{d}: {} vs {} ± {se}",
-            a.0,
-            b.0
-        );
-        var_off += a.1;
-        var_on += b.1;
-    }
+    let vars = assert_same_means(&dirs, ("off", &off), ("on", &on));
+    let var_off: f64 = vars.iter().map(|v| v.0).sum();
+    let var_on: f64 = vars.iter().map(|v| v.1).sum();
     assert!(var_on < 0.8 * var_off, "variance {var_on} vs {var_off}");
 }
 
@@ -165,17 +176,7 @@ fn albedo_roulette_keeps_the_mean() {
         &DIRS,
         n,
     );
-    for (d, (xa, xb)) in DIRS.iter().zip(off.iter().zip(&on)) {
-        let (a, b) = (mean_var(xa), mean_var(xb));
-        let se = paired_se(xa, xb);
-        eprintln!("{d}: throughput {:.4}, albedo {:.4}, se {se:.4}", a.0, b.0);
-        assert!(
-            (a.0 - b.0).abs() <= 4.0 * se,
-            "{d}: {} vs {} ± {se}",
-            a.0,
-            b.0
-        );
-    }
+    assert_same_means(&DIRS, ("throughput", &off), ("albedo", &on));
 }
 
 fn medium(albedo: Vec3) -> Medium {
@@ -243,22 +244,8 @@ fn collision_only_in_scattering_keeps_the_mean() {
         &DIRS,
         n,
     );
-    for (d, ((xa, xb), xc)) in DIRS.iter().zip(full.iter().zip(&cheap).zip(&collisions)) {
-        let (a, b, c) = (mean_var(xa), mean_var(xb), mean_var(xc));
-        for (name, other, x) in [("default", b, xb), ("collisions only", c, xc)] {
-            let se = paired_se(xa, x);
-            eprintln!(
-                "{d}: full {:.4} (var {:.3}), {name} {:.4} (var {:.3}), se {se:.4}",
-                a.0, a.1, other.0, other.1
-            );
-            assert!(
-                (a.0 - other.0).abs() <= 4.0 * se,
-                "{d}: {name} {} vs {} ± {se}",
-                other.0,
-                a.0
-            );
-        }
-    }
+    assert_same_means(&DIRS, ("full", &full), ("default", &cheap));
+    assert_same_means(&DIRS, ("full", &full), ("collisions only", &collisions));
 }
 
 #[test]
@@ -279,20 +266,7 @@ fn deep_sky_and_lobe_roulettes_keep_the_mean() {
         &DIRS,
         n,
     );
-    for (d, (xa, xb)) in DIRS.iter().zip(all.iter().zip(&rr)) {
-        let (a, b) = (mean_var(xa), mean_var(xb));
-        let se = paired_se(xa, xb);
-        eprintln!(
-            "{d}: always {:.4} (var {:.3}), roulette {:.4} (var {:.3}), se {se:.4}",
-            a.0, a.1, b.0, b.1
-        );
-        assert!(
-            (a.0 - b.0).abs() <= 4.0 * se,
-            "{d}: {} vs {} ± {se}",
-            b.0,
-            a.0
-        );
-    }
+    assert_same_means(&DIRS, ("always", &all), ("roulette", &rr));
     eprintln!("rays: always {rays_all}, roulette {rays_rr}");
     assert!(
         (rays_rr as f64) < 0.95 * rays_all as f64,
