@@ -161,3 +161,20 @@ fn local_lights_share_sets_candidates_and_the_probability_a_vertex_samples_them(
         );
     }
 }
+
+#[test]
+fn scene_radius_is_the_farthest_point_within_its_clamp() {
+    let quad = |size: f64| {
+        let text = format!(
+            "[camera]\nposition = [0.0, 0.0, 1.5]\n[[material]]\nname = \"grey\"\nkind = \"diffuse\"\nalbedo = [0.5, 0.5, 0.5]\n[[object]]\nkind = \"quad\"\nsize = [{size}, {size}]\nmaterial = \"grey\"\n{OVERCAST}"
+        );
+        let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/inline.toml");
+        let loaded = parse_scene_str(&text, &file).expect("scene parses");
+        super::weights::scene_radius(&build_scene(&loaded, DVec3::ZERO).expect("scene builds"))
+    };
+    // Corners at half the diagonal; below 1 m and beyond 100 m it is clamped
+    // (the walk stops at the first corner past 100 m).
+    assert!((quad(10.0) - 50f32.sqrt()).abs() < 1e-5, "{}", quad(10.0));
+    assert_eq!(quad(1.0), 1.0);
+    assert_eq!(quad(300.0), 100.0);
+}

@@ -78,8 +78,14 @@ pub(super) fn selection_pmf(weights: &[f32]) -> Vec<f32> {
         .collect()
 }
 
+/// Largest scene radius the light weights use, metres.
+const MAX_SCENE_RADIUS: f32 = 100.0;
+
 /// Radius of the scene's bounding sphere around the render origin, clamped to a
 /// range that keeps distant lights from swamping or vanishing in selection.
+/// The walk stops at the first point past the clamp: a town frame has one
+/// within its first meshes, and would otherwise transform every instanced
+/// vertex of the frame.
 pub(super) fn scene_radius(scene: &Scene) -> f32 {
     let placed = scene.instances.iter().flat_map(|i| {
         let m = i.render_from_local_f32;
@@ -90,7 +96,7 @@ pub(super) fn scene_radius(scene: &Scene) -> f32 {
                 .map(move |&p| m.transform_point3(p).length())
         })
     });
-    let r = scene
+    let lengths = scene
         .meshes
         .iter()
         .flat_map(|m| m.p_f32.iter())
@@ -101,7 +107,13 @@ pub(super) fn scene_radius(scene: &Scene) -> f32 {
                 .spheres_f32
                 .iter()
                 .map(|s| s.truncate().length() + s.w),
-        )
-        .fold(0.0f32, f32::max);
-    r.clamp(1.0, 100.0)
+        );
+    let mut r = 0.0f32;
+    for l in lengths {
+        if l >= MAX_SCENE_RADIUS {
+            return MAX_SCENE_RADIUS;
+        }
+        r = r.max(l);
+    }
+    r.clamp(1.0, MAX_SCENE_RADIUS)
 }
