@@ -137,8 +137,8 @@ struct Collected {
 impl Collected {
     /// The scene's explicit lights: the first `room_for_suns` suns as
     /// distant lights, every other light (further suns included) local.
-    fn add_explicit(&mut self, scene: &Scene, room_for_suns: usize) {
-        let radius = scene_radius(scene);
+    /// `radius` is the scene's (`scene_radius`), for the suns' power.
+    fn add_explicit(&mut self, scene: &Scene, room_for_suns: usize, radius: f32) {
         for light in &scene.lights {
             if let Light::Sun {
                 dir_to_sun,
@@ -229,8 +229,9 @@ impl LightSet {
         let has_sun = scene.lights.iter().any(|l| matches!(l, Light::Sun { .. }));
         // Where NEE of the sky pays for its shadow ray (module docs).
         let sky_sampled = sky_emits && (scene.medium.is_some() || !has_sun);
+        let radius = scene_radius(scene);
         let mut c = Collected::default();
-        c.add_explicit(scene, MAX_DISTANT - sky_sampled as usize);
+        c.add_explicit(scene, MAX_DISTANT - sky_sampled as usize, radius);
         if sky_sampled {
             c.distant.push(Entry::Sky);
         }
@@ -265,7 +266,7 @@ impl LightSet {
             .iter()
             .any(|e| matches!(e, Entry::Explicit(Light::Point { .. } | Light::Spot { .. })));
         let local_power: f32 = weights.iter().map(|w| w.max(0.0)).sum();
-        let distant_power = distant_power(scene);
+        let distant_power = distant_power(scene, radius);
         let share = local_power / (local_power + distant_power).max(f32::MIN_POSITIVE);
         let candidates = if share >= LOCAL_SHARE_FOR_RIS {
             LOCAL_CANDIDATES

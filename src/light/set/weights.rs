@@ -11,9 +11,8 @@ use super::LightBounds;
 use crate::scene::Scene;
 
 /// Emitted power proxy of the distant lights (suns, and the sky as the
-/// irradiance π·L̄ it gives a disk of the scene's radius).
-pub(super) fn distant_power(scene: &Scene) -> f32 {
-    let radius = scene_radius(scene);
+/// irradiance π·L̄ it gives a disk of the scene's `radius`, `scene_radius`).
+pub(super) fn distant_power(scene: &Scene, radius: f32) -> f32 {
     let suns: f32 = scene
         .lights
         .iter()
