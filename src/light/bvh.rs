@@ -115,9 +115,18 @@ fn cone_union(wa: Vec3, cos_a: f32, wb: Vec3, cos_b: f32) -> (Vec3, f32) {
     if cos_a == -1.0 || cos_b == -1.0 {
         return (wa, -1.0);
     }
-    let theta_a = cos_a.clamp(-1.0, 1.0).acos();
-    let theta_b = cos_b.clamp(-1.0, 1.0).acos();
-    let theta_d = wa.dot(wb).clamp(-1.0, 1.0).acos();
+    let cos_d = wa.dot(wb).clamp(-1.0, 1.0);
+    // Parallel axes and cone b no wider than a: the general path below
+    // returns (wa, cos_a) too (θ_d = 0, θ_b ≤ θ_a), without its arc cosines.
+    // Most unions in a town's light tree are of this kind (lamp and window
+    // faces share their normals), and the build is a large part of a
+    // frame's set-up.
+    if cos_d == 1.0 && (cos_b == 1.0 || cos_b == cos_a) {
+        return (wa, cos_a);
+    }
+    let theta_a = acos_clamped(cos_a);
+    let theta_b = acos_clamped(cos_b);
+    let theta_d = acos_clamped(cos_d);
     // One cone inside the other.
     if (theta_d + theta_b).min(std::f32::consts::PI) <= theta_a {
         return (wa, cos_a);
@@ -139,6 +148,21 @@ fn cone_union(wa: Vec3, cos_a: f32, wb: Vec3, cos_b: f32) -> (Vec3, f32) {
     }
     let w = glam::Quat::from_axis_angle(axis.normalize(), theta_r) * wa;
     (w.normalize(), theta_o.cos())
+}
+
+/// acos of `c` clamped to [−1, 1]; the cosines of single emitters (1 for a
+/// face's normal cone, 0 for a Lambert spread) skip the libm call with the
+/// bits it returns for them (acos 1 = +0, acos 0 = π/2 correctly rounded;
+/// `tests::acos_shortcuts_are_the_libm_bits`).
+#[inline]
+fn acos_clamped(c: f32) -> f32 {
+    if c == 1.0 {
+        0.0
+    } else if c == 0.0 {
+        std::f32::consts::FRAC_PI_2
+    } else {
+        c.clamp(-1.0, 1.0).acos()
+    }
 }
 
 /// One node: a leaf holds one light; an inner node's first child follows it.
@@ -324,8 +348,8 @@ fn centroid_box(all: &[LightBounds], ids: &[u32]) -> (Vec3, Vec3) {
 /// Orientation measure M_Ω of a cone (pbrt-v4 eq. 12.x / Conty & Kulla eq. 1).
 fn orientation_measure(b: &LightBounds) -> f32 {
     use std::f32::consts::PI;
-    let theta_o = b.cos_theta_o.clamp(-1.0, 1.0).acos();
-    let theta_e = b.cos_theta_e.clamp(-1.0, 1.0).acos();
+    let theta_o = acos_clamped(b.cos_theta_o);
+    let theta_e = acos_clamped(b.cos_theta_e);
     let theta_w = (theta_o + theta_e).min(PI);
     let sin_o = theta_o.sin();
     2.0 * PI * (1.0 - b.cos_theta_o)
@@ -399,4 +423,97 @@ fn sah_split(all: &[LightBounds], ids: &mut [u32], parent: &LightBounds) -> Opti
         }
     }
     (mid > 0 && mid < ids.len()).then_some(mid)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::hint::black_box;
+
+    /// The cone union as written before its shortcut: three arc cosines.
+    fn cone_union_plain(wa: Vec3, cos_a: f32, wb: Vec3, cos_b: f32) -> (Vec3, f32) {
+        if cos_a == -1.0 || cos_b == -1.0 {
+            return (wa, -1.0);
+        }
+        let theta_a = cos_a.clamp(-1.0, 1.0).acos();
+        let theta_b = cos_b.clamp(-1.0, 1.0).acos();
+        let theta_d = wa.dot(wb).clamp(-1.0, 1.0).acos();
+        if (theta_d + theta_b).min(std::f32::consts::PI) <= theta_a {
+            return (wa, cos_a);
+        }
+        if (theta_d + theta_a).min(std::f32::consts::PI) <= theta_b {
+            return (wb, cos_b);
+        }
+        let theta_o = 0.5 * (theta_a + theta_d + theta_b);
+        if theta_o >= std::f32::consts::PI {
+            return (wa, -1.0);
+        }
+        let theta_r = theta_o - theta_a;
+        let axis = wa.cross(wb);
+        if axis.length_squared() < 1e-12 {
+            let theta = (theta_d + theta_b).max(theta_a).min(std::f32::consts::PI);
+            return (wa, theta.cos());
+        }
+        let w = glam::Quat::from_axis_angle(axis.normalize(), theta_r) * wa;
+        (w.normalize(), theta_o.cos())
+    }
+
+    #[test]
+    fn acos_shortcuts_are_the_libm_bits() {
+        for c in [1.0f32, 0.0, -0.0] {
+            assert_eq!(
+                acos_clamped(c).to_bits(),
+                black_box(c).acos().to_bits(),
+                "acos {c}"
+            );
+        }
+        assert_eq!(acos_clamped(1.5), 0.0);
+        assert_eq!(acos_clamped(-0.25), (-0.25f32).acos());
+    }
+
+    #[test]
+    fn cone_union_gives_the_bits_of_three_arc_cosines() {
+        let mut s = 0x9e37_79b9_7f4a_7c15u64;
+        let mut u = move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 40) as f32 / (1u64 << 24) as f32
+        };
+        let axes = [Vec3::Z, -Vec3::Z, Vec3::X, Vec3::new(0.6, 0.0, 0.8)];
+        let (mut shortcut, mut general) = (0, 0);
+        for k in 0..20_000 {
+            let mut dir = || {
+                if u() < 0.5 {
+                    axes[(u() * 4.0) as usize % 4]
+                } else {
+                    Vec3::new(u() - 0.5, u() - 0.5, u() - 0.5).normalize()
+                }
+            };
+            let (wa, wb) = (dir(), if k % 3 == 0 { Vec3::ZERO } else { dir() });
+            let wb = if wb == Vec3::ZERO { wa } else { wb };
+            let mut cos = || match (u() * 5.0) as u32 {
+                0 => 1.0,
+                1 => 0.0,
+                2 => -1.0,
+                _ => 2.0 * u() - 1.0,
+            };
+            let (ca, cb) = (cos(), cos());
+            let cb = if k % 5 == 0 { ca } else { cb };
+            let fast = cone_union(wa, ca, wb, cb);
+            let plain = cone_union_plain(wa, ca, wb, cb);
+            assert_eq!(
+                (fast.0.to_array().map(f32::to_bits), fast.1.to_bits()),
+                (plain.0.to_array().map(f32::to_bits), plain.1.to_bits()),
+                "{wa} {ca} ∪ {wb} {cb}"
+            );
+            if wa.dot(wb) >= 1.0 && ca > -1.0 && cb > -1.0 && (cb == 1.0 || cb == ca) {
+                shortcut += 1;
+            } else {
+                general += 1;
+            }
+        }
+        // Both paths were exercised.
+        assert!(shortcut > 1000 && general > 1000, "{shortcut} {general}");
+    }
 }
