@@ -44,6 +44,7 @@ pub use desc::semantic;
 mod shapes;
 mod surface;
 mod table;
+mod tile_clip;
 pub mod transform;
 pub mod validate;
 mod walk;
