@@ -189,63 +189,34 @@ pub struct LightBvh {
 
 impl LightBvh {
     /// Builds the tree; lights with zero `phi` are left out (pmf 0).
+    /// Subtrees of many lights are built in parallel (on the current rayon
+    /// pool) into the very nodes a serial build gives.
     pub fn build(bounds: &[LightBounds]) -> LightBvh {
+        Self::build_with_grain(bounds, PARALLEL_GRAIN)
+    }
+
+    /// [`LightBvh::build`], forking subtrees of at least `grain` lights.
+    fn build_with_grain(bounds: &[LightBounds], grain: usize) -> LightBvh {
         let mut ids: Vec<u32> = (0..bounds.len() as u32)
             .filter(|&i| bounds[i as usize].phi > 0.0)
             .collect();
-        let mut bvh = LightBvh {
-            nodes: Vec::with_capacity(2 * ids.len()),
-            trails: vec![0; bounds.len()],
-        };
+        let mut sub = Subtree::default();
         if !ids.is_empty() {
-            bvh.build_rec(bounds, &mut ids, 0, 0);
+            sub.build(bounds, &mut ids, (0, 0), grain);
         }
-        bvh
+        let mut trails = vec![0; bounds.len()];
+        for (light, trail) in sub.trails {
+            trails[light as usize] = trail;
+        }
+        LightBvh {
+            nodes: sub.nodes,
+            trails,
+        }
     }
 
     /// Whether the tree holds no light.
     pub fn is_empty(&self) -> bool {
         self.nodes.is_empty()
-    }
-
-    fn build_rec(&mut self, all: &[LightBounds], ids: &mut [u32], trail: u128, depth: u32) {
-        let node = self.nodes.len();
-        if ids.len() == 1 {
-            self.nodes.push(Node {
-                bounds: all[ids[0] as usize],
-                child_or_light: ids[0],
-                leaf: true,
-            });
-            self.trails[ids[0] as usize] = trail;
-            return;
-        }
-        let total = ids[1..]
-            .iter()
-            .fold(all[ids[0] as usize], |b, &i| b.union(&all[i as usize]));
-        self.nodes.push(Node {
-            bounds: total,
-            child_or_light: 0,
-            leaf: false,
-        });
-        let mid = if depth < MAX_SAH_DEPTH {
-            sah_split(all, ids, &total)
-        } else {
-            None
-        }
-        .unwrap_or_else(|| {
-            // Fallback: halve by count along the widest centroid axis.
-            let axis = centroid_box(all, ids).1.max_position();
-            let mid = ids.len() / 2;
-            ids.select_nth_unstable_by(mid, |&a, &b| {
-                let (ca, cb) = (all[a as usize].centroid(), all[b as usize].centroid());
-                ca[axis].total_cmp(&cb[axis]).then(a.cmp(&b))
-            });
-            mid
-        });
-        let (left, right) = ids.split_at_mut(mid);
-        self.build_rec(all, left, trail, depth + 1);
-        self.nodes[node].child_or_light = self.nodes.len() as u32;
-        self.build_rec(all, right, trail | (1u128 << depth), depth + 1);
     }
 
     /// Importance of both children of inner node `k`, first child first.
@@ -330,6 +301,91 @@ impl LightBvh {
             };
         }
     }
+}
+
+/// Lights per subtree from which its two halves are built in parallel
+/// (below it a fork costs more than the half it saves).
+const PARALLEL_GRAIN: usize = 4096;
+
+/// Nodes of a subtree in depth-first order (inner nodes' child indices
+/// relative to its first node) and the trails of its lights.
+#[derive(Default)]
+struct Subtree {
+    nodes: Vec<Node>,
+    trails: Vec<(u32, u128)>,
+}
+
+impl Subtree {
+    /// Appends the subtree over `ids` at `(trail, depth)`.
+    fn build(&mut self, all: &[LightBounds], ids: &mut [u32], at: (u128, u32), grain: usize) {
+        let (trail, depth) = at;
+        let node = self.nodes.len();
+        if ids.len() == 1 {
+            self.nodes.push(Node {
+                bounds: all[ids[0] as usize],
+                child_or_light: ids[0],
+                leaf: true,
+            });
+            self.trails.push((ids[0], trail));
+            return;
+        }
+        let total = ids[1..]
+            .iter()
+            .fold(all[ids[0] as usize], |b, &i| b.union(&all[i as usize]));
+        self.nodes.push(Node {
+            bounds: total,
+            child_or_light: 0,
+            leaf: false,
+        });
+        let mid = if depth < MAX_SAH_DEPTH {
+            sah_split(all, ids, &total)
+        } else {
+            None
+        }
+        .unwrap_or_else(|| {
+            // Fallback: halve by count along the widest centroid axis.
+            let axis = centroid_box(all, ids).1.max_position();
+            let mid = ids.len() / 2;
+            ids.select_nth_unstable_by(mid, |&a, &b| {
+                let (ca, cb) = (all[a as usize].centroid(), all[b as usize].centroid());
+                ca[axis].total_cmp(&cb[axis]).then(a.cmp(&b))
+            });
+            mid
+        });
+        let (left, right) = ids.split_at_mut(mid);
+        let right_at = (trail | (1u128 << depth), depth + 1);
+        if ids_len_at_least(left, right, grain) {
+            let (mut l, mut r) = (Subtree::default(), Subtree::default());
+            rayon::join(
+                || l.build(all, left, (trail, depth + 1), grain),
+                || r.build(all, right, right_at, grain),
+            );
+            self.append(l);
+            self.nodes[node].child_or_light = self.nodes.len() as u32;
+            self.append(r);
+        } else {
+            self.build(all, left, (trail, depth + 1), grain);
+            self.nodes[node].child_or_light = self.nodes.len() as u32;
+            self.build(all, right, right_at, grain);
+        }
+    }
+
+    /// Appends `sub`'s nodes (their child indices shifted to where they land).
+    fn append(&mut self, sub: Subtree) {
+        let offset = self.nodes.len() as u32;
+        self.nodes.extend(sub.nodes.into_iter().map(|mut n| {
+            if !n.leaf {
+                n.child_or_light += offset;
+            }
+            n
+        }));
+        self.trails.extend(sub.trails);
+    }
+}
+
+/// Whether both halves are big enough to be built in parallel.
+fn ids_len_at_least(left: &[u32], right: &[u32], grain: usize) -> bool {
+    left.len().min(right.len()) >= grain
 }
 
 const ONE_MINUS_EPS: f32 = 1.0 - f32::EPSILON / 2.0;
@@ -426,94 +482,5 @@ fn sah_split(all: &[LightBounds], ids: &mut [u32], parent: &LightBounds) -> Opti
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use std::hint::black_box;
-
-    /// The cone union as written before its shortcut: three arc cosines.
-    fn cone_union_plain(wa: Vec3, cos_a: f32, wb: Vec3, cos_b: f32) -> (Vec3, f32) {
-        if cos_a == -1.0 || cos_b == -1.0 {
-            return (wa, -1.0);
-        }
-        let theta_a = cos_a.clamp(-1.0, 1.0).acos();
-        let theta_b = cos_b.clamp(-1.0, 1.0).acos();
-        let theta_d = wa.dot(wb).clamp(-1.0, 1.0).acos();
-        if (theta_d + theta_b).min(std::f32::consts::PI) <= theta_a {
-            return (wa, cos_a);
-        }
-        if (theta_d + theta_a).min(std::f32::consts::PI) <= theta_b {
-            return (wb, cos_b);
-        }
-        let theta_o = 0.5 * (theta_a + theta_d + theta_b);
-        if theta_o >= std::f32::consts::PI {
-            return (wa, -1.0);
-        }
-        let theta_r = theta_o - theta_a;
-        let axis = wa.cross(wb);
-        if axis.length_squared() < 1e-12 {
-            let theta = (theta_d + theta_b).max(theta_a).min(std::f32::consts::PI);
-            return (wa, theta.cos());
-        }
-        let w = glam::Quat::from_axis_angle(axis.normalize(), theta_r) * wa;
-        (w.normalize(), theta_o.cos())
-    }
-
-    #[test]
-    fn acos_shortcuts_are_the_libm_bits() {
-        for c in [1.0f32, 0.0, -0.0] {
-            assert_eq!(
-                acos_clamped(c).to_bits(),
-                black_box(c).acos().to_bits(),
-                "acos {c}"
-            );
-        }
-        assert_eq!(acos_clamped(1.5), 0.0);
-        assert_eq!(acos_clamped(-0.25), (-0.25f32).acos());
-    }
-
-    #[test]
-    fn cone_union_gives_the_bits_of_three_arc_cosines() {
-        let mut s = 0x9e37_79b9_7f4a_7c15u64;
-        let mut u = move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 40) as f32 / (1u64 << 24) as f32
-        };
-        let axes = [Vec3::Z, -Vec3::Z, Vec3::X, Vec3::new(0.6, 0.0, 0.8)];
-        let (mut shortcut, mut general) = (0, 0);
-        for k in 0..20_000 {
-            let mut dir = || {
-                if u() < 0.5 {
-                    axes[(u() * 4.0) as usize % 4]
-                } else {
-                    Vec3::new(u() - 0.5, u() - 0.5, u() - 0.5).normalize()
-                }
-            };
-            let (wa, wb) = (dir(), if k % 3 == 0 { Vec3::ZERO } else { dir() });
-            let wb = if wb == Vec3::ZERO { wa } else { wb };
-            let mut cos = || match (u() * 5.0) as u32 {
-                0 => 1.0,
-                1 => 0.0,
-                2 => -1.0,
-                _ => 2.0 * u() - 1.0,
-            };
-            let (ca, cb) = (cos(), cos());
-            let cb = if k % 5 == 0 { ca } else { cb };
-            let fast = cone_union(wa, ca, wb, cb);
-            let plain = cone_union_plain(wa, ca, wb, cb);
-            assert_eq!(
-                (fast.0.to_array().map(f32::to_bits), fast.1.to_bits()),
-                (plain.0.to_array().map(f32::to_bits), plain.1.to_bits()),
-                "{wa} {ca} ∪ {wb} {cb}"
-            );
-            if wa.dot(wb) >= 1.0 && ca > -1.0 && cb > -1.0 && (cb == 1.0 || cb == ca) {
-                shortcut += 1;
-            } else {
-                general += 1;
-            }
-        }
-        // Both paths were exercised.
-        assert!(shortcut > 1000 && general > 1000, "{shortcut} {general}");
-    }
-}
+#[path = "bvh_tests.rs"]
+mod tests;
