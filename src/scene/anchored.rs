@@ -36,6 +36,8 @@ pub const TILE_PREFIX: &str = "static tile ";
 #[derive(Default)]
 pub(super) struct StaticTiles {
     tiles: BTreeMap<(i64, i64), Vec<Mesh>>,
+    /// Per tile, the meshes it stands for (`Prototype::sources`).
+    sources: BTreeMap<(i64, i64), Vec<(u8, u64)>>,
 }
 
 impl StaticTiles {
@@ -53,10 +55,17 @@ impl StaticTiles {
                 m.p_f32 = m.p_render.iter().map(|p| p.as_vec3()).collect();
                 flat.meshes.push(m);
             } else if let Some(t) = tile_of(&m) {
+                let source = (m.semantic, m.triangles.len() as u64);
+                self.sources.entry(t).or_default().push(source);
                 self.tiles.entry(t).or_default().push(m);
             } else {
                 // Wider than a tile: one piece per tile it crosses.
-                for (t, piece) in split_by_tiles(&m, TILE_M) {
+                let pieces = split_by_tiles(&m, TILE_M);
+                if let Some(&t) = pieces.keys().next() {
+                    let source = (m.semantic, m.triangles.len() as u64);
+                    self.sources.entry(t).or_default().push(source);
+                }
+                for (t, piece) in pieces {
                     self.tiles.entry(t).or_default().push(piece);
                 }
             }
@@ -88,6 +97,7 @@ impl StaticTiles {
             protos.push(Prototype {
                 prefab: format!("{TILE_PREFIX}{},{}", key.0, key.1),
                 meshes,
+                sources: self.sources.get(&key).cloned().unwrap_or_default(),
             });
             let render_from_local = DAffine3::from_translation(anchor - origin_world);
             insts.push(Instance::new(
