@@ -135,7 +135,7 @@ fn wide_ground(cam: [f64; 3]) -> LoadedScene {
     );
     let mut loaded = parallax::scene::parse_scene_str(&text, std::path::Path::new("ground.toml"))
         .expect("ground scene parses");
-    loaded.static_objects = vec![0..1];
+    loaded.static_objects = std::iter::once(0..1).collect();
     loaded
 }
 
