@@ -100,9 +100,12 @@ fn wide_footprints_keep_each_kinds_mean_and_shed_its_grain() {
             // At 30 cm only features of 15 cm and more are left: at least
             // a third of the spread is gone unless the kind's variation is
             // mostly coarse (asphalt's wear and patches, glass's tint,
-            // painted metal's paint, grass's clumps and dry patches).
+            // painted and brushed metal's paint, grass's clumps and dry patches).
             use TextureKind as K;
-            let coarse = matches!(kind, K::Asphalt | K::Glass | K::MetalPainted | K::Grass);
+            let coarse = matches!(
+                kind,
+                K::Asphalt | K::Glass | K::MetalPainted | K::MetalBrushed | K::Grass
+            );
             let (_, s) = stats(&t, plane, n, 0.3);
             if !coarse && s0 > 1e-4 && s >= 0.67 * s0 {
                 bad.push(format!(
@@ -145,26 +148,28 @@ fn stretcher_brick_from_afar_is_its_nominal_albedo() {
     // Under a 1 m footprint every brick, joint and grain is averaged: the
     // mortar's cover is its area share at every point, so each point is
     // f·brick + (1 − f)·mortar = the nominal albedo (what the mortar colour
-    // was solved for), and the wall is flat.
+    // was solved for) times the residual grain of the averaged bricks
+    // (std 0.127 · 7.5 cm / 1 m ≈ 1 %), and the wall is flat.
     let t = Texture::new(TextureKind::Brick, 11);
     let base = base_of(TextureKind::Brick);
     let (origin, a, b, normal) = planes()[1];
-    let (mut worst, mut sharp_spread) = (0.0f32, 0.0f32);
-    for i in 0..3000 {
+    let (mut worst, mut sharp_spread, mut sum) = (0.0f32, 0.0f32, Vec3::ZERO);
+    let n = 3000;
+    for i in 0..n {
         let p = plane_point(i, 20.0, origin, a, b);
         let far = t.sample_filtered(base, p, normal, 1.0).albedo;
-        worst = worst.max((far - base).abs().max_element());
-        sharp_spread = sharp_spread.max(
-            (t.sample(base, p, normal).albedo - base)
-                .abs()
-                .max_element(),
-        );
+        sum += far;
+        worst = worst.max((far / base - Vec3::ONE).abs().max_element());
+        let sharp = t.sample(base, p, normal).albedo;
+        sharp_spread = sharp_spread.max((sharp / base - Vec3::ONE).abs().max_element());
         let (_, n) = t.shade(base, p, normal, normal, 1.0);
         assert_eq!(n, normal, "relief left under a 1 m footprint at {p}");
     }
-    assert!(worst < 1e-5, "far brick off its nominal albedo by {worst}");
+    let mean_err = (sum / n as f32 / base - Vec3::ONE).abs().max_element();
+    assert!(worst < 0.04, "far brick off its nominal albedo by {worst}");
+    assert!(mean_err < 0.002, "far brick's mean off by {mean_err}");
     assert!(
-        sharp_spread > 0.05,
+        sharp_spread > 0.3,
         "sharp brick varies by {sharp_spread} only"
     );
 }

@@ -142,7 +142,8 @@ pub fn brick(
     // Brick colour so that f_brick·brick + (1 − f_brick)·mortar = base.
     let brick_rgb = ((base - (1.0 - f_brick) * mortar_rgb) / f_brick).max(Vec3::ZERO);
     let k_brick = fp.keep(MODULE_V_M);
-    let shade = 1.0 + 0.22 * k_brick * signed_unit(hb);
+    // Uniform ±0.22: std 0.22/√3.
+    let shade = 1.0 + fp.cells(|| 0.22 * signed_unit(hb), 0.127, p, MODULE_V_M, seed ^ 0xD5);
     let hue = 0.08 * k_brick * rehash_signed(hb);
     // Flemish headers are often burnt darker; shift stretchers up to keep the mean.
     let burnt = match (bond, header) {

@@ -189,7 +189,7 @@ impl Texture {
 
     /// The texture-space footprint of a world footprint of `footprint_m`.
     fn footprint(&self, footprint_m: f32) -> Footprint {
-        Footprint(footprint_m / self.scale as f32)
+        Footprint::new(footprint_m / self.scale as f32)
     }
 
     /// Albedo and roughness factor at `p_world` (metres) for a material of
@@ -229,7 +229,7 @@ impl Texture {
 
     /// [`Texture::height`] filtered by a footprint `footprint_m` metres wide.
     pub fn height_filtered(&self, p_world: DVec3, n: Vec3, footprint_m: f32) -> f32 {
-        let f = self.footprint(footprint_m);
+        let f = self.footprint(footprint_m).relief();
         self.pat(Vec3::ONE, p_world / self.scale, n, f, false).h * self.scale as f32
     }
 
@@ -260,7 +260,15 @@ impl Texture {
             roughness: pat.r.max(0.0),
         };
         let normal = if self.has_relief() {
-            self.tilt(p, n_geo, n_shading, f, pat.h)
+            // The relief without the colour's residual grain: a height pass
+            // of its own unless nothing is filtered (then the colour pass's
+            // height is the same).
+            let h0 = if f.w > 0.0 {
+                self.pat(Vec3::ONE, p, n_geo, f.relief(), false).h
+            } else {
+                pat.h
+            };
+            self.tilt(p, n_geo, n_shading, f.relief(), h0)
         } else {
             n_shading
         };

@@ -95,7 +95,7 @@ pub fn leaves(base: Vec3, p: DVec3, seed: u32, fp: Footprint, color: bool) -> Pa
     }
     let hl = cell_hash(p, 0.06, seed ^ 0xC3);
     let k_leaf = fp.keep(0.06);
-    let shade = 1.0 + 0.3 * k_leaf * signed_unit(hl);
+    let shade = 1.0 + fp.cells(|| 0.3 * signed_unit(hl), 0.173, p, 0.06, seed ^ 0xC4);
     let hue = 0.15 * k_leaf * rehash_signed(hl);
     let c = base * Vec3::new(1.0 + hue, 1.0, 1.0 - hue) * (shade * (1.0 - 0.35 * vein));
     Pat { c, r: 1.0, h }
@@ -111,7 +111,7 @@ pub fn foliage(base: Vec3, p: DVec3, seed: u32, fp: Footprint, color: bool) -> P
     }
     let hl = cell_hash(p, 0.05, seed ^ 0xAA);
     let k_leaf = fp.keep(0.05);
-    let shade = 1.0 + 0.4 * k_leaf * signed_unit(hl);
+    let shade = 1.0 + fp.cells(|| 0.4 * signed_unit(hl), 0.231, p, 0.05, seed ^ 0xAC);
     let hue = 0.15 * k_leaf * rehash_signed(hl);
     let clump = 1.0 + 0.25 * fp.fbm(p, 0.3, 3, 0.5, seed ^ 0xBB);
     let veins = 1.0 + 0.2 * fp.fbm(p, 0.008, 3, 0.7, seed ^ 0xCC);
@@ -129,7 +129,7 @@ pub fn grass(base: Vec3, p: DVec3, seed: u32, fp: Footprint, color: bool) -> Pat
     }
     let hb = cell_hash(p, 0.005, seed ^ 0x63);
     let k_blade = fp.keep(0.005);
-    let blade = 1.0 + 0.35 * k_blade * signed_unit(hb);
+    let blade = 1.0 + fp.cells(|| 0.35 * signed_unit(hb), 0.202, p, 0.005, seed ^ 0x66);
     let hue = 0.12 * k_blade * rehash_signed(hb);
     let clump = 1.0 + 0.2 * fp.fbm(p, 0.25, 3, 0.5, seed ^ 0x64);
     let dry = smoothstep(0.3, 0.5, fp.fbm(p, 1.5, 3, 0.5, seed ^ 0x65));

@@ -44,14 +44,22 @@ pub fn asphalt(base: Vec3, p: DVec3, n: Vec3, seed: u32, fp: Footprint, color: b
         const Q: f32 = 0.2;
         const LIGHT: f32 = 2.1;
         const DARK: f32 = (1.0 - Q * LIGHT) / (1.0 - Q);
-        let keep = fp.keep(0.004);
-        let stone = if keep <= 0.0 {
-            1.0
-        } else if unit(cell_hash(p, 0.004, seed)) < Q {
-            1.0 + (LIGHT - 1.0) * keep
-        } else {
-            1.0 + (DARK - 1.0) * keep
-        };
+        // Two-valued, std √(Q(1−Q))·(LIGHT − DARK).
+        const STD: f32 = 0.4 * (LIGHT - DARK);
+        let stone = 1.0
+            + fp.cells(
+                || {
+                    if unit(cell_hash(p, 0.004, seed)) < Q {
+                        LIGHT - 1.0
+                    } else {
+                        DARK - 1.0
+                    }
+                },
+                STD,
+                p,
+                0.004,
+                seed ^ 0x10,
+            );
         // Grit, 2 mm (a hash, not a noise: the colour pass runs per seen point).
         let grit = 1.0 + 0.15 * fp.cell_noise(p, 0.002, seed ^ 0x11);
         let surface = 1.0 + 0.12 * fp.fbm(p, 0.06, 2, 0.6, seed ^ 0x22);
@@ -87,7 +95,7 @@ pub fn asphalt(base: Vec3, p: DVec3, n: Vec3, seed: u32, fp: Footprint, color: b
                 f *= if lighter { 1.25 } else { 0.75 };
                 // The 2 cm sealed edge fades to its share of a footprint.
                 let edge = 1.0 - smoothstep(0.01, 0.03, d);
-                f *= 1.0 - 0.5 * fp.fade(0.02, edge, 0.02 / fp.0.max(0.02));
+                f *= 1.0 - 0.5 * fp.fade(0.02, edge, fp.band_cover(d, 0.02, 7.0));
             }
         }
         // Tar-sealed seams: 5 cm bands every 9.7 m along x and 13.3 m along
@@ -98,7 +106,7 @@ pub fn asphalt(base: Vec3, p: DVec3, n: Vec3, seed: u32, fp: Footprint, color: b
             sx.min(sy) as f64
         };
         // The wobble's noise only near a seam (or a footprint's width).
-        if seam(0.0) < 0.07 + fp.0 as f64 {
+        if seam(0.0) < 0.07 + fp.w as f64 {
             let wob = 0.03 * fp.value_noise(p, 0.7, seed ^ 0x55) as f64;
             let sx = plane::edge_dist(plane::cell(p.x + wob, 9.7, 3.1).1, 9.7);
             let sy = plane::edge_dist(plane::cell(p.y + wob, 13.3, 5.3).1, 13.3);
