@@ -303,7 +303,7 @@ impl<A: Accel> PathContext<'_, A> {
         let mut pending = PendingShadows::new();
         if self.scene.medium.is_some() {
             return PathStart {
-                volume: Some(self.li_volume(ray, first_hit, stream, rays)),
+                volume: Some(self.li_volume(ray, first_hit, cone, stream, rays)),
                 st,
                 pending,
                 next: None,
