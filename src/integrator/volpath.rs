@@ -40,7 +40,7 @@ use glam::{Vec2, Vec3};
 use shaders_cpu::medium::{Equiangular, Medium};
 use shaders_cpu::sampling::power_heuristic;
 
-use super::path::{LiSample, PathState};
+use super::path::{LiSample, PathState, RayCone};
 use super::PathContext;
 use crate::accel::{Accel, Hit, Ray};
 use crate::light::LightSample;
@@ -85,11 +85,13 @@ impl<A: Accel> PathContext<'_, A> {
         &self,
         ray: Ray,
         first_hit: Option<Hit>,
+        cone: RayCone,
         stream: &mut SampleStream,
         rays: &mut u64,
     ) -> LiSample {
         let strategies = Strategies {
             split_first: self.scene.filter_inscatter,
+            cone,
             ..Strategies::default()
         };
         self.trace(ray, first_hit, stream, rays, strategies, None)
@@ -116,7 +118,11 @@ impl<A: Accel> PathContext<'_, A> {
         let sun_lobe = medium
             .filter(|m| strategies.sun_lobe && m.scatters())
             .and(self.sun_lobe);
-        let mut vs = VolState::new(PathState::new(ray.o), strategies, sun_lobe);
+        let st = PathState {
+            cone: strategies.cone,
+            ..PathState::new(ray.o)
+        };
+        let mut vs = VolState::new(st, strategies, sun_lobe);
         if let Some(beta) = surface_beta {
             vs.st.beta = beta;
         }
@@ -367,6 +373,9 @@ struct Strategies {
     /// 4 % fewer rays in the foggy street; at 4 (7 %) the surface filter
     /// drops about 1 % of its component as fireflies.
     split_per_tr: f32,
+    /// The camera ray's cone: textures seen through the medium are
+    /// filtered by it as without one (`path::RayCone`).
+    cone: RayCone,
 }
 
 impl Default for Strategies {
@@ -381,6 +390,7 @@ impl Default for Strategies {
             inscatter_per_opacity: 4.0,
             deep_survival: 1.0,
             split_per_tr: 8.0,
+            cone: RayCone::NONE,
         }
     }
 }

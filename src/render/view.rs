@@ -286,7 +286,7 @@ fn render_chunk<A: Accel>(
     {
         scratch
             .starts
-            .push(ctx.start_path(*ray, *hit, stream, &mut rays));
+            .push(ctx.start_path(*ray, *hit, cam.cone(ray.d), stream, &mut rays));
     }
     scratch.shadow_rays.clear();
     scratch.shadow_slots.clear();
