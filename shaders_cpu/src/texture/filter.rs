@@ -102,7 +102,8 @@ impl Footprint {
         if k >= 1.0 {
             sharp
         } else {
-            self.band_cover(d, hw, period) + (sharp - self.band_cover(d, hw, period)) * k
+            let cover = self.band_cover(d, hw, period);
+            cover + (sharp - cover) * k
         }
     }
 
@@ -148,34 +149,15 @@ impl Footprint {
     /// has std ~0.37, its average over the cell about half of that).
     #[inline]
     pub fn value_noise(self, p: DVec3, cell_m: f64, seed: u32) -> f32 {
-        let k = self.keep(cell_m);
-        let sharp = if k > 0.0 {
-            k * value_noise(p, cell_m, seed)
-        } else {
-            0.0
-        };
-        if k >= 1.0 {
-            sharp
-        } else {
-            sharp + (1.0 - k) * VALUE_STD * self.residual(p, cell_m, seed)
-        }
+        self.cells(|| value_noise(p, cell_m, seed), VALUE_STD, p, cell_m, seed)
     }
 
     /// [`cell_noise`] filtered: faded to its mean 0 past its cell, with
     /// the residual of its average (std 1/√3 before averaging).
     #[inline]
     pub fn cell_noise(self, p: DVec3, cell_m: f64, seed: u32) -> f32 {
-        let k = self.keep(cell_m);
-        let sharp = if k > 0.0 {
-            k * cell_noise(p, cell_m, seed)
-        } else {
-            0.0
-        };
-        if k >= 1.0 {
-            sharp
-        } else {
-            sharp + (1.0 - k) * (1.0 / 3f32.sqrt()) * self.residual(p, cell_m, seed)
-        }
+        let std = 1.0 / 3f32.sqrt();
+        self.cells(|| cell_noise(p, cell_m, seed), std, p, cell_m, seed)
     }
 
     /// [`super::noise::fbm`] with each octave faded by its own cell size
