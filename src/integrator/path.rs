@@ -479,7 +479,8 @@ impl<A: Accel> PathContext<'_, A> {
         let mut si = self.surfaces.interaction(scene, ray, hit);
         let wo = -ray.d;
         let mat = &scene.materials[si.material as usize];
-        let front = wo.dot(si.n_geo) > 0.0;
+        let cos_o = wo.dot(si.n_geo);
+        let front = cos_o > 0.0;
         if mat.le != Vec3::ZERO && (front || mat.two_sided_emission) {
             let w = if st.prev_delta {
                 1.0
@@ -495,9 +496,14 @@ impl<A: Accel> PathContext<'_, A> {
             return None;
         }
         // Seen through delta bounces: textured, filtered by the pixel's
-        // footprint here; the cone goes on through a delta bounce.
+        // footprint here (only a seen hit is textured); the cone goes on
+        // through a delta bounce.
         let dist = hit.t;
-        let footprint = st.cone.footprint(dist, wo.dot(si.n_geo));
+        let footprint = if st.prev_delta {
+            st.cone.footprint(dist, cos_o)
+        } else {
+            0.0
+        };
         let bsdf = scene
             .material_view()
             .bsdf_filtered(&si, wo, st.prev_delta, footprint);

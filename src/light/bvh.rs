@@ -155,7 +155,7 @@ fn cone_union(wa: Vec3, cos_a: f32, wb: Vec3, cos_b: f32) -> (Vec3, f32) {
 /// bits it returns for them (acos 1 = +0, acos 0 = π/2 correctly rounded;
 /// `tests::acos_shortcuts_are_the_libm_bits`).
 #[inline]
-fn acos_clamped(c: f32) -> f32 {
+pub(super) fn acos_clamped(c: f32) -> f32 {
     if c == 1.0 {
         0.0
     } else if c == 0.0 {

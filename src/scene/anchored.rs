@@ -23,7 +23,7 @@ use std::collections::BTreeMap;
 use glam::{DAffine3, DVec3};
 
 use super::shapes::Leaves;
-use super::tile_clip::split_by_tiles;
+use super::tile_clip::{cell, split_by_tiles};
 use super::{Instance, Mesh, Prototype};
 
 /// Edge of a static tile, metres (a power of two).
@@ -123,8 +123,7 @@ fn tile_of(m: &Mesh) -> Option<(i64, i64)> {
         return None;
     }
     let c = (lo + hi) * 0.5;
-    let cell = |v: f64| (v / TILE_M).floor() as i64;
-    Some((cell(c.x), cell(c.y)))
+    Some((cell(c.x, TILE_M), cell(c.y, TILE_M)))
 }
 
 /// World position of a tile's frame: its centre at z = 0.

@@ -118,7 +118,7 @@ impl Piece {
 }
 
 /// The tile cell of coordinate `v`.
-fn cell(v: f64, tile: f64) -> i64 {
+pub(super) fn cell(v: f64, tile: f64) -> i64 {
     (v / tile).floor() as i64
 }
 

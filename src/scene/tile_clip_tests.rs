@@ -169,21 +169,31 @@ fn edges_shared_in_the_mesh_stay_shared_in_each_piece() {
 
 #[test]
 fn cut_points_carry_interpolated_normals_and_uvs() {
-    let m = grid(3);
+    let mut m = grid(3);
+    // Normals that vary along the grid (as the uvs do; affine, not
+    // normalised, so the interpolant is exact), so a cut point's normal
+    // shows whether it was interpolated between its edge's ends.
+    let normal = |i: f64, j: f64| Vec3::new(0.1 * i as f32, 0.05 * j as f32, 1.0);
+    for (k, n) in m.normals.iter_mut().enumerate() {
+        *n = normal((k % 4) as f64, (k / 4) as f64);
+    }
     for p in split_by_tiles(&m, TILE).values() {
-        for (q, uv) in p.p_render.iter().zip(&p.uvs) {
+        for ((q, uv), n) in p.p_render.iter().zip(&p.uvs).zip(&p.normals) {
             // uv follows the grid index: invert it on the undisturbed rows
             // and columns (the mesh's border), where it is affine in x, y.
             let (i, j) = ((q.x - (2e5 - 37.3)) / 23.0, (q.y - (-1.5e5 - 41.9)) / 23.0);
-            if j.abs() < 1e-9 || (j - 3.0).abs() < 1e-9 {
+            let row = j.abs() < 1e-9 || (j - 3.0).abs() < 1e-9;
+            let column = i.abs() < 1e-9 || (i - 3.0).abs() < 1e-9;
+            if row {
                 assert!((uv.x as f64 - i).abs() < 1e-4, "{q}: {uv}");
             }
-            if i.abs() < 1e-9 || (i - 3.0).abs() < 1e-9 {
+            if column {
                 assert!((uv.y as f64 - j).abs() < 1e-4, "{q}: {uv}");
             }
-        }
-        for n in &p.normals {
-            assert!((*n - Vec3::new(-0.03, 0.02, 1.0).normalize()).length() < 1e-6);
+            if row || column {
+                let want = normal(i, j).normalize();
+                assert!((n.normalize() - want).length() < 1e-4, "{q}: {n} vs {want}");
+            }
         }
     }
 }
