@@ -35,9 +35,15 @@ pub const TILE_PREFIX: &str = "static tile ";
 /// The world-space leaves of the static objects sorted into tiles.
 #[derive(Default)]
 pub(super) struct StaticTiles {
-    tiles: BTreeMap<(i64, i64), Vec<Mesh>>,
-    /// Per tile, the meshes it stands for (`Prototype::sources`).
-    sources: BTreeMap<(i64, i64), Vec<(u8, u64)>>,
+    tiles: BTreeMap<(i64, i64), Tile>,
+}
+
+/// One tile's meshes (pieces included) and the whole meshes it stands for
+/// (`Prototype::sources`: a cut mesh is listed once, at its first piece).
+#[derive(Default)]
+struct Tile {
+    meshes: Vec<Mesh>,
+    sources: Vec<(u8, u64)>,
 }
 
 impl StaticTiles {
@@ -55,18 +61,19 @@ impl StaticTiles {
                 m.p_f32 = m.p_render.iter().map(|p| p.as_vec3()).collect();
                 flat.meshes.push(m);
             } else if let Some(t) = tile_of(&m) {
-                let source = (m.semantic, m.triangles.len() as u64);
-                self.sources.entry(t).or_default().push(source);
-                self.tiles.entry(t).or_default().push(m);
+                let tile = self.tiles.entry(t).or_default();
+                tile.sources.push((m.semantic, m.triangles.len() as u64));
+                tile.meshes.push(m);
             } else {
                 // Wider than a tile: one piece per tile it crosses.
                 let pieces = split_by_tiles(&m, TILE_M);
-                if let Some(&t) = pieces.keys().next() {
-                    let source = (m.semantic, m.triangles.len() as u64);
-                    self.sources.entry(t).or_default().push(source);
-                }
-                for (t, piece) in pieces {
-                    self.tiles.entry(t).or_default().push(piece);
+                let source = (m.semantic, m.triangles.len() as u64);
+                for (k, (t, piece)) in pieces.into_iter().enumerate() {
+                    let tile = self.tiles.entry(t).or_default();
+                    if k == 0 {
+                        tile.sources.push(source);
+                    }
+                    tile.meshes.push(piece);
                 }
             }
         }
@@ -86,7 +93,11 @@ impl StaticTiles {
     ) -> (Vec<Prototype>, Vec<Instance>) {
         let mut protos = Vec::with_capacity(self.tiles.len());
         let mut insts = Vec::with_capacity(self.tiles.len());
-        for (k, (key, mut meshes)) in self.tiles.into_iter().enumerate() {
+        for (k, (key, tile)) in self.tiles.into_iter().enumerate() {
+            let Tile {
+                mut meshes,
+                sources,
+            } = tile;
             let anchor = anchor(key);
             for m in &mut meshes {
                 for p in &mut m.p_render {
@@ -97,7 +108,7 @@ impl StaticTiles {
             protos.push(Prototype {
                 prefab: format!("{TILE_PREFIX}{},{}", key.0, key.1),
                 meshes,
-                sources: self.sources.get(&key).cloned().unwrap_or_default(),
+                sources,
             });
             let render_from_local = DAffine3::from_translation(anchor - origin_world);
             insts.push(Instance::new(

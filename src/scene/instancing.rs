@@ -254,8 +254,11 @@ impl Scene {
             unique_triangles: flat + proto.iter().sum::<u64>(),
             instanced_triangles: flat + placed().map(|i| proto[i.prototype as usize]).sum::<u64>(),
             spheres: self.spheres.len() as u64,
-            cut_triangles: tiles().map(|p| tris(&p.meshes)).sum::<u64>()
-                - tile_meshes().map(|s| s.1).sum::<u64>(),
+            // Saturating: a cut that drops degenerate slivers may add none.
+            cut_triangles: tiles()
+                .map(|p| tris(&p.meshes))
+                .sum::<u64>()
+                .saturating_sub(tile_meshes().map(|s| s.1).sum::<u64>()),
             objects_per_class: per_class,
         }
     }
