@@ -97,7 +97,9 @@ pub struct RenderArgs {
     /// Traversal backend: embree or bvh.
     #[arg(long, default_value_t = Backend::default_backend())]
     pub backend: Backend,
-    /// Also write linear HDR radiance (EXR) for every view.
+    /// Also write linear HDR radiance (EXR) for every view, and the left
+    /// view's first visible surfaces' albedo and normal (`left/albedo/`,
+    /// `left/aov_normal/`: the auxiliary inputs of an external denoiser).
     #[arg(long)]
     pub hdr: bool,
     /// Weather preset replacing the scene's sun and sky: clear, cloudy, foggy,

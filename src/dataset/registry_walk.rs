@@ -60,6 +60,7 @@ fn frame() -> (StereoRig, FrameOutput) {
         baselines,
         images: vec![film; 3],
         exposure_scale: 1.0,
+        aov: Some(crate::render::AovImages::new(n)),
         stats: RenderStats::default(),
     };
     (rig, out)

@@ -8,6 +8,7 @@
 //! neither ever sees world coordinates; only `texture` turns a hit back into
 //! a world position, so procedural albedo does not move with the rig.
 
+mod aov;
 mod context;
 mod denoise_parts;
 pub mod gt;
@@ -15,6 +16,7 @@ pub mod path;
 pub mod rain;
 pub mod volpath;
 
+pub use aov::Aov;
 pub use context::{PathContext, Shading};
 pub use denoise_parts::{luminance, DenoiseSample, DenoiseSum};
 

@@ -17,6 +17,7 @@ use glam::Vec3;
 use shaders_cpu::bsdf::Bsdf;
 use shaders_cpu::sampling::{power_heuristic, Frame};
 
+use super::aov::{Aov, AovState};
 use super::denoise_parts::{glossy_albedo, DenoiseSample, DenoiseSum, SplitVertex};
 use super::PathContext;
 use crate::accel::{Accel, Hit, Ray};
@@ -200,6 +201,8 @@ pub(super) struct PathState {
     /// The pixel's cone at the last vertex (`RayCone`): the footprint
     /// textures are filtered by at hits seen through delta bounces.
     pub cone: RayCone,
+    /// The search for the first visible surface's albedo and normal.
+    pub aov: AovState,
 }
 
 impl PathState {
@@ -215,6 +218,7 @@ impl PathState {
             split: SplitVertex::default(),
             first_albedo: None,
             cone: RayCone::NONE,
+            aov: AovState::default(),
         }
     }
 
@@ -240,6 +244,8 @@ pub struct LiSample {
     /// Its parts split by the first event on the ray (fog light, light on
     /// the first surface) and what they are filtered against.
     pub denoise: DenoiseSample,
+    /// The first visible surface's albedo and normal (`aov.rs`).
+    pub aov: Aov,
 }
 
 /// Running sums of one pixel's samples, field by field.
@@ -249,6 +255,8 @@ pub struct PixelSum {
     pub l: Vec3,
     /// Σ `LiSample::denoise`.
     pub denoise: DenoiseSum,
+    /// Σ `LiSample::aov`, field by field.
+    pub aov: Aov,
 }
 
 impl PixelSum {
@@ -256,6 +264,8 @@ impl PixelSum {
     pub fn add(&mut self, li: &LiSample) {
         self.l += li.l;
         self.denoise.add(&li.denoise);
+        self.aov.albedo += li.aov.albedo;
+        self.aov.normal += li.aov.normal;
     }
 }
 
@@ -367,6 +377,7 @@ impl<A: Accel> PathContext<'_, A> {
                         ..DenoiseSample::default()
                     },
                 ),
+                aov: st.aov.aov,
             };
         };
         // The radiance once the first vertex's own light is in: what
@@ -438,6 +449,7 @@ impl<A: Accel> PathContext<'_, A> {
                     ..DenoiseSample::default()
                 },
             ),
+            aov: st.aov.aov,
         }
     }
 
@@ -514,6 +526,8 @@ impl<A: Accel> PathContext<'_, A> {
             si.n_geo = -si.n_geo;
             si.n_shading = -si.n_shading;
         }
+        st.aov
+            .at_vertex(st.prev_delta, st.beta, &bsdf, si.n_shading);
         if st.split.ahead && !bsdf.is_delta() {
             st.split.ahead = false;
             if let (true, Some(albedo)) = (scene.filter_indirect, bsdf.diffuse_albedo()) {

@@ -60,6 +60,8 @@ pub fn map_pixels(map: Map, out: &FrameOutput, b: usize) -> Option<MapPixels<'_>
     match map {
         Map::LeftRgb => srgb(0),
         Map::LeftRgbHdr => hdr(0),
+        Map::LeftAlbedo => out.aov.as_ref().map(|a| RgbF32(&a.albedo)),
+        Map::LeftAovNormal => out.aov.as_ref().map(|a| RgbF32(&a.normal)),
         Map::Depth => Some(GrayF32(Cow::Owned(out.left.depth_z_f32()))),
         Map::Normal => Some(RgbF32(&out.left.normal_world)),
         Map::Semantic => Some(Gray8(&out.left.semantic)),

@@ -13,6 +13,12 @@ pub enum Map {
     LeftRgb,
     /// Linear HDR radiance of the left view (only with `--hdr`).
     LeftRgbHdr,
+    /// Mean albedo of the left view's first visible surfaces, an auxiliary
+    /// image for an external denoiser (only with `--hdr`; `render::AovImages`).
+    LeftAlbedo,
+    /// Mean shading normal of the left view's first visible surfaces, world
+    /// space (only with `--hdr`; unlike `Normal`, seen through mirrors and glass).
+    LeftAovNormal,
     /// Left depth_z along the optical axis, metres, +inf for sky.
     Depth,
     /// World-space unit normal of the first surface (zero for sky).
@@ -131,7 +137,7 @@ const fn truth(map: Map, name: &'static str, folder: &'static str) -> MapSpec {
 }
 
 /// Every map, in the order the native writer writes them within one folder.
-pub const MAPS: [MapSpec; 13] = [
+pub const MAPS: [MapSpec; 15] = [
     MapSpec {
         pixel: Pixel::GrayF32,
         format: Format::Exr,
@@ -183,6 +189,20 @@ pub const MAPS: [MapSpec; 13] = [
         format: Format::Exr,
         hdr_only: true,
         ..truth(Map::LeftRgbHdr, "rgb_hdr", "rgb_hdr")
+    },
+    MapSpec {
+        kind: Kind::Image,
+        pixel: Pixel::RgbF32,
+        format: Format::Exr,
+        hdr_only: true,
+        ..truth(Map::LeftAlbedo, "albedo", "albedo")
+    },
+    MapSpec {
+        kind: Kind::Image,
+        pixel: Pixel::RgbF32,
+        format: Format::Exr,
+        hdr_only: true,
+        ..truth(Map::LeftAovNormal, "aov_normal", "aov_normal")
     },
     MapSpec {
         view: View::Right,

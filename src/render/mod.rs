@@ -15,6 +15,8 @@ mod view;
 
 use std::time::Instant;
 
+use glam::Vec3;
+
 use shaders_cpu::medium::Rain;
 
 use crate::accel::Accel;
@@ -68,8 +70,32 @@ pub struct FrameOutput {
     pub images: Vec<Film>,
     /// Exposure scale computed from the left view, shared by all views.
     pub exposure_scale: f32,
+    /// The left view's first visible surfaces (`None` when spp = 0).
+    pub aov: Option<AovImages>,
     /// Statistics.
     pub stats: RenderStats,
+}
+
+/// Auxiliary images of a view for an external denoiser (Open Image
+/// Denoise's albedo and normal inputs): per pixel the mean of its samples'
+/// `integrator::Aov`, the normal renormalised (zero where no sample saw a
+/// surface: sky, or fog scattered first).
+#[derive(Clone, Debug, PartialEq)]
+pub struct AovImages {
+    /// Mean throughput × albedo of the first visible surface, row-major.
+    pub albedo: Vec<Vec3>,
+    /// Unit mean world-space shading normal, row-major.
+    pub normal: Vec<Vec3>,
+}
+
+impl AovImages {
+    /// `n` pixels of zeros.
+    pub fn new(n: usize) -> AovImages {
+        AovImages {
+            albedo: vec![Vec3::ZERO; n],
+            normal: vec![Vec3::ZERO; n],
+        }
+    }
 }
 
 /// Work done for a frame.
@@ -128,9 +154,9 @@ pub fn render_frame(
     stats.gt_seconds = t0.elapsed().as_secs_f64();
 
     let t1 = Instant::now();
-    let mut images = Vec::new();
+    let (mut images, mut aov) = (Vec::new(), None);
     if settings.spp > 0 {
-        images = path_pass(scene, accel, &cams, &gt, settings, progress, &mut stats);
+        (images, aov) = path_pass(scene, accel, &cams, &gt, settings, progress, &mut stats);
         composite_rain(&mut images, &gt.rain_alpha);
     }
     stats.path_seconds = t1.elapsed().as_secs_f64();
@@ -140,6 +166,7 @@ pub fn render_frame(
         baselines: gt.baselines,
         images,
         exposure_scale,
+        aov,
         stats,
     }
 }
@@ -210,7 +237,7 @@ fn gt_pass(
 
 /// Path-traces every view (`settings.spp` > 0) and denoises it where the
 /// scene asks, guided by the view's exact depth from `gt`; counts rays and
-/// samples into `stats`.
+/// samples into `stats`. Returns the images and the left view's AOVs.
 fn path_pass(
     scene: &Scene,
     accel: &impl Accel,
@@ -219,11 +246,12 @@ fn path_pass(
     settings: &RenderSettings,
     progress: &(dyn Fn(usize, usize) + Sync),
     stats: &mut RenderStats,
-) -> Vec<Film> {
+) -> (Vec<Film>, Option<AovImages>) {
     let n_views = cams.len();
     let shading = Shading::new(scene, accel);
     let ctx = shading.context(settings.max_depth);
     let mut images = Vec::with_capacity(n_views);
+    let mut left_aov = None;
     for (view, cam) in cams.iter().enumerate() {
         progress(view, n_views);
         let key = StreamKey {
@@ -237,6 +265,7 @@ fn path_pass(
             rays,
             samples,
             non_finite,
+            aov: view_aov,
         } = view::render_view(&ctx, cam, key, settings.spp, settings.adaptive);
         // Fog light, or indirect light on first surfaces, denoised per
         // view, guided by this view's exact pixel-centre depth (left, or
@@ -256,9 +285,12 @@ fn path_pass(
         stats.non_finite_samples += non_finite;
         stats.samples += samples;
         images.push(film);
+        if view == 0 {
+            left_aov = Some(view_aov);
+        }
     }
     progress(n_views, n_views);
-    images
+    (images, left_aov)
 }
 
 /// Composites the frame's rain streaks (opacity per view, `rain_alpha`;

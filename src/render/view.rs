@@ -70,6 +70,8 @@ pub(super) struct ViewRender {
     pub samples: u64,
     /// Samples dropped as non-finite.
     pub non_finite: u64,
+    /// Its first visible surfaces' albedo and normal.
+    pub aov: super::AovImages,
 }
 
 /// The view's tiles: `TILE_PX`² squares in raster order of tiles.
@@ -156,10 +158,13 @@ pub(super) fn render_view<A: Accel>(
     }
     let mut film = Film::new(w as usize, h as usize);
     let mut denoise = keep_filter_inputs.then(|| ViewInputs::new(w as usize, h as usize));
+    let mut aov = super::AovImages::new(n_px);
     for (t, tile) in tiles.iter().enumerate() {
         for (k, acc) in tiling.pixels(t as u32).zip(&tile.px) {
             let n = acc.n as f32;
             film.rgb[k] = acc.sum.l / n;
+            aov.albedo[k] = acc.sum.aov.albedo / n;
+            aov.normal[k] = acc.sum.aov.normal.normalize_or_zero();
             if let Some(inputs) = denoise.as_mut() {
                 inputs.set_mean(k, &acc.sum.denoise, n);
             }
@@ -171,6 +176,7 @@ pub(super) fn render_view<A: Accel>(
         rays: tiles.iter().map(|t| t.rays).sum(),
         samples: counts.iter().map(|&c| c as u64).sum(),
         non_finite: tiles.iter().map(|t| t.non_finite).sum(),
+        aov,
     }
 }
 

@@ -1,10 +1,11 @@
 //! The image-space filters (denoiser) through the whole renderer: the fog
 //! in-scattering filter, the indirect-light filter and the direct-light
-//! filter.
+//! filter, and the auxiliary images for an external denoiser.
 
 #[path = "../common/mod.rs"]
 mod common;
 
+mod aov;
 mod direct;
 mod fog;
 mod indirect;

@@ -145,6 +145,7 @@ impl VolState {
                 // Direct light is filtered in medium-free scenes only.
                 ..DenoiseSample::default()
             },
+            aov: st.aov.aov,
         }
     }
 }
