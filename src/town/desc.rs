@@ -125,6 +125,12 @@ pub struct TownDesc {
     pub outskirts: bool,
     /// Fraction of traffic slots holding a vehicle, in [0, 1].
     pub traffic_density: f64,
+    /// Fraction of kerbside parking bays holding a parked car, in [0, 1]
+    /// (default 0: no lay-bys). Above 0 the sidewalks get lay-bys (see
+    /// `parking`), which needs a level grid town with sidewalks at least
+    /// `parking::min_sidewalk_m()` wide.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub parking_density: f64,
     /// Cruising speed of all traffic and the ego vehicle, km/h, in [5, 130].
     pub speed_kmh: f64,
     /// Frames per second of sequences, in (0, 120] (default 10).
@@ -278,6 +284,7 @@ impl TownDesc {
             return Err("overpass: needs ramps = true and no road_grade_m".into());
         }
         range("traffic_density", self.traffic_density, 0.0, 1.0)?;
+        super::parking::validate(self)?;
         range("speed_kmh", self.speed_kmh, 5.0, 130.0)?;
         range("fps", self.fps, 1e-3, 120.0)?;
         range("sun_elevation_deg", self.sun_elevation_deg, 1.0, 90.0)?;
