@@ -17,14 +17,15 @@ use super::{Bay, BAY_LEN_M};
 /// Stream word of the parked cars (apart from `rng::tag`'s).
 const PARKED: u64 = 0x5041_524b;
 /// Largest turn off the kerb line, degrees.
-const MAX_TURN_DEG: f64 = 1.2;
+const MAX_TURN_DEG: f64 = 0.8;
 /// Gap between a car's footprint and the bay's kerb, metres.
 const KERB_GAP_M: (f64, f64) = (0.03, 0.25);
 /// Gap kept at each bay end, metres.
 const END_GAP_M: f64 = 0.2;
-/// The lamps' emitters, and the unlit lenses a parked car shows instead.
+/// The lamps' emitters, and the unlit lenses a parked car shows instead
+/// (clear glass over the head-lamp reflector, red tail-lamp lenses).
 const UNLIT: [(&str, &str); 2] = [
-    ("headlight_emit", "lamp_glass"),
+    ("headlight_emit", "car_glass"),
     ("taillight_emit", "lamp_red"),
 ];
 
@@ -62,7 +63,7 @@ fn turned_half([len, w]: [f64; 2]) -> (f64, f64) {
 
 /// The body types a bay `depth` deep takes (four-wheeled cars whose
 /// turned footprint fits with the smallest kerb gap), with their weights.
-fn fitting(depth: f64) -> Vec<(BodyKind, f64)> {
+pub fn fitting(depth: f64) -> Vec<(BodyKind, f64)> {
     BODIES
         .iter()
         .zip(BODY_WEIGHTS)

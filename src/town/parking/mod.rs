@@ -11,7 +11,8 @@
 //! the walkers' inner lane (`walkers`: the lanes lie ±0.45 m about the
 //! sidewalk's middle line, 0.1 m towards the block) by a person's half
 //! width, and at most 2.3 m; the town description must leave at least
-//! 2.0 m (`min_sidewalk_m`). Driving lanes end at the road edge, so a
+//! 2.15 m, room for a sedan (`min_sidewalk_m`). Driving lanes end at the
+//! road edge, so a
 //! parked car (mirrors included) stays beyond it.
 
 pub mod cars;
@@ -30,10 +31,11 @@ pub use layby::cut_laybys;
 pub const BAY_LEN_M: f64 = 6.0;
 /// Width of a bay's own kerb (between bay and sidewalk), metres.
 pub const KERB_M: f64 = 0.15;
-/// Shallowest and deepest bay, metres.
-pub const DEPTH_M: (f64, f64) = (2.0, 2.3);
-/// Half the width of the widest walker (shoulders and arms), metres.
-pub const WALKER_HALF_M: f64 = 0.3;
+/// Shallowest bay (a sedan fits, mirrors included) and deepest, metres.
+pub const DEPTH_M: (f64, f64) = (2.15, 2.3);
+/// Half the width of the widest walker (shoulders, swinging arms and
+/// hands, a bag), metres: 0.34 m measured over every look and phase.
+pub const WALKER_HALF_M: f64 = 0.35;
 /// Clearance round a furniture item standing in the bay zone, metres.
 const ITEM_CLEAR_M: f64 = 0.8;
 /// Clearance round a tree (its pit is 1.2 m square), metres.
