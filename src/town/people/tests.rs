@@ -348,7 +348,10 @@ fn an_umbrella_is_held_still_over_the_head_through_the_whole_walk_cycle() {
                 Joint::ToeR,
                 Joint::WristL,
             ] {
-                assert!((k.at(j) - plain.at(j)).length() < 1e-12, "{v} {phase:?} {j:?}");
+                assert!(
+                    (k.at(j) - plain.at(j)).length() < 1e-12,
+                    "{v} {phase:?} {j:?}"
+                );
             }
             if phase.is_some() {
                 let (r, l) = (k.at(Joint::WristR).x, k.at(Joint::WristL).x);
@@ -393,11 +396,17 @@ fn an_umbrella_is_held_still_over_the_head_through_the_whole_walk_cycle() {
                     .iter()
                     .map(|q| (*q - head).truncate().dot(d.truncate()))
                     .fold(f64::MIN, f64::max);
-                assert!(reach > body.head_r, "{v} {phase:?}: canopy short of the head towards {d}");
+                assert!(
+                    reach > body.head_r,
+                    "{v} {phase:?}: canopy short of the head towards {d}"
+                );
             }
         }
         // The umbrella hand does not swing; the free hand does.
-        assert!(right_x.1 - right_x.0 < 0.06, "{v}: umbrella hand swings {right_x:?}");
+        assert!(
+            right_x.1 - right_x.0 < 0.06,
+            "{v}: umbrella hand swings {right_x:?}"
+        );
         assert!(left_x.1 - left_x.0 > 0.15, "{v}: free hand {left_x:?}");
     }
 }
