@@ -284,7 +284,6 @@ impl TownDesc {
             return Err("overpass: needs ramps = true and no road_grade_m".into());
         }
         range("traffic_density", self.traffic_density, 0.0, 1.0)?;
-        super::parking::validate(self)?;
         range("speed_kmh", self.speed_kmh, 5.0, 130.0)?;
         range("fps", self.fps, 1e-3, 120.0)?;
         range("sun_elevation_deg", self.sun_elevation_deg, 1.0, 90.0)?;
@@ -333,6 +332,8 @@ impl TownDesc {
             ));
         }
         self.validate_loop_corners()?;
+        // Last: its message may name other keys (sidewalks, ramps).
+        super::parking::validate(self)?;
         let [lo, hi] = self.floors;
         if !(1 <= lo && lo <= hi && hi <= 12) {
             return Err(format!("floors: need 1 ≤ min ≤ max ≤ 12, got [{lo}, {hi}]"));
