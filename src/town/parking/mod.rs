@@ -12,8 +12,7 @@
 //! sidewalk's middle line, 0.1 m towards the block) by a person's half
 //! width, and at most 2.3 m; the town description must leave at least
 //! 2.15 m, room for a sedan (`min_sidewalk_m`). Driving lanes end at the
-//! road edge, so a
-//! parked car (mirrors included) stays beyond it.
+//! road edge, so a parked car (mirrors included) stays beyond it.
 
 pub mod cars;
 pub mod layby;
