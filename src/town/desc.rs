@@ -125,6 +125,12 @@ pub struct TownDesc {
     pub outskirts: bool,
     /// Fraction of traffic slots holding a vehicle, in [0, 1].
     pub traffic_density: f64,
+    /// Fraction of kerbside parking bays holding a parked car, in [0, 1]
+    /// (default 0: no lay-bys). Above 0 the sidewalks get lay-bys (see
+    /// `parking`), which needs a level grid town with sidewalks at least
+    /// `parking::min_sidewalk_m()` wide.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub parking_density: f64,
     /// Cruising speed of all traffic and the ego vehicle, km/h, in [5, 130].
     pub speed_kmh: f64,
     /// Frames per second of sequences, in (0, 120] (default 10).
@@ -326,6 +332,8 @@ impl TownDesc {
             ));
         }
         self.validate_loop_corners()?;
+        // Last: its message may name other keys (sidewalks, ramps).
+        super::parking::validate(self)?;
         let [lo, hi] = self.floors;
         if !(1 <= lo && lo <= hi && hi <= 12) {
             return Err(format!("floors: need 1 ≤ min ≤ max ≤ 12, got [{lo}, {hi}]"));

@@ -14,8 +14,8 @@
 //! overpass (`overpass`) adds its road, deck and traffic loop on top.
 //!
 //! Instance ids: buildings from 1000, every pole, tree, bush, sign and
-//! traffic light from `FURNITURE_ID_BASE`, vehicles (ego included) from
-//! `VEHICLE_ID_BASE`, pedestrians from `PEDESTRIAN_ID_BASE`; roads,
+//! traffic light from `FURNITURE_ID_BASE` (parked cars after them),
+//! moving vehicles (ego included) from `VEHICLE_ID_BASE`, pedestrians from `PEDESTRIAN_ID_BASE`; roads,
 //! markings, sidewalks and terrain carry 0.
 
 pub mod buildings;
@@ -32,6 +32,7 @@ pub mod materials;
 pub mod organic;
 pub mod outskirts;
 pub mod overpass;
+pub mod parking;
 pub mod parts;
 pub mod people;
 pub mod props;
@@ -109,9 +110,15 @@ impl<'a> StaticTown<'a> {
         }
     }
 
-    /// Roads, markings, sidewalks, buildings, vegetation and street
-    /// furniture, numbered (`number_objects`); not the generated meshes.
+    /// Roads, markings, sidewalks, buildings, vegetation, street
+    /// furniture and parked cars, numbered (`number_objects`); not the
+    /// generated meshes.
     pub fn objects(&self) -> Vec<ObjectDesc> {
+        self.objects_and_bays().0
+    }
+
+    /// [`StaticTown::objects`] and the parking bays cut into its sidewalks.
+    pub fn objects_and_bays(&self) -> (Vec<ObjectDesc>, Vec<parking::Bay>) {
         let (desc, seed, l) = (self.desc, self.seed, &self.layout);
         let mut out = roads::road_objects(l, &self.sites);
         let mut next_id = buildings::BUILDING_ID_BASE;
@@ -125,6 +132,9 @@ impl<'a> StaticTown<'a> {
             !l.near_roundabout(&layout::Rect::centered([t[0], t[1]], [0.0, 0.0]))
                 && !l.in_loop_corner([t[0], t[1]])
         });
+        // Lay-bys in the gaps the road-side furniture leaves.
+        let bays = parking::bays(desc, l, &furniture);
+        parking::cut_laybys(&mut out, &bays);
         out.extend(furniture);
         if let Some(t) = &self.terrain {
             out.extend(t.vegetation(desc.vegetation_density, seed));
@@ -133,6 +143,9 @@ impl<'a> StaticTown<'a> {
             clear_for_overpass(o, &mut out);
         }
         number_objects(&mut out);
+        // Parked cars: static, numbered after the furniture.
+        let ids = (next_static_id(&out), VEHICLE_ID_BASE);
+        out.extend(parking::parked_cars(&bays, seed, desc.parking_density, ids));
         if let Some(w) = &self.warp {
             // Graded towns cut finer, for the grade's chord error.
             let step = match self.grade {
@@ -141,10 +154,11 @@ impl<'a> StaticTown<'a> {
             };
             out = organic::bend::bend_objects(out, w, step);
         }
-        match &self.grade {
+        let out = match &self.grade {
             Some(g) => drape::drape_objects(out, g),
             None => out,
-        }
+        };
+        (out, bays)
     }
 
     /// The generated triangle meshes as inline mesh objects: the hills
@@ -219,6 +233,16 @@ fn number_objects(objects: &mut [ObjectDesc]) {
             next += 1;
         }
     }
+}
+
+/// The first instance id above every furniture id in `objects`.
+fn next_static_id(objects: &[ObjectDesc]) -> u32 {
+    objects
+        .iter()
+        .filter_map(|o| o.instance.map(u32::from))
+        .filter(|&i| (FURNITURE_ID_BASE..VEHICLE_ID_BASE).contains(&i))
+        .max()
+        .map_or(FURNITURE_ID_BASE, |i| i + 1)
 }
 
 /// Seated people per two-wheeler body type.

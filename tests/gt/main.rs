@@ -10,6 +10,7 @@ mod exactness;
 mod facade;
 mod instancing;
 mod occlusion;
+mod parking;
 mod people;
 mod rain;
 mod static_tiles;

@@ -16,6 +16,7 @@ mod highway_loop;
 mod median;
 mod organic;
 mod overpass;
+mod parking;
 mod ramps;
 mod riders;
 mod signals;

@@ -320,3 +320,93 @@ fn a_canopy_faces_up_and_sits_on_its_dome() {
         assert!((apex.z - q.z - 0.2 * (rho / 0.5).powi(2)).abs() < 1e-12);
     }
 }
+
+#[test]
+fn an_umbrella_is_held_still_over_the_head_through_the_whole_walk_cycle() {
+    use super::pose::walk_angles;
+    use super::umbrella::{umbrella_pose, umbrella_prefab};
+    for v in 0..VARIANTS {
+        let person = Person::variant(v);
+        let body = &person.body;
+        let (mut right_x, mut left_x) = ((f64::MAX, f64::MIN), (f64::MAX, f64::MIN));
+        for phase in (0..PHASES).map(Some).chain([None]) {
+            let k = umbrella_pose(body, phase);
+            bones_ok(body, &k, "umbrella pose");
+            // The legs, hips and left arm keep the plain pose's cycle.
+            let plain = match phase {
+                Some(p) => pose::pose(body, &walk_angles(p as f64 / PHASES as f64)),
+                None => stand(body),
+            };
+            for j in [
+                Joint::HipL,
+                Joint::KneeL,
+                Joint::AnkleL,
+                Joint::ToeL,
+                Joint::HipR,
+                Joint::KneeR,
+                Joint::AnkleR,
+                Joint::ToeR,
+                Joint::WristL,
+            ] {
+                assert!(
+                    (k.at(j) - plain.at(j)).length() < 1e-12,
+                    "{v} {phase:?} {j:?}"
+                );
+            }
+            if phase.is_some() {
+                let (r, l) = (k.at(Joint::WristR).x, k.at(Joint::WristL).x);
+                right_x = (right_x.0.min(r), right_x.1.max(r));
+                left_x = (left_x.0.min(l), left_x.1.max(l));
+            }
+            let p = umbrella_prefab(v, phase);
+            let shaft = mesh_points(&p, "person_umbrella_shaft");
+            let hand = k.at(Joint::WristR);
+            // The handle in the hand: the line from the handle's foot to
+            // the shaft's top passes within a fist of the wrist.
+            let by_z = |f: fn(f64, f64) -> bool| {
+                shaft
+                    .iter()
+                    .copied()
+                    .reduce(|a, q| if f(q.z, a.z) { q } else { a })
+                    .unwrap()
+            };
+            let (foot, tip) = (by_z(|a, b| a < b), by_z(|a, b| a > b));
+            let u = ((hand - foot).dot(tip - foot) / (tip - foot).length_squared()).clamp(0.0, 1.0);
+            let grip = (foot + (tip - foot) * u - hand).length();
+            assert!(grip < 0.06, "{v} {phase:?}: shaft {grip} m from the hand");
+            // The canopy: what rises above the plain person's top, over
+            // the head, its rim reaching past the head all round.
+            let head = k.at(Joint::Head);
+            let plain_top = mesh_z_range(&person_prefab(v, phase)).1;
+            let cloth: Vec<DVec3> = p
+                .objects
+                .iter()
+                .filter(|o| o.material.as_deref() != Some("person_umbrella_shaft"))
+                .flat_map(|o| match &o.shape {
+                    ShapeDesc::Mesh { positions, .. } => positions.clone(),
+                    _ => unreachable!(),
+                })
+                .map(DVec3::from_array)
+                .filter(|q| q.z > plain_top)
+                .collect();
+            assert!(cloth.len() >= 8, "{v} {phase:?}: no canopy over the head");
+            for a in 0..8 {
+                let d = DVec3::new((a as f64 * 0.785).cos(), (a as f64 * 0.785).sin(), 0.0);
+                let reach = cloth
+                    .iter()
+                    .map(|q| (*q - head).truncate().dot(d.truncate()))
+                    .fold(f64::MIN, f64::max);
+                assert!(
+                    reach > body.head_r,
+                    "{v} {phase:?}: canopy short of the head towards {d}"
+                );
+            }
+        }
+        // The umbrella hand does not swing; the free hand does.
+        assert!(
+            right_x.1 - right_x.0 < 0.06,
+            "{v}: umbrella hand swings {right_x:?}"
+        );
+        assert!(left_x.1 - left_x.0 > 0.15, "{v}: free hand {left_x:?}");
+    }
+}

@@ -11,8 +11,8 @@ use std::sync::OnceLock;
 
 use glam::DVec3;
 
-use super::body::Joint;
-use super::pose::{pose, stand_angles, walk_angles};
+use super::body::{Body, Joint};
+use super::pose::{pose, stand_angles, walk_angles, Skeleton};
 use super::{looks_and_poses, prefab_name, Person, PHASES, VARIANTS};
 use crate::scene::desc::{ObjectDesc, PrefabDesc, SceneDesc, ShapeDesc};
 
@@ -44,13 +44,7 @@ pub fn umbrella_prefab_name(v: u32, phase: Option<u32>) -> String {
 /// the head.
 pub fn umbrella_prefab(v: u32, phase: Option<u32>) -> PrefabDesc {
     let person = Person::variant(v);
-    let mut a = match phase {
-        Some(p) => walk_angles((p % PHASES) as f64 / PHASES as f64),
-        None => stand_angles(),
-    };
-    a.shoulder[1] = 8f64.to_radians();
-    a.elbow[1] = 135f64.to_radians();
-    let k = pose(&person.body, &a);
+    let k = umbrella_pose(&person.body, phase);
     let mut parts = person.parts(&k);
     let hand = k.at(Joint::WristR) + DVec3::new(0.02, 0.0, 0.0);
     let head_top = k.at(Joint::Head).z + person.body.head_r;
@@ -81,6 +75,20 @@ pub fn umbrella_prefab(v: u32, phase: Option<u32>) -> PrefabDesc {
         name: umbrella_prefab_name(v, phase),
         objects: parts.into_objects("pedestrian"),
     }
+}
+
+/// The skeleton of `body` in quantised walk phase `phase` (None:
+/// standing) holding an umbrella: the walk's (or stand's) angles with the
+/// right arm held still, so only the legs, hips and left arm keep the
+/// cycle.
+pub fn umbrella_pose(body: &Body, phase: Option<u32>) -> Skeleton {
+    let mut a = match phase {
+        Some(p) => walk_angles((p % PHASES) as f64 / PHASES as f64),
+        None => stand_angles(),
+    };
+    a.shoulder[1] = 8f64.to_radians();
+    a.elbow[1] = 135f64.to_radians();
+    pose(body, &a)
 }
 
 /// Every umbrella prefab, generated once per process.

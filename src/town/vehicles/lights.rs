@@ -44,7 +44,7 @@ fn lamps_of(kind: BodyKind) -> (Vec<[f64; 3]>, [f64; 3]) {
     }
 }
 
-/// The head-light spots of every vehicle instance among `objects`.
+/// The head-light spots of every moving vehicle instance among `objects`.
 pub fn headlights(objects: &[ObjectDesc]) -> Vec<LightDesc> {
     let lamps: Vec<(BodyKind, Vec<[f64; 3]>, [f64; 3])> = BODIES
         .iter()
@@ -61,6 +61,12 @@ pub fn headlights(objects: &[ObjectDesc]) -> Vec<LightDesc> {
         let Some((_, points, intensity)) = lamps.iter().find(|(k, ..)| k.prefab() == prefab) else {
             continue;
         };
+        // Parked cars (static ids, below the moving vehicles') stay dark.
+        if o.instance
+            .is_some_and(|i| u32::from(i) < crate::town::VEHICLE_ID_BASE)
+        {
+            continue;
+        }
         let m = parent_from_local(&o.transform);
         let direction = (m.matrix3 * DVec3::from(AIM)).to_array();
         for &p in points {
