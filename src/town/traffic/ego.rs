@@ -25,13 +25,16 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::sync::{Arc, Mutex, OnceLock};
 
-use super::{background, Plan, VehiclePose, A_LAT_MPS2, A_LON_MPS2, LEVEL_GAP_M};
+use super::junction::{clear_time_s, CLEAR_RESERVE_S};
+use super::sim::{BLINK_HZ, SIGNAL_AHEAD_M};
+use super::{others, Plan, VehicleLamps, VehiclePose, A_LON_MPS2, A_LAT_MPS2, LEVEL_GAP_M};
 use crate::town::desc::TownDesc;
 use crate::town::layout::Layout;
 use crate::town::materials::PAINTS;
 use crate::town::overpass::Overpass;
 use crate::town::rng::{tag, Rng};
-use crate::town::routes::drive::{links, DrivePath};
+use crate::town::routes::drive::{links, Crossing, DrivePath, Move};
+use crate::town::signals::until_red_s;
 use crate::town::routes::Segment;
 use crate::town::vehicles::BodyKind;
 use crate::town::walkers;
@@ -49,8 +52,6 @@ const FOLLOW_GAP_M: f64 = 2.5;
 const SAMPLE_M: f64 = 0.5;
 /// Re-simulations of a chunk without the vehicles in the ego's way.
 const ROUNDS: usize = 3;
-/// Reserve in the clearing-time estimate before the town stands, seconds.
-const CLEAR_RESERVE_S: f64 = 1.0;
 
 /// The ego in one frame of a drive.
 #[derive(Clone, Debug)]
@@ -146,8 +147,21 @@ pub fn ego_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> EgoFrame {
     let ch = &d.chunks[c];
     let n = (frame % CHUNK_FRAMES) as usize;
     let (p, h) = d.path.pose(ch.s[n]);
+    let mut pose = level_pose(p, h, d.body, d.paint);
+    // Lamps as the background vehicles' (`sim`): the next frame's speed
+    // is the step's decision.
+    let (v, next) = (ch.v[n], ch.v.get(n + 1).copied().unwrap_or(ch.end.1));
+    pose.lamps.brake = next < v - 1e-3 || (v < 0.05 && next < 0.05);
+    let half = d.body.footprint_m()[0] / 2.0;
+    let t = (drive_start_frame(drive) + frame) as f64 / desc.fps;
+    let c = d.path.crossings.iter().find(|c| c.clear_m + half > ch.s[n]);
+    if let Some(c) = c.filter(|c| c.stop_m - ch.s[n] - half < SIGNAL_AHEAD_M) {
+        let lit = (t * BLINK_HZ).fract() < 0.5;
+        pose.lamps.left = lit && c.turn == Move::Left;
+        pose.lamps.right = lit && c.turn == Move::Right;
+    }
     EgoFrame {
-        pose: level_pose(p, h, d.body, d.paint),
+        pose,
         speed_mps: ch.v[n],
         removed: ch.removed.clone(),
         removed_pedestrians: ch.pedestrians.clone(),
@@ -165,6 +179,7 @@ fn level_pose(p: [f64; 2], h: f64, body: BodyKind, paint: &'static str) -> Vehic
         pitch_deg: 0.0,
         roll_deg: 0.0,
         route: usize::MAX,
+        lamps: VehicleLamps::default(),
     }
 }
 
@@ -226,8 +241,8 @@ impl<'a> Ctx<'a> {
         let traffic: Vec<Vec<VehiclePose>> = frames
             .iter()
             .map(|&f| {
-                let t = self.time(f);
-                background(self.desc, self.seed, &self.plan, self.overpass.as_ref(), t)
+                let op = self.overpass.as_ref();
+                others(self.desc, self.seed, &self.plan, op, self.drive, f)
             })
             .collect();
         let mut removed = BTreeSet::new();
@@ -315,43 +330,21 @@ impl<'a> Ctx<'a> {
             .crossings
             .iter()
             .find(|c| c.stop_m >= front - 0.05 && c.stop_m < s + look);
-        if let Some(c) = next.filter(|c| c.obeys_clock) {
+        if let Some(c) = next {
             let free_beyond = ahead.is_none_or(|d| d > c.clear_m - s + 3.0 * half + FOLLOW_GAP_M);
-            if !(free_beyond && self.can_clear(path, c.clear_m + half - s, v, t, c.stop_m)) {
+            let clear = c.roundabout || self.can_clear(path, c, c.clear_m + half - s, v, t);
+            if !(free_beyond && clear) {
                 cap = cap.min(stop(c.stop_m - front));
             }
         }
         cap
     }
 
-    /// Whether the ego, `d` metres from clearing a junction's zone at speed
-    /// `v` at time `t`, clears it before the town next stands.
-    fn can_clear(&self, path: &DrivePath, d: f64, v: f64, t: f64, from: f64) -> bool {
-        let sched = &self.plan.schedule;
-        if sched.standing(t) {
-            return false;
-        }
-        let left = sched.moving_s() - t.rem_euclid(sched.cycle_s());
-        let vc = path
-            .pieces(from, from + d)
-            .filter_map(|(_, seg)| match *seg {
-                Segment::Arc { radius_m, .. } => Some((A_LAT_MPS2 * radius_m).sqrt()),
-                Segment::Line { .. } => None,
-            })
-            .fold(self.v_max, f64::min)
-            .max(1.0);
-        let a = A_LON_MPS2;
-        let need = if v >= vc {
-            d / vc
-        } else {
-            let d_acc = (vc * vc - v * v) / (2.0 * a);
-            if d_acc >= d {
-                ((v * v + 2.0 * a * d).sqrt() - v) / a
-            } else {
-                (vc - v) / a + (d - d_acc) / vc
-            }
-        };
-        need + CLEAR_RESERVE_S <= left
+    /// Whether the ego, `d` metres from clearing the zone of crossing `c`
+    /// at speed `v` at time `t`, clears it before its approach turns red.
+    fn can_clear(&self, path: &DrivePath, c: &Crossing, d: f64, v: f64, t: f64) -> bool {
+        let left = until_red_s(&self.plan.schedule, c.dir, t);
+        clear_time_s(path, c.stop_m, d, v, self.v_max) + CLEAR_RESERVE_S <= left
     }
 
     /// Distance along the path from the ego's centre (at `s`) to the first
@@ -427,7 +420,7 @@ impl<'a> Ctx<'a> {
 
 /// Heading `h` radians as degrees in [0, 360) (a heading a hair below 0
 /// or 2π rounds to 0, not 360).
-fn heading_deg(h: f64) -> f64 {
+pub(super) fn heading_deg(h: f64) -> f64 {
     let d = h.to_degrees().rem_euclid(360.0);
     if d >= 360.0 {
         0.0
@@ -437,7 +430,7 @@ fn heading_deg(h: f64) -> f64 {
 }
 
 /// Distance from `p` to the footprint rectangle of `v` (0 inside).
-fn rect_distance(v: &VehiclePose, p: [f64; 2]) -> f64 {
+pub(super) fn rect_distance(v: &VehiclePose, p: [f64; 2]) -> f64 {
     let [len, wid] = v.body.footprint_m();
     let h = v.heading_deg.to_radians();
     let d = [p[0] - v.position[0], p[1] - v.position[1]];

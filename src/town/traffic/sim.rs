@@ -1,0 +1,358 @@
+//! The background vehicles as a deterministic simulation, per drive.
+//!
+//! Drive N's vehicles start on every road (`spawn`) at the drive's traffic
+//! time and walk junction to junction (`DrivePath::background`), one step
+//! per frame: each takes the highest speed that lets it brake (at
+//! `A_LON_MPS2`) for the curves ahead (lateral ≤ `A_LAT_MPS2`), for the
+//! first footprint within reach of its path ahead (keeping
+//! `FOLLOW_GAP_M`), and for the stop line of a junction it may not enter
+//! (`junction`); it accelerates at `A_LON_MPS2` up to its limit (cyclists
+//! ride at `cyclist_speed_mps`, and whoever is behind them follows).
+//! Steps use the state at the start of the step, in id order; a driver
+//! passing a stop line claims the junction at once, so later drivers of
+//! the same step see it inside. Braking from the current state onto the
+//! current positions of what is ahead, which only moves on along its own
+//! path, keeps every gap open; the junction rules keep crossing paths
+//! apart. Lamps per frame: brake lamps while decelerating or standing,
+//! the indicator of a turn blinking from `SIGNAL_AHEAD_M` before its stop
+//! line until the turn is done.
+//!
+//! Frames are simulated in chunks of `CHUNK_FRAMES` from the drive's
+//! start and memoised per (town, seed, drive); the few most recent drives
+//! are kept. Frame K of a drive costs the chunks up to K / `CHUNK_FRAMES`
+//! once, the same for every caller, so any frame is the same bytes alone,
+//! in sequence, on any thread.
+
+use std::collections::{BTreeMap, HashMap};
+use std::sync::{Arc, Mutex, OnceLock};
+
+use super::junction::{self, JState};
+use super::{closed, ego, Plan, VehicleLamps, VehiclePose, A_LAT_MPS2, A_LON_MPS2, LEVEL_GAP_M};
+use crate::town::desc::TownDesc;
+use crate::town::layout::Layout;
+use crate::town::overpass::Overpass;
+use crate::town::routes::drive::{DrivePath, Move};
+use crate::town::routes::Segment;
+use crate::town::vehicles::BodyKind;
+
+/// `VehiclePose::route` of a simulated vehicle.
+pub const SIM_ROUTE: usize = usize::MAX - 1;
+/// Gap kept behind the vehicle ahead when standing, metres.
+const FOLLOW_GAP_M: f64 = 2.5;
+/// Spacing of the path samples that look for vehicles ahead, metres.
+const SAMPLE_M: f64 = 1.0;
+/// Cell size of the per-step spatial index, metres.
+const CELL_M: f64 = 16.0;
+/// Drives whose simulation is kept.
+const KEEP_DRIVES: usize = 3;
+/// Indicator blink rate, Hz.
+pub const BLINK_HZ: f64 = 1.5;
+/// How far before a turn's stop line the indicator starts, metres.
+pub const SIGNAL_AHEAD_M: f64 = 35.0;
+/// A leader this fast inside a junction leaves room behind it, m/s.
+const MOVING_LEADER_MPS: f64 = 3.0;
+
+/// Cyclists' speed under the town's limit `limit_mps`, m/s.
+pub fn cyclist_speed_mps(limit_mps: f64) -> f64 {
+    limit_mps.min(5.5)
+}
+
+/// One background vehicle.
+#[derive(Clone, Debug)]
+pub(super) struct Agent {
+    /// Stable id, ≥ 1.
+    pub id: u32,
+    /// Body type.
+    pub body: BodyKind,
+    /// Paint material.
+    pub paint: &'static str,
+    /// Its walk.
+    pub path: DrivePath,
+    /// Arc length of its centre, metres.
+    pub s: f64,
+    /// Speed, m/s (NaN before the first step: it starts at the speed the
+    /// first step allows).
+    pub v: f64,
+    /// Its speed limit, m/s.
+    pub v_max: f64,
+}
+
+impl Agent {
+    fn half(&self) -> f64 {
+        self.body.footprint_m()[0] / 2.0
+    }
+
+    fn pose(&self) -> VehiclePose {
+        let (p, h) = self.path.pose(self.s);
+        VehiclePose {
+            id: self.id,
+            body: self.body,
+            paint: self.paint,
+            position: [p[0], p[1], 0.0],
+            heading_deg: ego::heading_deg(h),
+            pitch_deg: 0.0,
+            roll_deg: 0.0,
+            route: SIM_ROUTE,
+            lamps: VehicleLamps::default(),
+        }
+    }
+}
+
+/// One frame's vehicles.
+type Frame = Arc<Vec<VehiclePose>>;
+
+struct SimDrive {
+    agents: Vec<Agent>,
+    chunks: Vec<Vec<Frame>>,
+}
+
+type Sims = Mutex<Vec<((String, u64, u64), Arc<Mutex<SimDrive>>)>>;
+static SIMS: OnceLock<Sims> = OnceLock::new();
+
+/// The background vehicles of `frame` of drive `drive` (level grid).
+pub fn vehicles_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> Frame {
+    let key = (format!("{desc:?}"), seed, drive);
+    let entry = {
+        let mut c = SIMS.get_or_init(Default::default).lock().expect("sims");
+        let found = c.iter().position(|(k, _)| *k == key);
+        let e = match found {
+            Some(i) => c.remove(i).1,
+            None => {
+                let l = Layout::new(desc);
+                let plan = Plan::new(desc);
+                let agents = super::spawn::spawn(seed, drive, desc.traffic_density, &l, &plan);
+                Arc::new(Mutex::new(SimDrive {
+                    agents,
+                    chunks: Vec::new(),
+                }))
+            }
+        };
+        c.push((key, e.clone()));
+        if c.len() > KEEP_DRIVES {
+            c.remove(0);
+        }
+        e
+    };
+    let mut d = entry.lock().expect("sim drive");
+    let k = (frame / ego::CHUNK_FRAMES) as usize;
+    if d.chunks.len() <= k {
+        let cx = Ctx::new(desc, seed, drive);
+        while d.chunks.len() <= k {
+            let first = d.chunks.len() as u64 * ego::CHUNK_FRAMES;
+            let SimDrive { agents, chunks } = &mut *d;
+            let frames = (first..first + ego::CHUNK_FRAMES)
+                .map(|f| Arc::new(cx.step(agents, f)))
+                .collect();
+            chunks.push(frames);
+        }
+    }
+    d.chunks[k][(frame % ego::CHUNK_FRAMES) as usize].clone()
+}
+
+/// What the simulation needs besides the agents.
+struct Ctx<'a> {
+    desc: &'a TownDesc,
+    seed: u64,
+    drive: u64,
+    plan: Arc<Plan>,
+    overpass: Option<Overpass>,
+    dt: f64,
+}
+
+/// The per-step index of footprints: cell → indices into the step's poses.
+struct Grid(HashMap<(i64, i64), Vec<usize>>);
+
+impl Grid {
+    fn new(poses: &[VehiclePose]) -> Self {
+        let mut g: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
+        for (i, v) in poses.iter().enumerate() {
+            for c in cells(&v.footprint()) {
+                g.entry(c).or_default().push(i);
+            }
+        }
+        Grid(g)
+    }
+
+    /// Indices of the footprints in cells meeting `r` (sorted, unique).
+    fn near(&self, r: &crate::town::layout::Rect) -> Vec<usize> {
+        let mut out: Vec<usize> = cells(r)
+            .filter_map(|c| self.0.get(&c))
+            .flatten()
+            .copied()
+            .collect();
+        out.sort_unstable();
+        out.dedup();
+        out
+    }
+}
+
+fn cells(r: &crate::town::layout::Rect) -> impl Iterator<Item = (i64, i64)> {
+    let c = |v: f64| (v / CELL_M).floor() as i64;
+    let (x0, x1, y0, y1) = (c(r.min[0]), c(r.max[0]), c(r.min[1]), c(r.max[1]));
+    (x0..=x1).flat_map(move |x| (y0..=y1).map(move |y| (x, y)))
+}
+
+impl<'a> Ctx<'a> {
+    fn new(desc: &'a TownDesc, seed: u64, drive: u64) -> Self {
+        let l = Layout::new(desc);
+        Ctx {
+            desc,
+            seed,
+            drive,
+            plan: Plan::new(desc),
+            overpass: Overpass::new(desc, &l),
+            dt: 1.0 / desc.fps,
+        }
+    }
+
+    /// The poses of frame `f` (from the drive's start), then one step on.
+    fn step(&self, agents: &mut [Agent], f: u64) -> Vec<VehiclePose> {
+        let t = (ego::drive_start_frame(self.drive) + f) as f64 / self.desc.fps;
+        let n = agents.len();
+        for a in agents.iter_mut() {
+            let ahead = a.v_max * a.v_max / (2.0 * A_LON_MPS2) + 150.0;
+            a.path.reach(a.s + ahead);
+        }
+        let mut poses: Vec<VehiclePose> = agents.iter().map(Agent::pose).collect();
+        // The overpass's vehicles on this level are obstacles too.
+        let closed = closed(self.desc, self.seed, &self.plan, self.overpass.as_ref(), t);
+        let mut all = poses.clone();
+        all.extend(closed.into_iter().filter(|v| v.position[2].abs() < LEVEL_GAP_M));
+        let grid = Grid::new(&all);
+        let states: Vec<Option<JState>> = agents
+            .iter()
+            .map(|a| {
+                let within = a.v_max * a.v_max / (2.0 * A_LON_MPS2) + 60.0;
+                JState::of(&a.path, a.s, a.half(), a.v.max(0.0), a.v_max, within)
+            })
+            .collect();
+        let mut at_junction: BTreeMap<(usize, usize), Vec<usize>> = BTreeMap::new();
+        for (i, st) in states.iter().enumerate() {
+            if let Some(st) = st {
+                at_junction.entry(st.c.junction).or_default().push(i);
+            }
+        }
+        let mut claimed = vec![false; n];
+        let mut next = vec![0.0; n];
+        for i in 0..n {
+            let cap = self.allowed(agents, i, &all, &grid, &states, &at_junction, &claimed, t);
+            let a = &mut agents[i];
+            if a.v.is_nan() {
+                a.v = cap;
+            }
+            let v = (a.v + A_LON_MPS2 * self.dt).min(cap).max(0.0);
+            if let Some(st) = &states[i] {
+                if !st.inside() && v * self.dt > st.d_stop - 0.01 {
+                    claimed[i] = true;
+                }
+            }
+            next[i] = v;
+        }
+        let blink = (t * BLINK_HZ).fract() < 0.5;
+        for (i, a) in agents.iter_mut().enumerate() {
+            let p = &mut poses[i];
+            p.lamps.brake = next[i] < a.v - 1e-3 || (a.v < 0.05 && next[i] < 0.05);
+            if let Some(st) = states[i].filter(|st| st.d_stop < SIGNAL_AHEAD_M && blink) {
+                p.lamps.left = st.c.turn == Move::Left;
+                p.lamps.right = st.c.turn == Move::Right;
+            }
+            a.v = next[i];
+            a.s += a.v * self.dt;
+        }
+        poses
+    }
+
+    /// The highest speed (m/s) agent `i` may take for the next step.
+    #[allow(clippy::too_many_arguments)]
+    fn allowed(
+        &self,
+        agents: &[Agent],
+        i: usize,
+        all: &[VehiclePose],
+        grid: &Grid,
+        states: &[Option<JState>],
+        at_junction: &BTreeMap<(usize, usize), Vec<usize>>,
+        claimed: &[bool],
+        t: f64,
+    ) -> f64 {
+        let a = &agents[i];
+        let half = a.half();
+        let v = if a.v.is_nan() { a.v_max } else { a.v };
+        let vn = v + A_LON_MPS2 * self.dt;
+        let look = vn * vn / (2.0 * A_LON_MPS2) + vn * self.dt + half + FOLLOW_GAP_M + 8.0;
+        let stop = |d: f64| {
+            let d = d.max(0.0);
+            (2.0 * A_LON_MPS2 * d).sqrt().min(d / self.dt)
+        };
+        let mut cap = a.v_max;
+        for (s0, seg) in a.path.pieces(a.s, a.s + look) {
+            if let Segment::Arc { radius_m, .. } = *seg {
+                let vc = (A_LAT_MPS2 * radius_m).sqrt();
+                let d = (s0 - a.s).max(0.0);
+                cap = cap.min((vc * vc + 2.0 * A_LON_MPS2 * d).sqrt());
+            }
+        }
+        let st = states[i].filter(|st| !st.inside() && st.d_stop < look);
+        let need = match &st {
+            Some(st) => look.max(st.c.clear_m - a.s + 3.0 * half + FOLLOW_GAP_M + 1.0),
+            None => look,
+        };
+        let ahead = first_in_way(a, i, need, all, grid);
+        if let Some((d, _)) = ahead.filter(|(d, _)| *d < look) {
+            cap = cap.min(stop(d - half - FOLLOW_GAP_M));
+        }
+        if let Some(st) = st {
+            let beyond = st.c.clear_m - a.s + 3.0 * half + FOLLOW_GAP_M;
+            let free = ahead.is_none_or(|(d, j)| {
+                d > beyond || (j < agents.len() && agents[j].v > MOVING_LEADER_MPS)
+            });
+            let clear_s = junction::clear_time_s(
+                &a.path,
+                st.c.stop_m,
+                st.c.clear_m + half - st.c.stop_m + st.d_stop.max(0.0),
+                v,
+                a.v_max,
+            );
+            let others = at_junction[&st.c.junction].iter().filter(|&&j| j != i);
+            let blocked = others.into_iter().any(|&j| {
+                let o = states[j].as_ref().expect("listed");
+                junction::blocks(&self.plan.schedule, &st, o, o.inside() || claimed[j], clear_s, t)
+            });
+            if !free || blocked || !junction::can_clear(&self.plan.schedule, &st, clear_s, t) {
+                cap = cap.min(stop(st.d_stop));
+            }
+        }
+        cap
+    }
+}
+
+/// Distance along agent `i`'s path from its centre to the first sample
+/// within reach of another footprint, up to `look` metres, and whose.
+fn first_in_way(
+    a: &Agent,
+    i: usize,
+    look: f64,
+    all: &[VehiclePose],
+    grid: &Grid,
+) -> Option<(f64, usize)> {
+    let reach = a.body.footprint_m()[1] / 2.0 + 0.3;
+    let n = (look / SAMPLE_M).ceil() as usize;
+    let samples: Vec<[f64; 2]> = (0..=n)
+        .map(|k| a.path.pose(a.s + k as f64 * SAMPLE_M).0)
+        .collect();
+    let pad = reach + 1.0;
+    let fold = |f: fn(f64, f64) -> f64, c: usize, init: f64| samples.iter().map(|p| p[c]).fold(init, f);
+    let r = crate::town::layout::Rect {
+        min: [fold(f64::min, 0, f64::INFINITY) - pad, fold(f64::min, 1, f64::INFINITY) - pad],
+        max: [fold(f64::max, 0, f64::NEG_INFINITY) + pad, fold(f64::max, 1, f64::NEG_INFINITY) + pad],
+    };
+    let near: Vec<usize> = grid.near(&r).into_iter().filter(|&j| j != i).collect();
+    if near.is_empty() {
+        return None;
+    }
+    samples.iter().enumerate().find_map(|(k, p)| {
+        near.iter()
+            .find(|&&j| ego::rect_distance(&all[j], *p) < reach)
+            .map(|&j| (k as f64 * SAMPLE_M, j))
+    })
+}

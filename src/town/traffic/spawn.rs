@@ -1,0 +1,103 @@
+//! Where a drive's background vehicles start: along the straight of every
+//! directed link, in its inner and outer lanes (the only lanes whose moves
+//! need no lane change), spaced by their bodies plus a gap, each place
+//! filled with a chance from the town's traffic density. Bicycles start
+//! only in the outer (kerb-side) lane; with several lanes buses and
+//! trucks start only in the inner lane (its left turns are the widest),
+//! and only cars elsewhere. Seeded per (seed, drive, link, lane).
+
+use super::sim::Agent;
+use super::{cyclist_speed_mps, weighted_body, Plan};
+use crate::town::layout::Layout;
+use crate::town::materials::draw_paint;
+use crate::town::rng::{tag, Rng};
+use crate::town::roundabout::arm_start_m;
+use crate::town::routes::drive::{links, DrivePath};
+use crate::town::vehicles::BodyKind;
+
+/// Share of the places that hold a vehicle, per unit of traffic density.
+const FILL_PER_DENSITY: f64 = 0.5;
+/// Distance kept from a junction's edge (or a curve's end), metres.
+const EDGE_M: f64 = 8.0;
+/// Gap between the bodies of a lane at the start, at least, metres.
+const GAP_M: f64 = 6.0;
+
+/// The background vehicles of drive `drive` at its start, ids from 1.
+pub(super) fn spawn(
+    seed: u64,
+    drive: u64,
+    density: f64,
+    l: &Layout,
+    plan: &Plan,
+) -> Vec<Agent> {
+    let turns = &plan.schedule.turns;
+    let hw = l.road_w_m / 2.0;
+    // Where a link's straight begins past junction (i, j), metres.
+    let edge = |j: (usize, usize)| {
+        if l.loop_corner_at(j.0, j.1) {
+            l.loop_radius_m + EDGE_M
+        } else if l.roundabout == Some(j) {
+            arm_start_m(l) + 12.0
+        } else {
+            hw + EDGE_M
+        }
+    };
+    let dirs = [[1i64, 0], [0, 1], [-1, 0], [0, -1]];
+    let lanes: Vec<u32> = if l.lanes > 1 { vec![0, l.lanes - 1] } else { vec![0] };
+    let cars: Vec<BodyKind> = turns
+        .bodies
+        .iter()
+        .copied()
+        .filter(|b| b.seat().is_none())
+        .collect();
+    let long = [BodyKind::Bus, BodyKind::Truck];
+    let mut out = Vec::new();
+    for (k, (from, d)) in links(l).into_iter().enumerate() {
+        let to = (
+            (from.0 as i64 + dirs[d][0]) as usize,
+            (from.1 as i64 + dirs[d][1]) as usize,
+        );
+        let (a0, a1) = (edge(from), l.pitch_m - edge(to));
+        for &lane in &lanes {
+            let mut r = Rng::new(&[seed, tag::TRAFFIC, drive, k as u64, lane as u64]);
+            let mut allowed: Vec<BodyKind> = cars.clone();
+            if lane + 1 == l.lanes {
+                allowed.extend(turns.bodies.iter().filter(|b| b.seat().is_some()));
+            } else if l.lanes > 1 {
+                allowed.extend(turns.bodies.iter().filter(|b| b.seat().is_some()));
+                allowed.retain(|b| *b != BodyKind::Bicycle);
+                allowed.extend(long);
+            }
+            let mut at = a0 + r.f64() * GAP_M;
+            loop {
+                let body = weighted_body(&mut r, &allowed);
+                let len = body.footprint_m()[0];
+                if at + len > a1 {
+                    break;
+                }
+                if !r.chance(density * FILL_PER_DENSITY) {
+                    at += len + GAP_M;
+                    continue;
+                }
+                let paint = draw_paint(r.f64());
+                let moves = Rng::new(&[seed, tag::TRAFFIC, drive, k as u64, lane as u64, out.len() as u64]);
+                let centre = at + len / 2.0;
+                let v_max = match body {
+                    BodyKind::Bicycle => cyclist_speed_mps(plan.schedule.speed_mps),
+                    _ => plan.schedule.speed_mps,
+                };
+                out.push(Agent {
+                    id: out.len() as u32 + 1,
+                    body,
+                    paint,
+                    path: DrivePath::background(l, turns, k, lane, centre, moves),
+                    s: 0.0,
+                    v: f64::NAN,
+                    v_max,
+                });
+                at += len + GAP_M + r.f64() * GAP_M;
+            }
+        }
+    }
+    out
+}
