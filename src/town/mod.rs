@@ -267,7 +267,15 @@ pub fn dynamic_objects(frame: &TownFrame) -> Vec<ObjectDesc> {
             .chain(plate)
         {
             let mut p = shared.clone();
-            p.shape = parts::instance(&name, v.position, 0.0, &[], l).shape;
+            let (lenses, emitters) = lit_lamps(v);
+            let map = if name == v.body.lamps_prefab() {
+                emitters
+            } else if name == v.body.parts_prefab() {
+                lenses
+            } else {
+                Vec::new()
+            };
+            p.shape = parts::instance(&name, v.position, 0.0, &map, l).shape;
             out.push(p);
         }
         // A two-wheeler carries its rider (class `rider`, the vehicle's
@@ -289,6 +297,29 @@ pub fn dynamic_objects(frame: &TownFrame) -> Vec<ObjectDesc> {
         out.push(instance(&prefab, p.position, p.heading_deg, &[], l));
     }
     out
+}
+
+/// Material maps of a four-wheeled vehicle's lit lamps: for its parts
+/// prefab (the brake lens and each lit indicator's lenses to their
+/// emitters) and for its lamps prefab (the tail lamps to the brake
+/// emitter while braking). Two-wheelers' lamps stay as they are.
+type Map = Vec<(&'static str, &'static str)>;
+fn lit_lamps(v: &VehiclePose) -> (Map, Map) {
+    use vehicles::lamps::{BRAKE_SLOT, INDICATOR_SLOTS};
+    let (mut lenses, mut emitters) = (Vec::new(), Vec::new());
+    if v.body.seat().is_some() {
+        return (lenses, emitters);
+    }
+    if v.lamps.brake {
+        lenses.push((BRAKE_SLOT, "brake_lit"));
+        emitters.push(("taillight_emit", "brake_lit"));
+    }
+    for (lit, slot) in [v.lamps.left, v.lamps.right].into_iter().zip(INDICATOR_SLOTS) {
+        if lit {
+            lenses.push((slot, "indicator_lit"));
+        }
+    }
+    (lenses, emitters)
 }
 
 /// What a town frame holds that does not depend on the frame: the static

@@ -224,6 +224,7 @@ mod tests {
             max_len_m: 4.5,
         };
         assert_eq!(s.cycle_s(), 35.0);
+        assert!(s.standing(0.0) && s.standing(4.999) && !s.standing(5.0));
         use Lamp::*;
         // (t, lamp east/west, lamp north/south, until red east, north)
         let want = [
@@ -240,14 +241,16 @@ mod tests {
             (34.999, Red, Red, 0.0, 0.0),
             (35.0 * 3.0 + 1.0, Green, Red, 12.0, 0.0),
         ];
-        for (t, ew, ns, r_e, r_n) in want {
+        for (u, ew, ns, r_e, r_n) in want {
+            // `u` on the cycle's clock: time 0 is the stand before it.
+            let t = u - 30.0;
             for d in 0..4 {
                 let (lamp, left) = if d % 2 == 0 { (ew, r_e) } else { (ns, r_n) };
                 assert_eq!(axis_lamp(&s, d, t), lamp, "t = {t}, dir {d}");
                 assert!((until_red_s(&s, d, t) - left).abs() < 1e-9, "t = {t}, dir {d}");
             }
             // Pedestrians cross exactly while both axes stand past their gap.
-            assert_eq!(s.standing(t), (30.0..35.0).contains(&t.rem_euclid(35.0)));
+            assert_eq!(s.standing(t), (30.0..35.0).contains(&u.rem_euclid(35.0)));
         }
     }
 }

@@ -176,10 +176,11 @@ pub struct TownFrame {
     pub pedestrians: Vec<PedestrianPose>,
 }
 
-/// The signal phases, the same at every junction. One cycle: the x-axis
-/// approaches (heading east or west) show green, amber, then red through
-/// an all-red gap; the y-axis approaches the same; then every approach
-/// stands red while pedestrians cross (`stop_s`).
+/// The signal phases, the same at every junction. One cycle, from time 0:
+/// every approach stands red while pedestrians cross (`stop_s`); then the
+/// x-axis approaches (heading east or west) show green, amber, then red
+/// through an all-red gap; then the y-axis approaches the same. Cycle
+/// positions count from the x-axis's green (`cycle_time_s`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Schedule {
     /// Green time of each axis, seconds.
@@ -215,16 +216,22 @@ impl Schedule {
         2.0 * self.window_s()
     }
 
+    /// Time `t` on the cycle's clock, seconds: 0 where the x-axis's green
+    /// starts, so time 0 lies in the stand before it.
+    pub fn cycle_time_s(&self, t: f64) -> f64 {
+        t + self.moving_s()
+    }
+
     /// Whether every approach stands red for the pedestrians at time `t`.
     pub fn standing(&self, t: f64) -> bool {
-        t.rem_euclid(self.cycle_s()) >= self.moving_s()
+        self.cycle_time_s(t).rem_euclid(self.cycle_s()) >= self.moving_s()
     }
 
     /// Time since the start of the green of the axis of direction `dir`
     /// (0 east, 1 north, 2 west, 3 south) within the cycle at `t`, seconds
     /// (may exceed the window: red).
     pub fn axis_time_s(&self, dir: usize, t: f64) -> f64 {
-        let tau = t.rem_euclid(self.cycle_s());
+        let tau = self.cycle_time_s(t).rem_euclid(self.cycle_s());
         (tau - (dir % 2) as f64 * self.window_s()).rem_euclid(self.cycle_s())
     }
 }
@@ -302,9 +309,9 @@ impl Plan {
 }
 
 /// Green time of each axis, seconds.
-const GREEN_S: f64 = 12.0;
+const GREEN_S: f64 = 10.0;
 /// All-red gap after each amber, seconds.
-const ALL_RED_S: f64 = 2.0;
+const ALL_RED_S: f64 = 1.5;
 
 /// Slots of a closed route: the most vehicles whose closest spacing stays
 /// ≥ the longest body plus `MIN_GAP_M` (and ≥ `CRUISE_GAP_M` on average).

@@ -115,6 +115,7 @@ fn crossings(l: &Layout, x: f64, y: f64) -> [([f64; 2], [f64; 2]); 4] {
 /// where the phase ends first; the four corners and crossings of a junction
 /// are the same lengths.
 fn crosser_walked(l: &Layout, sched: &Schedule, t: f64) -> f64 {
+    let t = sched.cycle_time_s(t);
     let [(a, b), (_, d)] = [crossings(l, 0.0, 0.0)[0], crossings(l, 0.0, 0.0)[3]];
     let dist = |p: [f64; 2], q: [f64; 2]| (q[0] - p[0]).hypot(q[1] - p[1]);
     let (cross, corner) = (dist(a, b), dist(d, a));
@@ -144,8 +145,8 @@ fn crossers(
 ) {
     let hw = l.road_w_m / 2.0;
     let cycle = sched.cycle_s();
-    let n = (t / cycle).floor();
-    let tau = t - n * cycle;
+    let n = (sched.cycle_time_s(t) / cycle).floor();
+    let tau = sched.cycle_time_s(t) - n * cycle;
     let mut id = CROSSER_ID_BASE;
     for j in 1..l.ny {
         for i in 1..l.nx {

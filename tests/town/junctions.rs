@@ -11,7 +11,8 @@ use std::collections::BTreeMap;
 
 use parallax::town::layout::Layout;
 use parallax::town::signals::{axis_lamp, signals_at, Lamp};
-use parallax::town::traffic::{Plan, VehiclePose};
+use parallax::town::traffic::{cyclist_speed_mps, Plan, VehiclePose};
+use parallax::town::vehicles::BodyKind;
 use parallax::town::{frame_at, TownFrame};
 
 use crate::common::towns::town;
@@ -142,4 +143,116 @@ fn pedestrians_cross_the_carriageway_only_while_every_approach_stands_red() {
         }
         assert!(on_road > 100, "{name}: only {on_road} pedestrian frames on a crossing");
     }
+}
+
+/// Per vehicle id, its poses in consecutive frames `k` (None where absent).
+fn tracks(fs: &[TownFrame]) -> BTreeMap<u32, Vec<Option<VehiclePose>>> {
+    let mut out: BTreeMap<u32, Vec<Option<VehiclePose>>> = BTreeMap::new();
+    for (k, f) in fs.iter().enumerate() {
+        for v in &f.vehicles {
+            out.entry(v.id).or_insert_with(|| vec![None; fs.len()])[k] = Some(v.clone());
+        }
+    }
+    out
+}
+
+fn dist(a: &VehiclePose, b: &VehiclePose) -> f64 {
+    (a.position[0] - b.position[0]).hypot(a.position[1] - b.position[1])
+}
+
+#[test]
+fn brake_lamps_follow_the_speed_and_indicators_announce_the_turn() {
+    let desc = town("town03");
+    let fs = frames("town03", 1200);
+    let (mut lit_checked, mut dark_checked, mut announced) = (0, 0, 0);
+    for (id, t) in tracks(&fs) {
+        for k in 1..t.len() - 1 {
+            let (Some(a), Some(b), Some(c)) = (&t[k - 1], &t[k], &t[k + 1]) else {
+                continue;
+            };
+            // Speeds before and after frame k, from the positions.
+            let (v0, v1) = (dist(a, b) * desc.fps, dist(b, c) * desc.fps);
+            if v1 < v0 - 0.05 || (v0 < 0.01 && v1 < 0.01) {
+                assert!(b.lamps.brake, "vehicle {id} frame {k}: {v0} → {v1} m/s, brake dark");
+                lit_checked += 1;
+            } else if v1 > v0 + 0.01 && v0 > 0.1 {
+                assert!(!b.lamps.brake, "vehicle {id} frame {k}: {v0} → {v1} m/s, brake lit");
+                dark_checked += 1;
+            }
+        }
+        // Every indicator lit is followed by that turn, before any other.
+        for k in 0..t.len() {
+            let Some(b) = &t[k] else { continue };
+            if !(b.lamps.left || b.lamps.right) {
+                continue;
+            }
+            assert!(!(b.lamps.left && b.lamps.right), "vehicle {id}: both indicators");
+            let Some(q0) = quadrant(b.heading_deg) else { continue };
+            let next = t[k..]
+                .iter()
+                .flatten()
+                .filter_map(|v| quadrant(v.heading_deg))
+                .find(|&q| q != q0);
+            if let Some(q) = next {
+                let want = if b.lamps.left { 1 } else { 3 };
+                assert_eq!((q - q0).rem_euclid(4), want, "vehicle {id} frame {k}");
+                announced += 1;
+            }
+        }
+    }
+    assert!(lit_checked > 1000 && dark_checked > 1000, "{lit_checked} {dark_checked}");
+    assert!(announced > 100, "only {announced} indicator frames followed by their turn");
+}
+
+#[test]
+fn cyclists_ride_the_kerb_lane_at_their_own_speed_and_are_followed() {
+    let mut followed = 0;
+    for name in ["town02", "town03", "town10"] {
+        let desc = town(name);
+        let l = Layout::new(&desc);
+        let limit = cyclist_speed_mps(desc.speed_kmh / 3.6);
+        assert!(limit < desc.speed_kmh / 3.6);
+        let fs = frames(name, 600);
+        let tr = tracks(&fs);
+        let mut bikes = 0;
+        for (k, f) in fs.iter().enumerate().skip(1) {
+            for b in f.vehicles.iter().filter(|v| v.body == BodyKind::Bicycle) {
+                bikes += 1;
+                assert!(b.body.footprint_m()[0] < 2.0, "a bicycle's own length");
+                if let Some(Some(p)) = tr[&b.id].get(k - 1) {
+                    let v = dist(p, b) * desc.fps;
+                    assert!(v <= limit + 1e-6, "{name} frame {k}: bicycle {} at {v} m/s", b.id);
+                }
+                // On a straight: its lateral offset is the kerb lane's centre.
+                if let Some(q) = quadrant(b.heading_deg) {
+                    let across = if q % 2 == 0 { b.position[1] } else { b.position[0] };
+                    let off = (across - (across / l.pitch_m).round() * l.pitch_m).abs();
+                    let kerb = (l.lanes as f64 - 0.5) * l.lane_w_m;
+                    if off < l.road_w_m / 2.0 {
+                        assert!((off - kerb).abs() < 1e-6 || off < 1.0, "{name}: bicycle {} at {off} m", b.id);
+                    }
+                }
+                // A vehicle close behind it in its lane keeps its pace.
+                let h = b.heading_deg.to_radians();
+                for v in &f.vehicles {
+                    let d = [b.position[0] - v.position[0], b.position[1] - v.position[1]];
+                    let along = d[0] * h.cos() + d[1] * h.sin();
+                    let lat = (d[1] * h.cos() - d[0] * h.sin()).abs();
+                    let gap = along - (b.body.footprint_m()[0] + v.body.footprint_m()[0]) / 2.0;
+                    if v.id == b.id || lat > 0.3 || !(1.0..4.0).contains(&gap) {
+                        continue;
+                    }
+                    if let Some(Some(p)) = tr[&v.id].get(k - 1) {
+                        let speed = dist(p, v) * desc.fps;
+                        if speed > 1.0 {
+                            assert!(speed <= limit + 0.2, "{name} frame {k}: {} passes through", v.id);
+                            followed += 1;
+                        }
+                    }
+                }
+            }
+        }
+        assert!(bikes > 0, "{name}: no bicycle");
+    }
+    assert!(followed > 20, "only {followed} frames of a vehicle following a cyclist");
 }

@@ -3,7 +3,7 @@
 //! picks up; the lit colour is its axis's phase (recomputed here from the
 //! schedule's durations); opposite approaches share a phase and crossing
 //! ones are never both open; under red no vehicle moves or stands past its
-//! stop line; lamps are deterministic per frame, and a town with another
+//! stop line (it may close up to it); lamps are deterministic per frame, and a town with another
 //! speed (another amber, not the cached plan) shows its own phases while
 //! the original keeps its own.
 
@@ -128,13 +128,13 @@ fn lit_per_head(lib: &Library, o: &ObjectDesc) -> Vec<Vec<Lamp>> {
 }
 
 /// The lamp of the approaches heading `dir` at time `t`, from the
-/// schedule's durations: the east–west axis opens at the cycle's start,
-/// the north–south one a window (green + amber + all-red) later; each
-/// shows green, then amber, then red.
+/// schedule's durations: the cycle starts at time 0 with the stand, the
+/// east–west axis opens after it, the north–south one a window (green +
+/// amber + all-red) later; each shows green, then amber, then red.
 fn phase_lamp(s: &Schedule, dir: usize, t: f64) -> Lamp {
     let window = s.green_s + s.amber_s + s.all_red_s;
     let cycle = 2.0 * window + s.stop_s;
-    let u = t.rem_euclid(cycle) - if dir % 2 == 1 { window } else { 0.0 };
+    let u = (t - s.stop_s).rem_euclid(cycle) - if dir % 2 == 1 { window } else { 0.0 };
     if (0.0..s.green_s).contains(&u) {
         Lamp::Green
     } else if (s.green_s..s.green_s + s.amber_s).contains(&u) {
@@ -200,7 +200,11 @@ fn the_generated_frame_carries_the_lamps_of_its_signals() {
     let l = Layout::new(&desc);
     let s = &Plan::new(&desc).schedule;
     // One frame in each phase: drive, ramp down, stand.
-    for t in [s.green_s / 2.0, s.green_s + s.amber_s / 2.0, s.moving_s() + 1.0] {
+    for t in [
+        s.stop_s + s.green_s / 2.0,
+        s.stop_s + s.green_s + s.amber_s / 2.0,
+        s.stop_s / 2.0,
+    ] {
         let k = (t * desc.fps).round() as u64;
         let scene = town_scene(&desc, SEED, k, CameraConfig::Normal);
         let want: Vec<Signal> = signals::signals_at(&desc, k);
@@ -264,11 +268,10 @@ fn lit_colour_is_the_phase_of_its_axis() {
 }
 
 #[test]
-fn under_red_no_clock_vehicle_moves_or_stands_past_its_stop_line() {
+fn under_red_no_vehicle_moves_or_stands_past_its_stop_line() {
     for name in SIGNAL_TOWNS {
         let desc = town(name);
         let l = Layout::new(&desc);
-        let plan = Plan::new(&desc);
         let n = cycle_frames(&desc);
         let frames: Vec<_> = (0..n).map(|k| frame_at(&desc, SEED, k)).collect();
         let (mut at_line, mut through_green) = (0, 0);
@@ -295,11 +298,15 @@ fn under_red_no_clock_vehicle_moves_or_stands_past_its_stop_line() {
                                 "{name} frame {k}: {} past the stop line at {front} m",
                                 v.id
                             );
-                            let later = next.iter().find(|w| w.id == v.id).unwrap();
-                            if g_next.lamp == Lamp::Red {
-                                assert_eq!(
-                                    later.position, v.position,
-                                    "{name} frame {k}: {} moves under red",
+                            // Still red next frame: its front has not crossed
+                            // the line (it may close up to it). A chunk of the
+                            // drive may remove it next frame.
+                            let later = next.iter().find(|w| w.id == v.id);
+                            let ahead = later.and_then(|w| front_on_approach(&l, &g.site, w));
+                            if let Some(f) = ahead.filter(|_| g_next.lamp == Lamp::Red) {
+                                assert!(
+                                    f <= -STOP_LINE_AT_M + 0.06,
+                                    "{name} frame {k}: {} crosses its stop line under red",
                                     v.id
                                 );
                             }

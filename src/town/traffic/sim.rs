@@ -82,7 +82,7 @@ impl Agent {
         self.body.footprint_m()[0] / 2.0
     }
 
-    fn pose(&self) -> VehiclePose {
+    pub fn pose(&self) -> VehiclePose {
         let (p, h) = self.path.pose(self.s);
         VehiclePose {
             id: self.id,
