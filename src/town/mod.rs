@@ -314,7 +314,10 @@ fn lit_lamps(v: &VehiclePose) -> (Map, Map) {
         lenses.push((BRAKE_SLOT, "brake_lit"));
         emitters.push(("taillight_emit", "brake_lit"));
     }
-    for (lit, slot) in [v.lamps.left, v.lamps.right].into_iter().zip(INDICATOR_SLOTS) {
+    for (lit, slot) in [v.lamps.left, v.lamps.right]
+        .into_iter()
+        .zip(INDICATOR_SLOTS)
+    {
         if lit {
             lenses.push((slot, "indicator_lit"));
         }

@@ -3,9 +3,9 @@
 //! approach, on the approach's right-hand corner before the junction, its
 //! heads facing the approaching traffic (`signal_sites`, placed by
 //! `furniture`). A head lights exactly one lamp: the east–west approaches
-//! show green, then amber, then red through an all-red gap, the
-//! north–south approaches' green, amber and all-red, and the pedestrians'
-//! stand (`axis_lamp`); vehicles move off as it turns green (no red+amber
+//! show green, then amber, then red through an all-red gap, then the
+//! north–south approaches' green, amber and all-red, twice, then the
+//! pedestrians' stand (`axis_lamp`); vehicles move off as it turns green (no red+amber
 //! phase). Junctions without lights but the roundabout (the outer T
 //! junctions and corners) keep the same phases unseen. The lamps of frame
 //! K are a pure function of (desc, K), set on the traffic-light instances
@@ -212,8 +212,8 @@ mod tests {
     use crate::town::routes::Turns;
 
     #[test]
-    fn each_axis_shows_green_amber_red_in_its_window_and_both_stand_red() {
-        // Window 10 + 3 + 2 = 15 s per axis; stand 5 s; cycle 35 s.
+    fn each_axis_shows_green_amber_red_in_its_windows_and_both_stand_red() {
+        // Window 10 + 3 + 2 = 15 s per axis, two rounds (60 s), stand 5 s.
         let s = Schedule {
             green_s: 10.0,
             amber_s: 3.0,
@@ -223,10 +223,12 @@ mod tests {
             turns: Turns::new(3.5),
             max_len_m: 4.5,
         };
-        assert_eq!(s.cycle_s(), 35.0);
+        assert_eq!(crate::town::traffic::ROUNDS_PER_STAND, 2);
+        assert_eq!(s.cycle_s(), 65.0);
         assert!(s.standing(0.0) && s.standing(4.999) && !s.standing(5.0));
         use Lamp::*;
-        // (t, lamp east/west, lamp north/south, until red east, north)
+        // (u, lamp east/west, lamp north/south, until red east, north)
+        // with u on the cycle's clock (0: the first east–west green).
         let want = [
             (0.0, Green, Red, 13.0, 0.0),
             (9.999, Green, Red, 3.001, 0.0),
@@ -237,20 +239,27 @@ mod tests {
             (15.0, Red, Green, 0.0, 13.0),
             (25.0, Red, Amber, 0.0, 3.0),
             (28.0, Red, Red, 0.0, 0.0),
-            (30.0, Red, Red, 0.0, 0.0),
-            (34.999, Red, Red, 0.0, 0.0),
-            (35.0 * 3.0 + 1.0, Green, Red, 12.0, 0.0),
+            (30.0, Green, Red, 13.0, 0.0),
+            (41.0, Amber, Red, 2.0, 0.0),
+            (45.0, Red, Green, 0.0, 13.0),
+            (58.0, Red, Red, 0.0, 0.0),
+            (60.0, Red, Red, 0.0, 0.0),
+            (64.999, Red, Red, 0.0, 0.0),
+            (65.0 * 3.0 + 1.0, Green, Red, 12.0, 0.0),
         ];
         for (u, ew, ns, r_e, r_n) in want {
-            // `u` on the cycle's clock: time 0 is the stand before it.
-            let t = u - 30.0;
+            // Time 0 is the start of the stand before u = 0.
+            let t = u + 5.0;
             for d in 0..4 {
                 let (lamp, left) = if d % 2 == 0 { (ew, r_e) } else { (ns, r_n) };
-                assert_eq!(axis_lamp(&s, d, t), lamp, "t = {t}, dir {d}");
-                assert!((until_red_s(&s, d, t) - left).abs() < 1e-9, "t = {t}, dir {d}");
+                assert_eq!(axis_lamp(&s, d, t), lamp, "u = {u}, dir {d}");
+                assert!(
+                    (until_red_s(&s, d, t) - left).abs() < 1e-9,
+                    "u = {u}, dir {d}"
+                );
             }
             // Pedestrians cross exactly while both axes stand past their gap.
-            assert_eq!(s.standing(t), (30.0..35.0).contains(&u.rem_euclid(35.0)));
+            assert_eq!(s.standing(t), (60.0..65.0).contains(&u.rem_euclid(65.0)));
         }
     }
 }

@@ -177,10 +177,11 @@ pub struct TownFrame {
 }
 
 /// The signal phases, the same at every junction. One cycle, from time 0:
-/// every approach stands red while pedestrians cross (`stop_s`); then the
-/// x-axis approaches (heading east or west) show green, amber, then red
-/// through an all-red gap; then the y-axis approaches the same. Cycle
-/// positions count from the x-axis's green (`cycle_time_s`).
+/// every approach stands red while pedestrians cross (`stop_s`); then,
+/// `ROUNDS_PER_STAND` times, the x-axis approaches (heading east or west)
+/// show green, amber, then red through an all-red gap, and the y-axis
+/// approaches the same. Cycle positions count from the first x-axis green
+/// (`cycle_time_s`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Schedule {
     /// Green time of each axis, seconds.
@@ -208,12 +209,12 @@ impl Schedule {
 
     /// Cycle length, seconds.
     pub fn cycle_s(&self) -> f64 {
-        2.0 * self.window_s() + self.stop_s
+        self.moving_s() + self.stop_s
     }
 
     /// Time from the start of a cycle until the pedestrians' stand, seconds.
     pub fn moving_s(&self) -> f64 {
-        2.0 * self.window_s()
+        2.0 * ROUNDS_PER_STAND as f64 * self.window_s()
     }
 
     /// Time `t` on the cycle's clock, seconds: 0 where the x-axis's green
@@ -227,12 +228,16 @@ impl Schedule {
         self.cycle_time_s(t).rem_euclid(self.cycle_s()) >= self.moving_s()
     }
 
-    /// Time since the start of the green of the axis of direction `dir`
-    /// (0 east, 1 north, 2 west, 3 south) within the cycle at `t`, seconds
-    /// (may exceed the window: red).
+    /// Time since the start of the latest green of the axis of direction
+    /// `dir` (0 east, 1 north, 2 west, 3 south) at `t`, seconds (beyond
+    /// green + amber: red; infinite during the stand).
     pub fn axis_time_s(&self, dir: usize, t: f64) -> f64 {
         let tau = self.cycle_time_s(t).rem_euclid(self.cycle_s());
-        (tau - (dir % 2) as f64 * self.window_s()).rem_euclid(self.cycle_s())
+        if tau >= self.moving_s() {
+            return f64::INFINITY;
+        }
+        let w = self.window_s();
+        (tau - (dir % 2) as f64 * w).rem_euclid(2.0 * w)
     }
 }
 
@@ -310,6 +315,8 @@ impl Plan {
 
 /// Green time of each axis, seconds.
 const GREEN_S: f64 = 10.0;
+/// Rounds of both axes' windows between two pedestrian stands.
+pub const ROUNDS_PER_STAND: usize = 2;
 /// All-red gap after each amber, seconds.
 const ALL_RED_S: f64 = 1.5;
 

@@ -27,15 +27,15 @@ use std::sync::{Arc, Mutex, OnceLock};
 
 use super::junction::{clear_time_s, CLEAR_RESERVE_S};
 use super::sim::{BLINK_HZ, SIGNAL_AHEAD_M};
-use super::{others, Plan, VehicleLamps, VehiclePose, A_LON_MPS2, A_LAT_MPS2, LEVEL_GAP_M};
+use super::{others, Plan, VehicleLamps, VehiclePose, A_LAT_MPS2, A_LON_MPS2, LEVEL_GAP_M};
 use crate::town::desc::TownDesc;
 use crate::town::layout::Layout;
 use crate::town::materials::PAINTS;
 use crate::town::overpass::Overpass;
 use crate::town::rng::{tag, Rng};
 use crate::town::routes::drive::{links, Crossing, DrivePath, Move};
-use crate::town::signals::until_red_s;
 use crate::town::routes::Segment;
+use crate::town::signals::until_red_s;
 use crate::town::vehicles::BodyKind;
 use crate::town::walkers;
 

@@ -38,7 +38,14 @@ pub struct JState {
 impl JState {
     /// The state of the driver at arc length `s` (centre) with half length
     /// `half`, or None when no junction lies within `within` metres.
-    pub fn of(path: &DrivePath, s: f64, half: f64, v: f64, v_max: f64, within: f64) -> Option<Self> {
+    pub fn of(
+        path: &DrivePath,
+        s: f64,
+        half: f64,
+        v: f64,
+        v_max: f64,
+        within: f64,
+    ) -> Option<Self> {
         let c = *path.crossings.iter().find(|c| c.clear_m + half > s)?;
         (c.stop_m < s + within).then_some(JState {
             c,
@@ -103,7 +110,14 @@ pub fn can_clear(sched: &Schedule, me: &JState, clear_s: f64, t: f64) -> bool {
 /// Whether another driver `o` at the same junction keeps `me` (not yet
 /// inside, needing `clear_s` to clear) out: `o_inside` when `o` is past
 /// its stop line or passes it this step.
-pub fn blocks(sched: &Schedule, me: &JState, o: &JState, o_inside: bool, clear_s: f64, t: f64) -> bool {
+pub fn blocks(
+    sched: &Schedule,
+    me: &JState,
+    o: &JState,
+    o_inside: bool,
+    clear_s: f64,
+    t: f64,
+) -> bool {
     if o_inside {
         return !compatible(&me.c, &o.c);
     }

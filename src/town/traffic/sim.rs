@@ -217,7 +217,11 @@ impl<'a> Ctx<'a> {
         // The overpass's vehicles on this level are obstacles too.
         let closed = closed(self.desc, self.seed, &self.plan, self.overpass.as_ref(), t);
         let mut all = poses.clone();
-        all.extend(closed.into_iter().filter(|v| v.position[2].abs() < LEVEL_GAP_M));
+        all.extend(
+            closed
+                .into_iter()
+                .filter(|v| v.position[2].abs() < LEVEL_GAP_M),
+        );
         let grid = Grid::new(&all);
         let states: Vec<Option<JState>> = agents
             .iter()
@@ -316,7 +320,14 @@ impl<'a> Ctx<'a> {
             let others = at_junction[&st.c.junction].iter().filter(|&&j| j != i);
             let blocked = others.into_iter().any(|&j| {
                 let o = states[j].as_ref().expect("listed");
-                junction::blocks(&self.plan.schedule, &st, o, o.inside() || claimed[j], clear_s, t)
+                junction::blocks(
+                    &self.plan.schedule,
+                    &st,
+                    o,
+                    o.inside() || claimed[j],
+                    clear_s,
+                    t,
+                )
             });
             if !free || blocked || !junction::can_clear(&self.plan.schedule, &st, clear_s, t) {
                 cap = cap.min(stop(st.d_stop));
@@ -341,10 +352,17 @@ fn first_in_way(
         .map(|k| a.path.pose(a.s + k as f64 * SAMPLE_M).0)
         .collect();
     let pad = reach + 1.0;
-    let fold = |f: fn(f64, f64) -> f64, c: usize, init: f64| samples.iter().map(|p| p[c]).fold(init, f);
+    let fold =
+        |f: fn(f64, f64) -> f64, c: usize, init: f64| samples.iter().map(|p| p[c]).fold(init, f);
     let r = crate::town::layout::Rect {
-        min: [fold(f64::min, 0, f64::INFINITY) - pad, fold(f64::min, 1, f64::INFINITY) - pad],
-        max: [fold(f64::max, 0, f64::NEG_INFINITY) + pad, fold(f64::max, 1, f64::NEG_INFINITY) + pad],
+        min: [
+            fold(f64::min, 0, f64::INFINITY) - pad,
+            fold(f64::min, 1, f64::INFINITY) - pad,
+        ],
+        max: [
+            fold(f64::max, 0, f64::NEG_INFINITY) + pad,
+            fold(f64::max, 1, f64::NEG_INFINITY) + pad,
+        ],
     };
     let near: Vec<usize> = grid.near(&r).into_iter().filter(|&j| j != i).collect();
     if near.is_empty() {

@@ -2,7 +2,8 @@
 //! directed link, in its inner and outer lanes (the only lanes whose moves
 //! need no lane change), spaced by their bodies plus a gap, each place
 //! filled with a chance from the town's traffic density. Bicycles start
-//! only in the outer (kerb-side) lane; with several lanes buses and
+//! only in the outer (kerb-side) lane, and not in highway towns (limit
+//! above 60 km/h); with several lanes buses and
 //! trucks start only in the inner lane (its left turns are the widest),
 //! and only cars elsewhere. Seeded per (seed, drive, link, lane).
 
@@ -19,17 +20,13 @@ use crate::town::vehicles::BodyKind;
 const FILL_PER_DENSITY: f64 = 0.5;
 /// Distance kept from a junction's edge (or a curve's end), metres.
 const EDGE_M: f64 = 8.0;
+/// Fastest speed limit of towns with bicycles (not on highways), m/s.
+const BICYCLE_ROADS_MPS: f64 = 60.0 / 3.6;
 /// Gap between the bodies of a lane at the start, at least, metres.
 const GAP_M: f64 = 6.0;
 
 /// The background vehicles of drive `drive` at its start, ids from 1.
-pub(super) fn spawn(
-    seed: u64,
-    drive: u64,
-    density: f64,
-    l: &Layout,
-    plan: &Plan,
-) -> Vec<Agent> {
+pub(super) fn spawn(seed: u64, drive: u64, density: f64, l: &Layout, plan: &Plan) -> Vec<Agent> {
     let turns = &plan.schedule.turns;
     let hw = l.road_w_m / 2.0;
     // Where a link's straight begins past junction (i, j), metres.
@@ -43,7 +40,11 @@ pub(super) fn spawn(
         }
     };
     let dirs = [[1i64, 0], [0, 1], [-1, 0], [0, -1]];
-    let lanes: Vec<u32> = if l.lanes > 1 { vec![0, l.lanes - 1] } else { vec![0] };
+    let lanes: Vec<u32> = if l.lanes > 1 {
+        vec![0, l.lanes - 1]
+    } else {
+        vec![0]
+    };
     let cars: Vec<BodyKind> = turns
         .bodies
         .iter()
@@ -63,6 +64,9 @@ pub(super) fn spawn(
             let mut allowed: Vec<BodyKind> = cars.clone();
             if lane + 1 == l.lanes {
                 allowed.extend(turns.bodies.iter().filter(|b| b.seat().is_some()));
+                if plan.schedule.speed_mps > BICYCLE_ROADS_MPS {
+                    allowed.retain(|b| *b != BodyKind::Bicycle);
+                }
             } else if l.lanes > 1 {
                 allowed.extend(turns.bodies.iter().filter(|b| b.seat().is_some()));
                 allowed.retain(|b| *b != BodyKind::Bicycle);
@@ -80,7 +84,14 @@ pub(super) fn spawn(
                     continue;
                 }
                 let paint = draw_paint(r.f64());
-                let moves = Rng::new(&[seed, tag::TRAFFIC, drive, k as u64, lane as u64, out.len() as u64]);
+                let moves = Rng::new(&[
+                    seed,
+                    tag::TRAFFIC,
+                    drive,
+                    k as u64,
+                    lane as u64,
+                    out.len() as u64,
+                ]);
                 let centre = at + len / 2.0;
                 let v_max = match body {
                     BodyKind::Bicycle => cyclist_speed_mps(plan.schedule.speed_mps),

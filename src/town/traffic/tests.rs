@@ -38,7 +38,10 @@ fn vehicles_start_apart_on_the_straights_in_the_inner_and_kerb_lanes() {
                 let (p, h) = a.path.pose(0.0);
                 let lane = lane_of(&l, p, h);
                 let k = lane.floor();
-                assert!((lane - k - 0.5).abs() < 1e-6, "{name}: off a lane centre: {lane}");
+                assert!(
+                    (lane - k - 0.5).abs() < 1e-6,
+                    "{name}: off a lane centre: {lane}"
+                );
                 let k = k as u32;
                 assert!(k == 0 || k + 1 == l.lanes, "{name}: lane {k}");
                 if a.body == BodyKind::Bicycle {
@@ -54,7 +57,10 @@ fn vehicles_start_apart_on_the_straights_in_the_inner_and_kerb_lanes() {
                 // by more than the half road width plus the body.
                 let along = if h.cos().abs() > 0.5 { p[0] } else { p[1] };
                 let g = (along - (along / l.pitch_m).round() * l.pitch_m).abs();
-                assert!(g > hw + a.body.footprint_m()[0] / 2.0, "{name}: {g} m from a junction");
+                assert!(
+                    g > hw + a.body.footprint_m()[0] / 2.0,
+                    "{name}: {g} m from a junction"
+                );
                 a.pose()
             })
             .collect();
@@ -75,7 +81,9 @@ fn vehicles_start_apart_on_the_straights_in_the_inner_and_kerb_lanes() {
         assert_eq!(ids.len(), poses.len());
         // Another drive starts other traffic.
         let other = spawn(3, 8, desc.traffic_density, &l, &plan);
-        assert!(other.len() != agents.len() || other.iter().zip(&agents).any(|(a, b)| a.body != b.body));
+        assert!(
+            other.len() != agents.len() || other.iter().zip(&agents).any(|(a, b)| a.body != b.body)
+        );
     }
 }
 
