@@ -267,11 +267,8 @@ pub fn dynamic_objects(frame: &TownFrame) -> Vec<ObjectDesc> {
             .chain(plate)
         {
             let mut p = shared.clone();
-            let (lenses, emitters) = lit_lamps(v);
             let map = if name == v.body.lamps_prefab() {
-                emitters
-            } else if name == v.body.parts_prefab() {
-                lenses
+                lit_lamps(v)
             } else {
                 Vec::new()
             };
@@ -299,30 +296,29 @@ pub fn dynamic_objects(frame: &TownFrame) -> Vec<ObjectDesc> {
     out
 }
 
-/// Material maps of a four-wheeled vehicle's lit lamps: for its parts
-/// prefab (the brake lens and each lit indicator's lenses to their
-/// emitters) and for its lamps prefab (the tail lamps to the brake
-/// emitter while braking). Two-wheelers' lamps stay as they are.
-type Map = Vec<(&'static str, &'static str)>;
-fn lit_lamps(v: &VehiclePose) -> (Map, Map) {
+/// The material map of a four-wheeled vehicle's lamps prefab for its lit
+/// lamps: the brake lens and tail lamps to the brake emitter while
+/// braking, each lit indicator's lenses to the indicator emitter. (The
+/// lamps prefab is flat and small: mapping it adds no prototype.)
+/// Two-wheelers' lamps stay as they are.
+fn lit_lamps(v: &VehiclePose) -> Vec<(&'static str, &'static str)> {
     use vehicles::lamps::{BRAKE_SLOT, INDICATOR_SLOTS};
-    let (mut lenses, mut emitters) = (Vec::new(), Vec::new());
+    let mut map = Vec::new();
     if v.body.seat().is_some() {
-        return (lenses, emitters);
+        return map;
     }
     if v.lamps.brake {
-        lenses.push((BRAKE_SLOT, "brake_lit"));
-        emitters.push(("taillight_emit", "brake_lit"));
+        map.extend([(BRAKE_SLOT, "brake_lit"), ("taillight_emit", "brake_lit")]);
     }
     for (lit, slot) in [v.lamps.left, v.lamps.right]
         .into_iter()
         .zip(INDICATOR_SLOTS)
     {
         if lit {
-            lenses.push((slot, "indicator_lit"));
+            map.push((slot, "indicator_lit"));
         }
     }
-    (lenses, emitters)
+    map
 }
 
 /// What a town frame holds that does not depend on the frame: the static

@@ -362,11 +362,11 @@ pub fn frame_at(desc: &TownDesc, seed: u64, frame: u64) -> TownFrame {
 }
 
 /// Every object's pose at `frame` of drive `drive`: the background
-/// vehicles (`sim`) and the overpass's and the pedestrians in closed form
-/// at the drive's traffic time (town frame `ego::drive_start_frame(drive)`
-/// + `frame`, which `TownFrame::frame` holds), without those the drive
-/// removes from its way, and the ego (`ego::ego_at`). Computed in the
-/// level grid, then set on the ground.
+/// vehicles (`sim`), and the overpass's and the pedestrians in closed
+/// form, at the drive's traffic time (town frame
+/// `ego::drive_start_frame(drive) + frame`, which `TownFrame::frame`
+/// holds), without those the drive removes from its way, and the ego
+/// (`ego::ego_at`). Computed in the level grid, then set on the ground.
 pub fn drive_frame_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> TownFrame {
     let l = Layout::new(desc);
     let plan = Plan::new(desc);

@@ -34,6 +34,8 @@ pub fn taillamp_points(s: &Spec) -> [[f64; 3]; 2] {
 pub const BRAKE_SLOT: &str = "lamp_red";
 /// Material slots of the left and right indicators.
 pub const INDICATOR_SLOTS: [&str; 2] = ["indicator_left", "indicator_right"];
+/// Every lens slot a frame may light: they live in the lamps prefab.
+pub const LIT_SLOTS: [&str; 3] = [BRAKE_SLOT, INDICATOR_SLOTS[0], INDICATOR_SLOTS[1]];
 
 /// The indicator slot of the side at body-frame `y` (> 0: left).
 fn indicator(y: f64) -> &'static str {

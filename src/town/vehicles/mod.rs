@@ -180,10 +180,13 @@ fn generate_prefabs() -> Vec<PrefabDesc> {
         });
         // Emitters go apart: a prefab holding one stays flat (the light
         // set finds emitters among flat meshes only), so it must be small.
-        let (lamps, rest): (Vec<_>, Vec<_>) = parts
-            .objects()
-            .into_iter()
-            .partition(|o| o.material.as_deref().is_some_and(|m| EMITTERS.contains(&m)));
+        // The brake and indicator lenses go with them: a frame maps them to
+        // emitters while lit (`town::dynamic_objects`).
+        let (lamps, rest): (Vec<_>, Vec<_>) = parts.objects().into_iter().partition(|o| {
+            o.material
+                .as_deref()
+                .is_some_and(|m| EMITTERS.contains(&m) || lamps::LIT_SLOTS.contains(&m))
+        });
         out.push(PrefabDesc {
             name: b.parts_prefab(),
             objects: rest,
