@@ -248,7 +248,7 @@ fn cyclists_ride_the_kerb_lane_at_their_own_speed_and_are_followed() {
         assert!(limit < desc.speed_kmh / 3.6);
         let fs = frames(name, 600);
         let tr = tracks(&fs);
-        let mut bikes = 0;
+        let (mut bikes, mut on_kerb) = (0, [0usize; 2]);
         for (k, f) in fs.iter().enumerate().skip(1) {
             for b in f.vehicles.iter().filter(|v| v.body == BodyKind::Bicycle) {
                 bikes += 1;
@@ -272,11 +272,15 @@ fn cyclists_ride_the_kerb_lane_at_their_own_speed_and_are_followed() {
                     let off = (across - (across / l.pitch_m).round() * l.pitch_m).abs();
                     let kerb = (l.lanes as f64 - 0.5) * l.lane_w_m;
                     if off < l.road_w_m / 2.0 {
+                        // On a lane centre; the kerb lane's unless a town
+                        // corner left it no move (then it changed lanes).
+                        let lane = off / l.lane_w_m - 0.5;
                         assert!(
-                            (off - kerb).abs() < 1e-6 || off < 1.0,
+                            (lane - lane.round()).abs() < 1e-6,
                             "{name}: bicycle {} at {off} m",
                             b.id
                         );
+                        on_kerb[usize::from((off - kerb).abs() < 1e-6)] += 1;
                     }
                 }
                 // A vehicle close behind it in its lane keeps its pace.
@@ -304,6 +308,10 @@ fn cyclists_ride_the_kerb_lane_at_their_own_speed_and_are_followed() {
             }
         }
         assert!(bikes > 0, "{name}: no bicycle");
+        assert!(
+            on_kerb[1] >= 9 * on_kerb[0],
+            "{name}: {on_kerb:?} frames off / on the kerb lane"
+        );
     }
     assert!(
         followed > 20,
