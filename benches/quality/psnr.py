@@ -10,7 +10,8 @@ The reference is rendered once per (town, frame, weather, size, ref-spp, seed)
 into the cache directory (plain path tracing: --no-filter, sensor noise off) and
 reused. The test image is rendered with the binary's defaults (sensor noise off,
 --baselines 10) plus --extra. Prints one JSON line: psnr_db, mean level error,
-seconds, and the reference's own noise estimate when two references exist
+the bias of the mean light (mean_light_bias: linear display light, a share of
+the reference's mean), seconds, and the reference's own noise estimate when two references exist
 (--ref-pair renders a second reference with another sample seed: the PSNR
 between the two is about 3 dB below each one's PSNR against the truth).
 """
@@ -33,6 +34,12 @@ def load(path):
 def psnr(a, b):
     mse = np.mean((a - b) ** 2)
     return float("inf") if mse == 0 else 10.0 * np.log10(255.0**2 / mse)
+
+
+def linear(srgb):
+    """8-bit sRGB levels to linear [0, 1] (the display image's light)."""
+    c = srgb / 255.0
+    return np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
 
 
 def render(binary, out, args):
@@ -86,6 +93,9 @@ def main():
            "spp": a.spp, "extra": a.extra, "psnr_db": round(psnr(img, ref), 2),
            "mean_abs_levels": round(float(np.mean(np.abs(img - ref))), 2),
            "bias_levels": round(float(np.mean(img - ref)), 3),
+           # Light gained (+) or lost (-, e.g. fireflies dropped) as a share
+           # of the reference's mean, in linear display light.
+           "mean_light_bias": round(float(np.mean(linear(img)) / np.mean(linear(ref)) - 1.0), 4),
            "seconds": round(secs, 2), "ref_spp": a.ref_spp * len(refs)}
     if len(refs) == 2:
         res["ref_pair_psnr_db"] = round(psnr(refs[0], refs[1]), 2)

@@ -11,6 +11,8 @@
 //! each build the cache keeps exactly that build's prototypes, so it holds
 //! one frame's worth at most (the previous frame's, for the next one).
 
+use std::collections::hash_map::DefaultHasher;
+use std::collections::HashMap;
 use std::hash::{Hash, Hasher};
 use std::sync::{Arc, Mutex, MutexGuard};
 
@@ -64,14 +66,9 @@ pub(super) type Pair = (Arc<Scene<'static>>, Option<Arc<Scene<'static>>>);
 #[derive(Default)]
 pub(super) struct Inner {
     device: Option<Device>,
-    entries: Vec<Entry>,
+    /// Committed scenes by the hash of their meshes' bits.
+    entries: HashMap<[u64; 2], Pair>,
     reused: usize,
-}
-
-/// One prototype: the hash of its meshes' bits and its committed scenes.
-struct Entry {
-    hash: [u64; 2],
-    scenes: Pair,
 }
 
 impl Inner {
@@ -86,7 +83,8 @@ impl Inner {
 
     /// The committed scenes of every prototype of `geo` (with shading twins
     /// when `twin`), taken from the cache or built; afterwards the cache
-    /// holds exactly these. None are built for a geometry without instances.
+    /// holds exactly these. Prototypes with the same bits in one build share
+    /// one scene. None are built for a geometry without instances.
     pub(super) fn prototypes(
         &mut self,
         device: &Device,
@@ -101,24 +99,22 @@ impl Inner {
         let mut old = std::mem::take(&mut self.entries);
         let mut out = Vec::with_capacity(geo.prototypes.len());
         for p in 0..geo.prototypes.len() {
-            let meshes = &geo.prototypes[p];
-            let hash = hash_meshes(meshes);
-            let found = old.iter().position(|e| e.hash == hash);
-            let mut entry = match found {
-                Some(i) => {
-                    self.reused += 1;
-                    old.swap_remove(i)
-                }
-                None => Entry {
-                    hash,
-                    scenes: (commit(device, geo, p, SceneFlags::ROBUST)?, None),
+            let hash = hash_meshes(&geo.prototypes[p]);
+            let mut scenes = match self.entries.remove(&hash) {
+                Some(s) => s,
+                None => match old.remove(&hash) {
+                    Some(s) => {
+                        self.reused += 1;
+                        s
+                    }
+                    None => (commit(device, geo, p, SceneFlags::ROBUST)?, None),
                 },
             };
-            if twin && entry.scenes.1.is_none() {
-                entry.scenes.1 = Some(commit(device, geo, p, SceneFlags::NONE)?);
+            if twin && scenes.1.is_none() {
+                scenes.1 = Some(commit(device, geo, p, SceneFlags::NONE)?);
             }
-            out.push(entry.scenes.clone());
-            self.entries.push(entry);
+            out.push(scenes.clone());
+            self.entries.insert(hash, scenes);
         }
         Ok(out)
     }
@@ -136,20 +132,55 @@ fn commit(
 }
 
 /// Two independent 64-bit hashes (SipHash with fixed keys, the second
-/// salted) of every position's bits and every index of `meshes`, in order.
+/// salted) of every position's bits and every index of `meshes`, in order,
+/// fed to both in one pass over the data, in blocks.
 fn hash_meshes(meshes: &[TriMeshRef]) -> [u64; 2] {
-    [0u8, 1].map(|salt| {
-        let mut h = std::collections::hash_map::DefaultHasher::new();
-        (salt, meshes.len()).hash(&mut h);
-        for m in meshes {
-            m.positions.len().hash(&mut h);
-            for p in m.positions {
-                p.to_array().map(f32::to_bits).hash(&mut h);
-            }
-            m.triangles.hash(&mut h);
+    let mut f = Feed {
+        h: [0u8, 1].map(|salt| {
+            let mut h = DefaultHasher::new();
+            (salt, meshes.len()).hash(&mut h);
+            h
+        }),
+        buf: Vec::with_capacity(BLOCK + 16),
+    };
+    for m in meshes {
+        f.word(m.positions.len() as u32);
+        f.word(m.triangles.len() as u32);
+        for c in m.positions.iter().flat_map(|p| p.to_array()) {
+            f.word(c.to_bits());
         }
-        h.finish()
-    })
+        for &i in m.triangles.iter().flatten() {
+            f.word(i);
+        }
+    }
+    f.flush();
+    f.h.map(|h| h.finish())
+}
+
+/// Bytes per block handed to the hashers.
+const BLOCK: usize = 4096;
+
+/// Words gathered into blocks for the two hashers.
+struct Feed {
+    h: [DefaultHasher; 2],
+    buf: Vec<u8>,
+}
+
+impl Feed {
+    #[inline]
+    fn word(&mut self, w: u32) {
+        self.buf.extend_from_slice(&w.to_le_bytes());
+        if self.buf.len() >= BLOCK {
+            self.flush();
+        }
+    }
+
+    fn flush(&mut self) {
+        for h in &mut self.h {
+            h.write(&self.buf);
+        }
+        self.buf.clear();
+    }
 }
 
 #[cfg(test)]

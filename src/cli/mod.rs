@@ -1,11 +1,12 @@
 //! The command line (the only home of `clap`): `render`, `town`, `bench`,
-//! `dataset`, `verify`, `eval`, `stats` and `preview`.
+//! `dataset`, `verify`, `eval`, `stats`, `preview` and `export`.
 //! Errors surface as one message naming the file, field or argument, and a
 //! non-zero exit code; nothing is written before the inputs are validated.
 
 mod bench;
 mod dataset;
 mod eval;
+mod export;
 mod preview;
 mod render;
 mod stats;
@@ -72,6 +73,8 @@ enum Command {
     Dataset(dataset::DatasetArgs),
     /// Check a dataset's manifests and checksums; --repair re-renders bad frames.
     Verify(verify::VerifyArgs),
+    /// Write a frame as a Mitsuba 3 scene (XML + PLY meshes) for comparison.
+    Export(export::ExportArgs),
     /// Colour-coded PNGs of a native frame's ground truth (depth, disparity, semantic, instance, mask, occlusion).
     Preview(preview::PreviewArgs),
 }
@@ -108,6 +111,7 @@ where
         Command::Dataset(a) => dataset::run(a),
         Command::Verify(a) => verify::run(a),
         Command::Preview(a) => preview::run(a),
+        Command::Export(a) => export::run(a),
     }
 }
 

@@ -99,13 +99,18 @@ pub struct RenderArgs {
     /// Camera sensor noise at this ISO (shot, read and PRNU noise on the
     /// linear film, independent per view); overrides a weather preset's. 0
     /// turns a preset's noise off.
-    #[arg(long, value_name = "ISO")]
+    #[arg(long, value_name = "ISO", conflicts_with = "reference")]
     pub sensor_noise: Option<f64>,
     /// Write the plain path-traced images: no image-space filter of sky and
     /// indirect light or of fog light (the scene's `filter_indirect` and
     /// `filter_inscatter` turned off, a weather preset's included).
     #[arg(long)]
     pub no_filter: bool,
+    /// Reference mode: plain, unbiased path tracing, as a reference renderer
+    /// (no image filter, no clamp, no sensor noise, no adaptive sampling;
+    /// the samples are --spp's). Compare with Mitsuba 3: docs/reference.md.
+    #[arg(long)]
+    pub reference: bool,
 }
 
 impl RenderArgs {
@@ -128,6 +133,7 @@ impl RenderArgs {
             }),
             sensor_noise_iso: self.sensor_noise,
             filter: !self.no_filter,
+            reference: self.reference,
             backend: self.backend,
         }
     }
@@ -156,23 +162,56 @@ fn progress_bar(total: u64) -> ProgressBar {
     pb
 }
 
+/// Where a frame comes from on the command line (`render`, `export`): a
+/// scene file, or a town frame (`--town`, `--scenes`, `--sequence`,
+/// `--frame`, `--config`; the town seed is `seed`, else drawn).
+pub struct SourceArgs<'a> {
+    /// The scene file (ignored with a town).
+    pub scene: Option<&'a Path>,
+    /// A built-in town's name or a town file.
+    pub town: Option<&'a str>,
+    /// Directory of town files replacing the built-in ones.
+    pub scenes: Option<&'a Path>,
+    /// The town seed (None: drawn).
+    pub seed: Option<u64>,
+    /// (drive, town frame).
+    pub drive_frame: (u64, u32),
+    /// Camera configuration on the ego.
+    pub config: crate::town::CameraConfig,
+}
+
+impl SourceArgs<'_> {
+    /// The frame source and its town frame (0 for a scene file).
+    pub fn load(&self) -> Result<(FrameSource, u32), CliError> {
+        let (sequence, frame) = self.drive_frame;
+        match (self.town, self.scene) {
+            (Some(name), _) => {
+                let t = crate::town::load_named_town(name, self.scenes).map_err(CliError::input)?;
+                let seed = self.seed.unwrap_or_else(draw_seed);
+                let source = FrameSource::town(&t, seed, (sequence, frame as u64), self.config)
+                    .map_err(|e| CliError::input(e.to_string()))?;
+                Ok((source, frame))
+            }
+            (None, Some(scene)) => Ok((
+                FrameSource::scene(load_scene(scene).map_err(|e| CliError::input(e.to_string()))?),
+                0,
+            )),
+            (None, None) => Err(CliError::input("give a SCENE file or --town NAME")),
+        }
+    }
+}
+
 /// Runs `parallax render`.
 pub fn run(a: RenderArgs) -> Result<(), CliError> {
-    let (source, frame) = match (&a.town, &a.scene) {
-        (Some(name), _) => {
-            let t =
-                crate::town::load_named_town(name, a.scenes.as_deref()).map_err(CliError::input)?;
-            let seed = a.seed.unwrap_or_else(draw_seed);
-            let source = FrameSource::town(&t, seed, (a.sequence, a.frame as u64), a.config)
-                .map_err(|e| CliError::input(e.to_string()))?;
-            (source, a.frame)
-        }
-        (None, Some(scene)) => (
-            FrameSource::scene(load_scene(scene).map_err(|e| CliError::input(e.to_string()))?),
-            0,
-        ),
-        (None, None) => return Err(CliError::input("give a SCENE file or --town NAME")),
-    };
+    let (source, frame) = SourceArgs {
+        scene: a.scene.as_deref(),
+        town: a.town.as_deref(),
+        scenes: a.scenes.as_deref(),
+        seed: a.seed,
+        drive_frame: (a.sequence, a.frame),
+        config: a.config,
+    }
+    .load()?;
     let recipe =
         FrameRecipe::new(source, &a.spec(a.sample_frame.unwrap_or(frame))).map_err(recipe_error)?;
     // Before any render work: refuse a foreign directory, prove it writable.

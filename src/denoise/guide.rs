@@ -73,10 +73,13 @@ pub fn denoise_view(
         opacity: &opacity,
         normal: &normal,
     };
-    let widths = match scene.medium {
+    let mut widths = match scene.medium {
         Some(_) => Widths::for_width(film.width),
         None => Widths::indirect_for_width(film.width),
     };
+    if !super::Features::for_scene(scene).direct {
+        widths.direct_levels = 0;
+    }
     denoise_guided(film, inputs, &guide, &widths);
 }
 

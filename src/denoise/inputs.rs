@@ -3,7 +3,7 @@
 
 use glam::Vec3;
 
-use crate::integrator::DenoiseSum;
+use crate::integrator::{luminance, DenoiseSum};
 
 /// One view's parts of radiance to denoise, per pixel (row-major) the mean
 /// over its samples.
@@ -26,6 +26,17 @@ pub struct ViewInputs {
     /// (`DenoiseSample::split_behind_delta`): the surface component filters
     /// pixels only with pixels of a like share.
     pub behind_delta: Vec<f32>,
+    /// Mean direct light at the split vertex per pixel
+    /// (`DenoiseSample::l_direct`, part of the film's radiance).
+    pub l_direct: Vec<Vec3>,
+    /// Variance of `l_direct`'s luminance as a pixel mean (the samples'
+    /// variance over their count; with one sample, its square).
+    pub var_direct: Vec<f32>,
+    /// Mean throughput × albedo estimate `l_direct` is filtered against
+    /// (`DenoiseSample::rho_direct`).
+    pub rho_direct: Vec<Vec3>,
+    /// Share of the samples split at a glossy vertex (`DenoiseSample::glossy`).
+    pub glossy: Vec<f32>,
 }
 
 impl ViewInputs {
@@ -39,6 +50,10 @@ impl ViewInputs {
             l_surf: vec![Vec3::ZERO; width * height],
             rho: vec![Vec3::ZERO; width * height],
             behind_delta: vec![0.0; width * height],
+            l_direct: vec![Vec3::ZERO; width * height],
+            var_direct: vec![0.0; width * height],
+            rho_direct: vec![Vec3::ZERO; width * height],
+            glossy: vec![0.0; width * height],
         }
     }
 
@@ -47,6 +62,10 @@ impl ViewInputs {
         (self.l_fog[k], self.opacity[k]) = (sum.l_fog / n, sum.opacity / n);
         (self.l_surf[k], self.rho[k]) = (sum.l_surf / n, sum.rho / n);
         self.behind_delta[k] = sum.behind_delta as f32 / n;
+        self.l_direct[k] = sum.l_direct / n;
+        self.var_direct[k] = mean_variance(luminance(sum.l_direct), sum.direct_lum2, n);
+        self.rho_direct[k] = sum.rho_direct / n;
+        self.glossy[k] = sum.glossy as f32 / n;
     }
 
     /// Whether any pixel carries first-scatter radiance or opacity.
@@ -60,7 +79,19 @@ impl ViewInputs {
         !self.has_first_scatter()
             && self.l_surf.iter().all(|&l| l == Vec3::ZERO)
             && self.rho.iter().all(|&r| r == Vec3::ZERO)
+            && self.rho_direct.iter().all(|&r| r == Vec3::ZERO)
     }
+}
+
+/// Variance of a mean of `n` samples from their sum and sum of squares
+/// (the unbiased sample variance over n; for one sample its square, so a
+/// lone sample is never taken for noise-free).
+pub(crate) fn mean_variance(sum: f32, sum2: f32, n: f32) -> f32 {
+    if n <= 1.0 {
+        return sum2;
+    }
+    let m = sum / n;
+    ((sum2 - n * m * m) / (n * (n - 1.0))).max(0.0)
 }
 
 #[cfg(test)]
@@ -76,6 +107,10 @@ mod tests {
             l_surf: Vec3::splat(8.0),
             rho: Vec3::new(0.4, 0.8, 1.2),
             behind_delta: 3,
+            l_direct: Vec3::new(4.0, 0.0, 0.0),
+            direct_lum2: 0.2126f32.powi(2) * 10.0,
+            rho_direct: Vec3::splat(2.0),
+            glossy: 1,
         };
         v.set_mean(1, &sum, 4.0);
         assert_eq!(v.l_fog[1], Vec3::new(0.5, 1.0, 1.5));
@@ -83,8 +118,29 @@ mod tests {
         assert_eq!(v.l_surf[1], Vec3::splat(2.0));
         assert_eq!(v.rho[1], Vec3::new(0.1, 0.2, 0.3));
         assert_eq!(v.behind_delta[1], 0.75);
+        assert_eq!(v.l_direct[1], Vec3::new(1.0, 0.0, 0.0));
+        assert_eq!(v.rho_direct[1], Vec3::splat(0.5));
+        assert_eq!(v.glossy[1], 0.25);
+        // Luminance sum 4y and square sum 10y² over 4 samples: variance of
+        // the mean (Σx² − n·m²)/(n(n − 1)).
+        let y = 0.2126f32;
+        let want = (10.0 * y * y - 4.0 * y * y) / 12.0;
+        assert!((v.var_direct[1] - want).abs() < 1e-7, "{}", v.var_direct[1]);
         // Pixel 0 untouched.
         assert!(v.l_fog[0] == Vec3::ZERO && v.behind_delta[0] == 0.0);
         assert!(v.has_first_scatter() && !v.is_empty());
+    }
+
+    #[test]
+    fn mean_variance_matches_the_two_pass_formula() {
+        let xs = [0.5f32, 2.0, 3.5, 1.0, 8.0];
+        let n = xs.len() as f32;
+        let m = xs.iter().sum::<f32>() / n;
+        let s2 = xs.iter().map(|x| (x - m).powi(2)).sum::<f32>() / (n - 1.0);
+        let got = mean_variance(xs.iter().sum(), xs.iter().map(|x| x * x).sum(), n);
+        assert!((got - s2 / n).abs() < 1e-5 * s2, "{got} vs {}", s2 / n);
+        // Equal samples: no variance; one sample: its square.
+        assert_eq!(mean_variance(6.0, 12.0, 3.0), 0.0);
+        assert_eq!(mean_variance(3.0, 9.0, 1.0), 9.0);
     }
 }

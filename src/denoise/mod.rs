@@ -13,7 +13,14 @@
 //! - light on the first surface (`surface.rs`): fog light there, or in a
 //!   medium-free scene its sky and indirect light, filtered as a ratio to
 //!   the surface's albedo; in medium-free scenes the first-scatter cascade
-//!   is skipped.
+//!   is skipped;
+//! - direct light on that surface (`direct.rs`, medium-free scenes): its
+//!   next-event estimates of sun, sky and lamps, also as a ratio to the
+//!   albedo, with edge-stopping on the per-pixel noise level (variance
+//!   from the sample moments) so that shadow edges stay.
+//!
+//! [`Features`] is the one place that switches the image side's added
+//! features on; `--no-filter` turns every one off.
 //!
 //! Kernel (`atrous.rs`): edge-avoiding à-trous (Dammertz et al. 2010,
 //! dilated B3 rows then columns) with range weights from the guide only
@@ -23,12 +30,15 @@
 //! on any thread count.
 
 mod atrous;
+mod direct;
+mod features;
 mod first_scatter;
 mod guide;
 mod inputs;
 mod surface;
 mod widths;
 
+pub use features::Features;
 pub use guide::{denoise_view, DepthGuide};
 pub use inputs::ViewInputs;
 pub use widths::Widths;
@@ -39,7 +49,8 @@ use crate::film::Film;
 /// filtered estimate: `film = film − inputs.l_fog + inputs.opacity · S̃`.
 /// Pixels whose neighbourhood has no opacity keep their radiance. Then the
 /// same for the light on the first surface (`surface.rs`: fog light, or in
-/// a medium-free scene sky and indirect light): `film −= l_surf − rho · Ẽ`.
+/// a medium-free scene sky and indirect light): `film −= l_surf − rho · Ẽ`;
+/// and for direct light (`l_direct`, `widths.direct_levels` > 0).
 /// [`denoise_view`] calls it with the guide and widths of a rendered view.
 /// Preconditions: `inputs` and `guide` match `film`'s size (`guide.normal`
 /// may be empty).
@@ -68,6 +79,9 @@ pub fn denoise_guided(
         first_scatter::filter_first_scatter(film, inputs, guide, widths);
     }
     surface::filter_surface(film, inputs, guide, widths);
+    if widths.direct_levels > 0 {
+        direct::filter_direct(film, inputs, guide, widths, widths.direct_levels);
+    }
 }
 
 #[cfg(test)]

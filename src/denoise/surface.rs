@@ -22,7 +22,7 @@ use super::{DepthGuide, ViewInputs, Widths};
 use crate::film::Film;
 
 /// Range σ on |Δn| between unit pixel-centre normals (about 17° at 1σ).
-const SIGMA_NORMAL: f32 = 0.3;
+pub(super) const SIGMA_NORMAL: f32 = 0.3;
 
 /// 1/σ² on the step in `ViewInputs::behind_delta` (σ = 0.15): a window's
 /// pixels, lit through glass, and the wall around it, at the same depth,
@@ -163,41 +163,60 @@ impl Div<f32> for Pair {
 
 /// A pixel's guide values for the surface component.
 #[derive(Clone, Copy, Debug)]
-struct SurfKey {
+pub(super) struct SurfKey {
     /// ln depth_z, +inf for sky.
     ln_z: f32,
     /// Unit normal, zero when unknown.
     n: Vec3,
     /// Share of samples split behind delta scatters (`ViewInputs::behind_delta`).
     behind: f32,
+    /// Share of samples split at a glossy vertex (`ViewInputs::glossy`;
+    /// zero for the indirect light, which has none).
+    glossy: f32,
 }
 
 impl SurfKey {
-    fn new(z: f32, n: Vec3, behind: f32) -> SurfKey {
+    pub(super) fn new(z: f32, n: Vec3, behind: f32) -> SurfKey {
         SurfKey {
             ln_z: ln_depth(z),
             n: if n.is_finite() { n } else { Vec3::ZERO },
             behind,
+            glossy: 0.0,
         }
+    }
+
+    /// The key with glossy share `glossy`: pixels whose shares differ are
+    /// kept apart as `behind` ones are.
+    pub(super) fn with_glossy(self, glossy: f32) -> SurfKey {
+        SurfKey { glossy, ..self }
     }
 
     /// Weight of neighbour `b`, in [0, 1]: zero between sky and surface,
     /// Gaussian-like in relative depth and (both known) the normal step.
     #[inline]
-    fn weight(self, b: SurfKey, inv_rel2: f32, inv_n2: f32) -> f32 {
+    pub(super) fn weight(self, b: SurfKey, inv_rel2: f32, inv_n2: f32) -> f32 {
+        self.geo_energy(b, inv_rel2, inv_n2)
+            .map_or(0.0, soft_gaussian)
+    }
+
+    /// The exponent of [`SurfKey::weight`] (squared steps over squared
+    /// widths, summed), `None` between sky and surface.
+    #[inline]
+    pub(super) fn geo_energy(self, b: SurfKey, inv_rel2: f32, inv_n2: f32) -> Option<f32> {
         let sky = self.ln_z.is_infinite();
         if sky != b.ln_z.is_infinite() {
-            return 0.0;
+            return None;
         }
         if sky {
-            return 1.0;
+            return Some(0.0);
         }
         let rel = self.ln_z - b.ln_z;
         let behind = self.behind - b.behind;
-        let mut e = rel * rel * inv_rel2 + behind * behind * INV_BEHIND2;
+        let glossy = self.glossy - b.glossy;
+        let mut e = rel * rel * inv_rel2 + (behind * behind + glossy * glossy) * INV_BEHIND2;
         if self.n != Vec3::ZERO && b.n != Vec3::ZERO {
             e += (self.n - b.n).length_squared() * inv_n2;
         }
-        soft_gaussian(e)
+        Some(e)
     }
 }

@@ -10,6 +10,9 @@ pub struct Widths {
     pub sigma_opacity: f32,
     /// Range σ on |Δ ln depth_z| (the relative depth step) between two surface pixels (> 0).
     pub sigma_depth_rel: f32,
+    /// à-trous levels of the direct-light component (`direct.rs`); 0 leaves
+    /// direct light as traced.
+    pub direct_levels: u32,
 }
 
 impl Widths {
@@ -21,6 +24,7 @@ impl Widths {
             sigma_px: (width as f32 / 160.0 * SIGMA_PX_AT_160).max(1.0),
             sigma_opacity: 0.1,
             sigma_depth_rel: 0.3,
+            direct_levels: super::direct::DIRECT_LEVELS,
         }
     }
 

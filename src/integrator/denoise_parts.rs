@@ -5,6 +5,7 @@
 //! filtered part splits off ([`SplitVertex`]).
 
 use glam::Vec3;
+use shaders_cpu::bsdf::{Bsdf, CoatBase, Facet};
 
 /// The denoiser's parts of one camera sample's radiance: `l_fog` is the
 /// part whose first event is a medium scatter before the first surface or
@@ -35,6 +36,45 @@ pub struct DenoiseSample {
     /// glass or in a mirror): the filter keeps such light apart from light
     /// split at x1.
     pub split_behind_delta: bool,
+    /// At a Lambertian split vertex, its own next-event estimates but the
+    /// sun's (sky, lamps, headlights): direct light, filtered as a ratio to
+    /// `rho_direct` with edge-stopping on its own noise level, so shadow
+    /// edges stay. The sun's is left as traced: sharp, nearly noise-free,
+    /// and it carries the relief's shading, which a filter would blur.
+    /// At a glossy split vertex (paint, rough metal): all the light it
+    /// reflects (the same filter). Zero otherwise.
+    pub l_direct: Vec3,
+    /// Throughput × albedo estimate that `l_direct` is filtered against:
+    /// `rho` at a Lambertian split vertex, [`glossy_albedo`] at a glossy one.
+    pub rho_direct: Vec3,
+    /// Whether the split vertex is glossy (`l_direct` holds all its light):
+    /// the filter keeps such pixels apart from Lambertian ones.
+    pub glossy: bool,
+}
+
+/// The albedo estimate a glossy (non-delta, non-Lambertian) split vertex's
+/// light is demodulated by: a coat's base colour plus the coat's normal
+/// reflectance (so black paint is not a division by nothing), a metal's
+/// grey 0.5; `None` for BSDFs not filtered (glass, mirrors, Lambertian).
+pub fn glossy_albedo(bsdf: &Bsdf) -> Option<Vec3> {
+    const COAT_F0: f32 = 0.04;
+    let coat = |base: &CoatBase| match base {
+        CoatBase::Lambert { albedo } => *albedo + Vec3::splat(COAT_F0),
+        CoatBase::Conductor { .. } => Vec3::splat(0.5),
+    };
+    match bsdf {
+        Bsdf::Coated { base, .. }
+        | Bsdf::NormalMapped {
+            facet: Facet::Coated { base, .. },
+            ..
+        } => Some(coat(base)),
+        Bsdf::Conductor { .. }
+        | Bsdf::NormalMapped {
+            facet: Facet::Conductor { .. },
+            ..
+        } => Some(Vec3::splat(0.5)),
+        _ => None,
+    }
 }
 
 /// Running sums of one pixel's [`DenoiseSample`]s, field by field.
@@ -50,6 +90,15 @@ pub struct DenoiseSum {
     pub rho: Vec3,
     /// Samples split behind delta scatters (`DenoiseSample::split_behind_delta`).
     pub behind_delta: u32,
+    /// Σ `DenoiseSample::l_direct`.
+    pub l_direct: Vec3,
+    /// Σ luminance(`l_direct`)²: with the sum, the per-pixel variance of
+    /// the direct light that steers its filter.
+    pub direct_lum2: f32,
+    /// Σ `DenoiseSample::rho_direct`.
+    pub rho_direct: Vec3,
+    /// Samples split at a glossy vertex (`DenoiseSample::glossy`).
+    pub glossy: u32,
 }
 
 impl DenoiseSum {
@@ -60,7 +109,18 @@ impl DenoiseSum {
         self.l_surf += d.l_surf;
         self.rho += d.rho;
         self.behind_delta += d.split_behind_delta as u32;
+        self.l_direct += d.l_direct;
+        self.direct_lum2 += luminance(d.l_direct).powi(2);
+        self.rho_direct += d.rho_direct;
+        self.glossy += d.glossy as u32;
     }
+}
+
+/// Rec. 709 luminance of linear RGB: the scalar whose sample moments steer
+/// the filter of direct light and adaptive sampling.
+#[inline]
+pub fn luminance(c: Vec3) -> f32 {
+    c.dot(Vec3::new(0.2126, 0.7152, 0.0722))
 }
 
 /// A surface path's split vertex: the first vertex that is not a delta
@@ -75,6 +135,9 @@ pub(super) struct SplitVertex {
     pub ahead: bool,
     /// Whether the split vertex came after delta scatters.
     pub behind_delta: bool,
+    /// Throughput × [`glossy_albedo`] at a glossy split vertex (else zero):
+    /// `DenoiseSample::rho_direct` there.
+    pub rho_gloss: Vec3,
 }
 
 impl Default for SplitVertex {
@@ -83,6 +146,7 @@ impl Default for SplitVertex {
             rho: Vec3::ZERO,
             ahead: true,
             behind_delta: false,
+            rho_gloss: Vec3::ZERO,
         }
     }
 }
@@ -99,6 +163,9 @@ mod tests {
             l_surf: Vec3::splat(0.5),
             rho: Vec3::new(0.25, 0.5, 0.75),
             split_behind_delta: true,
+            l_direct: Vec3::new(0.0, 2.0, 0.0),
+            rho_direct: Vec3::splat(0.25),
+            glossy: true,
         };
         let b = DenoiseSample {
             l_fog: Vec3::splat(1.0),
@@ -106,6 +173,7 @@ mod tests {
             l_surf: Vec3::splat(0.25),
             rho: Vec3::splat(0.5),
             split_behind_delta: false,
+            ..DenoiseSample::default()
         };
         let mut sum = DenoiseSum::default();
         for s in [a, b, a] {
@@ -116,5 +184,33 @@ mod tests {
         assert_eq!(sum.l_surf, Vec3::splat(1.25));
         assert_eq!(sum.rho, Vec3::new(1.0, 1.5, 2.0));
         assert_eq!(sum.behind_delta, 2);
+        assert_eq!(sum.l_direct, Vec3::new(0.0, 4.0, 0.0));
+        assert_eq!(sum.direct_lum2, 2.0 * (2.0f32 * 0.7152).powi(2));
+        assert_eq!(sum.rho_direct, Vec3::splat(0.5));
+        assert_eq!(sum.glossy, 2);
+    }
+
+    #[test]
+    fn glossy_albedo_is_the_base_plus_the_coat_and_none_for_lambert_and_glass() {
+        let albedo = Vec3::new(0.02, 0.3, 0.6);
+        let paint = Bsdf::Coated {
+            base: CoatBase::Lambert { albedo },
+            eta: 1.5,
+            alpha: 0.0,
+        };
+        assert_eq!(glossy_albedo(&paint), Some(albedo + Vec3::splat(0.04)));
+        let metal = Bsdf::Conductor {
+            eta: Vec3::splat(0.2),
+            k: Vec3::splat(3.0),
+            alpha: 0.2,
+        };
+        assert_eq!(glossy_albedo(&metal), Some(Vec3::splat(0.5)));
+        assert_eq!(glossy_albedo(&Bsdf::Lambert { albedo }), None);
+        let glass = Bsdf::Dielectric {
+            eta: 1.5,
+            alpha: 0.0,
+            tint: Vec3::ONE,
+        };
+        assert_eq!(glossy_albedo(&glass), None);
     }
 }

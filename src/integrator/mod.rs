@@ -16,7 +16,7 @@ pub mod rain;
 pub mod volpath;
 
 pub use context::{PathContext, Shading};
-pub use denoise_parts::{DenoiseSample, DenoiseSum};
+pub use denoise_parts::{luminance, DenoiseSample, DenoiseSum};
 
 use glam::{DMat3, DVec3, Vec3};
 

@@ -17,7 +17,7 @@ use glam::Vec3;
 use shaders_cpu::bsdf::Bsdf;
 use shaders_cpu::sampling::{power_heuristic, Frame};
 
-use super::denoise_parts::{DenoiseSample, DenoiseSum, SplitVertex};
+use super::denoise_parts::{glossy_albedo, DenoiseSample, DenoiseSum, SplitVertex};
 use super::PathContext;
 use crate::accel::{Accel, Hit, Ray};
 use crate::geometry::{FrontOrigin, SurfaceInteraction};
@@ -134,6 +134,38 @@ struct Vertex<'a> {
     frame: &'a Frame,
     wo_local: Vec3,
     front: FrontOrigin,
+}
+
+/// The split vertex's next-event light to filter, when its shadow rays
+/// were just resolved: the radiance now less `before`, less the sun's part
+/// `sun` (sharp and nearly noise-free; it carries the relief's shading),
+/// zero without a split vertex.
+fn split_direct(st: &PathState, before: Vec3, sun: Vec3) -> Vec3 {
+    if st.split.rho_gloss != Vec3::ZERO {
+        // A glossy vertex whose path ended there: all its light.
+        st.l - before
+    } else if st.split.rho == Vec3::ZERO {
+        Vec3::ZERO
+    } else {
+        st.l - before - sun
+    }
+}
+
+/// `d` with the direct-light part: `l_direct` and what it is filtered
+/// against (`rho`, or at a glossy split vertex its albedo estimate).
+fn direct_part(st: &PathState, l_direct: Vec3, d: DenoiseSample) -> DenoiseSample {
+    let glossy = st.split.rho_gloss != Vec3::ZERO;
+    DenoiseSample {
+        l_direct,
+        rho_direct: if glossy {
+            st.split.rho_gloss
+        } else {
+            st.split.rho
+        },
+        glossy,
+        split_behind_delta: st.split.behind_delta,
+        ..d
+    }
 }
 
 /// Reflection-only BSDFs see both faces of a surface the same way.
@@ -299,18 +331,28 @@ impl<A: Accel> PathContext<'_, A> {
             return sample;
         }
         let Some(mut ray) = next else {
-            pending.resolve(self.accel, &mut st.l);
+            let before = st.l;
+            let sun = pending.resolve(self.accel, &mut st.l);
+            let l_direct = split_direct(&st, before, sun);
             return LiSample {
                 l: st.l,
-                denoise: DenoiseSample {
-                    rho: st.split.rho,
-                    ..DenoiseSample::default()
-                },
+                denoise: direct_part(
+                    &st,
+                    l_direct,
+                    DenoiseSample {
+                        rho: st.split.rho,
+                        ..DenoiseSample::default()
+                    },
+                ),
             };
         };
         // The radiance once the first vertex's own light is in: what
-        // follows is its indirect part (`DenoiseSample::l_surf`).
+        // follows is its indirect part (`DenoiseSample::l_surf`); and that
+        // vertex's next-event estimates (`DenoiseSample::l_direct`).
         let mut l_first = None;
+        let mut l_direct = Vec3::ZERO;
+        // At a glossy split vertex: the radiance before its shadow rays.
+        let mut gloss_before = None;
         loop {
             *rays += 1;
             let hit = self.accel.intersect(&ray);
@@ -322,9 +364,14 @@ impl<A: Accel> PathContext<'_, A> {
                 }
             }
             // The previous vertex's shadow rays, while the record loads.
-            pending.resolve(self.accel, &mut st.l);
-            if st.split.rho != Vec3::ZERO {
-                l_first.get_or_insert(st.l);
+            let before = st.l;
+            let sun = pending.resolve(self.accel, &mut st.l);
+            if st.split.rho != Vec3::ZERO && l_first.is_none() {
+                l_first = Some(st.l);
+                l_direct = split_direct(&st, before, sun);
+            }
+            if st.split.rho_gloss != Vec3::ZERO {
+                gloss_before.get_or_insert(before);
             }
             let Some(hit) = hit else {
                 st.l += st.beta
@@ -337,7 +384,14 @@ impl<A: Accel> PathContext<'_, A> {
             match next {
                 Some(next) => ray = next,
                 None => {
-                    pending.resolve(self.accel, &mut st.l);
+                    let before = st.l;
+                    let sun = pending.resolve(self.accel, &mut st.l);
+                    if l_first.is_none() {
+                        l_direct = split_direct(&st, before, sun);
+                    }
+                    if st.split.rho_gloss != Vec3::ZERO {
+                        gloss_before.get_or_insert(before);
+                    }
                     break;
                 }
             }
@@ -345,14 +399,22 @@ impl<A: Accel> PathContext<'_, A> {
         // No l_first with a split vertex: the path ended there, after its
         // own light, so its indirect estimate is zero.
         let l_surf = l_first.map_or(Vec3::ZERO, |l_first| st.l - l_first);
+        // A glossy split vertex's light: all it reflects.
+        if let Some(before) = gloss_before {
+            l_direct = st.l - before;
+        }
         LiSample {
             l: st.l,
-            denoise: DenoiseSample {
-                l_surf,
-                rho: st.split.rho,
-                split_behind_delta: st.split.behind_delta,
-                ..DenoiseSample::default()
-            },
+            denoise: direct_part(
+                &st,
+                l_direct,
+                DenoiseSample {
+                    l_surf,
+                    rho: st.split.rho,
+                    split_behind_delta: st.split.behind_delta,
+                    ..DenoiseSample::default()
+                },
+            ),
         }
     }
 
@@ -418,6 +480,9 @@ impl<A: Accel> PathContext<'_, A> {
             st.split.ahead = false;
             if let (true, Some(albedo)) = (scene.filter_indirect, bsdf.diffuse_albedo()) {
                 st.split.rho = st.beta * albedo;
+                st.split.behind_delta = st.bounces > 0;
+            } else if let (true, Some(albedo)) = (scene.filter_indirect, glossy_albedo(&bsdf)) {
+                st.split.rho_gloss = st.beta * albedo;
                 st.split.behind_delta = st.bounces > 0;
             }
         }

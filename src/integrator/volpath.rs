@@ -397,19 +397,19 @@ pub struct SunLobe {
 impl SunLobe {
     /// The first sun of `scene` that the light set samples as a distant light.
     pub fn find(scene: &crate::scene::Scene, lights: &crate::light::LightSet) -> Option<SunLobe> {
-        let (axis, cos_max) = scene.lights.iter().find_map(|l| match *l {
+        let (axis, cone) = scene.lights.iter().find_map(|l| match *l {
             crate::light::Light::Sun {
                 dir_to_sun,
                 angular_radius_rad,
                 ..
-            } => Some((dir_to_sun, angular_radius_rad.cos())),
+            } => Some((dir_to_sun, crate::light::SunCone::new(angular_radius_rad))),
             _ => None,
         })?;
         (0..lights.distant_count())
             .find(|&k| {
                 lights
                     .sample_distant(scene, k, Vec3::ZERO, Vec2::splat(0.5))
-                    .is_some_and(|ls| ls.dist.is_infinite() && ls.wi.dot(axis) >= cos_max)
+                    .is_some_and(|ls| ls.dist.is_infinite() && cone.contains(axis, ls.wi))
             })
             .map(|k| SunLobe { k, axis })
     }

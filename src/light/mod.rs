@@ -4,7 +4,8 @@
 //! emission (here), the frame's sky and its sun or moon (`sky.rs`), the set
 //! next-event estimation samples and how it picks a light (`set.rs`, with
 //! `entry.rs` per light, `bvh.rs` for many local lights and `fog_sky.rs`
-//! for the sky seen through fog).
+//! for the sky seen through fog), and the sun's cone, exact for any
+//! angular size (`sun_cone.rs`).
 //!
 //! Directions are render space (= world orientation, z up). Sampling returns
 //! radiance arriving at the shading point and a pdf per solid angle.
@@ -21,36 +22,21 @@ pub use set::{LightSample, LightSelection, LightSet, MAX_DISTANT};
 // sampling them is this module's job.
 pub use crate::scene::emitters::{moon_phase_factor, Light};
 
-use shaders_cpu::sampling::{sample_uniform_cone, uniform_cone_pdf, Frame};
+mod sun_cone;
 
-/// Cosine of the sun cone's half-angle as sampled in f32, and that cone's solid angle.
-///
-/// For the sun (α ≈ 0.0047 rad) 1 − cos α ≈ 1e-5 sits a few hundred f32 ulps
-/// below 1, so the rounded cosine changes the cone's solid angle by up to 0.5%.
-/// Radiance, pdf and the sampled region are therefore all derived from the
-/// rounded cosine (1 − c is exact in f32 by Sterbenz's lemma).
-pub fn sun_cone(angular_radius_rad: f32) -> (f32, f32) {
-    let cos_max = angular_radius_rad.cos();
-    let solid_angle = 2.0 * std::f64::consts::PI * (1.0 - cos_max as f64);
-    (cos_max, solid_angle as f32)
-}
+pub use sun_cone::SunCone;
 
-/// Radiance of a uniform sun disk giving irradiance `irradiance` on a surface
-/// facing it: E = L·π·sin²α = L·Ω·(1 + cos α)/2 for the sampled cone.
-pub fn sun_radiance(irradiance: Vec3, angular_radius_rad: f32) -> Vec3 {
-    let (cos_max, solid_angle) = sun_cone(angular_radius_rad);
-    irradiance / (solid_angle * 0.5 * (1.0 + cos_max))
-}
+use shaders_cpu::sampling::Frame;
 
-/// A sun disk prepared for sampling: everything but the draw itself (two
-/// cosines, an f64 solid angle and a frame) computed once per frame instead
+/// A sun disk prepared for sampling: everything but the draw itself (the
+/// cone, its radiance, pdf and a frame) computed once per frame instead
 /// of at every vertex. Samples are bit-identical to sampling the `Light`.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct SunSampler {
     /// Frame whose z axis points at the sun's centre.
     frame: Frame,
-    /// Cosine of the sampled cone's half-angle (see [`sun_cone`]).
-    cos_max: f32,
+    /// The sampled cone.
+    cone: SunCone,
     /// Radiance of the disk.
     le: Vec3,
     /// Solid-angle pdf of a uniform cone sample.
@@ -60,12 +46,12 @@ pub(crate) struct SunSampler {
 impl SunSampler {
     /// The sampler of a sun towards unit `dir_to_sun` (see [`Light::Sun`]).
     pub(crate) fn new(dir_to_sun: Vec3, angular_radius_rad: f32, irradiance: Vec3) -> Self {
-        let cos_max = angular_radius_rad.cos();
+        let cone = SunCone::new(angular_radius_rad);
         SunSampler {
             frame: Frame::from_z(dir_to_sun),
-            cos_max,
-            le: sun_radiance(irradiance, angular_radius_rad),
-            pdf: uniform_cone_pdf(cos_max),
+            cone,
+            le: cone.radiance(irradiance),
+            pdf: cone.pdf(),
         }
     }
 
@@ -78,7 +64,7 @@ impl SunSampler {
     /// A direction uniform in the disk's cone: (wi, radiance, pdf per solid angle).
     #[inline]
     pub(crate) fn sample(&self, u: glam::Vec2) -> (Vec3, Vec3, f32) {
-        let wi = self.frame.from_local(sample_uniform_cone(u, self.cos_max));
+        let wi = self.frame.from_local(self.cone.sample_local(u));
         (wi, self.le, self.pdf)
     }
 }

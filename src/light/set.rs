@@ -20,13 +20,13 @@
 //! MIS weights.
 
 use glam::{Vec2, Vec3};
-use shaders_cpu::sampling::{luminance, power_heuristic, uniform_cone_pdf};
+use shaders_cpu::sampling::{luminance, power_heuristic};
 
 use super::bvh::{LightBounds, LightBvh};
 pub use super::entry::LightSample;
 use super::entry::{cloud_transmittance, sample_entry, Entry};
 use super::fog_sky::FogSky;
-use super::{power, sun_radiance, Light, SunSampler};
+use super::{power, Light, SunCone, SunSampler};
 use crate::scene::Scene;
 
 /// How one local light is chosen per vertex.
@@ -86,7 +86,7 @@ fn triangle_geometry(scene: &Scene, geom: u32, prim: u32) -> (f32, Vec3, [Vec3; 
 #[derive(Clone, Copy, Debug)]
 struct SunDisk {
     axis: Vec3,
-    cos_max: f32,
+    cone: SunCone,
     le: Vec3,
     /// Probability NEE picks it (1 in the distant group).
     pmf: f32,
@@ -123,8 +123,8 @@ impl Collected {
                 self.suns.push((
                     SunDisk {
                         axis: dir_to_sun,
-                        cos_max: angular_radius_rad.cos(),
-                        le: sun_radiance(irradiance, angular_radius_rad),
+                        cone: SunCone::new(angular_radius_rad),
+                        le: SunCone::new(angular_radius_rad).radiance(irradiance),
                         pmf: 1.0,
                     },
                     (!in_distant).then_some(self.entries.len()),
@@ -449,9 +449,9 @@ impl LightSet {
             l *= weight(self.sky_pdf(scene, p, dir));
         }
         for sun in &self.suns {
-            if dir.dot(sun.axis) >= sun.cos_max {
+            if sun.cone.contains(sun.axis, dir) {
                 let clouds = cloud_transmittance(scene, p, dir);
-                l += sun.le * clouds * weight(sun.pmf * uniform_cone_pdf(sun.cos_max));
+                l += sun.le * clouds * weight(sun.pmf * sun.cone.pdf());
             }
         }
         l

@@ -1,7 +1,8 @@
 //! What a frame writes and how: the output registry (`registry`: every
 //! map declared once), the native layout's paths (`layout`) and writer
 //! (`frame`, `native`), the other layouts (`layouts`), and file writers and
-//! readers for every output format, all writes atomic.
+//! readers for every output format, all writes atomic; `mitsuba` writes a
+//! frame as a Mitsuba 3 scene.
 //!
 //! Every writer encodes into memory, then [`write_atomic`] writes
 //! `<name>.tmp-<pid>-<seq>` in the target directory, fsyncs it and renames it
@@ -21,6 +22,7 @@ mod render_dir;
 
 pub mod frame;
 pub mod layouts;
+pub mod mitsuba;
 pub mod registry;
 
 pub use crate::camera::{baseline_dir_name, check_baseline_dirs, SharedBaselineDir};

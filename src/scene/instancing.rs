@@ -2,7 +2,9 @@
 //!
 //! A top-level `kind = "instance"` object becomes one `Instance` per repeat
 //! copy of a shared `Prototype` when its (prefab, material map) is placed at
-//! least twice in the scene; the prototype is the prefab's leaves (nested
+//! least twice in the scene, or when it moves within a sequence (not one of
+//! `LoadedScene::static_objects` of a scene that has them: its prototype's
+//! accelerator is then kept from frame to frame); the prototype is the prefab's leaves (nested
 //! instances and repeats included) built once in the prefab's frame. What
 //! stays flat, built by `shapes` as before: every non-instance object, a
 //! prefab placed once (a transform per hit would buy nothing), and a prefab
@@ -19,6 +21,7 @@ use std::collections::{BTreeMap, HashMap};
 use glam::{DAffine3, DVec3};
 use serde::Serialize;
 
+use super::anchored::{is_tile, StaticTiles};
 use super::desc::ShapeDesc;
 use super::load::{LoadedScene, SceneError};
 use super::semantic::class_id;
@@ -31,8 +34,9 @@ use crate::material::Material;
 /// Whether `build_scene_with` makes prefab instances real instances.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Instancing {
-    /// Prefabs placed at least twice (and neither emissive nor holding a
-    /// sphere) become prototypes with instances.
+    /// Prefabs placed at least twice or moving (and neither emissive nor
+    /// holding a sphere) become prototypes with instances; static flat
+    /// meshes are tiled (`anchored`).
     #[default]
     Prototypes,
     /// Everything flattened into render-space meshes.
@@ -73,6 +77,8 @@ pub(super) fn build_shapes(
         }
     }
     let mut flat = Leaves::default();
+    let mut tiles = StaticTiles::default();
+    let emits: Vec<bool> = materials.iter().map(|m| m.le != glam::Vec3::ZERO).collect();
     let mut out = Shapes::default();
     // Per key: the prototype's index, or None when the prefab stays flat.
     let mut protos: HashMap<Key, Option<u32>> = HashMap::new();
@@ -82,7 +88,7 @@ pub(super) fn build_shapes(
                 prefab,
                 material_map,
             } if mode == Instancing::Prototypes
-                && placements[&(prefab.as_str(), material_map)] >= 2 =>
+                && (placements[&(prefab.as_str(), material_map)] >= 2 || scene.moves(i)) =>
             {
                 let key = (prefab.as_str(), material_map);
                 match protos.get(&key) {
@@ -101,9 +107,18 @@ pub(super) fn build_shapes(
             _ => None,
         };
         let Some(p) = proto else {
-            walk_top(desc, i, &mut |placed| {
-                flat.add(scene, index, &placed, origin_world)
-            })?;
+            if mode == Instancing::Prototypes && scene.is_static(i) {
+                // Built in world coordinates, then tiled (`anchored`).
+                let mut world = Leaves::default();
+                walk_top(desc, i, &mut |placed| {
+                    world.add(scene, index, &placed, DVec3::ZERO)
+                })?;
+                tiles.add(world, &emits, origin_world, &mut flat);
+            } else {
+                walk_top(desc, i, &mut |placed| {
+                    flat.add(scene, index, &placed, origin_world)
+                })?;
+            }
             continue;
         };
         let semantic = o.semantic.as_deref().map(|s| class_id(s).unwrap_or(0));
@@ -118,6 +133,9 @@ pub(super) fn build_shapes(
                 .push(Instance::new(p, render, semantic, o.instance));
         }
     }
+    let (protos, insts) = tiles.finish(out.prototypes.len() as u32, origin_world);
+    out.prototypes.extend(protos);
+    out.instances.extend(insts);
     out.meshes = flat.meshes;
     out.spheres = flat.spheres;
     Ok(out)
@@ -171,7 +189,9 @@ pub(super) fn place_mesh(m: &Mesh, inst: &Instance) -> Mesh {
 }
 
 /// What a built scene holds (`Scene::content`); serialised as the content
-/// report's `geometry` (without the per-class mesh counts).
+/// report's `geometry` (without the per-class mesh counts). Static tiles
+/// (`anchored`) are counted as the flat meshes they hold, so the figures do
+/// not depend on how the static world is grouped.
 #[derive(Clone, Debug, Default, PartialEq, Eq, Serialize)]
 pub struct Content {
     /// Flat meshes.
@@ -197,12 +217,24 @@ impl Scene {
     /// Counts of what this scene holds.
     pub fn content(&self) -> Content {
         let tris = |ms: &[Mesh]| ms.iter().map(|m| m.triangles.len() as u64).sum::<u64>();
-        let flat = tris(&self.meshes);
-        let proto: Vec<u64> = self.prototypes.iter().map(|p| tris(&p.meshes)).collect();
+        let tiles = || self.prototypes.iter().filter(|p| is_tile(p));
+        let tile_meshes = || tiles().flat_map(|p| &p.meshes);
+        let flat =
+            tris(&self.meshes) + tile_meshes().map(|m| m.triangles.len() as u64).sum::<u64>();
+        let proto: Vec<u64> = self
+            .prototypes
+            .iter()
+            .map(|p| if is_tile(p) { 0 } else { tris(&p.meshes) })
+            .collect();
+        let placed = || {
+            self.instances
+                .iter()
+                .filter(|i| !is_tile(&self.prototypes[i.prototype as usize]))
+        };
         let mut per_class = BTreeMap::new();
-        let classes = self.meshes.iter().map(|m| m.semantic);
+        let classes = self.meshes.iter().chain(tile_meshes()).map(|m| m.semantic);
         let classes = classes.chain(self.spheres.iter().map(|s| s.semantic));
-        let classes = classes.chain(self.instances.iter().map(|i| {
+        let classes = classes.chain(placed().map(|i| {
             let first = self.prototypes[i.prototype as usize].meshes.first();
             i.semantic.or(first.map(|m| m.semantic)).unwrap_or(0)
         }));
@@ -210,16 +242,11 @@ impl Scene {
             *per_class.entry(c).or_insert(0) += 1;
         }
         Content {
-            meshes: self.meshes.len() as u64,
-            prototypes: self.prototypes.len() as u64,
-            instances: self.instances.len() as u64,
+            meshes: (self.meshes.len() + tile_meshes().count()) as u64,
+            prototypes: (self.prototypes.len() - tiles().count()) as u64,
+            instances: placed().count() as u64,
             unique_triangles: flat + proto.iter().sum::<u64>(),
-            instanced_triangles: flat
-                + self
-                    .instances
-                    .iter()
-                    .map(|i| proto[i.prototype as usize])
-                    .sum::<u64>(),
+            instanced_triangles: flat + placed().map(|i| proto[i.prototype as usize]).sum::<u64>(),
             spheres: self.spheres.len() as u64,
             objects_per_class: per_class,
         }

@@ -88,6 +88,23 @@ pub struct LoadedScene {
     pub objs: BTreeMap<String, ObjAsset>,
     /// Triangle count of the built scene (exact, computed before tessellating).
     pub triangle_estimate: u64,
+    /// Top-level objects (index ranges into `desc.objects`) that do not
+    /// move within a sequence: their flat meshes are built into static
+    /// tiles (`scene::anchored`). Empty for a scene file.
+    pub static_objects: Vec<std::ops::Range<usize>>,
+}
+
+impl LoadedScene {
+    /// Whether top-level object `i` is one of `static_objects`.
+    pub fn is_static(&self, i: usize) -> bool {
+        self.static_objects.iter().any(|r| r.contains(&i))
+    }
+
+    /// Whether top-level object `i` moves within a sequence: the scene
+    /// names its static objects and `i` is not one of them.
+    pub fn moves(&self, i: usize) -> bool {
+        !self.static_objects.is_empty() && !self.is_static(i)
+    }
 }
 
 /// Reads, parses and fully validates a scene file.
@@ -113,6 +130,7 @@ pub fn parse_scene_str(text: &str, path: &Path) -> Result<LoadedScene, SceneErro
         desc,
         objs,
         triangle_estimate,
+        static_objects: Vec::new(),
     })
 }
 

@@ -20,7 +20,12 @@
 //! frame, and each `Instance` places it by an f64 affine map; a hit on one
 //! carries `Hit::inst_id`, and `surface`, `table` and the GT pass carry it
 //! through the transform (`hit_mesh`).
+//!
+//! The flat meshes of a town's static objects are grouped into static tiles
+//! (`anchored`): prototypes in a world-fixed frame, placed per frame by a
+//! translation, so their accelerators survive from frame to frame.
 
+mod anchored;
 pub mod build;
 pub mod desc;
 pub mod emitters;
@@ -43,6 +48,7 @@ pub mod transform;
 pub mod validate;
 mod walk;
 
+pub use anchored::{is_tile, TILE_M};
 pub use build::{build_scene, build_scene_with};
 pub use desc::{serialize_scene, SceneDesc};
 pub use emitters::Light;

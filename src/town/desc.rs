@@ -16,7 +16,8 @@ pub struct TownDesc {
     pub name: String,
     /// Road network style: `grid` (straight streets), `organic` (the grid
     /// bent by a smooth seeded warp into curving streets, see `organic`;
-    /// no `ramps` or `overpass`) or `highway` (twin-arm masts, guard rails
+    /// no `ramps` or `overpass`) or `highway` (the outer roads divided by
+    /// a median barrier, with hard shoulders; twin-arm masts, guard rails
     /// and billboards along the roads, see docs/towns.md).
     #[serde(default)]
     pub road_style: RoadStyle,
@@ -141,8 +142,10 @@ pub enum RoadStyle {
     /// Curving streets: the grid bent by a smooth, seeded, area-keeping
     /// warp (streets keep their width within 3.3 %, headings turn ≤ 8.7°).
     Organic,
-    /// Fast roads: highway street furniture (twin-arm masts, guard rails
-    /// along the outer roads, billboards) whatever the speed.
+    /// Fast roads: the outer roads are a divided highway (median barrier,
+    /// gravel hard shoulders, right-in/right-out junctions) with highway
+    /// street furniture (twin-arm masts, guard rails along the outer roads,
+    /// billboards) whatever the speed.
     Highway,
 }
 

@@ -8,10 +8,13 @@
 //! circles of radius R (on the centreline) about points R in from both outer
 //! centrelines; the outer roads then end at the arcs' tangent points (no
 //! stubs on the outer x-roads) and the corner blocks' lots keep clear.
+//! In a `highway` town the outer roads are divided: a median barrier runs
+//! on their centrelines (`median_x`, `median_y`), through the T junctions
+//! where town streets meet them (right in, right out: `median_through`).
 
 use std::f64::consts::FRAC_PI_4;
 
-use super::desc::TownDesc;
+use super::desc::{RoadStyle, TownDesc};
 
 /// Length of the road stubs past the east and west town edges, metres.
 pub const STUB_M: f64 = 40.0;
@@ -88,6 +91,9 @@ pub struct Layout {
     /// Radius of the loop's curved outer corners on the centreline, metres
     /// (0: square corners with junctions).
     pub loop_radius_m: f64,
+    /// Whether the outer roads (the loop) are divided by a median barrier
+    /// (`road_style = "highway"`).
+    pub median: bool,
 }
 
 /// One curved outer corner of the loop: a quarter circle on the road
@@ -123,6 +129,7 @@ impl Layout {
             river_row: None,
             roundabout: None,
             loop_radius_m: desc.loop_corner_radius_m,
+            median: desc.road_style == RoadStyle::Highway,
         }
         .with_river(desc.river)
         .with_roundabout(desc.roundabout)
@@ -219,6 +226,22 @@ impl Layout {
             min: [x - hw, a0],
             max: [x + hw, a1],
         }
+    }
+    /// Whether x-road j carries a median barrier (an outer road of a
+    /// divided-highway town).
+    pub fn median_x(&self, j: usize) -> bool {
+        self.median && (j == 0 || j == self.ny)
+    }
+    /// Whether y-road i carries a median barrier.
+    pub fn median_y(&self, i: usize) -> bool {
+        self.median && (i == 0 || i == self.nx)
+    }
+    /// Whether the median barrier runs straight through junction (i, j):
+    /// exactly one of its roads is divided (a town street or stub meets the
+    /// highway; at the loop's corners the barriers end at the junction).
+    /// No move there may cross the highway: left turns are barred.
+    pub fn median_through(&self, i: usize, j: usize) -> bool {
+        self.median_x(j) != self.median_y(i)
     }
     /// Whether grid junction (i, j) is a curved loop corner (an outer
     /// corner of a town with `loop_radius_m` > 0).
@@ -345,6 +368,7 @@ mod tests {
             river_row: None,
             roundabout: None,
             loop_radius_m: r,
+            median: true,
         }
     }
 

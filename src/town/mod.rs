@@ -145,10 +145,12 @@ impl<'a> StaticTown<'a> {
     }
 
     /// The generated triangle meshes as inline mesh objects: the hills
-    /// (`terrain::TERRAIN_NAME`) and the ramp surfaces (`ramps::RAMP_MESHES`).
+    /// (`terrain::TERRAIN_NAME`), the ramp surfaces (`ramps::RAMP_MESHES`)
+    /// and a divided highway's median barrier (`roads::median`).
     pub fn meshes(&self) -> Vec<ObjectDesc> {
         let mut out: Vec<ObjectDesc> = self.terrain.iter().map(|t| t.object()).collect();
         out.extend(ramps::ramp_meshes(&self.sites));
+        out.extend(roads::median::median_meshes(&self.layout));
         if let Some(w) = &self.warp {
             organic::bend::bend_meshes(&mut out, w);
         }
@@ -322,14 +324,17 @@ fn lit_lamps(v: &VehiclePose) -> Vec<(&'static str, &'static str)> {
 }
 
 /// What a town frame holds that does not depend on the frame: the static
-/// objects (`StaticTown::objects`) and the generated meshes, generated once
-/// per (description, seed) and shared by every frame (`town_scene_with`).
+/// objects (`StaticTown::objects`), the generated meshes and the layout (the
+/// signals' sites), generated once per (description, seed) and shared by
+/// every frame (`town_scene_with`).
 #[derive(Clone, Debug)]
 pub struct StaticScene {
     /// Roads, buildings, vegetation and furniture (lamps unlit).
     pub objects: Vec<ObjectDesc>,
     /// The generated meshes (hills, ramps, overpass).
     pub meshes: Vec<ObjectDesc>,
+    /// The road grid and blocks.
+    pub layout: Layout,
 }
 
 impl StaticScene {
@@ -339,6 +344,7 @@ impl StaticScene {
         StaticScene {
             objects: town.objects(),
             meshes: town.meshes(),
+            layout: town.layout,
         }
     }
 }
@@ -381,7 +387,7 @@ pub fn town_scene_with(
     objects.extend_from_slice(&stat.objects);
     objects.extend(dynamic_objects(&tf));
     // The lamps follow the drive's traffic clock.
-    signals::set_lamps(desc, tf.frame, &mut objects);
+    signals::set_lamps(desc, &stat.layout, tf.frame, &mut objects);
     // Meshes last, after the moving objects: keeps geometry ids and
     // `geometry_hash` values as they were.
     objects.extend_from_slice(&stat.meshes);
@@ -452,11 +458,16 @@ pub fn load_town_frame_with(
 ) -> Result<LoadedScene, SceneError> {
     let scene = town_scene_with(stat, desc, seed, (drive, frame), config);
     let (objs, triangle_estimate) = crate::scene::validate::validate(&scene, town_file)?;
+    // The static objects come first, the generated meshes last (see
+    // `town_scene_with`); the frame's moving objects lie between.
+    let n = scene.objects.len();
+    let static_objects = vec![0..stat.objects.len(), n - stat.meshes.len()..n];
     Ok(LoadedScene {
         path: town_file.to_path_buf(),
         desc: scene,
         objs,
         triangle_estimate,
+        static_objects,
     })
 }
 

@@ -3,7 +3,9 @@
 //! edge lines, stop lines and zebra crosswalks at junctions), curbs, sidewalks
 //! and corner pieces (flat gravel shoulders on country roads), and the
 //! terrain around everything. A highway loop's curved outer corners are
-//! built in `corners`; the outer roads' straights end at the arcs.
+//! built in `corners`; the outer roads' straights end at the arcs. A
+//! divided highway's outer roads get a median barrier (`median`, a mesh)
+//! with a solid yellow line on either side of it, and gravel shoulders.
 //!
 //! A road segment is described in (along, across) coordinates: `along` runs
 //! with the road's positive direction (+x or +y), `across` points to its left
@@ -19,6 +21,7 @@ use super::ramps::{RampSite, TAPER_M};
 use super::roundabout::{arm_start_m, roundabout_objects};
 
 mod corners;
+pub mod median;
 
 use corners::loop_corner_objects;
 
@@ -287,7 +290,9 @@ fn lane_lines(l: &Layout, sites: &[RampSite], s: &Segment, o: &mut Vec<ObjectDes
         if l.lanes == 1 {
             o.extend(dashed(s, s0, s1, 0.0, 0.12, "paint_white_road", mark));
         } else {
-            for u in [-0.12, 0.12] {
+            // Either side of a median barrier, else a double centre line.
+            let u = if divided(l, s) { 0.45 } else { 0.12 };
+            for u in [-u, u] {
                 o.extend(solid(s, s0, s1, u, 0.12, "paint_yellow_road", mark));
             }
             for k in 1..l.lanes {
@@ -301,6 +306,16 @@ fn lane_lines(l: &Layout, sites: &[RampSite], s: &Segment, o: &mut Vec<ObjectDes
             let ramps = sites_beside(s, sign, sites);
             o.extend(edge_line(s, (s0, s1), sign * (hw - 0.25), &ramps));
         }
+    }
+}
+
+/// Whether segment `s` lies on a divided highway (a median barrier runs
+/// on its centreline).
+fn divided(l: &Layout, s: &Segment) -> bool {
+    let k = (s.c / l.pitch_m).round() as usize;
+    match s.axis {
+        Axis::X => l.median_x(k),
+        Axis::Y => l.median_y(k),
     }
 }
 
@@ -354,8 +369,9 @@ fn junction_end(l: &Layout, s: &Segment, end: usize, o: &mut Vec<ObjectDesc>) {
     o.push(repeated(stripe, &[(n, across)]));
 }
 
-/// Curbs and sidewalks (or flat gravel shoulders on country roads) on both
-/// sides, leaving room beside ramp sites for their tapers and gores.
+/// Curbs and sidewalks (or flat gravel shoulders on country roads and
+/// divided highways) on both sides, leaving room beside
+/// ramp sites for their tapers and gores.
 fn roadsides(l: &Layout, sites: &[RampSite], s: &Segment, o: &mut Vec<ObjectDesc>) {
     let side = class("sidewalk");
     let hw = l.road_w_m / 2.0;
@@ -374,6 +390,9 @@ fn roadsides(l: &Layout, sites: &[RampSite], s: &Segment, o: &mut Vec<ObjectDesc
                     [p[0].min(q[0]), p[1].min(q[1])],
                     [p[0].max(q[0]), p[1].max(q[1])],
                 );
+                // Gravel on divided roads too: a paved (road) shoulder lay
+                // coplanar with the junctions' gravel corners, so which of
+                // road or terrain was seen there depended on traversal.
                 o.push(ground_quad(min, max, 0.0, "gravel", class("terrain")));
                 continue;
             }

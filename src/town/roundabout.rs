@@ -259,6 +259,7 @@ mod tests {
             river_row: None,
             roundabout: Some((1, 1)),
             loop_radius_m: 0.0,
+            median: false,
         };
         // r_out = 10 + 2 · (3.5 + 1) = 19 m, hw = 7 m.
         let (r_out, hw): (f64, f64) = (19.0, 7.0);
@@ -286,6 +287,7 @@ mod tests {
             river_row: None,
             roundabout: Some((1, 1)),
             loop_radius_m: 0.0,
+            median: false,
         };
         let (c, r_out) = ([100.0, 100.0], 19.0);
         let open = Some(opening_half_angle(&l));

@@ -169,12 +169,12 @@ fn signals_on(desc: &TownDesc, l: &Layout, frame: u64) -> Vec<Signal> {
 
 /// Lights the lamps of `frame` on every traffic-light instance in
 /// `objects`: its lit lens slot maps to the emitter, the other two stay
-/// dark glass. Instances are matched to sites by junction and heading.
-pub fn set_lamps(desc: &TownDesc, frame: u64, objects: &mut [ObjectDesc]) {
-    let l = Layout::new(desc);
-    let lamps: BTreeMap<(usize, usize, i64), Lamp> = signals_on(desc, &l, frame)
+/// dark glass. Instances are matched to sites by junction and heading;
+/// `l` is the town's layout (`Layout::new(desc)`, built once per town).
+pub fn set_lamps(desc: &TownDesc, l: &Layout, frame: u64, objects: &mut [ObjectDesc]) {
+    let lamps: BTreeMap<(usize, usize, i64), Lamp> = signals_on(desc, l, frame)
         .iter()
-        .map(|s| (key(&l, s.site.at, s.site.heading_deg), s.lamp))
+        .map(|s| (key(l, s.site.at, s.site.heading_deg), s.lamp))
         .collect();
     for o in objects {
         let ShapeDesc::Instance {
@@ -189,7 +189,7 @@ pub fn set_lamps(desc: &TownDesc, frame: u64, objects: &mut [ObjectDesc]) {
         }
         let at = o.transform.translate.unwrap_or_default();
         let heading = o.transform.rotate_deg.map_or(0.0, |r| r[2]);
-        let Some(&lamp) = lamps.get(&key(&l, at, heading)) else {
+        let Some(&lamp) = lamps.get(&key(l, at, heading)) else {
             continue;
         };
         for other in Lamp::ALL {

@@ -10,6 +10,7 @@ mod bad_input;
 mod bench;
 mod filter;
 mod preview;
+mod reference;
 mod render_output_dir;
 mod stats;
 mod trajectory;

@@ -305,17 +305,17 @@ fn filter_off_and_on_are_functions_of_the_samples() {
 }
 
 #[test]
-fn direct_light_passes_the_filter_untouched() {
+fn direct_light_is_split_off_as_direct_light_not_indirect() {
     // Open ground under a point light and a black sky: all its light is
-    // its first vertex's next-event estimate, so nothing is split off and
-    // the filtered image is the plain one bit for bit (a split taken before
-    // the first vertex's shadow rays resolve would blur its light).
+    // its first vertex's next-event estimate, so none of it is split off as
+    // indirect (a split taken before the first vertex's shadow rays resolve
+    // would blur it with the indirect light's wide filter), and all of it
+    // is the direct part (`l_direct`, its own filter, `direct.rs`).
     let body = "[sky]\nkind = \"constant\"\nle = [0.0, 0.0, 0.0]\n\
         [[light]]\nkind = \"point\"\nposition = [10.0, 0.0, 4.0]\nintensity = [400.0, 400.0, 400.0]\n\
         [[material]]\nname = \"grey\"\nkind = \"diffuse\"\nalbedo = [0.5, 0.5, 0.5]\n\
         [[object]]\nkind = \"quad\"\nsize = [200.0, 200.0]\nmaterial = \"grey\"\n";
     let on = render_body(body, 4, 2, true, Backend::Bvh);
-    let off = render_body(body, 4, 2, false, Backend::Bvh);
     let (film, layer) = rebuild_left(&on, 4, 2, 5);
     assert!(
         layer.rho.iter().any(|r| r.y > 0.0),
@@ -326,7 +326,12 @@ fn direct_light_passes_the_filter_untouched() {
         film.rgb.iter().any(|c| c.y > 0.0),
         "the light reaches the ground"
     );
-    assert_eq!(on.out.images, off.out.images);
+    for (k, (px, d)) in film.rgb.iter().zip(&layer.l_direct).enumerate() {
+        assert!(
+            (*px - *d).abs().max_element() <= 1e-6 * px.max_element(),
+            "pixel {k}: {px} vs {d}"
+        );
+    }
 }
 
 #[test]
@@ -371,6 +376,7 @@ fn filter_flat_surface(layer: &ViewInputs) -> (Film, Film) {
         sigma_px: 4.0,
         sigma_opacity: 0.1,
         sigma_depth_rel: 0.3,
+        direct_levels: 0,
     };
     denoise_guided(&mut film, layer, &guide, &widths);
     (before, film)

@@ -12,6 +12,7 @@ mod instancing;
 mod occlusion;
 mod people;
 mod rain;
+mod static_tiles;
 mod street;
 mod traced;
 mod vegetation;

@@ -47,7 +47,7 @@ fn check(values: &[f64], expected: f64) {
 
 fn sphere_in_sky(material: &str, spp: u32, max_depth: u32) -> Rendered {
     let text = format!(
-        "{}[render]\nspp = {spp}\nmax_depth = {max_depth}\nseed = 3\n[sky]\nkind = \"constant\"\nle = [1.0, 1.0, 1.0]\n{material}\n[[object]]\nkind = \"sphere\"\nradius = 2.0\nmaterial = \"m\"\ninstance = 7\ntransform = {{ translate = [8.0, 0.0, 1.65] }}\n",
+        "{}[render]\nspp = {spp}\nmax_depth = {max_depth}\nseed = 3\nfilter_indirect = false\n[sky]\nkind = \"constant\"\nle = [1.0, 1.0, 1.0]\n{material}\n[[object]]\nkind = \"sphere\"\nradius = 2.0\nmaterial = \"m\"\ninstance = 7\ntransform = {{ translate = [8.0, 0.0, 1.65] }}\n",
         camera_block(96, 64, [0.0, 0.0, 1.65])
     );
     let mut loaded = scene_from_toml(&text);

@@ -19,7 +19,7 @@ const RHO: f64 = 0.5;
 fn scene(lights: &str) -> String {
     format!(
         "[camera]\nwidth = 96\nheight = 72\nhfov_deg = 60.0\nbaselines_cm = [10.0]\nposition = [0.0, 0.0, 3.0]\npitch_deg = 90.0\n\
-[render]\nspp = 128\nmax_depth = 1\nseed = 21\n\
+[render]\nspp = 128\nmax_depth = 1\nseed = 21\nfilter_indirect = false\n\
 [[material]]\nname = \"m\"\nkind = \"diffuse\"\nalbedo = [{RHO:?}, {RHO:?}, {RHO:?}]\n\
 [[object]]\nkind = \"quad\"\nsize = [100.0, 100.0]\nmaterial = \"m\"\ninstance = 3\n{lights}"
     )

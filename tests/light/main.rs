@@ -11,4 +11,5 @@ mod bvh;
 mod media_analytic;
 mod noise_town;
 mod sky_physical_furnace;
+mod tiny_sun;
 mod wet_surfaces;

@@ -53,6 +53,7 @@ fn road_scene_pitched(wetness: Option<(f64, f64)>, spp: u32, pitch_deg: f64) -> 
 spp = {}
 max_depth = 1
 seed = 5
+filter_indirect = false
 [sky]
 kind = "gradient"
 zenith = [{ZENITH}, {ZENITH}, {ZENITH}]

@@ -5,4 +5,5 @@
 mod common;
 
 mod layouts;
+mod mitsuba;
 mod roundtrip;

@@ -176,9 +176,10 @@ fn every_head_lights_exactly_one_lamp_in_every_frame_of_a_cycle() {
         let lib = Library::new(&desc);
         assert!(lights.len() >= 8, "{name}: {} traffic lights", lights.len());
         let mut seen = Vec::new();
+        let l = Layout::new(&desc);
         for k in 0..cycle_frames(&desc) {
             let mut frame = lights.clone();
-            signals::set_lamps(&desc, k, &mut frame);
+            signals::set_lamps(&desc, &l, k, &mut frame);
             for o in &frame {
                 let heads = lit_per_head(&lib, o);
                 let want = heads_of(&lib.prefab(o).name);
@@ -396,12 +397,13 @@ fn lamps_are_deterministic_and_another_speed_gets_its_own_clock() {
     }
     let mut a = traffic_lights(&desc);
     let mut b = a.clone();
-    signals::set_lamps(&desc, 4321, &mut a);
-    signals::set_lamps(&desc, 4321, &mut b);
+    let l = Layout::new(&desc);
+    signals::set_lamps(&desc, &l, 4321, &mut a);
+    signals::set_lamps(&desc, &l, 4321, &mut b);
     assert_eq!(a, b);
     // Setting twice replaces the lamp, it does not add a second one.
-    signals::set_lamps(&desc, 4321 + 50, &mut b);
-    signals::set_lamps(&desc, 4321, &mut b);
+    signals::set_lamps(&desc, &l, 4321 + 50, &mut b);
+    signals::set_lamps(&desc, &l, 4321, &mut b);
     assert_eq!(a, b);
 }
 

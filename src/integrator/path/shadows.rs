@@ -58,7 +58,10 @@ impl PendingShadows {
 
     /// Tests every pending shadow ray in order (unless already answered) and
     /// adds the unoccluded contributions to `l`; leaves the set empty.
-    pub fn resolve(&mut self, accel: &impl Accel, l: &mut Vec3) {
+    /// Returns the part added by coherent rays (the sun's), which the
+    /// denoiser keeps out of the direct light it filters.
+    pub fn resolve(&mut self, accel: &impl Accel, l: &mut Vec3) -> Vec3 {
+        let mut coherent = Vec3::ZERO;
         for (k, (shadow, contribution)) in self.items[..self.len].iter().enumerate() {
             let occluded = if self.known >> k & 1 != 0 {
                 self.blocked >> k & 1 != 0
@@ -67,11 +70,15 @@ impl PendingShadows {
             };
             if !occluded {
                 *l += *contribution;
+                if self.coherent >> k & 1 != 0 {
+                    coherent += *contribution;
+                }
             }
         }
         self.len = 0;
         self.coherent = 0;
         self.known = 0;
         self.blocked = 0;
+        coherent
     }
 }

@@ -132,6 +132,8 @@ impl VolState {
                 l_surf: first.surf_fog.l_surf(st.l) + first.split.denoise.l_surf,
                 rho: first.surf_fog.rho + first.split.denoise.rho,
                 split_behind_delta: false,
+                // Direct light is filtered in medium-free scenes only.
+                ..DenoiseSample::default()
             },
         }
     }

@@ -201,6 +201,8 @@ pub struct FrameSpec {
     pub sensor_noise_iso: Option<f64>,
     /// The description's image-space filters (off: plain path-traced images).
     pub filter: bool,
+    /// Reference mode: plain, unbiased path tracing ([`reference_mode`]).
+    pub reference: bool,
     /// Traversal backend.
     pub backend: Backend,
 }
@@ -213,6 +215,7 @@ impl Default for FrameSpec {
             weather: None,
             sensor_noise_iso: None,
             filter: true,
+            reference: false,
             backend: Backend::default_backend(),
         }
     }
@@ -258,11 +261,17 @@ impl FrameRecipe {
             if origin.town.is_some() && crate::town::vehicles::needs_headlights(p.preset) {
                 crate::town::vehicles::add_headlights(&mut loaded.desc);
             }
+            // In rain most pedestrians walk under an umbrella.
+            if origin.town.is_some() && p.rain_mm_per_h > 0.0 {
+                crate::town::people::umbrella::add_umbrellas(&mut loaded.desc);
+            }
         }
         if !spec.filter {
             loaded.desc.turn_image_filters_off();
         }
-        let noise = sensor_noise(spec.sensor_noise_iso, weather.as_mut())?;
+        let noise_iso =
+            reference_mode(spec.reference, &mut loaded).unwrap_or(spec.sensor_noise_iso);
+        let noise = sensor_noise(noise_iso, weather.as_mut())?;
         origin.seeds.samples = Some(seed);
         let settings = RenderSettings {
             spp: loaded.desc.render.spp,
@@ -297,6 +306,21 @@ impl FrameRecipe {
             built,
         })
     }
+}
+
+/// Reference mode (`render --reference`), decided here and only here: plain,
+/// unbiased path tracing. It turns the description's image-space filters
+/// off and returns the sensor noise override it forces (ISO 0: none, also
+/// over a weather preset's). Every biased pass today (the image filters,
+/// including the direct-light denoiser) hangs on those filter switches, so
+/// nothing else needs the flag; a new biased pass must be turned off here.
+/// None when `reference` is off.
+pub fn reference_mode(reference: bool, loaded: &mut LoadedScene) -> Option<Option<f64>> {
+    if !reference {
+        return None;
+    }
+    loaded.desc.turn_image_filters_off();
+    Some(Some(0.0))
 }
 
 /// The frame's sensor noise: `iso` (0 = none) over the weather preset's; the

@@ -263,3 +263,53 @@ fn a_built_scene_sits_around_its_origin_on_either_backend() {
         assert!((hit.t - 4.5).abs() < 1e-4, "{backend}: t = {}", hit.t);
     }
 }
+
+#[test]
+fn pedestrians_carry_umbrellas_in_rain_only() {
+    use crate::scene::desc::ShapeDesc;
+    let town = crate::town::load_named_town("town01", None).unwrap();
+    let people = |w: Weather| {
+        let spec = FrameSpec {
+            weather: Some(WeatherChoice {
+                preset: w,
+                seed: Some(1),
+            }),
+            ..seeded(3)
+        };
+        let s = FrameSource::town(&town, 3, (0, 0), CameraConfig::Normal).unwrap();
+        let r = FrameRecipe::new(s, &spec).unwrap();
+        let names: Vec<String> = r
+            .loaded
+            .desc
+            .objects
+            .iter()
+            .filter(|o| o.semantic.as_deref() == Some("pedestrian"))
+            .filter_map(|o| match &o.shape {
+                ShapeDesc::Instance { prefab, .. } => Some(prefab.clone()),
+                _ => None,
+            })
+            .collect();
+        let defined = r.loaded.desc.prefabs.iter().map(|p| p.name.clone());
+        (names, defined.collect::<std::collections::BTreeSet<_>>())
+    };
+    let (dry, _) = people(Weather::Cloudy);
+    let (wet, prefabs) = people(Weather::Storm);
+    assert!(
+        dry.len() >= 8,
+        "town01 frame 0 has {} pedestrians",
+        dry.len()
+    );
+    assert_eq!(dry.len(), wet.len());
+    assert!(dry.iter().all(|n| !n.ends_with("_umbrella")));
+    let under = wet.iter().filter(|n| n.ends_with("_umbrella")).count();
+    assert!(
+        under * 2 > wet.len() && under < wet.len(),
+        "{under} of {} under umbrellas",
+        wet.len()
+    );
+    // Each umbrella walker keeps its walk phase and has its prefab.
+    for (d, w) in dry.iter().zip(&wet) {
+        assert!(w == d || *w == format!("{d}_umbrella"), "{d} became {w}");
+        assert!(prefabs.contains(w), "{w} is not defined");
+    }
+}

@@ -13,6 +13,8 @@ use crate::scene::desc::{ObjectDesc, ShapeDesc, TransformDesc};
 const SIDES: usize = 8;
 /// Latitudes per hemisphere cap, pole excluded (equator included).
 const CAP_RINGS: usize = 2;
+/// Rings of an umbrella canopy from the apex out to the rim.
+const CANOPY_RINGS: usize = 4;
 
 /// Triangles of one part, per material name.
 #[derive(Default)]
@@ -151,6 +153,45 @@ impl Parts {
         let sp = m.vertex(c - DVec3::Z * h, -DVec3::Z);
         let np = m.vertex(c, DVec3::Z);
         m.stitch(&rings, SIDES + 4, Some(sp), Some(np));
+    }
+
+    /// An open umbrella canopy hanging from `apex`: `ribs` ribs of length
+    /// `radius` drooping `depth` at their tips (a dome z ∝ −ρ²), the cloth
+    /// between two ribs drawn in a little at the rim; open underneath (both
+    /// faces are seen: reflection-only materials are two-sided).
+    pub fn canopy(&mut self, mat: &str, apex: DVec3, radius: f64, depth: f64, ribs: usize) {
+        let m = self.mesh(mat);
+        let around = 2 * ribs;
+        let mut rings = Vec::new();
+        for i in 1..=CANOPY_RINGS {
+            let f = i as f64 / CANOPY_RINGS as f64;
+            let first = m.p.len() as u32;
+            for k in 0..around {
+                let ph = k as f64 * std::f64::consts::TAU / around as f64;
+                // Between ribs the cloth sags inward, most at the rim.
+                let rho = radius * f * if k % 2 == 1 { 1.0 - 0.07 * f } else { 1.0 };
+                let dir = DVec3::new(ph.cos(), ph.sin(), 0.0);
+                let p = apex + dir * rho - DVec3::Z * (depth * (rho / radius).powi(2));
+                // Gradient of z + depth·ρ²/R² = const.
+                let n = DVec3::Z + dir * (2.0 * depth * rho / (radius * radius));
+                m.vertex(p, n);
+            }
+            rings.push(first);
+        }
+        let top = m.vertex(apex, DVec3::Z);
+        let s = around as u32;
+        // Counter-clockwise seen from above: the face normal is the cloth's.
+        for k in 0..s {
+            m.t.push([top, rings[0] + k, rings[0] + (k + 1) % s]);
+        }
+        for w in rings.windows(2) {
+            for k in 0..s {
+                let (a, b) = (w[0] + k, w[0] + (k + 1) % s);
+                let (c, d) = (w[1] + k, w[1] + (k + 1) % s);
+                m.t.push([a, c, d]);
+                m.t.push([a, d, b]);
+            }
+        }
     }
 
     /// Triangles in all parts.

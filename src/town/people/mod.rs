@@ -1,6 +1,7 @@
 //! People: articulated bodies (19 joints, `body`), posed by a walk cycle or
 //! standing (`pose`), dressed in smooth parts (`clothing`, `mesh`), and
-//! seated riders for two-wheelers (`rider`).
+//! seated riders for two-wheelers (`rider`), and umbrellas in rain
+//! (`umbrella`).
 //!
 //! Cost: a person is one of `VARIANTS` seeded looks (adults and children;
 //! colours baked in, so no material map) in one of `PHASES` quantised walk
@@ -12,6 +13,7 @@ pub mod clothing;
 pub mod mesh;
 pub mod pose;
 pub mod rider;
+pub mod umbrella;
 
 use crate::scene::desc::{MaterialDesc, PrefabDesc};
 
@@ -94,14 +96,14 @@ pub fn people_prefabs() -> Vec<PrefabDesc> {
 }
 
 pub(super) fn generate_prefabs() -> Vec<PrefabDesc> {
-    (0..VARIANTS)
-        .flat_map(|v| {
-            (0..PHASES)
-                .map(Some)
-                .chain([None])
-                .map(move |p| person_prefab(v, p))
-        })
+    looks_and_poses()
+        .map(|(v, p)| person_prefab(v, p))
         .collect()
+}
+
+/// Every (variant, quantised phase or standing) a prefab exists for.
+pub fn looks_and_poses() -> impl Iterator<Item = (u32, Option<u32>)> {
+    (0..VARIANTS).flat_map(|v| (0..PHASES).map(Some).chain([None]).map(move |p| (v, p)))
 }
 
 /// The materials people wear.

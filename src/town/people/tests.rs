@@ -228,3 +228,95 @@ fn riders_sit_on_the_seat_with_hands_on_grips_and_feet_on_pegs() {
         assert_eq!(p, rider_prefab("r", seat, 2));
     }
 }
+
+/// Positions of a prefab's meshes of material `mat`.
+fn mesh_points(p: &PrefabDesc, mat: &str) -> Vec<DVec3> {
+    p.objects
+        .iter()
+        .filter(|o| o.material.as_deref() == Some(mat))
+        .flat_map(|o| match &o.shape {
+            ShapeDesc::Mesh { positions, .. } => positions.clone(),
+            _ => panic!("people are meshes"),
+        })
+        .map(DVec3::from_array)
+        .collect()
+}
+
+#[test]
+fn an_umbrella_canopy_covers_the_head_from_the_raised_hand() {
+    use super::umbrella::{umbrella_prefab, umbrella_prefab_name};
+    for v in 0..VARIANTS {
+        for phase in [Some(0), Some(5), None] {
+            let p = umbrella_prefab(v, phase);
+            assert_eq!(p.name, umbrella_prefab_name(v, phase));
+            let person = Person::variant(v);
+            let head = walk(&person.body, 0.0).at(Joint::Head);
+            let canopy: Vec<DVec3> = p
+                .objects
+                .iter()
+                .filter(|o| {
+                    o.material
+                        .as_deref()
+                        .is_some_and(|m| m.starts_with("person_"))
+                        && o.material.as_deref() != Some("person_umbrella_shaft")
+                })
+                .flat_map(|o| match &o.shape {
+                    ShapeDesc::Mesh { positions, .. } => positions.clone(),
+                    _ => unreachable!(),
+                })
+                .map(DVec3::from_array)
+                .filter(|q| q.z > head.z + person.body.head_r)
+                .collect();
+            assert!(!canopy.is_empty(), "variant {v}: nothing above the head");
+            // The canopy's reach in the ground plane covers the head.
+            let shaft = mesh_points(&p, "person_umbrella_shaft");
+            let top = shaft.iter().fold(
+                DVec3::splat(f64::MIN),
+                |a, q| {
+                    if q.z > a.z {
+                        *q
+                    } else {
+                        a
+                    }
+                },
+            );
+            let reach = canopy
+                .iter()
+                .map(|q| (q.truncate() - top.truncate()).length())
+                .fold(0.0, f64::max);
+            let head_off = (head.truncate() - top.truncate()).length() + person.body.head_r;
+            assert!(
+                reach > head_off + 0.1,
+                "variant {v}: canopy reach {reach} vs head at {head_off}"
+            );
+            // The shaft rises in front of the face, from hand height up.
+            let low = shaft.iter().map(|q| q.z).fold(f64::MAX, f64::min);
+            assert!(top.x > head.x && low > 0.6 * head.z, "shaft {low}..{top}");
+        }
+    }
+}
+
+#[test]
+fn a_canopy_faces_up_and_sits_on_its_dome() {
+    let mut parts = Parts::default();
+    let apex = DVec3::new(0.2, -0.1, 2.0);
+    parts.canopy("c", apex, 0.5, 0.2, 8);
+    let objects = parts.into_objects("pedestrian");
+    let ShapeDesc::Mesh {
+        positions,
+        triangles,
+        ..
+    } = &objects[0].shape
+    else {
+        panic!("a mesh");
+    };
+    for t in triangles {
+        let [a, b, c] = t.map(|k| DVec3::from_array(positions[k as usize]));
+        assert!((b - a).cross(c - a).z > 0.0, "downward face {t:?}");
+    }
+    for q in positions.iter().map(|q| DVec3::from_array(*q)) {
+        let rho = (q - apex).truncate().length();
+        assert!(rho <= 0.5 + 1e-12);
+        assert!((apex.z - q.z - 0.2 * (rho / 0.5).powi(2)).abs() < 1e-12);
+    }
+}

@@ -2,7 +2,8 @@
 //! outer roads meet, a quarter circle of radius R about a centre R in from
 //! both outer centrelines replaces the corner junction. Asphalt, markings
 //! (centre line, lane dividers and edge lines as on the straights) and
-//! gravel shoulders follow the arc; the straights end at its tangent points
+//! gravel shoulders (asphalt to the shoulders' edges on a divided
+//! highway) follow the arc; the straights end at its tangent points
 //! (see `roads`), so the corner square outside the arc is left to the ground.
 //!
 //! Pieces are quads and boxes turned about z (road surfaces stay exactly at
@@ -85,7 +86,9 @@ pub fn loop_corner_objects(l: &Layout) -> Vec<ObjectDesc> {
         let r = l.loop_radius_m;
         // The asphalt reaches 1 cm inside its inner edge: a chord piece's
         // inner corners fall a hair short of the inner circle.
-        let asphalt = (r - hw - 0.01, r + hw);
+        // A divided highway's hard shoulders are part of the asphalt.
+        let paved = if l.median { l.sidewalk_m } else { 0.0 };
+        let asphalt = (r - hw - paved - 0.01, r + hw + paved);
         out.extend(band(&c, asphalt, Cut::Quads(0.0), "asphalt", class("road")));
         // Lines at offset u from the centreline (positive outward).
         let line = |u: f64, w: f64, cut: Cut, m: &str| {
@@ -94,7 +97,9 @@ pub fn loop_corner_objects(l: &Layout) -> Vec<ObjectDesc> {
         if l.lanes == 1 {
             out.extend(line(0.0, 0.12, Cut::Dashed(paint), "paint_white_road"));
         } else {
-            for u in [-0.12, 0.12] {
+            // Either side of a divided highway's median barrier.
+            let u = if l.median { 0.45 } else { 0.12 };
+            for u in [-u, u] {
                 out.extend(line(u, 0.12, Cut::Solid(paint), "paint_yellow_road"));
             }
             for k in 1..l.lanes {
@@ -115,13 +120,10 @@ pub fn loop_corner_objects(l: &Layout) -> Vec<ObjectDesc> {
         // Gravel shoulders, reaching 5 cm under the asphalt's edges.
         let sw = l.sidewalk_m;
         for (r0, r1) in [(r - hw - sw, r - hw + 0.05), (r + hw - 0.05, r + hw + sw)] {
-            out.extend(band(
-                &c,
-                (r0, r1),
-                Cut::Quads(SHOULDER_Z),
-                "gravel",
-                class("terrain"),
-            ));
+            if !l.median {
+                let (m, label) = ("gravel", class("terrain"));
+                out.extend(band(&c, (r0, r1), Cut::Quads(SHOULDER_Z), m, label));
+            }
         }
     }
     out

@@ -18,6 +18,7 @@ fn layout(lanes: u32, sidewalks: bool) -> Layout {
         river_row: None,
         roundabout: None,
         loop_radius_m: 0.0,
+        median: false,
     }
 }
 

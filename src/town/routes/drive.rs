@@ -316,13 +316,15 @@ impl DrivePath {
             self.from[1] + DIRS[self.dir][1],
         ];
         let lanes = self.l.lanes;
-        // Legal moves at `to` (no U-turns, no stubs).
+        let ju = (to[0] as usize, to[1] as usize);
+        // Legal moves at `to` (no U-turns, no stubs, no left turn across a
+        // highway's median barrier).
         let options: Vec<(Move, usize)> = [(Move::Right, 3), (Move::Straight, 0), (Move::Left, 1)]
             .into_iter()
+            .filter(|&(m, _)| m != Move::Left || !self.l.median_through(ju.0, ju.1))
             .map(|(m, q)| (m, (self.dir + q) % 4))
             .filter(|&(_, d)| self.valid(to, d))
             .collect();
-        let ju = (to[0] as usize, to[1] as usize);
         let curve = self.l.loop_corner_at(ju.0, ju.1);
         let free = self.changes;
         let need = |m: Move, cur: u32, r: &mut Rng| match m {

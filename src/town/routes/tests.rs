@@ -17,6 +17,7 @@ fn town(roundabout: bool) -> Layout {
         river_row: None,
         roundabout: roundabout.then_some((1, 1)),
         loop_radius_m: 0.0,
+        median: false,
     }
 }
 

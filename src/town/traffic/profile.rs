@@ -147,6 +147,7 @@ mod tests {
             river_row: None,
             roundabout: None,
             loop_radius_m: 0.0,
+            median: false,
         };
         routes(&l, &Turns::new(3.5)).remove(0)
     }

@@ -99,15 +99,6 @@ pub fn lathe(profile: &[[f64; 2]], segments: usize) -> LocalMesh {
     m
 }
 
-/// Merges `b` into `a`.
-pub fn append(a: &mut LocalMesh, b: LocalMesh) {
-    let base = a.positions.len() as u32;
-    a.positions.extend(b.positions);
-    a.normals.extend(b.normals);
-    a.triangles
-        .extend(b.triangles.iter().map(|t| t.map(|i| i + base)));
-}
-
 /// Signed volume of a closed mesh (divergence theorem), > 0 when faces
 /// point out.
 pub fn volume(m: &LocalMesh) -> f64 {

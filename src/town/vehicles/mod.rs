@@ -214,7 +214,7 @@ pub fn build(kind: BodyKind) -> (Kit, Kit) {
     let class = kind.class();
     let (mut paint, mut parts) = (Kit::default(), Kit::default());
     match kind {
-        BodyKind::Motorcycle => two_wheel::motorcycle(class, None, &mut paint, &mut parts),
+        BodyKind::Motorcycle => two_wheel::motorcycle(class, &mut paint, &mut parts),
         BodyKind::Bicycle => two_wheel::bicycle(class, &mut paint, &mut parts),
         k => {
             let s = spec::spec_of(k).expect("a four-wheeled body");

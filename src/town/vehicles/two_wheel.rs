@@ -1,7 +1,8 @@
 //! Motorcycles and bicycles (riders are placed on `BodyKind::seat`): a
 //! motorcycle's tank, tail and mudguards in paint over a tube frame, an
-//! engine, exhaust, fork, handlebar, lamps and a rear plate; a bicycle's
-//! diamond frame in paint, wire wheels, saddle, crank and pedals.
+//! engine, exhaust, fork, handlebar and lamps (its rear plate is the
+//! model's plate prefab); a bicycle's diamond frame in paint, wire wheels,
+//! saddle, crank and pedals.
 //!
 //! Body frame as for cars: x forward, y left, z up, on the ground.
 
@@ -33,7 +34,7 @@ fn at(x: f64, y: f64, z: f64) -> DAffine3 {
 }
 
 /// A motorcycle: paint into `paint`, everything else into `parts`.
-pub fn motorcycle(class: &'static str, plate_text: Option<&str>, paint: &mut Kit, parts: &mut Kit) {
+pub fn motorcycle(class: &'static str, paint: &mut Kit, parts: &mut Kit) {
     let (ax, r) = (MOTO_AXLE_X, MOTO_R);
     // Wheels: centred on y = 0 (their outer face is +y: shift by half).
     car_wheel(
@@ -140,9 +141,6 @@ pub fn motorcycle(class: &'static str, plate_text: Option<&str>, paint: &mut Kit
             ellipsoid([0.03, 0.02, 0.02], 8, 4),
             at(0.55, y, 0.9),
         );
-    }
-    if let Some(t) = plate_text {
-        super::plates::plate(parts, class, t, -0.84, 0.7, false, 0.4);
     }
 }
 
