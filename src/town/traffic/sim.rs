@@ -50,7 +50,7 @@ pub const BLINK_HZ: f64 = 1.5;
 /// How far before a turn's stop line the indicator starts, metres.
 pub const SIGNAL_AHEAD_M: f64 = 35.0;
 /// A leader this fast inside a junction leaves room behind it, m/s.
-const MOVING_LEADER_MPS: f64 = 3.0;
+pub const MOVING_LEADER_MPS: f64 = 3.0;
 
 /// Cyclists' speed under the town's limit `limit_mps`, m/s.
 pub fn cyclist_speed_mps(limit_mps: f64) -> f64 {
@@ -246,7 +246,7 @@ impl<'a> Ctx<'a> {
             }
             let v = (a.v + A_LON_MPS2 * self.dt).min(cap).max(0.0);
             if let Some(st) = &states[i] {
-                if !st.inside() && v * self.dt > st.d_stop - 0.01 {
+                if !st.inside() && v * self.dt > st.d_stop + 0.01 {
                     claimed[i] = true;
                 }
             }
