@@ -68,6 +68,11 @@ pub struct Crossing {
     pub roundabout: bool,
     /// The lane the move is made from.
     pub lane: u32,
+    /// At a right-in, right-out junction of a divided highway
+    /// (`Layout::median_through`): `Some(true)` on the highway (no
+    /// signals, right of way), `Some(false)` on the side street (gives
+    /// way to the highway traffic it merges into); `None` elsewhere.
+    pub major: Option<bool>,
 }
 
 /// The path driven so far and the walk that grows it.
@@ -440,6 +445,13 @@ impl DrivePath {
                 dir: self.dir,
                 roundabout: kind == Kind::Ring,
                 lane: self.lane,
+                major: self.l.median_through(ju.0, ju.1).then(|| {
+                    if self.dir % 2 == 0 {
+                        self.l.median_x(ju.1)
+                    } else {
+                        self.l.median_y(ju.0)
+                    }
+                }),
             });
         }
         self.from = to;

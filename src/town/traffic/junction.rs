@@ -9,7 +9,10 @@
 //! yield to opposing left turns that have not entered, so two opposing
 //! left turns never wait for each other). Drivers already inside are
 //! never stopped by these rules; (b) keeps everyone else out until they
-//! have left.
+//! have left. Where a street meets a divided highway (right in, right
+//! out: `Crossing::major`), the highway has no signals and the right of
+//! way; the street's drivers also wait until no highway driver whose lane
+//! they merge into is inside or can arrive before they are clear.
 
 use super::{Schedule, A_LAT_MPS2, A_LON_MPS2};
 use crate::town::routes::drive::{Crossing, DrivePath, Move};
@@ -21,6 +24,10 @@ pub const CLEAR_RESERVE_S: f64 = 1.0;
 /// Margin by which an opposing driver must arrive after a left turn has
 /// cleared, seconds.
 const YIELD_MARGIN_S: f64 = 1.5;
+/// The first seconds of an axis's green, in which a left turner standing
+/// at its line goes before the opposing traffic (a leading left turn: in
+/// a steady opposing stream it would otherwise never find a gap).
+const LEFT_LEAD_S: f64 = 3.0;
 
 /// One driver's next junction (the first whose zone its rear has not left).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -59,10 +66,29 @@ impl JState {
     pub fn inside(&self) -> bool {
         self.d_stop < -0.01
     }
+
+    /// Whether it is a left turner standing at its stop line in the first
+    /// `LEFT_LEAD_S` of its green at time `t`.
+    fn leads(&self, sched: &Schedule, t: f64) -> bool {
+        let waiting = self.d_stop.abs() < 1.0 && self.v < 0.5;
+        let early = sched.axis_time_s(self.c.dir, t) < LEFT_LEAD_S;
+        self.c.turn == Move::Left && !self.c.roundabout && waiting && early
+    }
 }
 
 /// Whether drivers at the same junction may be inside it together.
 pub fn compatible(a: &Crossing, b: &Crossing) -> bool {
+    match (a.major, b.major) {
+        (Some(true), Some(true)) => return true,
+        // A highway driver and a street driver: apart unless the street's
+        // right turn merges into the kerb lane the highway driver keeps.
+        (Some(x), Some(y)) if x != y => {
+            let (m, s) = if x { (a, b) } else { (b, a) };
+            let merge = m.turn == Move::Straight && m.dir == (s.dir + 3) % 4;
+            return !(merge && m.lane == s.lane);
+        }
+        _ => {}
+    }
     if a.roundabout {
         return a.dir == b.dir && a.lane == b.lane;
     }
@@ -102,9 +128,12 @@ pub fn clear_time_s(path: &DrivePath, from: f64, d: f64, v: f64, v_max: f64) -> 
 }
 
 /// Whether the driver in state `me` (its rear `d` metres from clearing
-/// the zone) clears it before its lamp turns red: always at the roundabout.
+/// the zone) clears it before its lamp turns red: always at the roundabout
+/// and on a divided highway's right of way.
 pub fn can_clear(sched: &Schedule, me: &JState, clear_s: f64, t: f64) -> bool {
-    me.c.roundabout || clear_s + CLEAR_RESERVE_S <= until_red_s(sched, me.c.dir, t)
+    me.c.roundabout
+        || me.c.major == Some(true)
+        || clear_s + CLEAR_RESERVE_S <= until_red_s(sched, me.c.dir, t)
 }
 
 /// Whether another driver `o` at the same junction keeps `me` (not yet
@@ -118,11 +147,25 @@ pub fn blocks(
     clear_s: f64,
     t: f64,
 ) -> bool {
+    match (me.c.major, o.c.major) {
+        (Some(true), _) => return false,
+        (Some(false), Some(true)) if !compatible(&me.c, &o.c) => {
+            let t_arr = earliest_arrival_s(o.d_stop, o.v, o.v_max);
+            return o_inside || t_arr < clear_s + YIELD_MARGIN_S;
+        }
+        _ => {}
+    }
     if o_inside {
         return !compatible(&me.c, &o.c);
     }
     let opposing = o.c.dir == (me.c.dir + 2) % 4;
+    if opposing && me.c.turn != Move::Left && o.leads(sched, t) {
+        return true;
+    }
     if me.c.turn != Move::Left || me.c.roundabout || !opposing {
+        return false;
+    }
+    if o.c.turn != Move::Left && me.leads(sched, t) {
         return false;
     }
     let yields = me.c.dir >= 2 || o.c.turn != Move::Left;
@@ -143,6 +186,7 @@ mod tests {
             dir,
             roundabout,
             lane,
+            major: None,
         }
     }
 
@@ -161,6 +205,85 @@ mod tests {
         assert!(compatible(&r(1, 0), &r(1, 0)));
         assert!(!compatible(&r(1, 0), &r(1, 1)));
         assert!(!compatible(&r(1, 0), &r(3, 0)));
+    }
+
+    #[test]
+    fn the_divided_highway_has_the_right_of_way_where_a_street_merges_in() {
+        use Move::*;
+        let desc = crate::town::source::load_named_town("town06", None)
+            .expect("town06")
+            .desc;
+        let sched = crate::town::traffic::Plan::new(&desc).schedule.clone();
+        let at = |dir, turn, major, d_stop: f64, v| JState {
+            c: Crossing {
+                major: Some(major),
+                ..crossing(dir, turn, 0, false)
+            },
+            d_stop,
+            v,
+            v_max: 25.0,
+        };
+        // Westbound highway straight on, a southbound street turning right
+        // into it; the eastbound carriageway and the exit meet neither.
+        let (west, east, exit) = (
+            at(2, Straight, true, 50.0, 25.0),
+            at(0, Straight, true, 0.0, 25.0),
+            at(2, Right, true, 0.0, 10.0),
+        );
+        let street = at(3, Right, false, 0.0, 0.0);
+        assert!(!compatible(&west.c, &street.c) && !compatible(&street.c, &west.c));
+        assert!(compatible(&east.c, &street.c) && compatible(&exit.c, &street.c));
+        assert!(compatible(&west.c, &east.c));
+        let inner = Crossing { lane: 1, ..west.c };
+        assert!(compatible(&inner, &street.c));
+        // The highway never waits for the street, nor for red.
+        assert!(!blocks(&sched, &west, &street, true, 5.0, 0.0));
+        let red = (0..2000)
+            .map(|k| k as f64 * 0.1)
+            .find(|&t| until_red_s(&sched, 2, t) == 0.0)
+            .expect("a red phase");
+        assert!(can_clear(&sched, &west, 5.0, red));
+        // The street waits for a highway driver 2 s away (50 m at 25 m/s),
+        // not for one 10 s away, nor for the other carriageway.
+        assert!(blocks(&sched, &street, &west, false, 5.0, 0.0));
+        let far = JState {
+            d_stop: 250.0,
+            ..west
+        };
+        assert!(!blocks(&sched, &street, &far, false, 5.0, 0.0));
+        assert!(!blocks(&sched, &street, &east, true, 5.0, 0.0));
+        assert!(blocks(&sched, &street, &far, true, 5.0, 0.0));
+    }
+
+    #[test]
+    fn a_left_turner_waiting_at_its_line_leads_the_green() {
+        use Move::*;
+        let desc = crate::town::source::load_named_town("town03", None)
+            .expect("town03")
+            .desc;
+        let sched = crate::town::traffic::Plan::new(&desc).schedule.clone();
+        let green = (0..2000)
+            .map(|k| k as f64 * 0.1)
+            .find(|&t| sched.axis_time_s(0, t) < 0.05)
+            .expect("an east-west green");
+        let at = |dir, turn, d_stop, v| JState {
+            c: crossing(dir, turn, 0, false),
+            d_stop,
+            v,
+            v_max: 11.0,
+        };
+        let left = at(0, Left, 0.0, 0.0);
+        let straight = at(2, Straight, 0.0, 0.0);
+        // Early in the green: the opposing straight waits for the left turn,
+        // which does not yield to it.
+        assert!(blocks(&sched, &straight, &left, false, 4.0, green + 1.0));
+        assert!(!blocks(&sched, &left, &straight, false, 4.0, green + 1.0));
+        // Later, or with the left turner still rolling up, the usual rule:
+        // the left turn yields.
+        for (l, t) in [(left, green + 5.0), (at(0, Left, 10.0, 5.0), green + 1.0)] {
+            assert!(!blocks(&sched, &straight, &l, false, 4.0, t));
+            assert!(blocks(&sched, &l, &straight, false, 4.0, t));
+        }
     }
 
     #[test]
