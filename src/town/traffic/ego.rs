@@ -18,7 +18,10 @@
 //! comes within `MARGIN_M` of the ego's in some frame of the chunk is
 //! removed for the whole chunk, and the chunk is simulated again without
 //! them, a few rounds; the last round's conflicts are removed too, so no
-//! footprint ever overlaps. Pedestrians within reach of the ego are removed
+//! footprint ever overlaps. A vehicle that holds the ego standing behind
+//! it for longer than a whole signal cycle (one that waits at a junction
+//! it cannot clear for a long time) is removed for the chunk likewise, so
+//! the ego never stands longer than a red light and its queue. Pedestrians within reach of the ego are removed
 //! likewise. Frame K of a drive costs the chunks up to K / `CHUNK_FRAMES`
 //! once (a dataset sequence fits in the first).
 
@@ -26,7 +29,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::sync::{Arc, Mutex, OnceLock};
 
 use super::junction::{clear_time_s, CLEAR_RESERVE_S};
-use super::sim::{BLINK_HZ, SIGNAL_AHEAD_M};
+use super::sim::{BLINK_HZ, MOVING_LEADER_MPS, SIGNAL_AHEAD_M};
 use super::{others, Plan, VehicleLamps, VehiclePose, A_LAT_MPS2, A_LON_MPS2, LEVEL_GAP_M};
 use crate::town::desc::TownDesc;
 use crate::town::layout::Layout;
@@ -51,7 +54,9 @@ const FOLLOW_GAP_M: f64 = 2.5;
 /// Spacing of the path samples that look for vehicles ahead, metres.
 const SAMPLE_M: f64 = 0.5;
 /// Re-simulations of a chunk without the vehicles in the ego's way.
-const ROUNDS: usize = 3;
+const ROUNDS: usize = 12;
+/// Below this speed the ego stands, m/s.
+const STAND_MPS: f64 = 0.05;
 
 /// The ego in one frame of a drive.
 #[derive(Clone, Debug)]
@@ -141,8 +146,9 @@ pub fn ego_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> EgoFrame {
         let cx = ctx.get_or_insert_with(|| Ctx::new(desc, seed, drive));
         let k = d.chunks.len() as u64;
         let start = d.chunks.last().map(|c| c.end);
+        let stood = standing_frames(&d.chunks);
         let Drive { path, chunks, .. } = &mut *d;
-        chunks.push(cx.chunk(path, k, start));
+        chunks.push(cx.chunk(path, k, start, stood));
     }
     let ch = &d.chunks[c];
     let n = (frame % CHUNK_FRAMES) as usize;
@@ -166,6 +172,20 @@ pub fn ego_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> EgoFrame {
         removed: ch.removed.clone(),
         removed_pedestrians: ch.pedestrians.clone(),
     }
+}
+
+/// Frames the ego has stood at the end of `chunks` (counted back over
+/// whole chunks it stood through).
+fn standing_frames(chunks: &[Chunk]) -> usize {
+    let mut n = 0;
+    for c in chunks.iter().rev() {
+        let tail = c.v.iter().rev().take_while(|&&v| v < STAND_MPS).count();
+        n += tail;
+        if tail < c.v.len() {
+            break;
+        }
+    }
+    n
 }
 
 /// The ego's pose at (x, y) heading `h` radians, on the level grid.
@@ -236,7 +256,14 @@ impl<'a> Ctx<'a> {
 
     /// Simulates chunk `k` from `start` (s, v), removing the vehicles and
     /// pedestrians in the ego's way.
-    fn chunk(&self, path: &mut DrivePath, k: u64, start: Option<(f64, f64)>) -> Chunk {
+    /// `stood`: frames the ego has stood at the chunk's start.
+    fn chunk(
+        &self,
+        path: &mut DrivePath,
+        k: u64,
+        start: Option<(f64, f64)>,
+        stood: usize,
+    ) -> Chunk {
         let frames: Vec<u64> = (k * CHUNK_FRAMES..(k + 1) * CHUNK_FRAMES).collect();
         let traffic: Vec<Vec<VehiclePose>> = frames
             .iter()
@@ -251,13 +278,14 @@ impl<'a> Ctx<'a> {
             let hits = self.conflicts(path, &traffic, &run.0);
             let before = removed.len();
             removed.extend(hits);
+            removed.extend(self.holder(stood, &run.1, &run.3));
             if removed.len() == before || round == ROUNDS {
                 break;
             }
             run = self.simulate(path, &frames, &traffic, &removed, start);
         }
         let pedestrians = self.pedestrians_in_way(path, &frames, &run.0);
-        let (s, v, end) = run;
+        let (s, v, end, _) = run;
         Chunk {
             s,
             v,
@@ -267,7 +295,8 @@ impl<'a> Ctx<'a> {
         }
     }
 
-    /// (s, v) per frame of the chunk and the state after it.
+    /// (s, v) per frame of the chunk, the state after it, and per frame
+    /// the vehicle the ego sees first in its way.
     #[allow(clippy::type_complexity)]
     fn simulate(
         &self,
@@ -276,35 +305,55 @@ impl<'a> Ctx<'a> {
         traffic: &[Vec<VehiclePose>],
         removed: &BTreeSet<u32>,
         start: Option<(f64, f64)>,
-    ) -> (Vec<f64>, Vec<f64>, (f64, f64)) {
+    ) -> (Vec<f64>, Vec<f64>, (f64, f64), Vec<Option<u32>>) {
         let mut s_out = Vec::with_capacity(frames.len());
         let mut v_out = Vec::with_capacity(frames.len());
+        let mut ahead_out = Vec::with_capacity(frames.len());
         // The drive starts at the speed its first frame allows.
         let (mut s, mut v) = start.unwrap_or((0.0, f64::NAN));
-        for (&f, cars) in frames.iter().zip(traffic) {
-            let cap = self.allowed(path, s, v.max(0.0), self.time(f), cars, removed);
+        for (k, (&f, cars)) in frames.iter().zip(traffic).enumerate() {
+            let next = traffic.get(k + 1).map(Vec::as_slice);
+            let t = self.time(f);
+            let (cap, ahead) = self.allowed(path, s, v.max(0.0), t, (cars, next), removed);
             if v.is_nan() {
                 v = cap;
             }
             s_out.push(s);
             v_out.push(v);
+            ahead_out.push(ahead);
             v = (v + A_LON_MPS2 * self.dt).min(cap).max(0.0);
             s += v * self.dt;
         }
-        (s_out, v_out, (s, v))
+        (s_out, v_out, (s, v), ahead_out)
+    }
+
+    /// The first vehicle in the ego's way once the ego (standing for
+    /// `stood` frames before the chunk, speeds `v` per frame, vehicles
+    /// ahead `ahead`) has stood for a whole signal cycle: longer than any
+    /// red light and its queue take.
+    fn holder(&self, mut stood: usize, v: &[f64], ahead: &[Option<u32>]) -> Option<u32> {
+        let patience = (self.plan.schedule.cycle_s() / self.dt).ceil() as usize;
+        for (&v, &a) in v.iter().zip(ahead) {
+            stood = if v < STAND_MPS { stood + 1 } else { 0 };
+            if stood >= patience && a.is_some() {
+                return a;
+            }
+        }
+        None
     }
 
     /// The highest speed (m/s) the ego at arc length `s`, speed `v`, time
-    /// `t` may take for the next step.
+    /// `t` may take for the next step, and the vehicle first in its way;
+    /// `cars`: the vehicles of this frame and of the next (if known).
     fn allowed(
         &self,
         path: &mut DrivePath,
         s: f64,
         v: f64,
         t: f64,
-        cars: &[VehiclePose],
+        (cars, later): (&[VehiclePose], Option<&[VehiclePose]>),
         removed: &BTreeSet<u32>,
-    ) -> f64 {
+    ) -> (f64, Option<u32>) {
         let half = self.body.footprint_m()[0] / 2.0;
         let look = self.v_max * self.v_max / (2.0 * A_LON_MPS2) + 2.0 * half + 20.0;
         path.reach(s + look + 1.0);
@@ -322,7 +371,7 @@ impl<'a> Ctx<'a> {
             }
         }
         let ahead = self.first_in_way(path, s, look, cars, removed);
-        if let Some(d) = ahead {
+        if let Some((d, _)) = ahead {
             cap = cap.min(stop(d - half - FOLLOW_GAP_M));
         }
         let front = s + half;
@@ -331,13 +380,26 @@ impl<'a> Ctx<'a> {
             .iter()
             .find(|c| c.stop_m >= front - 0.05 && c.stop_m < s + look);
         if let Some(c) = next {
-            let free_beyond = ahead.is_none_or(|d| d > c.clear_m - s + 3.0 * half + FOLLOW_GAP_M);
-            let clear = c.roundabout || self.can_clear(path, c, c.clear_m + half - s, v, t);
+            // Room beyond the junction, or a leader moving on (as `sim`).
+            let moving = |id: u32| {
+                let at = |vs: &[VehiclePose]| vs.iter().find(|c| c.id == id).map(|c| c.position);
+                match (at(cars), later.and_then(at)) {
+                    (Some(a), Some(b)) => {
+                        (b[0] - a[0]).hypot(b[1] - a[1]) / self.dt > MOVING_LEADER_MPS
+                    }
+                    _ => false,
+                }
+            };
+            let free_beyond = ahead
+                .is_none_or(|(d, id)| d > c.clear_m - s + 3.0 * half + FOLLOW_GAP_M || moving(id));
+            let clear = c.roundabout
+                || c.major == Some(true)
+                || self.can_clear(path, c, c.clear_m + half - s, v, t);
             if !(free_beyond && clear) {
                 cap = cap.min(stop(c.stop_m - front));
             }
         }
-        cap
+        (cap, ahead.map(|(_, id)| id))
     }
 
     /// Whether the ego, `d` metres from clearing the zone of crossing `c`
@@ -348,7 +410,8 @@ impl<'a> Ctx<'a> {
     }
 
     /// Distance along the path from the ego's centre (at `s`) to the first
-    /// sample within reach of a vehicle's footprint, up to `look` metres.
+    /// sample within reach of a vehicle's footprint, up to `look` metres,
+    /// and that vehicle's id.
     fn first_in_way(
         &self,
         path: &DrivePath,
@@ -356,7 +419,7 @@ impl<'a> Ctx<'a> {
         look: f64,
         cars: &[VehiclePose],
         removed: &BTreeSet<u32>,
-    ) -> Option<f64> {
+    ) -> Option<(f64, u32)> {
         let (me, _) = path.pose(s);
         let reach = self.body.footprint_m()[1] / 2.0 + 0.3;
         let near: Vec<&VehiclePose> = cars
@@ -368,9 +431,11 @@ impl<'a> Ctx<'a> {
             return None;
         }
         let n = (look / SAMPLE_M) as usize;
-        (0..=n).map(|k| k as f64 * SAMPLE_M).find(|&d| {
+        (0..=n).map(|k| k as f64 * SAMPLE_M).find_map(|d| {
             let (p, _) = path.pose(s + d);
-            near.iter().any(|c| rect_distance(c, p) < reach)
+            near.iter()
+                .find(|c| rect_distance(c, p) < reach)
+                .map(|c| (d, c.id))
         })
     }
 
