@@ -199,17 +199,17 @@ fn ego_sees_the_overpass_in_some_frames() {
     let desc = town("town06");
     let l = Layout::new(&desc);
     let o = Overpass::new(&desc, &l).unwrap();
-    let seen = sightings(&desc, &l, &o);
+    let seen = sightings(&desc, &l, &o, 12);
     eprintln!("ego sees the overpass at (drive, frame, metres ahead): {seen:?}");
     assert!(!seen.is_empty());
 }
 
-/// (drive, frame, metres to the bridge ahead) where the ego of SEED's first
-/// drives, over a dataset sequence each, drives on the highway towards the
-/// overpass 20 to 120 m ahead.
-fn sightings(desc: &TownDesc, l: &Layout, o: &Overpass) -> Vec<(u64, u64, f64)> {
+/// (drive, frame, metres to the bridge ahead, whether east of it) where the
+/// ego of SEED's first `drives`, over a dataset sequence each, drives on
+/// the highway towards the overpass 20 to 120 m ahead.
+fn sightings(desc: &TownDesc, l: &Layout, o: &Overpass, drives: u64) -> Vec<(u64, u64, f64, bool)> {
     let mut seen = Vec::new();
-    for drive in 0..12u64 {
+    for drive in 0..drives {
         for frame in (0..590).step_by(10) {
             let (e, _) = ego_pose(desc, SEED, drive, frame);
             let h = e.heading_deg.to_radians();
@@ -217,7 +217,7 @@ fn sightings(desc: &TownDesc, l: &Layout, o: &Overpass) -> Vec<(u64, u64, f64)> 
             let side = (-(o.x_m - e.position[0]) * h.sin() + (0.0 - e.position[1]) * h.cos()).abs();
             let on_highway = e.position[1].abs() < l.road_w_m / 2.0;
             if on_highway && (20.0..120.0).contains(&ahead) && side < 30.0 {
-                seen.push((drive, frame, ahead));
+                seen.push((drive, frame, ahead, e.position[0] > o.x_m));
             }
         }
     }
@@ -239,7 +239,7 @@ fn ground_truth_on_the_bridge_lies_on_its_planes() {
     let desc = town("town06");
     let l = Layout::new(&desc);
     let o = Overpass::new(&desc, &l).unwrap();
-    let (drive, frame, _) = sightings(&desc, &l, &o)
+    let (drive, frame, _, _) = sightings(&desc, &l, &o, 12)
         .into_iter()
         .min_by(|a, b| (a.2 - 50.0).abs().total_cmp(&(b.2 - 50.0).abs()))
         .expect("a frame looking at the bridge");
