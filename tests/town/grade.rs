@@ -249,7 +249,9 @@ fn level_towns_hash_as_before_the_grade_existed() {
     // people and riders on the two-wheelers; re-pinned when background
     // vehicles became a per-drive simulation (other vehicles and places at
     // frame 0, brake and indicator lenses moved to the lamps prefab,
-    // two-wheelers' real footprints).
+    // two-wheelers' real footprints); town04 re-pinned when its divided
+    // highway got the right of way at its side-street junctions (its frame
+    // 0 traffic moved).
     const PINNED: [(&str, u64); 3] = [
         ("town02", 0x3c95_cb09_1143_5819),
         ("town07", 0xb4fb_7d16_a7de_fc8d),
