@@ -446,7 +446,7 @@ impl DrivePath {
                 roundabout: kind == Kind::Ring,
                 lane: self.lane,
                 major: self.l.median_through(ju.0, ju.1).then(|| {
-                    if self.dir % 2 == 0 {
+                    if self.dir.is_multiple_of(2) {
                         self.l.median_x(ju.1)
                     } else {
                         self.l.median_y(ju.0)
