@@ -34,6 +34,7 @@ fn street(c: &mut Criterion) {
         max_depth: 5,
         seed: 1,
         frame: 0,
+        adaptive: false,
     };
     let mut group = c.benchmark_group("street_400x225");
     group.sample_size(10);

@@ -170,3 +170,36 @@ fn sampling_matches_pdf_chi2_for_lambert_and_rough_metal_facets() {
         assert!((r.pdf_integral - r.valid_fraction).abs() < 5e-3, "{r:?}");
     }
 }
+
+#[test]
+fn fused_eval_pdf_gives_the_bits_of_eval_and_pdf() {
+    // Every facet model under every normal and view, directions over the
+    // hemisphere: one groove walk must give what the two separate ones do.
+    let facets = [
+        Facet::Lambert {
+            albedo: Vec3::new(0.7, 0.4, 0.2),
+        },
+        Facet::Conductor {
+            eta: Vec3::new(0.2, 0.9, 1.1),
+            k: Vec3::new(3.9, 2.4, 2.2),
+            alpha: 0.2,
+        },
+    ];
+    let mut nonzero = 0;
+    for facet in facets {
+        for wp in normals() {
+            for wo in views() {
+                let bsdf = Bsdf::NormalMapped { facet, wp };
+                for i in 0..64 {
+                    let wi = sample_uniform_hemisphere(r2(i).0);
+                    let (f, pdf) = bsdf.eval_pdf(wo, wi);
+                    let bits = |v: Vec3| v.to_array().map(f32::to_bits);
+                    assert_eq!(bits(f), bits(bsdf.eval(wo, wi)), "{wp} {wo} {wi}");
+                    assert_eq!(pdf.to_bits(), bsdf.pdf(wo, wi).to_bits(), "{wp} {wo} {wi}");
+                    nonzero += (pdf > 0.0) as usize;
+                }
+            }
+        }
+    }
+    assert!(nonzero > 1000, "{nonzero} directions with a pdf");
+}

@@ -125,6 +125,7 @@ fn measure_round(
         max_depth: s.max_depth,
         seed: 1,
         frame: 0,
+        adaptive: false,
     };
     // One GT pass takes a fraction of a second: repeat it, as the raw figures
     // repeat theirs, so one slow moment of a noisy machine does not decide

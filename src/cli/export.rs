@@ -27,24 +27,8 @@ pub struct ExportArgs {
     /// Write a Mitsuba 3 scene (XML, PLY meshes, baked sky); the only format.
     #[arg(long, required = true)]
     pub mitsuba: bool,
-    /// Scene description (TOML); omit when exporting a town with --town.
-    #[arg(conflicts_with = "town")]
-    pub scene: Option<PathBuf>,
-    /// A town frame: a built-in town's name or a town file (as `render --town`).
-    #[arg(long)]
-    pub town: Option<String>,
-    /// Time step of the town (with --town).
-    #[arg(long, default_value_t = 0, requires = "town")]
-    pub frame: u32,
-    /// Drive of the town (with --town).
-    #[arg(long, default_value_t = 0, requires = "town")]
-    pub sequence: u64,
-    /// Camera configuration on the ego vehicle (with --town).
-    #[arg(long, default_value = "normal", requires = "town")]
-    pub config: crate::town::CameraConfig,
-    /// Directory holding the town files (NAME.toml) for --town.
-    #[arg(long)]
-    pub scenes: Option<PathBuf>,
+    #[command(flatten)]
+    pub source: super::render::FrameSourceArgs,
     /// Output directory (new or empty): scene.xml, meshes/, sky.exr.
     #[arg(short, long)]
     pub output: PathBuf,
@@ -86,15 +70,7 @@ pub struct ExportArgs {
 
 /// Runs `parallax export`.
 pub fn run(a: ExportArgs) -> Result<(), CliError> {
-    let (source, _) = super::render::SourceArgs {
-        scene: a.scene.as_deref(),
-        town: a.town.as_deref(),
-        scenes: a.scenes.as_deref(),
-        seed: a.seed,
-        drive_frame: (a.sequence, a.frame),
-        config: a.config,
-    }
-    .load()?;
+    let (source, _) = a.source.load(a.seed)?;
     if let Some(b) = a.baseline {
         if !(b.is_finite() && b > 0.0) {
             return Err(CliError::input(format!(

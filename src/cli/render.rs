@@ -17,13 +17,14 @@ use crate::render::recipe::{
 };
 use crate::scene::load_scene;
 
-/// Arguments of `parallax render`.
+/// What a frame is made from: a scene file, or a town's frame (as `render`
+/// and `export` take it).
 #[derive(Args, Debug)]
-pub struct RenderArgs {
-    /// Scene description (TOML); omit when rendering a town with --town.
+pub struct FrameSourceArgs {
+    /// Scene description (TOML); omit for a town frame (--town).
     #[arg(conflicts_with = "town")]
     pub scene: Option<PathBuf>,
-    /// Render a town frame: a built-in town's name (town01 … town10; with
+    /// A town frame: a built-in town's name (town01 … town10; with
     /// --scenes DIR, DIR/NAME.toml) or the path of a town file (.toml).
     #[arg(long)]
     pub town: Option<String>,
@@ -43,6 +44,13 @@ pub struct RenderArgs {
     /// the built-in town descriptions.
     #[arg(long)]
     pub scenes: Option<PathBuf>,
+}
+
+/// Arguments of `parallax render`.
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    #[command(flatten)]
+    pub source: FrameSourceArgs,
     /// Output directory: one frame in the native layout, numbered
     /// --sample-frame, else --frame K with --town, else 000000. A new or empty directory, or an earlier render's output, which
     /// is replaced whole once the new frame is complete; any other non-empty
@@ -111,6 +119,12 @@ pub struct RenderArgs {
     /// the samples are --spp's). Compare with Mitsuba 3: docs/reference.md.
     #[arg(long)]
     pub reference: bool,
+    /// Adaptive sampling: each view's pixels × spp samples shared by a
+    /// pilot pass's per-pixel error estimate instead of --spp in every
+    /// pixel (off by default: it does not gain at the default filters,
+    /// docs/reference.md; reference mode is never adaptive).
+    #[arg(long, conflicts_with = "reference")]
+    pub adaptive: bool,
 }
 
 impl RenderArgs {
@@ -134,6 +148,7 @@ impl RenderArgs {
             sensor_noise_iso: self.sensor_noise,
             filter: !self.no_filter,
             reference: self.reference,
+            adaptive: self.adaptive,
             backend: self.backend,
         }
     }
@@ -162,32 +177,16 @@ fn progress_bar(total: u64) -> ProgressBar {
     pb
 }
 
-/// Where a frame comes from on the command line (`render`, `export`): a
-/// scene file, or a town frame (`--town`, `--scenes`, `--sequence`,
-/// `--frame`, `--config`; the town seed is `seed`, else drawn).
-pub struct SourceArgs<'a> {
-    /// The scene file (ignored with a town).
-    pub scene: Option<&'a Path>,
-    /// A built-in town's name or a town file.
-    pub town: Option<&'a str>,
-    /// Directory of town files replacing the built-in ones.
-    pub scenes: Option<&'a Path>,
-    /// The town seed (None: drawn).
-    pub seed: Option<u64>,
-    /// (drive, town frame).
-    pub drive_frame: (u64, u32),
-    /// Camera configuration on the ego.
-    pub config: crate::town::CameraConfig,
-}
-
-impl SourceArgs<'_> {
-    /// The frame source and its town frame (0 for a scene file).
-    pub fn load(&self) -> Result<(FrameSource, u32), CliError> {
-        let (sequence, frame) = self.drive_frame;
-        match (self.town, self.scene) {
+impl FrameSourceArgs {
+    /// The frame source and its town frame (0 for a scene file); `seed` is
+    /// the town's (None: drawn).
+    pub fn load(&self, seed: Option<u64>) -> Result<(FrameSource, u32), CliError> {
+        let (sequence, frame) = (self.sequence, self.frame);
+        match (self.town.as_deref(), self.scene.as_deref()) {
             (Some(name), _) => {
-                let t = crate::town::load_named_town(name, self.scenes).map_err(CliError::input)?;
-                let seed = self.seed.unwrap_or_else(draw_seed);
+                let t = crate::town::load_named_town(name, self.scenes.as_deref())
+                    .map_err(CliError::input)?;
+                let seed = seed.unwrap_or_else(draw_seed);
                 let source = FrameSource::town(&t, seed, (sequence, frame as u64), self.config)
                     .map_err(|e| CliError::input(e.to_string()))?;
                 Ok((source, frame))
@@ -203,15 +202,7 @@ impl SourceArgs<'_> {
 
 /// Runs `parallax render`.
 pub fn run(a: RenderArgs) -> Result<(), CliError> {
-    let (source, frame) = SourceArgs {
-        scene: a.scene.as_deref(),
-        town: a.town.as_deref(),
-        scenes: a.scenes.as_deref(),
-        seed: a.seed,
-        drive_frame: (a.sequence, a.frame),
-        config: a.config,
-    }
-    .load()?;
+    let (source, frame) = a.source.load(a.seed)?;
     let recipe =
         FrameRecipe::new(source, &a.spec(a.sample_frame.unwrap_or(frame))).map_err(recipe_error)?;
     // Before any render work: refuse a foreign directory, prove it writable.

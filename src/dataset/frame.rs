@@ -165,6 +165,7 @@ pub fn render_job(
         sensor_noise_iso: None,
         filter: config.filter,
         reference: false,
+        adaptive: false,
         backend,
     };
     let recipe = FrameRecipe::new(source, &spec).map_err(|e| e.to_string())?;

@@ -24,7 +24,10 @@ use crate::geometry::{FrontOrigin, SurfaceInteraction};
 use crate::light::LightSet;
 use crate::sampler::SampleStream;
 
+mod nee;
+mod ris;
 mod shadows;
+use ris::RisSamples;
 use shadows::PendingShadows;
 
 /// 4D sample sets per bounce: (BSDF u, BSDF v, lobe, roulette), two 2D
@@ -88,8 +91,8 @@ pub(super) struct BounceSamples {
     u_rr: f32,
     /// One 2D sample per distant light.
     u_distant: [glam::Vec2; crate::light::MAX_DISTANT],
-    /// Local light choice and its 2D sample.
-    u_local: (f32, glam::Vec2),
+    /// The local light's candidates (`ris.rs`).
+    u_local: RisSamples,
 }
 
 impl BounceSamples {
@@ -116,8 +119,8 @@ impl BounceSamples {
         }
         if !lights.is_empty() {
             stream.set_dimension(dim + LOCAL_SET);
-            let [u_select, u_lx, u_ly, _] = stream.next_4d();
-            u.u_local = (u_select, glam::Vec2::new(u_lx, u_ly));
+            let first = stream.next_4d();
+            u.u_local = RisSamples::draw(stream, bounces, first, lights.local_candidates());
         }
         u
     }
@@ -189,6 +192,9 @@ pub(super) struct PathState {
     pub bounces: u32,
     /// Where the denoised part of a surface path splits off.
     pub split: SplitVertex,
+    /// The first surface vertex's Lambertian albedo (None: not Lambertian,
+    /// or not shaded), recorded as it is shaded for the fog's split.
+    pub first_albedo: Option<Vec3>,
 }
 
 impl PathState {
@@ -202,6 +208,7 @@ impl PathState {
             prev_p: o,
             bounces: 0,
             split: SplitVertex::default(),
+            first_albedo: None,
         }
     }
 
@@ -472,6 +479,9 @@ impl<A: Accel> PathContext<'_, A> {
             return None;
         }
         let bsdf = scene.material_view().bsdf(&si, wo, st.prev_delta);
+        if st.bounces == 0 {
+            st.first_albedo = bsdf.diffuse_albedo();
+        }
         if is_two_sided(&bsdf) && !front {
             si.n_geo = -si.n_geo;
             si.n_shading = -si.n_shading;
@@ -505,12 +515,10 @@ impl<A: Accel> PathContext<'_, A> {
             for (k, &u_light) in u.u_distant.iter().enumerate().take(lights.distant_count()) {
                 // The radiance (sky, cloud deck) only for samples kept.
                 let ls = lights.sample_distant_dir(scene, k, si.p, u_light);
-                self.direct(&vertex, Some(k), ls, st.beta, pending, rays);
+                self.direct(&vertex, k, ls, st.beta, pending, rays);
             }
             if !lights.is_empty() {
-                let (u_select, u_light) = u.u_local;
-                let ls = lights.sample(scene, si.p, u_select, u_light);
-                self.direct(&vertex, None, ls, st.beta, pending, rays);
+                self.direct_local(&vertex, &u.u_local, st.beta, pending, rays);
             }
         }
         let bs = bsdf.sample(vertex.wo_local, u.u_lobe, u.u_bsdf)?;
@@ -539,69 +547,6 @@ impl<A: Accel> PathContext<'_, A> {
             return None;
         }
         Some(vertex.front.spawn_ray(&si, wi))
-    }
-
-    /// Next-event estimation for one light sample: MIS-weighted, its
-    /// shadow ray and contribution `beta · f · li · w / pdf` left in `pending`.
-    /// For distant light k, `distant` is `Some(k)`: then `ls` carries no
-    /// radiance ([`LightSet::sample_distant_dir`]) and it is evaluated here,
-    /// after the checks that may reject the sample.
-    fn direct(
-        &self,
-        vertex: &Vertex,
-        distant: Option<usize>,
-        ls: Option<crate::light::LightSample>,
-        beta: Vec3,
-        pending: &mut PendingShadows,
-        rays: &mut u64,
-    ) {
-        let Vertex {
-            si,
-            bsdf,
-            frame,
-            wo_local,
-            front,
-        } = *vertex;
-        let Some(mut ls) = ls else {
-            return;
-        };
-        if ls.pdf <= 0.0 || distant.is_none() && ls.li == Vec3::ZERO {
-            return;
-        }
-        if is_two_sided(bsdf) && ls.wi.dot(si.n_geo) <= 0.0 {
-            return;
-        }
-        let wi_local = frame.to_local(ls.wi);
-        let f = bsdf.eval(wo_local, wi_local) * wi_local.z.abs();
-        if f == Vec3::ZERO {
-            return;
-        }
-        if let Some(k) = distant {
-            ls.li = self.lights.distant_li(self.scene, k, si.p, ls.wi);
-            if ls.li == Vec3::ZERO {
-                return;
-            }
-        }
-        let coherent = distant.is_some_and(|k| self.lights.distant_is_directional(k));
-        let shadow = if ls.dist.is_finite() {
-            front.spawn_ray_to(si, si.p + ls.wi * ls.dist)
-        } else {
-            front.spawn_ray(si, ls.wi)
-        };
-        *rays += 1;
-        let w = if ls.delta {
-            1.0
-        } else {
-            power_heuristic(1.0, ls.pdf, 1.0, bsdf.pdf(wo_local, wi_local))
-        };
-        let li = match &self.scene.medium {
-            // Shadow rays through a medium carry its transmittance.
-            Some(m) => ls.li * m.tr(si.p, ls.wi, ls.dist),
-            None => ls.li,
-        };
-        // Delta local lights seen from a medium-free surface need no MIS with
-        // equiangular sampling (that only covers medium vertices).
-        pending.push(shadow, beta * (f * li * (w / ls.pdf)), coherent);
     }
 }
 

@@ -20,6 +20,9 @@
 //! Roulette at medium vertices goes by the albedo only (analog absorption),
 //! not by the throughput, so paths a surface dimmed are not boosted where
 //! fog carries them to the sky.
+//! Collisions estimate the sky's NEE, and those after the first draw the
+//! sun lobe, each half the time (divided by 1/2: `Strategies::sky_nee_deep`,
+//! `Strategies::lobe_deep`): about 16 % fewer rays in fog.
 //!
 //! Sample dimensions of a segment start at `VOL_DIMS` + 16·bounce (the sun
 //! lobe's at `LOBE_DIMS` + 2·bounce), apart from the surface dimensions, so
@@ -54,6 +57,10 @@ mod surf_fog;
 mod tests;
 
 use segment::{SegmentEnd, SegmentSamples, VolState};
+
+/// Collisions up to this many scattering events always draw the sun lobe
+/// (`Strategies::lobe_deep` after).
+const LOBE_ALWAYS: u32 = 1;
 
 /// First 4D set of the sun-lobe dimensions (two sets per bounce, above
 /// every segment's volume dimensions).
@@ -145,11 +152,16 @@ impl<A: Accel> PathContext<'_, A> {
                 break;
             };
             vs.lobe_wo = None;
-            if st.bounces == 0 && strategies.split_first && st.bounces < self.max_depth {
-                let rho = self.first_lambert_albedo(&ray, &hit).map(|a| a * st.beta);
+            // The first vertex's albedo as its shading finds it (the
+            // record is read and textured once).
+            let first = (st.bounces == 0 && strategies.split_first && st.bounces < self.max_depth)
+                .then_some(st.beta);
+            let next = self.surface_vertex(&ray, &hit, st, stream, rays);
+            if let Some(beta) = first {
+                let rho = st.first_albedo.map(|a| a * beta);
                 vs.first.surf_fog.at_first_vertex(rho);
             }
-            match self.surface_vertex(&ray, &hit, st, stream, rays) {
+            match next {
                 Some(next) => ray = next,
                 None => break,
             }
@@ -175,6 +187,7 @@ impl<A: Accel> PathContext<'_, A> {
         u_l: Vec2,
         u_distant: &[Vec2; 4],
         lobe_w: Option<(usize, f32)>,
+        sky_rr: Option<(f32, f32)>,
         rays: &mut u64,
     ) -> Vec3 {
         let scene = self.scene;
@@ -207,7 +220,20 @@ impl<A: Accel> PathContext<'_, A> {
             .enumerate()
             .take(self.lights.distant_count())
         {
-            let c = one(self.lights.sample_distant(scene, k, p, u), false);
+            // The sky's NEE under roulette (`sky_rr`: its number and
+            // survival probability), divided by that probability: its
+            // expected value, so phase-sampled sky hits keep their MIS
+            // weights.
+            let sky_scale = match sky_rr {
+                Some((u_rr, keep)) if !self.lights.distant_is_directional(k) => {
+                    if u_rr >= keep {
+                        continue;
+                    }
+                    1.0 / keep
+                }
+                _ => 1.0,
+            };
+            let c = one(self.lights.sample_distant(scene, k, p, u), false) * sky_scale;
             l += match lobe_w {
                 Some((k_sun, w)) if k_sun == k => c * w,
                 _ => c,
@@ -220,20 +246,24 @@ impl<A: Accel> PathContext<'_, A> {
 
     /// Equiangular sampling of a point on [0, t_end] toward one selected
     /// point or spot light, MIS-weighted against the in-scattering points
-    /// (density σ_t·Tr / (1 − `tr_seg`), `tr_seg` the segment's Tr).
+    /// (density σ_t·Tr / `p_point`: 1 − the segment's Tr when every
+    /// segment draws one, 1 when only collisions do).
     #[allow(clippy::too_many_arguments)]
     fn equiangular(
         &self,
         m: &Medium,
         ray: &Ray,
         t_end: f32,
-        tr_seg: f32,
+        p_point: f32,
         u_sel: f32,
         u_t: f32,
         u_l: Vec2,
         rays: &mut u64,
     ) -> Vec3 {
         let scene = self.scene;
+        if !self.lights.has_delta_local() {
+            return Vec3::ZERO;
+        }
         // Selection does not depend on the point: the light chosen from the
         // ray origin is the light lit from the sampled point.
         let Some(ls0) = self.lights.sample_global(scene, ray.o, u_sel, u_l) else {
@@ -263,7 +293,7 @@ impl<A: Accel> PathContext<'_, A> {
         if self.accel.occluded(&shadow_ray(x, &ls)) {
             return Vec3::ZERO;
         }
-        let pdf_in = m.distance_pdf(ray.o, ray.d, t) / (1.0 - tr_seg);
+        let pdf_in = m.distance_pdf(ray.o, ray.d, t) / p_point;
         let w = power_heuristic(1.0, pdf_eq, 1.0, pdf_in);
         let tr = m.tr(ray.o, ray.d, t) * m.tr(x, ls.wi, ls.dist);
         m.albedo * ls.li * (sigma_t * tr * f * w / (pdf_eq * ls.pdf))
@@ -286,12 +316,27 @@ struct Strategies {
     /// Roulette by the albedo (`PathState::survives_albedo_roulette`); off
     /// is the surface loop's throughput roulette.
     albedo_roulette: bool,
+    /// Segments after fewer scattering events than this estimate their
+    /// in-scattering on every segment; later ones only at collisions
+    /// (`u32::MAX`: every segment).
+    every_segment_bounces: u32,
     /// Split the camera ray's first segment: the surface (or sky) behind it
     /// always traced with weight Tr, the collision's continuation as drawn,
     /// so the binary collide-or-pass choice leaves no noise on surfaces
     /// (renders with the fog filter on; about a quarter of the variance
     /// the filter leaves in the foggy street).
     split_first: bool,
+    /// Probability that a collision estimates the sky's NEE (divided by
+    /// it), the camera segment's in-scattering point excepted. Sky light
+    /// through fog is smooth and the fog-weighted tables draw it well:
+    /// half the sky's shadow rays at collisions cost about 0.03 dB in the
+    /// foggy street (town03 frame 40) for 6 % fewer rays.
+    sky_nee_deep: f32,
+    /// Probability that a collision after the first (`LOBE_ALWAYS`) draws
+    /// the sun lobe (divided by it); the next sun NEE keeps its MIS weight
+    /// whether or not it was drawn, so the pair's expected value stays.
+    /// At 1/2: 10 % fewer rays in the foggy street for about 0.06 dB.
+    lobe_deep: f32,
 }
 
 impl Default for Strategies {
@@ -299,7 +344,10 @@ impl Default for Strategies {
         Strategies {
             sun_lobe: true,
             albedo_roulette: true,
+            every_segment_bounces: 1,
             split_first: false,
+            sky_nee_deep: 0.5,
+            lobe_deep: 0.5,
         }
     }
 }

@@ -17,7 +17,7 @@ mod entry;
 mod fog_sky;
 mod set;
 
-pub use set::{LightSample, LightSelection, LightSet, MAX_DISTANT};
+pub use set::{LightSample, LightSelection, LightSet, LOCAL_CANDIDATES, MAX_DISTANT};
 // The light and sky data a `Scene` stores are built below the scene;
 // sampling them is this module's job.
 pub use crate::scene::emitters::{moon_phase_factor, Light};

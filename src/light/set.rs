@@ -71,7 +71,34 @@ pub struct LightSet {
     suns: Vec<SunDisk>,
     /// Per mesh, the entry index of each triangle (empty for non-emissive meshes).
     tri_entry: Vec<Vec<u32>>,
+    /// Whether a local light is a point or spot light (equiangular
+    /// sampling's lights).
+    delta_local: bool,
+    /// Candidates resampled per vertex for the local lights
+    /// ([`LightSet::local_candidates`]).
+    candidates: usize,
+    /// Probability that a vertex samples a local light at all (the rest
+    /// skip them; the pmfs include it, so the estimate keeps its mean).
+    p_local: f32,
 }
+
+/// Local lights are resampled from this many candidates where they matter
+/// (`LightSet::local_candidates`).
+pub const LOCAL_CANDIDATES: usize = 2;
+
+/// Share of the emitted power from which local lights are resampled from
+/// `LOCAL_CANDIDATES` (night: nearly all of it; under a storm's overcast
+/// they bring 8 %, where the extra BVH walks per vertex cost more than the
+/// lamps' noise).
+const LOCAL_SHARE_FOR_RIS: f32 = 0.25;
+/// Share below which a vertex samples the local lights only with
+/// probability share / this (at least `MIN_P_LOCAL`): by day the sun and
+/// sky outshine every lamp by 10³–10⁴, and a light BVH walk and shadow ray
+/// at every vertex cost time (a fifth of a foggy frame's) for light nobody
+/// sees.
+const LOCAL_SHARE_FULL: f32 = 0.01;
+/// Least probability of sampling the local lights at a vertex.
+const MIN_P_LOCAL: f32 = 0.1;
 
 /// Area and unit normal of a triangle.
 fn triangle_geometry(scene: &Scene, geom: u32, prim: u32) -> (f32, Vec3, [Vec3; 3]) {
@@ -110,8 +137,8 @@ struct Collected {
 impl Collected {
     /// The scene's explicit lights: the first `room_for_suns` suns as
     /// distant lights, every other light (further suns included) local.
-    fn add_explicit(&mut self, scene: &Scene, room_for_suns: usize) {
-        let radius = scene_radius(scene);
+    /// `radius` is the scene's (`scene_radius`), for the suns' power.
+    fn add_explicit(&mut self, scene: &Scene, room_for_suns: usize, radius: f32) {
         for light in &scene.lights {
             if let Light::Sun {
                 dir_to_sun,
@@ -202,8 +229,9 @@ impl LightSet {
         let has_sun = scene.lights.iter().any(|l| matches!(l, Light::Sun { .. }));
         // Where NEE of the sky pays for its shadow ray (module docs).
         let sky_sampled = sky_emits && (scene.medium.is_some() || !has_sun);
+        let radius = scene_radius(scene);
         let mut c = Collected::default();
-        c.add_explicit(scene, MAX_DISTANT - sky_sampled as usize);
+        c.add_explicit(scene, MAX_DISTANT - sky_sampled as usize, radius);
         if sky_sampled {
             c.distant.push(Entry::Sky);
         }
@@ -234,18 +262,39 @@ impl LightSet {
                 acc as f32
             })
             .collect();
+        let delta_local = entries
+            .iter()
+            .any(|e| matches!(e, Entry::Explicit(Light::Point { .. } | Light::Spot { .. })));
+        let local_power: f32 = weights.iter().map(|w| w.max(0.0)).sum();
+        let distant_power = distant_power(scene, radius);
+        let share = local_power / (local_power + distant_power).max(f32::MIN_POSITIVE);
+        let candidates = if share >= LOCAL_SHARE_FOR_RIS {
+            LOCAL_CANDIDATES
+        } else {
+            1
+        };
+        // Only the BVH selection (the renderer's) skips vertices; the
+        // point-independent kinds stay as they were for comparisons.
+        let p_local = if selection == LightSelection::Bvh {
+            (share / LOCAL_SHARE_FULL).clamp(MIN_P_LOCAL, 1.0)
+        } else {
+            1.0
+        };
         let suns = suns
             .into_iter()
             .map(|(disk, local)| SunDisk {
                 pmf: match (local, selection) {
                     (None, _) => 1.0,
-                    (Some(_), LightSelection::Bvh) => p_suns / n_suns,
+                    (Some(_), LightSelection::Bvh) => p_suns / n_suns * p_local,
                     (Some(i), _) => pmf[i],
                 },
                 ..disk
             })
             .collect();
         LightSet {
+            delta_local,
+            candidates,
+            p_local,
             distant,
             entries,
             selection,
@@ -273,6 +322,18 @@ impl LightSet {
     /// towards it from nearby points is nearly parallel).
     pub fn distant_is_directional(&self, k: usize) -> bool {
         matches!(self.distant[k], Entry::Sun(_))
+    }
+
+    /// Whether a local light is a point or spot light.
+    pub fn has_delta_local(&self) -> bool {
+        self.delta_local
+    }
+
+    /// Candidates NEE resamples the local light from (≤
+    /// [`LOCAL_CANDIDATES`]): all of them where the local lights bring at
+    /// least `LOCAL_SHARE_FOR_RIS` of the emitted power, else one.
+    pub fn local_candidates(&self) -> usize {
+        self.candidates
     }
 
     /// Number of local lights one is selected from.
@@ -372,14 +433,23 @@ impl LightSet {
             let idx = self.select(u_select);
             return (self.pmf[idx] > 0.0).then_some((idx, self.pmf[idx]));
         }
+        // Vertices past `p_local` skip the local lights; the rest reuse
+        // the number rescaled.
+        if u_select >= self.p_local {
+            return None;
+        }
+        let u_select = u_select / self.p_local;
         if u_select < self.p_suns {
             let n = self.local_suns.len();
             let k = ((u_select / self.p_suns * n as f32) as usize).min(n - 1);
-            return Some((self.local_suns[k] as usize, self.p_suns / n as f32));
+            return Some((
+                self.local_suns[k] as usize,
+                self.p_suns / n as f32 * self.p_local,
+            ));
         }
         let u = ((u_select - self.p_suns) / (1.0 - self.p_suns)).clamp(0.0, 1.0 - f32::EPSILON);
         let (idx, pmf) = self.bvh.sample(p, u)?;
-        Some((idx as usize, pmf * (1.0 - self.p_suns)))
+        Some((idx as usize, pmf * (1.0 - self.p_suns) * self.p_local))
     }
 
     /// Probability that [`LightSet::select_at`] at `p` returns local light
@@ -388,8 +458,10 @@ impl LightSet {
         match self.selection {
             _ if idx >= self.entries.len() => 0.0,
             LightSelection::Bvh => match self.entries[idx] {
-                Entry::Explicit(Light::Sun { .. }) => self.p_suns / self.local_suns.len() as f32,
-                _ => self.bvh.pmf(p, idx as u32) * (1.0 - self.p_suns),
+                Entry::Explicit(Light::Sun { .. }) => {
+                    self.p_suns / self.local_suns.len() as f32 * self.p_local
+                }
+                _ => self.bvh.pmf(p, idx as u32) * (1.0 - self.p_suns) * self.p_local,
             },
             _ => self.pmf[idx],
         }
@@ -486,87 +558,8 @@ impl LightSet {
     }
 }
 
-/// BVH bounds of an explicit local light; suns get none (phi 0: not in the tree).
-fn explicit_bounds(light: &Light) -> LightBounds {
-    let point =
-        |p: Vec3, w: Vec3, intensity: Vec3, cos_theta_o: f32, cos_theta_e: f32| LightBounds {
-            p_min: p,
-            p_max: p,
-            w,
-            phi: luminance(intensity),
-            cos_theta_o,
-            cos_theta_e,
-            two_sided: false,
-        };
-    match *light {
-        Light::Sun { dir_to_sun, .. } => LightBounds {
-            phi: 0.0,
-            ..point(Vec3::ZERO, dir_to_sun, Vec3::ZERO, -1.0, 0.0)
-        },
-        Light::Point { p, intensity } => point(p, Vec3::Z, intensity, -1.0, 0.0),
-        Light::Spot {
-            p,
-            dir,
-            intensity,
-            cos_inner,
-            cos_outer,
-        } => {
-            // Full intensity inside θ_o, falloff out to θ_outer = θ_o + θ_e
-            // (a small θ_e keeps hard-edged spots inside their own bound).
-            let theta_outer = cos_outer.clamp(-1.0, 1.0).acos();
-            let theta_o = cos_inner.clamp(-1.0, 1.0).acos().min(theta_outer);
-            let theta_e = (theta_outer - theta_o).max(1e-3);
-            point(p, dir, intensity, theta_o.cos(), theta_e.cos())
-        }
-    }
-}
-
-/// Selection probabilities: half by power, half uniform. Power alone starves
-/// the sky next to the sun (≈ 9% of picks) although it is the only light in
-/// every shadow; the uniform half keeps each light's share ≥ 1/(2N).
-fn selection_pmf(weights: &[f32]) -> Vec<f32> {
-    let n = weights.len().max(1) as f64;
-    let total: f64 = weights.iter().map(|&w| w.max(0.0) as f64).sum();
-    weights
-        .iter()
-        .map(|&w| {
-            let by_power = if total > 0.0 {
-                w.max(0.0) as f64 / total
-            } else {
-                1.0 / n
-            };
-            (0.5 * by_power + 0.5 / n) as f32
-        })
-        .collect()
-}
-
-/// Radius of the scene's bounding sphere around the render origin, clamped to a
-/// range that keeps distant lights from swamping or vanishing in selection.
-fn scene_radius(scene: &Scene) -> f32 {
-    let placed = scene.instances.iter().flat_map(|i| {
-        let m = i.render_from_local_f32;
-        let proto = &scene.prototypes[i.prototype as usize];
-        proto.meshes.iter().flat_map(move |pm| {
-            pm.p_f32
-                .iter()
-                .map(move |&p| m.transform_point3(p).length())
-        })
-    });
-    let r = scene
-        .meshes
-        .iter()
-        .flat_map(|m| m.p_f32.iter())
-        .map(|p| p.length())
-        .chain(placed)
-        .chain(
-            scene
-                .spheres_f32
-                .iter()
-                .map(|s| s.truncate().length() + s.w),
-        )
-        .fold(0.0f32, f32::max);
-    r.clamp(1.0, 100.0)
-}
+mod weights;
+use weights::{distant_power, explicit_bounds, scene_radius, selection_pmf};
 
 #[cfg(test)]
 mod tests;

@@ -9,6 +9,7 @@
 //! does (jitter, noise) can touch it. Views: 0 = left, 1 + b = right camera of
 //! baseline b; each has its own sample stream.
 
+mod adaptive;
 pub mod recipe;
 mod view;
 
@@ -36,6 +37,9 @@ pub struct RenderSettings {
     pub seed: u64,
     /// Frame index (part of every stream key).
     pub frame: u32,
+    /// Adaptive sampling: each view's `pixels × spp` samples go where a
+    /// pilot pass saw error (`adaptive.rs`); off, `spp` in every pixel.
+    pub adaptive: bool,
 }
 
 /// Ground truth for one baseline.
@@ -231,8 +235,9 @@ fn path_pass(
             mut film,
             denoise,
             rays,
+            samples,
             non_finite,
-        } = view::render_view(&ctx, cam, key, settings.spp);
+        } = view::render_view(&ctx, cam, key, settings.spp, settings.adaptive);
         // Fog light, or indirect light on first surfaces, denoised per
         // view, guided by this view's exact pixel-centre depth (left, or
         // baseline b's right view).
@@ -249,8 +254,7 @@ fn path_pass(
         }
         stats.path_rays += rays;
         stats.non_finite_samples += non_finite;
-        stats.samples +=
-            cam.intrinsics.width as u64 * cam.intrinsics.height as u64 * settings.spp as u64;
+        stats.samples += samples;
         images.push(film);
     }
     progress(n_views, n_views);

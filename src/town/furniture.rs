@@ -265,6 +265,7 @@ fn line(
     } else {
         0.35
     };
+    let mut lamps = Vec::new();
     let mut a = a0 + r.range(5.0, 30.0);
     while a < a1 {
         if !near_junction(a) && !poles.iter().any(|p| (p - a).abs() < 2.5) {
@@ -275,18 +276,32 @@ fn line(
                 &[],
                 class("pole"),
             ));
+            lamps.push(a);
         }
         a += 30.0;
     }
     if trees.density > 0.0 {
+        // On highways the hard shoulder stays clear: trees stand in the
+        // verge behind the guard rail's line, in the lamps' row between them,
+        // on the town's side (beyond the town the hills have their own).
+        let highway = style == StreetStyle::Highway;
+        let bounds = l.bounds();
+        let in_town = |p: [f64; 3]| bounds.contains(&Rect::centered([p[0], p[1]], [0.0, 0.0]), 0.0);
+        let tree_off = if highway {
+            l.sidewalk_m + 0.7
+        } else {
+            off + 0.3
+        };
         let spacing = 9.0 / trees.density.max(0.15);
         let mut a = a0 + r.range(2.0, spacing);
         while a < a1 {
-            if !near_junction(a) && r.chance(0.85) {
+            let by_lamp = highway && lamps.iter().any(|p| (p - a).abs() < 4.0);
+            let beyond = highway && !in_town(place(a, tree_off));
+            if !near_junction(a) && r.chance(0.85) && !by_lamp && !beyond {
                 let main = r.chance(0.7);
-                let at = place(a, off + 0.3);
+                let at = place(a, tree_off);
                 out.push(trees.street_tree(main, at, r.range(0.0, 360.0)));
-                if !trees.verges {
+                if !trees.verges && !highway {
                     out.push(tree_pit(at, &place));
                 }
             }

@@ -8,6 +8,8 @@ mod common;
 mod any_directory;
 mod bad_input;
 mod bench;
+mod closed_pipe;
+mod embree_build;
 mod filter;
 mod preview;
 mod reference;

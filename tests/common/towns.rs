@@ -42,6 +42,7 @@ pub fn gt_frame(
         max_depth: 1,
         seed,
         frame: frame as u32,
+        adaptive: false,
     };
     let out = render_frame(scene, accel, &rig, &settings, &|_, _| {});
     (rig, out)

@@ -114,6 +114,7 @@ fn layouts_written_by_parallax_are_found_by_their_mirrors() {
         max_depth: 4,
         seed: 3,
         frame: 5,
+        adaptive: false,
     };
     let meta = camera_file(&r.scene, &r.rig, &r.out, &settings, None);
     let key = FrameKey {

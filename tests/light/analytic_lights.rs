@@ -103,3 +103,56 @@ fn emissive_quad_irradiance_matches_lambert_polygon_formula() {
         RHO / std::f64::consts::PI * e
     }));
 }
+
+/// A light: position, intensity, and for a spot (axis, cos inner, cos outer).
+type TestLight = (DVec3, f64, Option<(DVec3, f64, f64)>);
+
+#[test]
+fn many_point_and_spot_lights_sum_their_inverse_square_laws() {
+    // Twelve lights (no sun or sky: local lights are all the light, so NEE
+    // resamples them from eight candidates): points and spots aimed off
+    // the vertical, whose falloff edges cross the plane's pixels.
+    let lights: Vec<TestLight> = (0..12)
+        .map(|k| {
+            let a = k as f64 * 2.399;
+            let p = DVec3::new(1.5 * a.cos(), 1.2 * a.sin(), 1.0 + 0.15 * k as f64);
+            let i = 2.0 + 3.0 * (k % 4) as f64;
+            let spot = (k % 3 == 0).then(|| {
+                let dir = DVec3::new(0.3 * a.sin(), -0.3 * a.cos(), -1.0).normalize();
+                (dir, 25f64.to_radians().cos(), 50f64.to_radians().cos())
+            });
+            (p, i, spot)
+        })
+        .collect();
+    let text = scene(
+        &lights
+            .iter()
+            .map(|(p, i, spot)| match spot {
+                None => format!(
+                    "[[light]]\nkind = \"point\"\nposition = [{:?}, {:?}, {:?}]\nintensity = [{i:?}, {i:?}, {i:?}]\n",
+                    p.x, p.y, p.z
+                ),
+                Some((d, _, _)) => format!(
+                    "[[light]]\nkind = \"spot\"\nposition = [{:?}, {:?}, {:?}]\ndirection = [{:?}, {:?}, {:?}]\nintensity = [{i:?}, {i:?}, {i:?}]\ninner_deg = 25.0\nouter_deg = 50.0\n",
+                    p.x, p.y, p.z, d.x, d.y, d.z
+                ),
+            })
+            .collect::<String>(),
+    );
+    let r = render(&scene_from_toml(&text), Backend::default_backend(), 64);
+    check(&ratios(&r, |x| {
+        lights
+            .iter()
+            .map(|(p, i, spot)| {
+                let d = *p - x;
+                let falloff = spot.map_or(1.0, |(dir, cos_in, cos_out)| {
+                    // Smoothstep between the outer and inner cone cosines.
+                    let c = -(d.normalize()).dot(dir);
+                    let t = ((c - cos_out) / (cos_in - cos_out)).clamp(0.0, 1.0);
+                    t * t * (3.0 - 2.0 * t)
+                });
+                RHO / std::f64::consts::PI * i * falloff * (d.z / d.length()) / d.length_squared()
+            })
+            .sum()
+    }));
+}

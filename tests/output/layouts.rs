@@ -255,6 +255,7 @@ fn settings(frame: u32) -> parallax::render::RenderSettings {
         max_depth: 4,
         seed: 3,
         frame,
+        adaptive: false,
     }
 }
 

@@ -305,3 +305,44 @@ fn no_drive_and_no_route_crosses_the_median_barrier() {
         }
     }
 }
+
+#[test]
+fn highway_trees_stand_behind_the_rail_line_not_on_the_hard_shoulder() {
+    for name in ["town04", "town06"] {
+        let desc = town(name);
+        let st = StaticTown::new(&desc, 3);
+        let l = &st.layout;
+        // The guard rails' line: 0.5 m inside the shoulder's outer edge.
+        let rail = l.sidewalk_m - 0.5;
+        let roads: Vec<_> = (0..=l.ny)
+            .map(|j| l.x_road(j))
+            .chain((0..=l.nx).map(|i| l.y_road(i)))
+            .collect();
+        // Distance outside a road rectangle (0 inside it).
+        let outside = |r: &parallax::town::layout::Rect, p: [f64; 2]| {
+            let dx = (r.min[0] - p[0]).max(p[0] - r.max[0]).max(0.0);
+            let dy = (r.min[1] - p[1]).max(p[1] - r.max[1]).max(0.0);
+            dx.hypot(dy)
+        };
+        let mut roadside = 0;
+        for o in st.objects() {
+            let ShapeDesc::Instance { prefab, .. } = &o.shape else {
+                continue;
+            };
+            if !prefab.starts_with("tree_") {
+                continue;
+            }
+            let t = o.transform.translate.unwrap_or_default();
+            let d = roads
+                .iter()
+                .map(|r| outside(r, [t[0], t[1]]))
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                d > rail,
+                "{name}: {prefab} at {t:?} stands {d:.2} m off the road, on the shoulder (rail at {rail} m)"
+            );
+            roadside += usize::from(d < l.sidewalk_m + 2.0);
+        }
+        assert!(roadside > 20, "{name}: only {roadside} roadside trees");
+    }
+}

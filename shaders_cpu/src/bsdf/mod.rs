@@ -120,6 +120,15 @@ impl Bsdf {
             Bsdf::NormalMapped { facet, wp } => normal_map::pdf(&facet, wp, wo, wi),
         }
     }
+    /// [`Bsdf::eval`] and [`Bsdf::pdf`] together (a normal-mapped surface
+    /// builds its groove once for both).
+    #[inline]
+    pub fn eval_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
+        match *self {
+            Bsdf::NormalMapped { facet, wp } => normal_map::eval_pdf(&facet, wp, wo, wi),
+            _ => (self.eval(wo, wi), self.pdf(wo, wi)),
+        }
+    }
     /// Samples `wi` given `wo`, a lobe-selection number and a 2D sample.
     #[inline]
     pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {

@@ -26,7 +26,7 @@
 //! towards z until it does not, so the facet always faces the viewer; the
 //! normal's own tilt is limited to 72°.
 
-use glam::{Vec2, Vec3};
+use glam::{Vec2, Vec3, Vec4};
 
 use super::{coat, conductor, lambert, BsdfSample, CoatBase};
 use crate::sampling::Frame;
@@ -191,6 +191,18 @@ impl Groove {
     }
 }
 
+impl Groove {
+    /// f(wo, wi) and the pdf of `wi` together: one walk over the four
+    /// paths with the facet's f·cos in xyz and its pdf in w (each lane's
+    /// arithmetic is that of the separate sums, so the bits are theirs).
+    fn eval_pdf(&self, facet: &Facet, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
+        let s = self.sum(wo, wi, Vec4::ZERO, |a, b| {
+            (facet.eval(a, b) * b.z.max(0.0)).extend(facet.pdf(a, b))
+        });
+        (s.truncate() / wi.z, s.w)
+    }
+}
+
 /// f(wo, wi) of the normal-mapped surface (geometric frame).
 pub fn eval(facet: &Facet, wp: Vec3, wo: Vec3, wi: Vec3) -> Vec3 {
     if wo.z <= 0.0 || wi.z <= 0.0 {
@@ -199,6 +211,15 @@ pub fn eval(facet: &Facet, wp: Vec3, wo: Vec3, wi: Vec3) -> Vec3 {
     let g = Groove::new(wp, wo);
     let s = g.sum(wo, wi, Vec3::ZERO, |a, b| facet.eval(a, b) * b.z.max(0.0));
     s / wi.z
+}
+
+/// [`eval`] and [`pdf`] at once, the groove built once (next-event
+/// estimation needs both for every light sample it keeps).
+pub fn eval_pdf(facet: &Facet, wp: Vec3, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
+    if wo.z <= 0.0 || wi.z <= 0.0 {
+        return (Vec3::ZERO, 0.0);
+    }
+    Groove::new(wp, wo).eval_pdf(facet, wo, wi)
 }
 
 /// Pdf of [`sample`] per solid angle.
@@ -235,11 +256,10 @@ pub fn sample(facet: &Facet, wp: Vec3, wo: Vec3, u_lobe: f32, u: Vec2) -> Option
     if wi.z <= 0.0 {
         return None;
     }
-    let pdf = g.sum(wo, wi, 0.0, |a, b| facet.pdf(a, b));
+    let (f, pdf) = g.eval_pdf(facet, wo, wi);
     if pdf <= 0.0 {
         return None;
     }
-    let f = g.sum(wo, wi, Vec3::ZERO, |a, b| facet.eval(a, b) * b.z.max(0.0)) / wi.z;
     Some(BsdfSample {
         wi,
         f,

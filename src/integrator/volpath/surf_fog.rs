@@ -7,9 +7,6 @@
 
 use glam::Vec3;
 
-use crate::accel::{Accel, Hit, Ray};
-use crate::integrator::PathContext;
-
 /// The split's state along one path.
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct SurfFog {
@@ -25,7 +22,7 @@ pub(super) struct SurfFog {
 
 impl SurfFog {
     /// Records the first surface vertex: `rho` is β·albedo when x1 is
-    /// Lambertian (None: not tracked). Call before the vertex is shaded.
+    /// Lambertian (None: not tracked). Call before the next segment starts.
     pub fn at_first_vertex(&mut self, rho: Option<Vec3>) {
         if let Some(r) = rho {
             self.rho = r;
@@ -52,19 +49,5 @@ impl SurfFog {
     /// The fog light on x1 given the path's final radiance `l`.
     pub fn l_surf(&self, l: Vec3) -> Vec3 {
         self.from.map_or(Vec3::ZERO, |a| self.to.unwrap_or(l) - a)
-    }
-}
-
-impl<A: Accel> PathContext<'_, A> {
-    /// The albedo at the first surface vertex of `ray` (texture included,
-    /// as the camera sees it, after wetting) when its BSDF is Lambertian;
-    /// None for every other BSDF (mirror, glass, water film, metal).
-    pub(super) fn first_lambert_albedo(&self, ray: &Ray, hit: &Hit) -> Option<Vec3> {
-        let scene = self.scene;
-        let si = self.surfaces.interaction(scene, ray, hit);
-        scene
-            .material_view()
-            .bsdf(&si, -ray.d, true)
-            .diffuse_albedo()
     }
 }

@@ -43,10 +43,24 @@ size = [2000.0, 2000.0]
 material = "ground"
 "#;
 
+/// A sky over the same scene (the medium NEE samples it beside the sun).
+const SKY: &str = r#"
+[sky]
+kind = "gradient"
+zenith = [9.0, 16.0, 38.0]
+horizon = [30.0, 33.0, 37.0]
+ground = [6.0, 5.6, 5.2]
+"#;
+
 /// Per direction, the green radiance of each of `n` camera samples.
 fn samples(strategies: Strategies, dirs: &[Vec3], n: u32) -> Vec<Vec<f64>> {
+    samples_in(SCENE, strategies, dirs, n).0
+}
+
+/// [`samples`] in scene `src`, and the rays they traced.
+fn samples_in(src: &str, strategies: Strategies, dirs: &[Vec3], n: u32) -> (Vec<Vec<f64>>, u64) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/inline.toml");
-    let loaded = parse_scene_str(SCENE, &path).expect("scene parses");
+    let loaded = parse_scene_str(src, &path).expect("scene parses");
     let scene = build_scene(&loaded, DVec3::ZERO).expect("scene builds");
     let accel = build_accel(Backend::Bvh, &scene.accel_geometry()).expect("accel builds");
     let shading = Shading::new(&scene, &accel);
@@ -57,10 +71,11 @@ fn samples(strategies: Strategies, dirs: &[Vec3], n: u32) -> Vec<Vec<f64>> {
         view: 0,
     };
     let o = Vec3::new(0.0, 0.0, 1.5);
-    dirs.iter()
+    let mut rays = 0;
+    let l = dirs
+        .iter()
         .enumerate()
         .map(|(i, &d)| {
-            let mut rays = 0;
             (0..n)
                 .map(|k| {
                     let mut stream = SampleStream::new(key, i as u32, k / 256, k % 256);
@@ -73,7 +88,8 @@ fn samples(strategies: Strategies, dirs: &[Vec3], n: u32) -> Vec<Vec<f64>> {
                 })
                 .collect()
         })
-        .collect()
+        .collect();
+    (l, rays)
 }
 
 /// Mean and variance (of one sample) of `xs`.
@@ -92,6 +108,31 @@ fn mean_var(xs: &[f64]) -> (f64, f64) {
 fn paired_se(a: &[f64], b: &[f64]) -> f64 {
     let d: Vec<f64> = a.iter().zip(b).map(|(x, y)| x - y).collect();
     (mean_var(&d).1 / d.len() as f64).sqrt()
+}
+
+/// Asserts per direction that runs `a` and `b` (named, on the same sample
+/// streams) agree in mean within 4 paired standard errors; returns their
+/// variances per direction.
+fn assert_same_means(
+    dirs: &[Vec3],
+    (name_a, a): (&str, &[Vec<f64>]),
+    (name_b, b): (&str, &[Vec<f64>]),
+) -> Vec<(f64, f64)> {
+    let pairs = dirs.iter().zip(a.iter().zip(b));
+    pairs
+        .map(|(d, (xa, xb))| {
+            let ((ma, va), (mb, vb)) = (mean_var(xa), mean_var(xb));
+            let se = paired_se(xa, xb);
+            eprintln!(
+                "{d}: {name_a} {ma:.4} (var {va:.3}), {name_b} {mb:.4} (var {vb:.3}), se {se:.4}"
+            );
+            assert!(
+                (ma - mb).abs() <= 4.0 * se,
+                "{d}: {name_a} {ma} vs {name_b} {mb} ± {se}"
+            );
+            (va, vb)
+        })
+        .collect()
 }
 
 /// Toward the sun's azimuth (level and up), across, and down at the ground.
@@ -115,23 +156,9 @@ fn sun_lobe_keeps_the_mean_and_lowers_the_variance() {
         &dirs,
         n,
     );
-    let (mut var_off, mut var_on) = (0.0, 0.0);
-    for (d, (xa, xb)) in dirs.iter().zip(off.iter().zip(&on)) {
-        let (a, b) = (mean_var(xa), mean_var(xb));
-        let se = paired_se(xa, xb);
-        eprintln!(
-            "{d}: off {:.4} (var {:.3}), on {:.4} (var {:.3}), se {se:.4}",
-            a.0, a.1, b.0, b.1
-        );
-        assert!(
-            (a.0 - b.0).abs() <= 4.0 * se,
-            "{d}: {} vs {} ± {se}",
-            a.0,
-            b.0
-        );
-        var_off += a.1;
-        var_on += b.1;
-    }
+    let vars = assert_same_means(&dirs, ("off", &off), ("on", &on));
+    let var_off: f64 = vars.iter().map(|v| v.0).sum();
+    let var_on: f64 = vars.iter().map(|v| v.1).sum();
     assert!(var_on < 0.8 * var_off, "variance {var_on} vs {var_off}");
 }
 
@@ -149,17 +176,7 @@ fn albedo_roulette_keeps_the_mean() {
         &DIRS,
         n,
     );
-    for (d, (xa, xb)) in DIRS.iter().zip(off.iter().zip(&on)) {
-        let (a, b) = (mean_var(xa), mean_var(xb));
-        let se = paired_se(xa, xb);
-        eprintln!("{d}: throughput {:.4}, albedo {:.4}, se {se:.4}", a.0, b.0);
-        assert!(
-            (a.0 - b.0).abs() <= 4.0 * se,
-            "{d}: {} vs {} ± {se}",
-            a.0,
-            b.0
-        );
-    }
+    assert_same_means(&DIRS, ("throughput", &off), ("albedo", &on));
 }
 
 fn medium(albedo: Vec3) -> Medium {
@@ -201,4 +218,58 @@ fn albedo_roulette_keeps_grey_throughput_and_expected_weight() {
         let mean = sum / n as f32;
         assert!((mean - 0.4 * albedo).abs().max_element() < 1e-5, "{mean}");
     }
+}
+
+#[test]
+fn collision_only_in_scattering_keeps_the_mean() {
+    // Defaults (in-scattering on every segment only before the first
+    // scattering event) against it on every segment: the same expected
+    // radiance, toward and across the sun.
+    let n = 16384;
+    let cheap = samples(Strategies::default(), &DIRS, n);
+    let full = samples(
+        Strategies {
+            every_segment_bounces: u32::MAX,
+            ..Strategies::default()
+        },
+        &DIRS,
+        n,
+    );
+    // Estimated on no segment but collisions, from the camera ray on.
+    let collisions = samples(
+        Strategies {
+            every_segment_bounces: 0,
+            ..Strategies::default()
+        },
+        &DIRS,
+        n,
+    );
+    assert_same_means(&DIRS, ("full", &full), ("default", &cheap));
+    assert_same_means(&DIRS, ("full", &full), ("collisions only", &collisions));
+}
+
+#[test]
+fn deep_sky_and_lobe_roulettes_keep_the_mean() {
+    // Under sun and sky: the defaults (the sky's NEE at collisions and the
+    // sun lobe after the first collision each drawn half the time) against
+    // both always drawn: the same expected radiance, for fewer rays.
+    let n = 16384;
+    let scene = format!("{SCENE}{SKY}");
+    let (rr, rays_rr) = samples_in(&scene, Strategies::default(), &DIRS, n);
+    let (all, rays_all) = samples_in(
+        &scene,
+        Strategies {
+            sky_nee_deep: 1.0,
+            lobe_deep: 1.0,
+            ..Strategies::default()
+        },
+        &DIRS,
+        n,
+    );
+    assert_same_means(&DIRS, ("always", &all), ("roulette", &rr));
+    eprintln!("rays: always {rays_all}, roulette {rays_rr}");
+    assert!(
+        (rays_rr as f64) < 0.95 * rays_all as f64,
+        "{rays_rr} vs {rays_all}"
+    );
 }

@@ -113,3 +113,68 @@ fn the_sky_joins_nee_only_without_a_sun_or_under_fog() {
         }
     }
 }
+
+/// Three point lights of intensity `i` 2–4 m above the plane.
+fn points(i: f32) -> String {
+    [(1.0, 0.0, 2.0), (-2.0, 1.0, 3.0), (0.5, -3.0, 4.0)]
+        .iter()
+        .map(|(x, y, z)| {
+            format!("[[light]]\nkind = \"point\"\nposition = [{x:?}, {y:?}, {z:?}]\nintensity = [{i:?}, {i:?}, {i:?}]\n")
+        })
+        .collect()
+}
+
+#[test]
+fn local_lights_share_sets_candidates_and_the_probability_a_vertex_samples_them() {
+    // Faint lamps under a 900 W/m² sun: sampled at a vertex with
+    // probability 0.1, one candidate; alone (no sun): always, resampled.
+    let p = Vec3::new(0.3, 0.2, 0.0);
+    for (extra, candidates, p_local) in [
+        (format!("{GRADIENT}{}", points(1.0)), 1, 0.1f32),
+        (
+            format!("{OVERCAST}{}", points(1e6)),
+            crate::light::LOCAL_CANDIDATES,
+            1.0,
+        ),
+    ] {
+        let scene = scene_with(&extra);
+        let lights = LightSet::build(&scene);
+        assert_eq!(lights.len(), 3, "{extra}");
+        assert_eq!(lights.local_candidates(), candidates, "{extra}");
+        let total: f32 = (0..3).map(|i| lights.pmf_at(p, i)).sum();
+        assert!((total - p_local).abs() < 1e-5, "Σ pmf {total} for\n{extra}");
+        // select_at returns the pmf pmf_at recomputes, and declines for
+        // the share 1 − p_local of the numbers.
+        let n = 1000;
+        let mut declined = 0;
+        for k in 0..n {
+            let u = (k as f32 + 0.5) / n as f32;
+            match lights.select_at(p, u) {
+                Some((i, pmf)) => assert_eq!(pmf.to_bits(), lights.pmf_at(p, i).to_bits()),
+                None => declined += 1,
+            }
+        }
+        let expect = ((1.0 - p_local) * n as f32).round() as i32;
+        assert!(
+            (declined - expect).abs() <= 1,
+            "{declined} declined, {expect} expected"
+        );
+    }
+}
+
+#[test]
+fn scene_radius_is_the_farthest_point_within_its_clamp() {
+    let quad = |size: f64| {
+        let text = format!(
+            "[camera]\nposition = [0.0, 0.0, 1.5]\n[[material]]\nname = \"grey\"\nkind = \"diffuse\"\nalbedo = [0.5, 0.5, 0.5]\n[[object]]\nkind = \"quad\"\nsize = [{size}, {size}]\nmaterial = \"grey\"\n{OVERCAST}"
+        );
+        let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/inline.toml");
+        let loaded = parse_scene_str(&text, &file).expect("scene parses");
+        super::weights::scene_radius(&build_scene(&loaded, DVec3::ZERO).expect("scene builds"))
+    };
+    // Corners at half the diagonal; below 1 m and beyond 100 m it is clamped
+    // (the walk stops at the first corner past 100 m).
+    assert!((quad(10.0) - 50f32.sqrt()).abs() < 1e-5, "{}", quad(10.0));
+    assert_eq!(quad(1.0), 1.0);
+    assert_eq!(quad(300.0), 100.0);
+}

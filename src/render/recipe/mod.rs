@@ -203,6 +203,9 @@ pub struct FrameSpec {
     pub filter: bool,
     /// Reference mode: plain, unbiased path tracing ([`reference_mode`]).
     pub reference: bool,
+    /// Adaptive sampling (`RenderSettings::adaptive`; off by default, and
+    /// always off in reference mode).
+    pub adaptive: bool,
     /// Traversal backend.
     pub backend: Backend,
 }
@@ -216,6 +219,7 @@ impl Default for FrameSpec {
             sensor_noise_iso: None,
             filter: true,
             reference: false,
+            adaptive: false,
             backend: Backend::default_backend(),
         }
     }
@@ -269,8 +273,9 @@ impl FrameRecipe {
         if !spec.filter {
             loaded.desc.turn_image_filters_off();
         }
-        let noise_iso =
-            reference_mode(spec.reference, &mut loaded).unwrap_or(spec.sensor_noise_iso);
+        let mut adaptive = spec.adaptive;
+        let noise_iso = reference_mode(spec.reference, &mut loaded, &mut adaptive)
+            .unwrap_or(spec.sensor_noise_iso);
         let noise = sensor_noise(noise_iso, weather.as_mut())?;
         origin.seeds.samples = Some(seed);
         let settings = RenderSettings {
@@ -278,6 +283,7 @@ impl FrameRecipe {
             max_depth: loaded.desc.render.max_depth,
             seed,
             frame: spec.frame,
+            adaptive,
         };
         Ok(FrameRecipe {
             loaded,
@@ -310,16 +316,22 @@ impl FrameRecipe {
 
 /// Reference mode (`render --reference`), decided here and only here: plain,
 /// unbiased path tracing. It turns the description's image-space filters
-/// off and returns the sensor noise override it forces (ISO 0: none, also
-/// over a weather preset's). Every biased pass today (the image filters,
-/// including the direct-light denoiser) hangs on those filter switches, so
-/// nothing else needs the flag; a new biased pass must be turned off here.
-/// None when `reference` is off.
-pub fn reference_mode(reference: bool, loaded: &mut LoadedScene) -> Option<Option<f64>> {
+/// and adaptive sampling off (`adaptive`: a reference takes the same
+/// samples in every pixel) and returns the sensor noise override it forces
+/// (ISO 0: none, also over a weather preset's). Every biased pass today
+/// (the image filters, including the direct-light denoiser) hangs on those
+/// filter switches, so nothing else needs the flag; a new biased pass must
+/// be turned off here. None when `reference` is off.
+pub fn reference_mode(
+    reference: bool,
+    loaded: &mut LoadedScene,
+    adaptive: &mut bool,
+) -> Option<Option<f64>> {
     if !reference {
         return None;
     }
     loaded.desc.turn_image_filters_off();
+    *adaptive = false;
     Some(Some(0.0))
 }
 

@@ -72,6 +72,7 @@ fn overrides_reach_the_description_and_the_settings() {
         max_depth: 4,
         seed: 11,
         frame: 7,
+        adaptive: false,
     };
     assert_eq!(r.settings, expected);
     assert_eq!(r.origin.seeds.samples, Some(11));

@@ -1,0 +1,121 @@
+//! Resampled importance sampling (RIS, Talbot et al. 2005) of the local
+//! light at a surface vertex: M light samples are drawn from the
+//! light BVH as one-sample NEE draws them (source pdf p), each weighed by
+//! its unshadowed contribution p̂ = luminance(f·cos·L) (BSDF, the spot's
+//! falloff and the emitter's cosine included), and one is kept in
+//! proportion to p̂/p; only that one traces a shadow ray. Its estimate is
+//! f·cos·L·V / p̂ · (1/M)·Σ p̂ᵢ/pᵢ, unbiased wherever p̂ > 0 covers the
+//! integrand (p̂ drops only the visibility). At night each surface point
+//! sees dozens of lamps, windows and head-lights the tree cannot tell
+//! apart (a lamp behind a wall, a spot facing away, a light under the
+//! surface's horizon): candidates the BSDF or the profile zero out never
+//! cost a shadow ray, and the kept one is nearly proportional to its light.
+//!
+//! MIS with BSDF sampling stays the one-sample partition: the kept sample's
+//! integrand carries w = p²/(p² + p_bsdf²) with the one-candidate pdf p,
+//! the weight a BSDF ray that hits the emitter gets against it
+//! (`LightSet::pdf_triangle`), so the two still sum to one.
+
+use glam::{Vec2, Vec3};
+use shaders_cpu::sampling::luminance;
+
+use crate::light::{LightSample, LightSet};
+use crate::sampler::SampleStream;
+use crate::scene::Scene;
+
+/// Most candidates per vertex (the light set says how many it uses:
+/// `LightSet::local_candidates`).
+const CANDIDATES: usize = crate::light::LOCAL_CANDIDATES;
+
+/// First 4D set of the candidates beyond the first (one set each per
+/// bounce; far from the surface and volume dimensions).
+const RIS_DIMS: u32 = 1 << 19;
+
+/// Every random number the resampling of one vertex uses: per candidate
+/// (light choice, light u, light v, spare); the first candidate's spare is
+/// the choice among the candidates.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct RisSamples {
+    u: [[f32; 4]; CANDIDATES],
+    /// Candidates used (1 ..= `CANDIDATES`).
+    m: usize,
+}
+
+impl RisSamples {
+    /// The samples of scattering event `bounces` for `m` candidates:
+    /// `first` is the bounce's local-light set (the one-sample draw), the
+    /// rest from their own fixed dimensions.
+    pub fn draw(stream: &mut SampleStream, bounces: u32, first: [f32; 4], m: usize) -> Self {
+        let mut u = [first; CANDIDATES];
+        stream.set_dimension(RIS_DIMS + bounces * CANDIDATES as u32);
+        for c in u.iter_mut().take(m).skip(1) {
+            *c = stream.next_4d();
+        }
+        RisSamples { u, m }
+    }
+}
+
+/// The light sample RIS kept, with what its estimate needs.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Resampled {
+    /// The sample (`pdf` its one-candidate pdf, for the MIS weight).
+    pub ls: LightSample,
+    /// BSDF × cosine toward it, evaluated once for the target.
+    pub f: Vec3,
+    /// Replaces 1/pdf in the estimate: (1/M)·Σ p̂ᵢ/pᵢ / p̂(kept); None
+    /// with one candidate (then it is 1/pdf, left to the caller's division).
+    pub inv_pdf: Option<f32>,
+}
+
+/// Resamples one of `u`'s candidate local-light samples seen from `p`;
+/// `f_cos(wi)` is the vertex's BSDF × |cos| toward `wi` (zero where the
+/// surface cannot receive it). None when every candidate's target is zero.
+pub(super) fn resample(
+    lights: &LightSet,
+    scene: &Scene,
+    p: Vec3,
+    u: &RisSamples,
+    f_cos: impl Fn(Vec3) -> Vec3,
+) -> Option<Resampled> {
+    let mut kept: Option<(LightSample, Vec3, f32)> = None;
+    let mut w_sum = 0.0f32;
+    // Weighted reservoir over the candidates in order: candidate i replaces
+    // the kept one with probability wᵢ/Σ_{j≤i} w_j, decided by one number
+    // rescaled after each decision so it stays uniform.
+    let mut u_pick = u.u[0][3];
+    for c in &u.u[..u.m] {
+        let Some(ls) = lights.sample(scene, p, c[0], Vec2::new(c[1], c[2])) else {
+            continue;
+        };
+        if ls.pdf <= 0.0 || ls.li == Vec3::ZERO {
+            continue;
+        }
+        let f = f_cos(ls.wi);
+        let target = luminance(f * ls.li);
+        if target.is_nan() || target <= 0.0 {
+            continue;
+        }
+        let w = target / ls.pdf;
+        if !w.is_finite() {
+            continue;
+        }
+        w_sum += w;
+        let p_take = w / w_sum;
+        if u_pick < p_take {
+            kept = Some((ls, f, target));
+            u_pick /= p_take;
+        } else {
+            u_pick = (u_pick - p_take) / (1.0 - p_take);
+        }
+        u_pick = u_pick.min(1.0 - f32::EPSILON);
+    }
+    let (ls, f, target) = kept?;
+    Some(Resampled {
+        ls,
+        f,
+        inv_pdf: (u.m > 1).then(|| w_sum / (u.m as f32 * target)),
+    })
+}
+
+#[cfg(test)]
+mod tests;

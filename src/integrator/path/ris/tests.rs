@@ -1,0 +1,151 @@
+//! Resampling is unbiased and pays: over a Lambert point lit by a crowd of
+//! point and spot lights (no occluders, so the estimate needs no shadow
+//! ray), the mean of f·L·W over many draws equals the closed-form sum
+//! Σ ρ/π·I·falloff·cosθ/d², with `CANDIDATES` candidates as with one, and M
+//! candidates leave at most about (1/2 + 1/(2M)) of one candidate's
+//! variance (resampling's share that falls as 1/M, and a margin).
+
+use std::path::Path;
+
+use glam::{DVec3, Vec3};
+
+use super::{resample, RisSamples, CANDIDATES};
+use crate::light::{spot_falloff, Light, LightSet};
+use crate::scene::{build_scene, parse_scene_str};
+
+const RHO: f32 = 0.5;
+
+/// SplitMix64 numbers in [0, 1).
+struct Rng(u64);
+
+impl Rng {
+    fn f(&mut self) -> f32 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
+    }
+}
+
+/// A plane under 40 lights: points and downward spots, 1–8 m up, of
+/// intensities spread over two decades.
+fn scene() -> crate::scene::Scene {
+    let mut rng = Rng(3);
+    let mut text = String::from(
+        "[camera]\nposition = [0.0, 0.0, 1.5]\n[[material]]\nname = \"m\"\nkind = \"diffuse\"\nalbedo = [0.5, 0.5, 0.5]\n[[object]]\nkind = \"quad\"\nsize = [60.0, 60.0]\nmaterial = \"m\"\n",
+    );
+    for k in 0..40 {
+        let (x, y, z) = (
+            40.0 * rng.f() - 20.0,
+            40.0 * rng.f() - 20.0,
+            1.0 + 7.0 * rng.f(),
+        );
+        let i = 10f32.powf(2.0 * rng.f());
+        if k % 2 == 0 {
+            text += &format!("[[light]]\nkind = \"point\"\nposition = [{x}, {y}, {z}]\nintensity = [{i}, {i}, {i}]\n");
+        } else {
+            let (dx, dy) = (rng.f() - 0.5, rng.f() - 0.5);
+            text += &format!("[[light]]\nkind = \"spot\"\nposition = [{x}, {y}, {z}]\ndirection = [{dx}, {dy}, -1.0]\nintensity = [{i}, {i}, {i}]\ninner_deg = 20.0\nouter_deg = 45.0\n");
+        }
+    }
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/inline.toml");
+    let loaded = parse_scene_str(&text, &file).expect("scene parses");
+    build_scene(&loaded, DVec3::ZERO).expect("scene builds")
+}
+
+/// ρ/π·cosθ toward `wi` from an upward-facing Lambert point.
+fn f_cos(wi: Vec3) -> Vec3 {
+    Vec3::splat(RHO / std::f32::consts::PI * wi.z.max(0.0))
+}
+
+/// Reflected radiance at `p` in closed form.
+fn exact(scene: &crate::scene::Scene, p: Vec3) -> f64 {
+    scene
+        .lights
+        .iter()
+        .map(|l| {
+            let (q, i, fall) = match *l {
+                Light::Point { p: q, intensity } => (q, intensity.y, 1.0),
+                Light::Spot {
+                    p: q,
+                    dir,
+                    intensity,
+                    cos_inner,
+                    cos_outer,
+                } => {
+                    let wi = (q - p).normalize();
+                    (
+                        q,
+                        intensity.y,
+                        spot_falloff(-wi.dot(dir), cos_inner, cos_outer),
+                    )
+                }
+                Light::Sun { .. } => unreachable!("no sun here"),
+            };
+            let d = q - p;
+            (f_cos(d.normalize()).y * i * fall / d.length_squared()) as f64
+        })
+        .sum()
+}
+
+/// Mean and variance of the estimate at `p` over `n` draws of `m` candidates.
+fn estimates(
+    scene: &crate::scene::Scene,
+    lights: &LightSet,
+    p: Vec3,
+    m: usize,
+    n: usize,
+) -> (f64, f64) {
+    let mut rng = Rng(11);
+    let xs: Vec<f64> = (0..n)
+        .map(|_| {
+            let mut u = [[0.0; 4]; CANDIDATES];
+            for c in &mut u {
+                *c = [rng.f(), rng.f(), rng.f(), rng.f()];
+            }
+            let u = RisSamples { u, m };
+            resample(lights, scene, p, &u, f_cos).map_or(0.0, |r| {
+                let inv = r.inv_pdf.unwrap_or(1.0 / r.ls.pdf);
+                (r.f * r.ls.li * inv).y as f64
+            })
+        })
+        .collect();
+    let mean = xs.iter().sum::<f64>() / n as f64;
+    let var = xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
+    (mean, var)
+}
+
+#[test]
+fn resampled_local_light_matches_the_closed_form_and_more_candidates_cut_its_variance() {
+    let scene = scene();
+    let lights = LightSet::build(&scene);
+    assert_eq!(
+        lights.local_candidates(),
+        CANDIDATES,
+        "no distant light: all local"
+    );
+    let n = 40_000;
+    for p in [
+        Vec3::ZERO,
+        Vec3::new(7.0, -5.0, 0.0),
+        Vec3::new(-12.0, 9.0, 0.0),
+    ] {
+        let e = exact(&scene, p);
+        let (m1, v1) = estimates(&scene, &lights, p, 1, n);
+        let (mm, vm) = estimates(&scene, &lights, p, CANDIDATES, n);
+        eprintln!(
+            "{p}: exact {e:.5}, M=1 {m1:.5} (var {v1:.4}), M={CANDIDATES} {mm:.5} (var {vm:.4})"
+        );
+        for (m, v) in [(m1, v1), (mm, vm)] {
+            let se = (v / n as f64).sqrt();
+            assert!((m - e).abs() <= 4.0 * se, "{p}: {m} vs exact {e} ± {se}");
+            assert!((m - e).abs() <= 0.02 * e, "{p}: {m} vs exact {e}");
+        }
+        let bound = 0.5 + 0.5 / CANDIDATES as f64 + 0.1;
+        assert!(
+            vm < bound * v1,
+            "{p}: variance {vm} with {CANDIDATES} candidates vs {v1} with 1 (bound {bound})"
+        );
+    }
+}
