@@ -1,39 +1,13 @@
-//! Traffic over time in closed form, and the ego's drives (`ego`: a
-//! seeded route over the whole grid, simulated from the drive's start,
-//! with the background vehicles in its way removed; docs/drives.md).
-//! Vehicles ride the closed routes of `routes` (block loops turning right
-//! at every corner or round the roundabout, the ring turning left around
-//! the town and going straight through its T junctions). Every vehicle
-//! of route r follows the same speed profile s(τ) (`profile`: slower in
-//! curves, accelerating out) at its own time offset c_n: s_n(t) = s(ρ_r·G(t) + c_n), where G is one
-//! town-wide stop-and-go clock (ramp up, drive, ramp down, stand) and ρ_r
-//! ≤ 1 scales the route so it advances exactly 1/m_r lap per cycle; the
-//! ring (on the outer roads, without crossers) ignores the clock. The
-//! pose of every object at frame K is a pure function of (desc, seed, K).
-//! Each route carries the bodies its corners fit; in multi-lane towns the
-//! ring's long-vehicle route runs a bus line (every third slot a bus or
-//! truck), spaced for the longest body on it.
-//!
-//! No overlap, by construction: routes share no road surface (each lane
-//! belongs to one route, corners stay in their own corridor, roundabout
-//! turns in their own quarter of the ring), and time offsets of one route
-//! differ by Δc, chosen so the arc spacing min over τ of s(τ+Δc) − s(τ) is
-//! at least the longest allowed body plus a gap. Stops: the offsets are
-//! shifted by whole Δc each cycle, so the stand positions of a block loop
-//! repeat every m_r cycles; the lead slot stands at the first stop line,
-//! and slots that would stand in a junction, crosswalk or the roundabout at
-//! any of their m_r stands stay empty. Crosswalks on interior roads are
-//! therefore clear while everything stands (pedestrians cross then).
-
 //! Traffic over time: the ego's drives (`ego`: a seeded route over the
-//! whole grid, simulated from the drive's start, with the background
-//! vehicles in its way removed; docs/drives.md) and the background
-//! vehicles (`sim`: seeded junction walks on every road, simulated per
-//! drive in chunks, that turn at junctions under per-direction signal
-//! phases and keep their distance), plus the overpass's closed loop in
-//! closed form. The signal phases (`Schedule`, shown by `signals`) are
-//! the same at every junction: the east–west approaches' green, amber and
-//! all-red, then the north–south approaches', then a stand in which every
+//! whole grid, moved against the signals and the road, with the
+//! background vehicles in its way removed; docs/drives.md) and the
+//! background vehicles (`sim`: seeded junction walks on every road,
+//! simulated per drive in chunks that each start from their own seeded
+//! state, that turn at junctions under per-direction signal phases and
+//! keep their distance), plus the overpass's closed loop in closed form.
+//! The signal phases (`Schedule`, shown by `signals`) are the same at
+//! every junction: the east–west approaches' green, amber and all-red,
+//! then the north–south approaches', then a stand in which every
 //! approach shows red and pedestrians cross (`walkers`).
 //!
 //! The overpass route (`routes`, `overpass`) keeps its closed form: every
@@ -407,11 +381,10 @@ pub fn drive_frame_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> Tow
 /// The ego's pose (set on the ground) and speed (m/s) at `frame` of drive
 /// `drive`: what `parallax town --trajectory` prints.
 pub fn ego_pose(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> (VehiclePose, f64) {
-    let me = ego::ego_at(desc, seed, drive, frame);
+    let (pose, speed) = ego::ego_motion(desc, seed, drive, frame);
     let grade = Grade::new(desc, seed);
     let warp = super::organic::Warp::new(desc, seed);
-    let pose = on_ground(bent(warp.as_ref(), me.pose), grade.as_ref());
-    (pose, me.speed_mps)
+    (on_ground(bent(warp.as_ref(), pose), grade.as_ref()), speed)
 }
 
 /// Every vehicle but the ego at `frame` of drive `drive`, level grid

@@ -204,7 +204,7 @@ fn town04_curves_are_asphalt_with_nothing_on_them_and_the_cut_corners_are_ground
     loaded.desc.objects.retain(|o| {
         !matches!(
             o.semantic.as_deref(),
-            Some("car" | "bus" | "truck" | "pedestrian")
+            Some("car" | "bus" | "truck" | "motorcycle" | "bicycle" | "rider" | "pedestrian")
         )
     });
     let origin = DVec3::new(500.0, 250.0, 0.0);

@@ -11,8 +11,9 @@ use std::collections::BTreeMap;
 
 use parallax::town::layout::Layout;
 use parallax::town::signals::{axis_lamp, signals_at, Lamp};
-use parallax::town::traffic::{cyclist_speed_mps, Plan, VehiclePose};
+use parallax::town::traffic::{cyclist_speed_mps, Plan, VehiclePose, ROUNDS_PER_STAND};
 use parallax::town::vehicles::BodyKind;
+use parallax::town::walkers::WALK_MPS;
 use parallax::town::{frame_at, TownFrame};
 
 use crate::common::towns::town;
@@ -143,6 +144,27 @@ fn pedestrians_cross_the_carriageway_only_while_every_approach_stands_red() {
                     continue; // not on a carriageway
                 }
                 on_road += 1;
+                // The stand by the schedule's numbers (time 0 starts one):
+                // τ seconds into it, a crosser who set off from the kerb as
+                // it began is at most WALK_MPS · τ into the carriageway.
+                let window = sched.green_s + sched.amber_s + sched.all_red_s;
+                let cycle = 2.0 * ROUNDS_PER_STAND as f64 * window + sched.stop_s;
+                let tau = t.rem_euclid(cycle);
+                assert!(
+                    tau < sched.stop_s,
+                    "{name} frame {}: on the road {tau} s into the cycle",
+                    f.frame
+                );
+                let h = p.heading_deg.to_radians();
+                let across_x = h.cos().abs() > 0.5;
+                let (v, u) = if across_x { (x, h.cos()) } else { (y, h.sin()) };
+                let into = hw + (v - (v / l.pitch_m).round() * l.pitch_m) * u.signum();
+                assert!(
+                    into <= WALK_MPS * tau + 1e-6,
+                    "{name} frame {}: pedestrian {} {into} m into the road {tau} s into the stand",
+                    f.frame,
+                    p.id
+                );
                 for dir in 0..4 {
                     assert_eq!(
                         axis_lamp(&sched, dir, t),
@@ -290,7 +312,10 @@ fn cyclists_ride_the_kerb_lane_at_their_own_speed_and_are_followed() {
                     let along = d[0] * h.cos() + d[1] * h.sin();
                     let lat = (d[1] * h.cos() - d[0] * h.sin()).abs();
                     let gap = along - (b.body.footprint_m()[0] + v.body.footprint_m()[0]) / 2.0;
-                    if v.id == b.id || lat > 0.3 || !(1.0..4.0).contains(&gap) {
+                    // Heading its way (not crossing behind it at a junction).
+                    let dh = (v.heading_deg - b.heading_deg).rem_euclid(360.0);
+                    let its_way = dh.min(360.0 - dh) < 30.0;
+                    if v.id == b.id || lat > 0.3 || !its_way || !(1.0..4.0).contains(&gap) {
                         continue;
                     }
                     if let Some(Some(p)) = tr[&v.id].get(k - 1) {

@@ -97,6 +97,9 @@ pub struct DrivePath {
     /// Whether the walk changes lanes freely (the ego) or only when its
     /// lane has no move left (background vehicles).
     changes: bool,
+    /// Whether it carries a long body (bus, truck): right turns only
+    /// where no other move is legal.
+    long: bool,
 }
 
 /// Unit vector of direction `d`.
@@ -135,7 +138,9 @@ impl DrivePath {
 
     /// A background vehicle's walk from link `start`, lane `lane`, `at`
     /// metres past the link's start junction (None: mid-way along its
-    /// straight), moves drawn from `rng`, without free lane changes.
+    /// straight), moves drawn from `rng`, without free lane changes;
+    /// `long`: a bus or truck, turning right only where nothing else is
+    /// legal.
     pub fn background(
         l: &Layout,
         turns: &Turns,
@@ -143,8 +148,10 @@ impl DrivePath {
         lane: u32,
         at: f64,
         rng: Rng,
+        long: bool,
     ) -> Self {
         let mut p = Self::on_link(l, turns, start, lane, Some(at), rng);
+        p.long = long;
         p.extend();
         p
     }
@@ -182,6 +189,7 @@ impl DrivePath {
             lane,
             at_m: at.unwrap_or(mid),
             changes: false,
+            long: false,
         }
     }
 
@@ -329,7 +337,15 @@ impl DrivePath {
             .filter(|&(m, _)| m != Move::Left || !self.l.median_through(ju.0, ju.1))
             .map(|(m, q)| (m, (self.dir + q) % 4))
             .filter(|&(_, d)| self.valid(to, d))
-            .collect();
+            .collect::<Vec<_>>();
+        // A long body turns right only where nothing else is legal: the
+        // kerb lane's tight right turn sweeps its ends off the corner.
+        let options: Vec<(Move, usize)> = if self.long && options.iter().any(|o| o.0 != Move::Right)
+        {
+            options.into_iter().filter(|o| o.0 != Move::Right).collect()
+        } else {
+            options
+        };
         let curve = self.l.loop_corner_at(ju.0, ju.1);
         let free = self.changes;
         let need = |m: Move, cur: u32, r: &mut Rng| match m {
@@ -339,6 +355,7 @@ impl DrivePath {
             Move::Straight if free && lanes > 1 && r.chance(CHANGE_P) => r.int(0, lanes - 1),
             Move::Straight => cur,
         };
+        let legal = options.clone();
         let options = if free || curve {
             options
         } else {
@@ -352,9 +369,10 @@ impl DrivePath {
         };
         let changes = self.lane.abs_diff(target) as f64;
         if straight_m(self, m, target) < changes * LANE_CHANGE_M + 2.0 {
-            // No room to change lanes: a move from the current lane.
+            // No room to change lanes: a move from the current lane
+            // (straight on where that is legal at all).
             target = self.lane;
-            if let Some(&o) = options.iter().find(|o| o.0 == Move::Straight) {
+            if let Some(&o) = legal.iter().find(|o| o.0 == Move::Straight) {
                 (m, d_out) = o;
             }
         }

@@ -40,7 +40,14 @@ pub struct JState {
     pub v: f64,
     /// Its speed limit, m/s.
     pub v_max: f64,
+    /// Whether its body is long (`LONG_M`): turning, it sweeps into the
+    /// next lane.
+    pub long: bool,
 }
+
+/// Bodies longer than this sweep their corners into the next lane when
+/// they turn (a bus's ends on a 10 m arc bulge out ~2 m), metres.
+pub const LONG_M: f64 = 7.0;
 
 impl JState {
     /// The state of the driver at arc length `s` (centre) with half length
@@ -59,6 +66,7 @@ impl JState {
             d_stop: c.stop_m - (s + half),
             v,
             v_max,
+            long: 2.0 * half > LONG_M,
         })
     }
 
@@ -93,6 +101,13 @@ pub fn compatible(a: &Crossing, b: &Crossing) -> bool {
         return a.dir == b.dir && a.lane == b.lane;
     }
     a.dir == b.dir || (a.dir == (b.dir + 2) % 4 && a.turn != Move::Left && b.turn != Move::Left)
+}
+
+/// Whether two drivers of one approach in different lanes may not be
+/// inside together because one is a long body that turns.
+pub fn sweeps(a: &JState, b: &JState) -> bool {
+    let turning = |x: &JState| x.long && x.c.turn != Move::Straight;
+    a.c.dir == b.c.dir && a.c.lane != b.c.lane && (turning(a) || turning(b))
 }
 
 /// Earliest time (s) a driver `d` metres before a point at speed `v`
@@ -156,7 +171,7 @@ pub fn blocks(
         _ => {}
     }
     if o_inside {
-        return !compatible(&me.c, &o.c);
+        return !compatible(&me.c, &o.c) || sweeps(me, o);
     }
     let opposing = o.c.dir == (me.c.dir + 2) % 4;
     if opposing && me.c.turn != Move::Left && o.leads(sched, t) {
@@ -222,6 +237,7 @@ mod tests {
             d_stop,
             v,
             v_max: 25.0,
+            long: false,
         };
         // Westbound highway straight on, a southbound street turning right
         // into it; the eastbound carriageway and the exit meet neither.
@@ -271,6 +287,7 @@ mod tests {
             d_stop,
             v,
             v_max: 11.0,
+            long: false,
         };
         let left = at(0, Left, 0.0, 0.0);
         let straight = at(2, Straight, 0.0, 0.0);
@@ -284,6 +301,41 @@ mod tests {
             assert!(!blocks(&sched, &straight, &l, false, 4.0, t));
             assert!(blocks(&sched, &l, &straight, false, 4.0, t));
         }
+    }
+
+    #[test]
+    fn a_long_body_turning_keeps_the_next_lane_of_its_approach_out() {
+        let sched = crate::town::traffic::Plan::new(
+            &crate::town::source::load_named_town("town03", None)
+                .unwrap()
+                .desc,
+        )
+        .schedule
+        .clone();
+        let at = |turn, lane, long| JState {
+            c: crossing(0, turn, lane, false),
+            d_stop: 0.0,
+            v: 0.0,
+            v_max: 11.0,
+            long,
+        };
+        // A bus turning left from the inner lane, a car turning left from
+        // the kerb lane (a town corner): one at a time.
+        let (bus, car) = (at(Left, 0, true), at(Left, 1, false));
+        assert!(blocks(&sched, &car, &bus, true, 4.0, 0.0));
+        assert!(blocks(&sched, &bus, &car, true, 4.0, 0.0));
+        // Cars share the approach, and a bus going straight keeps its lane.
+        assert!(!blocks(&sched, &car, &at(Left, 0, false), true, 4.0, 0.0));
+        assert!(!blocks(
+            &sched,
+            &at(Straight, 1, false),
+            &at(Straight, 0, true),
+            true,
+            4.0,
+            0.0
+        ));
+        // Behind one another in the same lane: as before.
+        assert!(!blocks(&sched, &at(Left, 0, false), &bus, true, 4.0, 0.0));
     }
 
     #[test]

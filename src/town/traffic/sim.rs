@@ -1,27 +1,30 @@
-//! The background vehicles as a deterministic simulation, per drive.
+//! The background vehicles as a deterministic simulation, per chunk.
 //!
-//! Drive N's vehicles start on every road (`spawn`) at the drive's traffic
-//! time and walk junction to junction (`DrivePath::background`), one step
-//! per frame: each takes the highest speed that lets it brake (at
+//! Chunk k (frames k · `CHUNK_FRAMES` onward) of drive N starts from its
+//! own seeded state (`spawn`: vehicles on every road, seeded per seed,
+//! drive and chunk) `WARM_UP_FRAMES` before its first frame and is
+//! simulated only up to its end, so frame K costs one chunk whatever K
+//! is; at a chunk's first frame the traffic
+//! starts anew with other ids (`ID_SPAN` apart in consecutive chunks).
+//! The vehicles walk junction to junction (`DrivePath::background`), one
+//! step per frame: each takes the highest speed that lets it brake (at
 //! `A_LON_MPS2`) for the curves ahead (lateral ≤ `A_LAT_MPS2`), for the
 //! first footprint within reach of its path ahead (keeping
-//! `FOLLOW_GAP_M`), and for the stop line of a junction it may not enter
-//! (`junction`); it accelerates at `A_LON_MPS2` up to its limit (cyclists
-//! ride at `cyclist_speed_mps`, and whoever is behind them follows).
-//! Steps use the state at the start of the step, in id order; a driver
-//! passing a stop line claims the junction at once, so later drivers of
-//! the same step see it inside. Braking from the current state onto the
-//! current positions of what is ahead, which only moves on along its own
-//! path, keeps every gap open; the junction rules keep crossing paths
-//! apart. Lamps per frame: brake lamps while decelerating or standing,
-//! the indicator of a turn blinking from `SIGNAL_AHEAD_M` before its stop
-//! line until the turn is done.
+//! `FOLLOW_GAP_M`; the ego's, known in advance, counts), and for the stop
+//! line of a junction it may not enter (`junction`); it accelerates at
+//! `A_LON_MPS2` up to its limit (cyclists ride at `cyclist_speed_mps`, and
+//! whoever is behind them follows). Steps use the state at the start of
+//! the step, in id order; a driver passing a stop line claims the
+//! junction at once, so later drivers of the same step see it inside.
+//! Braking from the current state onto the current positions of what is
+//! ahead, which only moves on along its own path, keeps every gap open;
+//! the junction rules keep crossing paths apart. Lamps per frame: brake
+//! lamps while decelerating or standing, the indicator of a turn blinking
+//! from `SIGNAL_AHEAD_M` before its stop line until the turn is done.
 //!
-//! Frames are simulated in chunks of `CHUNK_FRAMES` from the drive's
-//! start and memoised per (town, seed, drive); the few most recent drives
-//! are kept. Frame K of a drive costs the chunks up to K / `CHUNK_FRAMES`
-//! once, the same for every caller, so any frame is the same bytes alone,
-//! in sequence, on any thread.
+//! A chunk's frames are memoised per (town, seed, drive, chunk), the few
+//! latest kept: a pure function of those, the same bytes whichever frame
+//! asked first, alone, in sequence or on any thread.
 
 use std::collections::{BTreeMap, HashMap};
 use std::sync::{Arc, Mutex, OnceLock};
@@ -38,13 +41,18 @@ use crate::town::vehicles::BodyKind;
 /// `VehiclePose::route` of a simulated vehicle.
 pub const SIM_ROUTE: usize = usize::MAX - 1;
 /// Gap kept behind the vehicle ahead when standing, metres.
-const FOLLOW_GAP_M: f64 = 2.5;
+pub const FOLLOW_GAP_M: f64 = 2.5;
 /// Spacing of the path samples that look for vehicles ahead, metres.
 const SAMPLE_M: f64 = 1.0;
 /// Cell size of the per-step spatial index, metres.
 const CELL_M: f64 = 16.0;
-/// Drives whose simulation is kept.
-const KEEP_DRIVES: usize = 3;
+/// Chunks whose simulation is kept.
+const KEEP_CHUNKS: usize = 3;
+/// Offset between the ids of consecutive chunks' vehicles: a vehicle
+/// starting anew never takes the id of one that was just there.
+pub const ID_SPAN: u32 = 10_000;
+/// Frames simulated before a chunk's first frame from its seeded start.
+pub const WARM_UP_FRAMES: u64 = 200;
 /// Indicator blink rate, Hz.
 pub const BLINK_HZ: f64 = 1.5;
 /// How far before a turn's stop line the indicator starts, metres.
@@ -101,52 +109,67 @@ impl Agent {
 /// One frame's vehicles.
 type Frame = Arc<Vec<VehiclePose>>;
 
-struct SimDrive {
-    agents: Vec<Agent>,
-    chunks: Vec<Vec<Frame>>,
-}
-
-type Sims = Mutex<Vec<((String, u64, u64), Arc<Mutex<SimDrive>>)>>;
+/// One chunk's frames, filled once.
+type Chunk = Arc<Mutex<Option<Arc<Vec<Frame>>>>>;
+type Sims = Mutex<Vec<((String, u64, u64, u64), Chunk)>>;
 static SIMS: OnceLock<Sims> = OnceLock::new();
 
 /// The background vehicles of `frame` of drive `drive` (level grid).
 pub fn vehicles_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> Frame {
-    let key = (format!("{desc:?}"), seed, drive);
+    let chunk = frame / ego::CHUNK_FRAMES;
+    let key = (format!("{desc:?}"), seed, drive, chunk);
     let entry = {
         let mut c = SIMS.get_or_init(Default::default).lock().expect("sims");
-        let found = c.iter().position(|(k, _)| *k == key);
-        let e = match found {
+        let e = match c.iter().position(|(k, _)| *k == key) {
             Some(i) => c.remove(i).1,
-            None => {
-                let l = Layout::new(desc);
-                let plan = Plan::new(desc);
-                let agents = super::spawn::spawn(seed, drive, desc.traffic_density, &l, &plan);
-                Arc::new(Mutex::new(SimDrive {
-                    agents,
-                    chunks: Vec::new(),
-                }))
-            }
+            None => Arc::new(Mutex::new(None)),
         };
         c.push((key, e.clone()));
-        if c.len() > KEEP_DRIVES {
+        if c.len() > KEEP_CHUNKS {
             c.remove(0);
         }
         e
     };
-    let mut d = entry.lock().expect("sim drive");
-    let k = (frame / ego::CHUNK_FRAMES) as usize;
-    if d.chunks.len() <= k {
-        let cx = Ctx::new(desc, seed, drive);
-        while d.chunks.len() <= k {
-            let first = d.chunks.len() as u64 * ego::CHUNK_FRAMES;
-            let SimDrive { agents, chunks } = &mut *d;
-            let frames = (first..first + ego::CHUNK_FRAMES)
-                .map(|f| Arc::new(cx.step(agents, f)))
-                .collect();
-            chunks.push(frames);
-        }
+    let frames = entry
+        .lock()
+        .expect("sim chunk")
+        .get_or_insert_with(|| Arc::new(simulate(desc, seed, drive, chunk)))
+        .clone();
+    frames[(frame % ego::CHUNK_FRAMES) as usize].clone()
+}
+
+/// Every frame of chunk `chunk` of drive `drive`, from its seeded start.
+fn simulate(desc: &TownDesc, seed: u64, drive: u64, chunk: u64) -> Vec<Frame> {
+    let l = Layout::new(desc);
+    let plan = Plan::new(desc);
+    let mut agents = super::spawn::spawn(seed, drive, chunk, desc.traffic_density, &l, &plan);
+    let base = (chunk % 2) as u32 * ID_SPAN;
+    for a in &mut agents {
+        assert!(a.id < ID_SPAN, "more than {ID_SPAN} background vehicles");
+        a.id += base;
     }
-    d.chunks[k][(frame % ego::CHUNK_FRAMES) as usize].clone()
+    let first = chunk * ego::CHUNK_FRAMES;
+    let frames = first..first + ego::CHUNK_FRAMES;
+    let cx = Ctx::new(desc, seed, drive);
+    // The warm-up: queues form at red lights and platoons spread out
+    // before the chunk's first frame (with the ego where it has driven).
+    let from = first.saturating_sub(WARM_UP_FRAMES);
+    let egos = ego::level_poses(desc, seed, drive, from..first);
+    for k in 0..WARM_UP_FRAMES {
+        let me = (first + k)
+            .checked_sub(WARM_UP_FRAMES)
+            .map(|f| egos[(f - from) as usize].clone());
+        cx.step(
+            &mut agents,
+            first as i64 + k as i64 - WARM_UP_FRAMES as i64,
+            me,
+        );
+    }
+    let egos = ego::level_poses(desc, seed, drive, frames.clone());
+    frames
+        .zip(egos)
+        .map(|(f, me)| Arc::new(cx.step(&mut agents, f as i64, Some(me))))
+        .collect()
 }
 
 /// What the simulation needs besides the agents.
@@ -205,9 +228,11 @@ impl<'a> Ctx<'a> {
         }
     }
 
-    /// The poses of frame `f` (from the drive's start), then one step on.
-    fn step(&self, agents: &mut [Agent], f: u64) -> Vec<VehiclePose> {
-        let t = (ego::drive_start_frame(self.drive) + f) as f64 / self.desc.fps;
+    /// The poses of frame `f` (from the drive's start; < 0 in the first
+    /// chunk's warm-up), then one step on (`me`: the ego's pose in frame
+    /// `f`, an obstacle, if the drive has started).
+    fn step(&self, agents: &mut [Agent], f: i64, me: Option<VehiclePose>) -> Vec<VehiclePose> {
+        let t = (ego::drive_start_frame(self.drive) as f64 + f as f64) / self.desc.fps;
         let n = agents.len();
         for a in agents.iter_mut() {
             let ahead = a.v_max * a.v_max / (2.0 * A_LON_MPS2) + 150.0;
@@ -222,6 +247,7 @@ impl<'a> Ctx<'a> {
                 .into_iter()
                 .filter(|v| v.position[2].abs() < LEVEL_GAP_M),
         );
+        all.extend(me);
         let grid = Grid::new(&all);
         let states: Vec<Option<JState>> = agents
             .iter()

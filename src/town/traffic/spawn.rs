@@ -1,13 +1,17 @@
 //! Where a drive's background vehicles start: along the straight of every
 //! directed link, in its inner and outer lanes (the only lanes whose moves
-//! need no lane change), spaced by their bodies plus a gap, each place
-//! filled with a chance from the town's traffic density. Bicycles start
+//! need no lane change), spaced by their bodies plus a 2.2 s headway at
+//! the speed limit (so no platoon starts compressed: braking to where the
+//! one ahead is, as `sim` does, a follower starts above 0.7 × the limit),
+//! each place
+//! filled with a chance from the town's traffic density (higher the
+//! further apart the places are). Bicycles start
 //! only in the outer (kerb-side) lane, and not in highway towns (limit
 //! above 60 km/h); with several lanes buses and
 //! trucks start only in the inner lane (its left turns are the widest),
-//! and only cars elsewhere. Seeded per (seed, drive, link, lane).
+//! and only cars elsewhere. Seeded per (seed, drive, chunk, link, lane).
 
-use super::sim::Agent;
+use super::sim::{Agent, FOLLOW_GAP_M};
 use super::{cyclist_speed_mps, weighted_body, Plan};
 use crate::town::layout::Layout;
 use crate::town::materials::draw_paint;
@@ -24,9 +28,20 @@ const EDGE_M: f64 = 8.0;
 const BICYCLE_ROADS_MPS: f64 = 60.0 / 3.6;
 /// Gap between the bodies of a lane at the start, at least, metres.
 const GAP_M: f64 = 6.0;
+/// Time headway between the bodies of a lane at the start, seconds: a
+/// follower braking to where its leader is starts at ≥ 0.7 × the limit.
+const HEADWAY_S: f64 = 2.2;
 
-/// The background vehicles of drive `drive` at its start, ids from 1.
-pub(super) fn spawn(seed: u64, drive: u64, density: f64, l: &Layout, plan: &Plan) -> Vec<Agent> {
+/// The background vehicles of chunk `chunk` of drive `drive` at its
+/// start, ids from 1.
+pub(super) fn spawn(
+    seed: u64,
+    drive: u64,
+    chunk: u64,
+    density: f64,
+    l: &Layout,
+    plan: &Plan,
+) -> Vec<Agent> {
     let turns = &plan.schedule.turns;
     let hw = l.road_w_m / 2.0;
     // Where a link's straight begins past junction (i, j), metres.
@@ -52,6 +67,12 @@ pub(super) fn spawn(seed: u64, drive: u64, density: f64, l: &Layout, plan: &Plan
         .filter(|b| b.seat().is_none())
         .collect();
     let long = [BodyKind::Bus, BodyKind::Truck];
+    // A following distance at the limit (`HEADWAY_S` plus the standing
+    // gap `sim` keeps, at least `GAP_M`), places filled more often the
+    // further apart they are.
+    let v = plan.schedule.speed_mps;
+    let gap_m = (v * HEADWAY_S + FOLLOW_GAP_M).max(GAP_M);
+    let fill = (density * FILL_PER_DENSITY * gap_m / GAP_M).min(1.0);
     let mut out = Vec::new();
     for (k, (from, d)) in links(l).into_iter().enumerate() {
         let to = (
@@ -60,7 +81,7 @@ pub(super) fn spawn(seed: u64, drive: u64, density: f64, l: &Layout, plan: &Plan
         );
         let (a0, a1) = (edge(from), l.pitch_m - edge(to));
         for &lane in &lanes {
-            let mut r = Rng::new(&[seed, tag::TRAFFIC, drive, k as u64, lane as u64]);
+            let mut r = Rng::new(&[seed, tag::TRAFFIC, drive, chunk, k as u64, lane as u64]);
             let mut allowed: Vec<BodyKind> = cars.clone();
             if lane + 1 == l.lanes {
                 allowed.extend(turns.bodies.iter().filter(|b| b.seat().is_some()));
@@ -79,8 +100,8 @@ pub(super) fn spawn(seed: u64, drive: u64, density: f64, l: &Layout, plan: &Plan
                 if at + len > a1 {
                     break;
                 }
-                if !r.chance(density * FILL_PER_DENSITY) {
-                    at += len + GAP_M;
+                if !r.chance(fill) {
+                    at += len + gap_m;
                     continue;
                 }
                 let paint = draw_paint(r.f64());
@@ -88,6 +109,7 @@ pub(super) fn spawn(seed: u64, drive: u64, density: f64, l: &Layout, plan: &Plan
                     seed,
                     tag::TRAFFIC,
                     drive,
+                    chunk,
                     k as u64,
                     lane as u64,
                     out.len() as u64,
@@ -101,12 +123,20 @@ pub(super) fn spawn(seed: u64, drive: u64, density: f64, l: &Layout, plan: &Plan
                     id: out.len() as u32 + 1,
                     body,
                     paint,
-                    path: DrivePath::background(l, turns, k, lane, centre, moves),
+                    path: DrivePath::background(
+                        l,
+                        turns,
+                        k,
+                        lane,
+                        centre,
+                        moves,
+                        long.contains(&body),
+                    ),
                     s: 0.0,
                     v: f64::NAN,
                     v_max,
                 });
-                at += len + GAP_M + r.f64() * GAP_M;
+                at += len + gap_m + r.f64() * GAP_M;
             }
         }
     }

@@ -29,7 +29,7 @@ fn vehicles_start_apart_on_the_straights_in_the_inner_and_kerb_lanes() {
         let desc = town(name);
         let l = Layout::new(&desc);
         let plan = Plan::new(&desc);
-        let agents: Vec<Agent> = spawn(3, 7, desc.traffic_density, &l, &plan);
+        let agents: Vec<Agent> = spawn(3, 7, 0, desc.traffic_density, &l, &plan);
         assert!(agents.len() > 40, "{name}: {} vehicles", agents.len());
         let hw = l.road_w_m / 2.0;
         let poses: Vec<VehiclePose> = agents
@@ -80,7 +80,7 @@ fn vehicles_start_apart_on_the_straights_in_the_inner_and_kerb_lanes() {
         let ids: std::collections::BTreeSet<u32> = poses.iter().map(|p| p.id).collect();
         assert_eq!(ids.len(), poses.len());
         // Another drive starts other traffic.
-        let other = spawn(3, 8, desc.traffic_density, &l, &plan);
+        let other = spawn(3, 8, 0, desc.traffic_density, &l, &plan);
         assert!(
             other.len() != agents.len() || other.iter().zip(&agents).any(|(a, b)| a.body != b.body)
         );
