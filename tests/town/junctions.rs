@@ -48,6 +48,7 @@ fn front_rel(v: &VehiclePose, c: [f64; 2], u: [f64; 2]) -> (f64, f64) {
 #[test]
 fn traffic_turns_obeys_per_direction_signals_and_never_collides_over_long_horizons() {
     let mut total_turns = [0usize; 2];
+    let mut inner_turns = [0usize; 2];
     for (name, n) in [
         ("town02", 3000),
         ("town03", 2400),
@@ -81,9 +82,20 @@ fn traffic_turns_obeys_per_direction_signals_and_never_collides_over_long_horizo
                     continue;
                 };
                 if let Some(p) = last_q.insert(v.id, q) {
+                    // At an interior junction, where going straight is legal
+                    // too (town corners and edges force turns).
+                    let ij = [v.position[0], v.position[1]].map(|c| (c / l.pitch_m).round());
+                    let inner =
+                        ij[0] >= 1.0 && ij[0] < l.nx as f64 && ij[1] >= 1.0 && ij[1] < l.ny as f64;
                     match (q - p).rem_euclid(4) {
-                        1 => left += 1,
-                        3 => right += 1,
+                        1 => {
+                            left += 1;
+                            inner_turns[0] += inner as usize;
+                        }
+                        3 => {
+                            right += 1;
+                            inner_turns[1] += inner as usize;
+                        }
                         _ => {}
                     }
                 }
@@ -124,7 +136,11 @@ fn traffic_turns_obeys_per_direction_signals_and_never_collides_over_long_horizo
         total_turns[0] += left;
         total_turns[1] += right;
     }
-    println!("turns: {total_turns:?}");
+    println!("turns: {total_turns:?}, at interior junctions {inner_turns:?}");
+    assert!(
+        inner_turns.iter().all(|&n| n >= 10),
+        "turns at interior junctions: {inner_turns:?}"
+    );
 }
 
 #[test]

@@ -305,6 +305,7 @@ mod tests {
 
     #[test]
     fn a_long_body_turning_keeps_the_next_lane_of_its_approach_out() {
+        use Move::*;
         let sched = crate::town::traffic::Plan::new(
             &crate::town::source::load_named_town("town03", None)
                 .unwrap()
