@@ -61,6 +61,17 @@ impl RenderCamera {
         }
     }
 
+    /// The cone of the camera ray of unit render-space direction `d`
+    /// (`path::RayCone`): width 0 at the pinhole, spread cos^1.5 θ / f, the
+    /// side of a square of its pixel's solid angle (θ off the optical axis).
+    pub fn cone(&self, d: Vec3) -> path::RayCone {
+        let cos = d
+            .as_dvec3()
+            .dot(self.render_from_camera.z_axis)
+            .clamp(0.0, 1.0);
+        path::RayCone::primary((cos * cos.sqrt() / self.intrinsics.f_px) as f32)
+    }
+
     /// The camera centre rounded to f32, as ray origin for traversal.
     pub fn center_f32(&self) -> Vec3 {
         self.center.as_vec3()
@@ -137,6 +148,52 @@ mod tests {
                     expect.to_array().map(f64::to_bits),
                     "pixel ({i}, {j})"
                 );
+            }
+        }
+    }
+
+    #[test]
+    fn a_camera_rays_footprint_on_a_facing_wall_is_its_pixels_projection() {
+        // A wall parallel to the image plane at depth D: every pixel
+        // projects onto it as a square of side D / f, whatever the ray's
+        // angle off the axis (the slant lengthens the ray by 1/cos θ and
+        // the patch by 1/cos θ in area). A yawed, pitched, rolled left
+        // camera and a right camera 0.54 m along its x axis.
+        let rot = DMat3::from_rotation_z(0.7)
+            * DMat3::from_rotation_y(-0.25)
+            * DMat3::from_rotation_x(0.15);
+        let k = Intrinsics::from_hfov(64, 36, 1.6);
+        let left = Camera {
+            intrinsics: k,
+            world_from_camera: rot,
+            center_world: DVec3::new(300.0, -20.0, 1.6),
+        };
+        let right = Camera {
+            center_world: left.center_world + rot.x_axis * 0.54,
+            ..left
+        };
+        let origin = DVec3::new(290.0, -25.0, 0.0);
+        for camera in [left, right] {
+            let cam = RenderCamera::new(&camera, origin);
+            let fwd = cam.render_from_camera.z_axis.as_vec3();
+            for depth in [2.0f32, 17.0, 140.0] {
+                let expect = depth / k.f_px as f32;
+                for (u, v) in [
+                    (0.5, 0.5),
+                    (32.0, 18.0),
+                    (63.9, 0.2),
+                    (10.3, 35.0),
+                    (50.0, 30.0),
+                ] {
+                    let d = cam.dir(u, v).as_vec3().normalize();
+                    let cos = d.dot(fwd);
+                    let t = depth / cos;
+                    let got = cam.cone(d).footprint(t, -cos);
+                    assert!(
+                        (got / expect - 1.0).abs() < 1e-4,
+                        "({u}, {v}) at depth {depth}: {got} vs {expect}"
+                    );
+                }
             }
         }
     }

@@ -24,9 +24,11 @@ use crate::geometry::{FrontOrigin, SurfaceInteraction};
 use crate::light::LightSet;
 use crate::sampler::SampleStream;
 
+mod cone;
 mod nee;
 mod ris;
 mod shadows;
+pub use cone::RayCone;
 use ris::RisSamples;
 use shadows::PendingShadows;
 
@@ -195,6 +197,9 @@ pub(super) struct PathState {
     /// The first surface vertex's Lambertian albedo (None: not Lambertian,
     /// or not shaded), recorded as it is shaded for the fog's split.
     pub first_albedo: Option<Vec3>,
+    /// The pixel's cone at the last vertex (`RayCone`): the footprint
+    /// textures are filtered by at hits seen through delta bounces.
+    pub cone: RayCone,
 }
 
 impl PathState {
@@ -209,6 +214,7 @@ impl PathState {
             bounces: 0,
             split: SplitVertex::default(),
             first_albedo: None,
+            cone: RayCone::NONE,
         }
     }
 
@@ -254,10 +260,17 @@ impl PixelSum {
 }
 
 impl<A: Accel> PathContext<'_, A> {
-    /// Radiance arriving along `ray` (unit direction); adds traced rays to `rays`.
-    pub fn li(&self, ray: Ray, stream: &mut SampleStream, rays: &mut u64) -> LiSample {
+    /// Radiance arriving along `ray` (unit direction) of cone `cone` (a
+    /// camera ray's: `RenderCamera::cone`); adds traced rays to `rays`.
+    pub fn li(
+        &self,
+        ray: Ray,
+        cone: RayCone,
+        stream: &mut SampleStream,
+        rays: &mut u64,
+    ) -> LiSample {
         let hit = self.accel.intersect(&ray);
-        self.li_from_hit(ray, hit, stream, rays)
+        self.li_from_hit(ray, hit, cone, stream, rays)
     }
 
     /// [`PathContext::li`] when the closest hit of `ray` is already known
@@ -266,10 +279,11 @@ impl<A: Accel> PathContext<'_, A> {
         &self,
         ray: Ray,
         first_hit: Option<Hit>,
+        cone: RayCone,
         stream: &mut SampleStream,
         rays: &mut u64,
     ) -> LiSample {
-        let start = self.start_path(ray, first_hit, stream, rays);
+        let start = self.start_path(ray, first_hit, cone, stream, rays);
         self.finish_path(start, stream, rays)
     }
 
@@ -280,14 +294,16 @@ impl<A: Accel> PathContext<'_, A> {
         &self,
         ray: Ray,
         first_hit: Option<Hit>,
+        cone: RayCone,
         stream: &mut SampleStream,
         rays: &mut u64,
     ) -> PathStart {
         let mut st = PathState::new(ray.o);
+        st.cone = cone;
         let mut pending = PendingShadows::new();
         if self.scene.medium.is_some() {
             return PathStart {
-                volume: Some(self.li_volume(ray, first_hit, stream, rays)),
+                volume: Some(self.li_volume(ray, first_hit, cone, stream, rays)),
                 st,
                 pending,
                 next: None,
@@ -463,7 +479,8 @@ impl<A: Accel> PathContext<'_, A> {
         let mut si = self.surfaces.interaction(scene, ray, hit);
         let wo = -ray.d;
         let mat = &scene.materials[si.material as usize];
-        let front = wo.dot(si.n_geo) > 0.0;
+        let cos_o = wo.dot(si.n_geo);
+        let front = cos_o > 0.0;
         if mat.le != Vec3::ZERO && (front || mat.two_sided_emission) {
             let w = if st.prev_delta {
                 1.0
@@ -478,7 +495,18 @@ impl<A: Accel> PathContext<'_, A> {
         if st.bounces == self.max_depth {
             return None;
         }
-        let bsdf = scene.material_view().bsdf(&si, wo, st.prev_delta);
+        // Seen through delta bounces: textured, filtered by the pixel's
+        // footprint here (only a seen hit is textured); the cone goes on
+        // through a delta bounce.
+        let dist = hit.t;
+        let footprint = if st.prev_delta {
+            st.cone.footprint(dist, cos_o)
+        } else {
+            0.0
+        };
+        let bsdf = scene
+            .material_view()
+            .bsdf_filtered(&si, wo, st.prev_delta, footprint);
         if st.bounces == 0 {
             st.first_albedo = bsdf.diffuse_albedo();
         }
@@ -541,6 +569,7 @@ impl<A: Accel> PathContext<'_, A> {
         }
         st.prev_pdf = bs.pdf;
         st.prev_delta = bs.delta;
+        st.cone = st.cone.through_delta(dist);
         st.prev_p = si.p;
         st.bounces += 1;
         if !st.survives_roulette(u.u_rr) {

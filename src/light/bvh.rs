@@ -115,9 +115,18 @@ fn cone_union(wa: Vec3, cos_a: f32, wb: Vec3, cos_b: f32) -> (Vec3, f32) {
     if cos_a == -1.0 || cos_b == -1.0 {
         return (wa, -1.0);
     }
-    let theta_a = cos_a.clamp(-1.0, 1.0).acos();
-    let theta_b = cos_b.clamp(-1.0, 1.0).acos();
-    let theta_d = wa.dot(wb).clamp(-1.0, 1.0).acos();
+    let cos_d = wa.dot(wb).clamp(-1.0, 1.0);
+    // Parallel axes and cone b no wider than a: the general path below
+    // returns (wa, cos_a) too (θ_d = 0, θ_b ≤ θ_a), without its arc cosines.
+    // Most unions in a town's light tree are of this kind (lamp and window
+    // faces share their normals), and the build is a large part of a
+    // frame's set-up.
+    if cos_d == 1.0 && (cos_b == 1.0 || cos_b == cos_a) {
+        return (wa, cos_a);
+    }
+    let theta_a = acos_clamped(cos_a);
+    let theta_b = acos_clamped(cos_b);
+    let theta_d = acos_clamped(cos_d);
     // One cone inside the other.
     if (theta_d + theta_b).min(std::f32::consts::PI) <= theta_a {
         return (wa, cos_a);
@@ -139,6 +148,21 @@ fn cone_union(wa: Vec3, cos_a: f32, wb: Vec3, cos_b: f32) -> (Vec3, f32) {
     }
     let w = glam::Quat::from_axis_angle(axis.normalize(), theta_r) * wa;
     (w.normalize(), theta_o.cos())
+}
+
+/// acos of `c` clamped to [−1, 1]; the cosines of single emitters (1 for a
+/// face's normal cone, 0 for a Lambert spread) skip the libm call with the
+/// bits it returns for them (acos 1 = +0, acos 0 = π/2 correctly rounded;
+/// `tests::acos_shortcuts_are_the_libm_bits`).
+#[inline]
+pub(super) fn acos_clamped(c: f32) -> f32 {
+    if c == 1.0 {
+        0.0
+    } else if c == 0.0 {
+        std::f32::consts::FRAC_PI_2
+    } else {
+        c.clamp(-1.0, 1.0).acos()
+    }
 }
 
 /// One node: a leaf holds one light; an inner node's first child follows it.
@@ -165,63 +189,34 @@ pub struct LightBvh {
 
 impl LightBvh {
     /// Builds the tree; lights with zero `phi` are left out (pmf 0).
+    /// Subtrees of many lights are built in parallel (on the current rayon
+    /// pool) into the very nodes a serial build gives.
     pub fn build(bounds: &[LightBounds]) -> LightBvh {
+        Self::build_with_grain(bounds, PARALLEL_GRAIN)
+    }
+
+    /// [`LightBvh::build`], forking subtrees of at least `grain` lights.
+    fn build_with_grain(bounds: &[LightBounds], grain: usize) -> LightBvh {
         let mut ids: Vec<u32> = (0..bounds.len() as u32)
             .filter(|&i| bounds[i as usize].phi > 0.0)
             .collect();
-        let mut bvh = LightBvh {
-            nodes: Vec::with_capacity(2 * ids.len()),
-            trails: vec![0; bounds.len()],
-        };
+        let mut sub = Subtree::default();
         if !ids.is_empty() {
-            bvh.build_rec(bounds, &mut ids, 0, 0);
+            sub.build(bounds, &mut ids, (0, 0), grain);
         }
-        bvh
+        let mut trails = vec![0; bounds.len()];
+        for (light, trail) in sub.trails {
+            trails[light as usize] = trail;
+        }
+        LightBvh {
+            nodes: sub.nodes,
+            trails,
+        }
     }
 
     /// Whether the tree holds no light.
     pub fn is_empty(&self) -> bool {
         self.nodes.is_empty()
-    }
-
-    fn build_rec(&mut self, all: &[LightBounds], ids: &mut [u32], trail: u128, depth: u32) {
-        let node = self.nodes.len();
-        if ids.len() == 1 {
-            self.nodes.push(Node {
-                bounds: all[ids[0] as usize],
-                child_or_light: ids[0],
-                leaf: true,
-            });
-            self.trails[ids[0] as usize] = trail;
-            return;
-        }
-        let total = ids[1..]
-            .iter()
-            .fold(all[ids[0] as usize], |b, &i| b.union(&all[i as usize]));
-        self.nodes.push(Node {
-            bounds: total,
-            child_or_light: 0,
-            leaf: false,
-        });
-        let mid = if depth < MAX_SAH_DEPTH {
-            sah_split(all, ids, &total)
-        } else {
-            None
-        }
-        .unwrap_or_else(|| {
-            // Fallback: halve by count along the widest centroid axis.
-            let axis = centroid_box(all, ids).1.max_position();
-            let mid = ids.len() / 2;
-            ids.select_nth_unstable_by(mid, |&a, &b| {
-                let (ca, cb) = (all[a as usize].centroid(), all[b as usize].centroid());
-                ca[axis].total_cmp(&cb[axis]).then(a.cmp(&b))
-            });
-            mid
-        });
-        let (left, right) = ids.split_at_mut(mid);
-        self.build_rec(all, left, trail, depth + 1);
-        self.nodes[node].child_or_light = self.nodes.len() as u32;
-        self.build_rec(all, right, trail | (1u128 << depth), depth + 1);
     }
 
     /// Importance of both children of inner node `k`, first child first.
@@ -308,6 +303,91 @@ impl LightBvh {
     }
 }
 
+/// Lights per subtree from which its two halves are built in parallel
+/// (below it a fork costs more than the half it saves).
+const PARALLEL_GRAIN: usize = 4096;
+
+/// Nodes of a subtree in depth-first order (inner nodes' child indices
+/// relative to its first node) and the trails of its lights.
+#[derive(Default)]
+struct Subtree {
+    nodes: Vec<Node>,
+    trails: Vec<(u32, u128)>,
+}
+
+impl Subtree {
+    /// Appends the subtree over `ids` at `(trail, depth)`.
+    fn build(&mut self, all: &[LightBounds], ids: &mut [u32], at: (u128, u32), grain: usize) {
+        let (trail, depth) = at;
+        let node = self.nodes.len();
+        if ids.len() == 1 {
+            self.nodes.push(Node {
+                bounds: all[ids[0] as usize],
+                child_or_light: ids[0],
+                leaf: true,
+            });
+            self.trails.push((ids[0], trail));
+            return;
+        }
+        let total = ids[1..]
+            .iter()
+            .fold(all[ids[0] as usize], |b, &i| b.union(&all[i as usize]));
+        self.nodes.push(Node {
+            bounds: total,
+            child_or_light: 0,
+            leaf: false,
+        });
+        let mid = if depth < MAX_SAH_DEPTH {
+            sah_split(all, ids, &total)
+        } else {
+            None
+        }
+        .unwrap_or_else(|| {
+            // Fallback: halve by count along the widest centroid axis.
+            let axis = centroid_box(all, ids).1.max_position();
+            let mid = ids.len() / 2;
+            ids.select_nth_unstable_by(mid, |&a, &b| {
+                let (ca, cb) = (all[a as usize].centroid(), all[b as usize].centroid());
+                ca[axis].total_cmp(&cb[axis]).then(a.cmp(&b))
+            });
+            mid
+        });
+        let (left, right) = ids.split_at_mut(mid);
+        let right_at = (trail | (1u128 << depth), depth + 1);
+        if ids_len_at_least(left, right, grain) {
+            let (mut l, mut r) = (Subtree::default(), Subtree::default());
+            rayon::join(
+                || l.build(all, left, (trail, depth + 1), grain),
+                || r.build(all, right, right_at, grain),
+            );
+            self.append(l);
+            self.nodes[node].child_or_light = self.nodes.len() as u32;
+            self.append(r);
+        } else {
+            self.build(all, left, (trail, depth + 1), grain);
+            self.nodes[node].child_or_light = self.nodes.len() as u32;
+            self.build(all, right, right_at, grain);
+        }
+    }
+
+    /// Appends `sub`'s nodes (their child indices shifted to where they land).
+    fn append(&mut self, sub: Subtree) {
+        let offset = self.nodes.len() as u32;
+        self.nodes.extend(sub.nodes.into_iter().map(|mut n| {
+            if !n.leaf {
+                n.child_or_light += offset;
+            }
+            n
+        }));
+        self.trails.extend(sub.trails);
+    }
+}
+
+/// Whether both halves are big enough to be built in parallel.
+fn ids_len_at_least(left: &[u32], right: &[u32], grain: usize) -> bool {
+    left.len().min(right.len()) >= grain
+}
+
 const ONE_MINUS_EPS: f32 = 1.0 - f32::EPSILON / 2.0;
 
 /// Box of the centroids of `ids` and its extent.
@@ -324,8 +404,8 @@ fn centroid_box(all: &[LightBounds], ids: &[u32]) -> (Vec3, Vec3) {
 /// Orientation measure M_Ω of a cone (pbrt-v4 eq. 12.x / Conty & Kulla eq. 1).
 fn orientation_measure(b: &LightBounds) -> f32 {
     use std::f32::consts::PI;
-    let theta_o = b.cos_theta_o.clamp(-1.0, 1.0).acos();
-    let theta_e = b.cos_theta_e.clamp(-1.0, 1.0).acos();
+    let theta_o = acos_clamped(b.cos_theta_o);
+    let theta_e = acos_clamped(b.cos_theta_e);
     let theta_w = (theta_o + theta_e).min(PI);
     let sin_o = theta_o.sin();
     2.0 * PI * (1.0 - b.cos_theta_o)
@@ -400,3 +480,7 @@ fn sah_split(all: &[LightBounds], ids: &mut [u32], parent: &LightBounds) -> Opti
     }
     (mid > 0 && mid < ids.len()).then_some(mid)
 }
+
+#[cfg(test)]
+#[path = "bvh_tests.rs"]
+mod tests;

@@ -13,7 +13,7 @@ pub mod texture;
 pub mod wet;
 
 pub use build::{build_material, MIRROR_ROUGHNESS};
-pub use texture::{textured_albedo, textured_bsdf};
+pub use texture::{textured_albedo, textured_bsdf, textured_bsdf_filtered};
 pub use wet::{mask_at, wet_bsdf, Wetness};
 
 use glam::{DVec3, Vec3};
@@ -69,8 +69,21 @@ impl MaterialView<'_> {
     /// ([`wet_bsdf`]).
     #[inline]
     pub fn bsdf(&self, si: &SurfaceInteraction, wo: Vec3, seen: bool) -> Bsdf {
+        self.bsdf_filtered(si, wo, seen, 0.0)
+    }
+
+    /// [`MaterialView::bsdf`] with the texture filtered by a footprint
+    /// `footprint_m` metres wide ([`textured_bsdf_filtered`]).
+    #[inline]
+    pub fn bsdf_filtered(
+        &self,
+        si: &SurfaceInteraction,
+        wo: Vec3,
+        seen: bool,
+        footprint_m: f32,
+    ) -> Bsdf {
         let material = &self.materials[si.material as usize];
-        let textured = textured_bsdf(material, self.origin_world, si, seen);
+        let textured = textured_bsdf_filtered(material, self.origin_world, si, seen, footprint_m);
         wet_bsdf(self.wetness, si, wo, textured)
     }
 

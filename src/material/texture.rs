@@ -92,11 +92,25 @@ pub fn textured_bsdf(
     si: &SurfaceInteraction,
     seen: bool,
 ) -> Bsdf {
+    textured_bsdf_filtered(material, origin_world, si, seen, 0.0)
+}
+
+/// [`textured_bsdf`] with the texture filtered by the footprint of the
+/// pixel at the hit, `footprint_m` metres wide (`Texture::shade`): detail
+/// finer than a pixel fades to its mean instead of adding noise.
+#[inline]
+pub fn textured_bsdf_filtered(
+    material: &Material,
+    origin_world: DVec3,
+    si: &SurfaceInteraction,
+    seen: bool,
+    footprint_m: f32,
+) -> Bsdf {
     match material.texture {
         Some(t) if seen && material.le == Vec3::ZERO => {
             let p = origin_world + si.p.as_dvec3();
             let bsdf = material.bsdf;
-            let (s, normal) = t.shade(nominal(&bsdf), p, si.n_geo, si.n_shading);
+            let (s, normal) = t.shade(nominal(&bsdf), p, si.n_geo, si.n_shading, footprint_m);
             let bsdf = textured(bsdf, s);
             if t.has_relief() {
                 bsdf.normal_mapped(normal)

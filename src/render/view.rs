@@ -148,10 +148,11 @@ pub(super) fn render_view<A: Accel>(
         })
         .collect();
     let mut counts = vec![first; n_px];
-    trace_pass(ctx, cam, key, tiling, &counts, &mut tiles);
+    // Only the pilot's moments are read (by `allocate`).
+    trace_pass(ctx, cam, key, tiling, &counts, adaptive, &mut tiles);
     if adaptive {
         counts = allocate(&tiling, &tiles, spp, keep_filter_inputs);
-        trace_pass(ctx, cam, key, tiling, &counts, &mut tiles);
+        trace_pass(ctx, cam, key, tiling, &counts, false, &mut tiles);
     }
     let mut film = Film::new(w as usize, h as usize);
     let mut denoise = keep_filter_inputs.then(|| ViewInputs::new(w as usize, h as usize));
@@ -212,13 +213,15 @@ fn allocate(tiling: &Tiling, tiles: &[TileAcc], spp: u32, filtered: bool) -> Vec
 const FILTERED_SHARE: f32 = 1.0 / 16.0;
 
 /// Traces, for every pixel, its samples `acc.n .. counts[k]` (continuing
-/// its sequence) into the tiles' sums, tiles in parallel.
+/// its sequence) into the tiles' sums, tiles in parallel; with `moments`,
+/// also the luminance moments the adaptive allocation reads.
 fn trace_pass<A: Accel>(
     ctx: &PathContext<'_, A>,
     cam: &RenderCamera,
     key: StreamKey,
     tiling: Tiling,
     counts: &[u32],
+    moments: bool,
     tiles: &mut [TileAcc],
 ) {
     tiles
@@ -236,7 +239,7 @@ fn trace_pass<A: Accel>(
                     let px = &mut tile.px[at..at + (i1 - i0) as usize];
                     let ends = &counts[row_start + i0 as usize..row_start + i1 as usize];
                     let (rays, non_finite) =
-                        render_chunk(ctx, cam, key, (i0, j), ends, scratch, px);
+                        render_chunk(ctx, cam, key, (i0, j), ends, moments, scratch, px);
                     tile.rays += rays;
                     tile.non_finite += non_finite;
                 }
@@ -246,14 +249,17 @@ fn trace_pass<A: Accel>(
 
 /// Path-traces pixels `i0 .. i0 + px.len()` of row `j`, each from its
 /// next sample `px[p].n` up to `ends[p]` (camera rays as one batch), adding
-/// the samples to `px` in sample order. Returns the rays traced and the
-/// samples dropped as non-finite.
+/// the samples to `px` in sample order (and their luminance moments with
+/// `moments`). Returns the rays traced and the samples dropped as
+/// non-finite.
+#[allow(clippy::too_many_arguments)]
 fn render_chunk<A: Accel>(
     ctx: &PathContext<'_, A>,
     cam: &RenderCamera,
     key: StreamKey,
     (i0, j): (u32, u32),
     ends: &[u32],
+    moments: bool,
     scratch: &mut ChunkScratch,
     px: &mut [PixelAcc],
 ) -> (u64, u64) {
@@ -286,7 +292,7 @@ fn render_chunk<A: Accel>(
     {
         scratch
             .starts
-            .push(ctx.start_path(*ray, *hit, stream, &mut rays));
+            .push(ctx.start_path(*ray, *hit, cam.cone(ray.d), stream, &mut rays));
     }
     scratch.shadow_rays.clear();
     scratch.shadow_slots.clear();
@@ -310,10 +316,12 @@ fn render_chunk<A: Accel>(
             // A non-finite sample would poison the pixel: drop it, counted.
             if li.l.is_finite() {
                 acc.sum.add(&li);
-                acc.total.add(luminance(li.l));
-                let d = &li.denoise;
-                acc.unfiltered
-                    .add(luminance(li.l - d.l_fog - d.l_surf - d.l_direct));
+                if moments {
+                    acc.total.add(luminance(li.l));
+                    let d = &li.denoise;
+                    acc.unfiltered
+                        .add(luminance(li.l - d.l_fog - d.l_surf - d.l_direct));
+                }
             } else {
                 non_finite += 1;
             }

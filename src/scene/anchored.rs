@@ -5,7 +5,10 @@
 //! on the frame's render origin, so an accelerator cache (matched on the
 //! meshes' bits) keeps their BVHs from frame to frame.
 //!
-//! A mesh goes whole to the tile of its bounding box's centre. Anchors are
+//! A mesh goes whole to the tile of its bounding box's centre; a mesh wider
+//! than a tile (ground, roads, ramps, hills) is cut at tile edges into one
+//! piece per tile it crosses (`tile_clip`, with a 1 mm overlap so seams
+//! between tiles have no cracks). Anchors are
 //! multiples of `TILE_M / 2`, a power of two, so `p_world − anchor` is exact
 //! in f64 and the local f32 positions are off by at most half an ulp of
 //! |p − anchor| ≤ TILE_M/√2 + the mesh's half extent (≈ 4e-6 m for a 40 m
@@ -13,14 +16,14 @@
 //! exact local ones carried through the instance's f64 translation, so
 //! depth stays exact wherever the camera is in a town (no far corner is
 //! worse than the centre). Emissive meshes stay flat (the light set
-//! enumerates flat emitters), and so do meshes wider than a tile and
-//! spheres, moved into render space.
+//! enumerates flat emitters), and so do spheres, moved into render space.
 
 use std::collections::BTreeMap;
 
 use glam::{DAffine3, DVec3};
 
 use super::shapes::Leaves;
+use super::tile_clip::{cell, split_by_tiles};
 use super::{Instance, Mesh, Prototype};
 
 /// Edge of a static tile, metres (a power of two).
@@ -32,25 +35,46 @@ pub const TILE_PREFIX: &str = "static tile ";
 /// The world-space leaves of the static objects sorted into tiles.
 #[derive(Default)]
 pub(super) struct StaticTiles {
-    tiles: BTreeMap<(i64, i64), Vec<Mesh>>,
+    tiles: BTreeMap<(i64, i64), Tile>,
+}
+
+/// One tile's meshes (pieces included) and the whole meshes it stands for
+/// (`Prototype::sources`: a cut mesh is listed once, at its first piece).
+#[derive(Default)]
+struct Tile {
+    meshes: Vec<Mesh>,
+    sources: Vec<(u8, u64)>,
 }
 
 impl StaticTiles {
     /// Takes the leaves of one static object, built around the world origin:
     /// emissive meshes and spheres go into `flat` in render space (around
-    /// `origin_world`, the bits a direct build gives), the rest to tiles;
+    /// `origin_world`, the bits a direct build gives), the rest to tiles
+    /// (whole, or cut into pieces when wider than a tile);
     /// `emits[i]` tells whether material `i` emits.
     pub fn add(&mut self, leaves: Leaves, emits: &[bool], origin_world: DVec3, flat: &mut Leaves) {
         for mut m in leaves.meshes {
-            let tile = tile_of(&m);
-            if tile.is_none() || m.tri_material.iter().any(|&t| emits[t as usize]) {
+            if m.tri_material.iter().any(|&t| emits[t as usize]) {
                 for p in &mut m.p_render {
                     *p -= origin_world;
                 }
                 m.p_f32 = m.p_render.iter().map(|p| p.as_vec3()).collect();
                 flat.meshes.push(m);
-            } else if let Some(t) = tile {
-                self.tiles.entry(t).or_default().push(m);
+            } else if let Some(t) = tile_of(&m) {
+                let tile = self.tiles.entry(t).or_default();
+                tile.sources.push((m.semantic, m.triangles.len() as u64));
+                tile.meshes.push(m);
+            } else {
+                // Wider than a tile: one piece per tile it crosses.
+                let pieces = split_by_tiles(&m, TILE_M);
+                let source = (m.semantic, m.triangles.len() as u64);
+                for (k, (t, piece)) in pieces.into_iter().enumerate() {
+                    let tile = self.tiles.entry(t).or_default();
+                    if k == 0 {
+                        tile.sources.push(source);
+                    }
+                    tile.meshes.push(piece);
+                }
             }
         }
         for mut s in leaves.spheres {
@@ -69,7 +93,11 @@ impl StaticTiles {
     ) -> (Vec<Prototype>, Vec<Instance>) {
         let mut protos = Vec::with_capacity(self.tiles.len());
         let mut insts = Vec::with_capacity(self.tiles.len());
-        for (k, (key, mut meshes)) in self.tiles.into_iter().enumerate() {
+        for (k, (key, tile)) in self.tiles.into_iter().enumerate() {
+            let Tile {
+                mut meshes,
+                sources,
+            } = tile;
             let anchor = anchor(key);
             for m in &mut meshes {
                 for p in &mut m.p_render {
@@ -80,6 +108,7 @@ impl StaticTiles {
             protos.push(Prototype {
                 prefab: format!("{TILE_PREFIX}{},{}", key.0, key.1),
                 meshes,
+                sources,
             });
             let render_from_local = DAffine3::from_translation(anchor - origin_world);
             insts.push(Instance::new(
@@ -94,9 +123,8 @@ impl StaticTiles {
 }
 
 /// The tile (x, y) holding the centre of `m`'s world bounding box; None for
-/// a mesh wider than a tile (ground, hills, ramps): it stays flat, with the
-/// precision of render space near the camera, where its long seams with
-/// other meshes are watertight.
+/// a mesh wider than a tile (ground, hills, ramps), which is cut into
+/// pieces instead.
 fn tile_of(m: &Mesh) -> Option<(i64, i64)> {
     let (lo, hi) = m.p_render.iter().fold(
         (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
@@ -106,8 +134,7 @@ fn tile_of(m: &Mesh) -> Option<(i64, i64)> {
         return None;
     }
     let c = (lo + hi) * 0.5;
-    let cell = |v: f64| (v / TILE_M).floor() as i64;
-    Some((cell(c.x), cell(c.y)))
+    Some((cell(c.x, TILE_M), cell(c.y, TILE_M)))
 }
 
 /// World position of a tile's frame: its centre at z = 0.

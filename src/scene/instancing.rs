@@ -163,6 +163,7 @@ fn prototype(
     Ok((leaves.spheres.is_empty() && !emissive).then(|| Prototype {
         prefab: prefab.to_string(),
         meshes: leaves.meshes,
+        sources: Vec::new(),
     }))
 }
 
@@ -190,8 +191,9 @@ pub(super) fn place_mesh(m: &Mesh, inst: &Instance) -> Mesh {
 
 /// What a built scene holds (`Scene::content`); serialised as the content
 /// report's `geometry` (without the per-class mesh counts). Static tiles
-/// (`anchored`) are counted as the flat meshes they hold, so the figures do
-/// not depend on how the static world is grouped.
+/// (`anchored`) are counted as the flat meshes they stand for (a mesh cut
+/// into pieces as the one mesh it was: `Prototype::sources`), so the
+/// figures do not depend on how the static world is grouped.
 #[derive(Clone, Debug, Default, PartialEq, Eq, Serialize)]
 pub struct Content {
     /// Flat meshes.
@@ -206,6 +208,10 @@ pub struct Content {
     pub instanced_triangles: u64,
     /// Analytic spheres.
     pub spheres: u64,
+    /// Triangles that cutting static meshes wider than a tile at tile
+    /// edges adds (`tile_clip`): held in the accelerators and written by
+    /// exports on top of the counts above.
+    pub cut_triangles: u64,
     /// Objects per semantic class id: flat meshes, spheres and instances
     /// each count one (an instance with its own class counts there, else
     /// under its prototype's first mesh's class).
@@ -218,9 +224,8 @@ impl Scene {
     pub fn content(&self) -> Content {
         let tris = |ms: &[Mesh]| ms.iter().map(|m| m.triangles.len() as u64).sum::<u64>();
         let tiles = || self.prototypes.iter().filter(|p| is_tile(p));
-        let tile_meshes = || tiles().flat_map(|p| &p.meshes);
-        let flat =
-            tris(&self.meshes) + tile_meshes().map(|m| m.triangles.len() as u64).sum::<u64>();
+        let tile_meshes = || tiles().flat_map(|p| &p.sources);
+        let flat = tris(&self.meshes) + tile_meshes().map(|s| s.1).sum::<u64>();
         let proto: Vec<u64> = self
             .prototypes
             .iter()
@@ -232,7 +237,8 @@ impl Scene {
                 .filter(|i| !is_tile(&self.prototypes[i.prototype as usize]))
         };
         let mut per_class = BTreeMap::new();
-        let classes = self.meshes.iter().chain(tile_meshes()).map(|m| m.semantic);
+        let classes = self.meshes.iter().map(|m| m.semantic);
+        let classes = classes.chain(tile_meshes().map(|s| s.0));
         let classes = classes.chain(self.spheres.iter().map(|s| s.semantic));
         let classes = classes.chain(placed().map(|i| {
             let first = self.prototypes[i.prototype as usize].meshes.first();
@@ -248,6 +254,11 @@ impl Scene {
             unique_triangles: flat + proto.iter().sum::<u64>(),
             instanced_triangles: flat + placed().map(|i| proto[i.prototype as usize]).sum::<u64>(),
             spheres: self.spheres.len() as u64,
+            // Saturating: a cut that drops degenerate slivers may add none.
+            cut_triangles: tiles()
+                .map(|p| tris(&p.meshes))
+                .sum::<u64>()
+                .saturating_sub(tile_meshes().map(|s| s.1).sum::<u64>()),
             objects_per_class: per_class,
         }
     }

@@ -44,6 +44,7 @@ pub use desc::semantic;
 mod shapes;
 mod surface;
 mod table;
+mod tile_clip;
 pub mod transform;
 pub mod validate;
 mod walk;
@@ -96,6 +97,11 @@ pub struct Prototype {
     pub prefab: String,
     /// Meshes in the local frame; `Hit::geom_id` = index.
     pub meshes: Vec<Mesh>,
+    /// For a static tile (`anchored`): the semantic class and triangle
+    /// count of each static mesh it stands for in content reports (a mesh
+    /// cut into pieces is listed once, in the first tile it crosses).
+    /// Empty for other prototypes.
+    pub sources: Vec<(u8, u64)>,
 }
 
 /// One placement of a prototype.

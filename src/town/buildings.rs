@@ -18,14 +18,14 @@ use super::rng::{tag, Rng};
 use super::vegetation::{self, Plant};
 
 /// Gap between a building and the sidewalk, metres.
-const SETBACK_M: f64 = 1.0;
+pub(super) const SETBACK_M: f64 = 1.0;
 /// First instance id of buildings.
 pub const BUILDING_ID_BASE: u16 = 1000;
 
-/// Every building, park and lot planting of the town.
-pub fn block_objects(desc: &TownDesc, l: &Layout, seed: u64) -> Vec<ObjectDesc> {
+/// Every building, park and lot planting of the town's blocks, building
+/// ids from `next_id` (normally `BUILDING_ID_BASE`).
+pub fn block_objects(desc: &TownDesc, l: &Layout, seed: u64, next_id: &mut u16) -> Vec<ObjectDesc> {
     let mut out = Vec::new();
-    let mut next_id = BUILDING_ID_BASE;
     for j in (0..l.ny).filter(|&j| Some(j) != l.river_row) {
         for i in 0..l.nx {
             let mut r = Rng::new(&[seed, tag::BLOCK, i as u64, j as u64]);
@@ -35,7 +35,7 @@ pub fn block_objects(desc: &TownDesc, l: &Layout, seed: u64) -> Vec<ObjectDesc> 
                 max: [a.max[0] - SETBACK_M, a.max[1] - SETBACK_M],
             };
             if desc.terrain == TerrainKind::Field && !r.chance(desc.building_density) {
-                super::farms::field_block(&lot, &mut r, &mut next_id, &mut out);
+                super::farms::field_block(&lot, &mut r, next_id, &mut out);
                 continue;
             }
             if r.chance(desc.vegetation_density * 0.25) || desc.building_density == 0.0 {
@@ -43,8 +43,15 @@ pub fn block_objects(desc: &TownDesc, l: &Layout, seed: u64) -> Vec<ObjectDesc> 
                 continue;
             }
             for row in lot_rows(&lot, &mut r) {
-                let ids = &mut next_id;
-                row_of_plots(desc, l, lot.min[0]..lot.max[0], row, &mut r, ids, &mut out);
+                row_of_plots(
+                    desc,
+                    l,
+                    lot.min[0]..lot.max[0],
+                    row,
+                    &mut r,
+                    next_id,
+                    &mut out,
+                );
             }
         }
     }
@@ -53,7 +60,7 @@ pub fn block_objects(desc: &TownDesc, l: &Layout, seed: u64) -> Vec<ObjectDesc> 
 
 /// The rows of plots of a built block, as (y0, y1, south): one row facing
 /// south on a shallow lot, else a row along each of its two streets.
-fn lot_rows(lot: &Rect, r: &mut Rng) -> Vec<(f64, f64, bool)> {
+pub(super) fn lot_rows(lot: &Rect, r: &mut Rng) -> Vec<(f64, f64, bool)> {
     let depth_total = lot.size()[1];
     if depth_total < 24.0 {
         vec![(lot.min[1], lot.max[1], true)]
@@ -70,7 +77,7 @@ fn lot_rows(lot: &Rect, r: &mut Rng) -> Vec<(f64, f64, bool)> {
 /// Plots 10–24 m wide along one row over `xs` (sometimes with a gap), each
 /// holding a building (ids from `next_id`), a bush or nothing; none where
 /// the roundabout reaches.
-fn row_of_plots(
+pub(super) fn row_of_plots(
     desc: &TownDesc,
     l: &Layout,
     xs: Range<f64>,

@@ -116,6 +116,13 @@ pub struct TownDesc {
     /// meets no other road. Needs `ramps` and a level town (no grade).
     #[serde(default, skip_serializing_if = "is_false")]
     pub overpass: bool,
+    /// Outskirts (default false): rows of buildings on lots beyond the
+    /// outer roads' far sidewalks, and a line of trees past the road stubs,
+    /// so that a view out of the town ends at a street front rather than an
+    /// empty field (see `outskirts`). Needs a level `grid` town with square
+    /// corners on `grass` or `dry` ground, without hills, grade or ramps.
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub outskirts: bool,
     /// Fraction of traffic slots holding a vehicle, in [0, 1].
     pub traffic_density: f64,
     /// Cruising speed of all traffic and the ego vehicle, km/h, in [5, 130].
@@ -296,6 +303,26 @@ impl TownDesc {
             return Err(format!(
                 "ramps: needs long blocks (block_size_m ≥ {ramp_block}, as in highway towns), got {}",
                 self.block_size_m
+            ));
+        }
+        let plain = self.road_style == RoadStyle::Grid
+            && self.terrain != TerrainKind::Field
+            && self.hills_m == 0.0
+            && self.road_grade_m == 0.0
+            && self.loop_corner_radius_m == 0.0
+            && !self.ramps;
+        if self.outskirts && !plain {
+            return Err(format!(
+                "outskirts: needs a level grid town with square corners and no ramps \
+                 (road_style = \"grid\", terrain grass or dry, hills_m = 0, road_grade_m = 0, \
+                 loop_corner_radius_m = 0, ramps = false); got road_style = {:?}, terrain = {:?}, \
+                 hills_m = {}, road_grade_m = {}, loop_corner_radius_m = {}, ramps = {}",
+                self.road_style,
+                self.terrain,
+                self.hills_m,
+                self.road_grade_m,
+                self.loop_corner_radius_m,
+                self.ramps
             ));
         }
         self.validate_loop_corners()?;

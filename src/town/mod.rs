@@ -30,6 +30,7 @@ pub mod layout;
 pub mod lettering;
 pub mod materials;
 pub mod organic;
+pub mod outskirts;
 pub mod overpass;
 pub mod parts;
 pub mod people;
@@ -113,7 +114,9 @@ impl<'a> StaticTown<'a> {
     pub fn objects(&self) -> Vec<ObjectDesc> {
         let (desc, seed, l) = (self.desc, self.seed, &self.layout);
         let mut out = roads::road_objects(l, &self.sites);
-        out.extend(buildings::block_objects(desc, l, seed));
+        let mut next_id = buildings::BUILDING_ID_BASE;
+        out.extend(buildings::block_objects(desc, l, seed, &mut next_id));
+        out.extend(outskirts::outskirt_objects(desc, l, seed, &mut next_id));
         let mut furniture = furniture::furniture_objects(desc, l, &self.sites, seed, &out);
         // Nothing stands on the roundabout's ring or sidewalk, nor in the
         // square of a curved loop corner (its arc and the cut-off corner).

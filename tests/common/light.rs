@@ -84,9 +84,8 @@ pub fn render_left(
             let mut rays = 0;
             for s in 0..spp {
                 let mut stream = SampleStream::new(key, i, j, s);
-                let li = ctx
-                    .li(cam.jittered_ray(i, j, &mut stream), &mut stream, &mut rays)
-                    .l;
+                let ray = cam.jittered_ray(i, j, &mut stream);
+                let li = ctx.li(ray, cam.cone(ray.d), &mut stream, &mut rays).l;
                 assert!(li.is_finite(), "non-finite sample {s} at pixel ({i}, {j})");
                 let y = li.dot(Vec3::new(0.2126, 0.7152, 0.0722)) as f64;
                 s1 += y;

@@ -104,7 +104,8 @@ pub fn rebuild_left(r: &Rendered, spp: u32, seed: u64, max_depth: u32) -> (Film,
             for s in 0..spp {
                 let mut stream = SampleStream::new(key, i, j, s);
                 let ray = cam.jittered_ray(i, j, &mut stream);
-                let li = ctx.li_from_hit(ray, ctx.accel.intersect(&ray), &mut stream, &mut rays);
+                let hit = ctx.accel.intersect(&ray);
+                let li = ctx.li_from_hit(ray, hit, cam.cone(ray.d), &mut stream, &mut rays);
                 assert!(
                     li.l.is_finite(),
                     "non-finite sample {s} at pixel ({i}, {j})"

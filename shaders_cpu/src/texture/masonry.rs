@@ -2,14 +2,14 @@
 //! Flemish and English bond, and ashlar stone. Mortar joints are recessed
 //! (brick 3 mm, stone 4 mm) with a pale mortar of the base's luminance;
 //! the unit colour is solved so that the area-weighted mean equals the
-//! nominal albedo.
+//! nominal albedo. Under a footprint wider than a joint, a point's colour
+//! is the mix of mortar and brick its footprint holds (the joints' box-
+//! filtered cover), and fine grain and relief fade to their means.
 
 use glam::{DVec3, Vec3};
 
-use super::noise::{
-    cell_noise, fbm, hash_cell, rehash, rehash_signed, signed_unit, unit, value_noise,
-};
-use super::{plane, smoothstep, Pat};
+use super::noise::{hash_cell, rehash, rehash_signed, signed_unit, unit};
+use super::{plane, smoothstep, Footprint, Pat};
 
 /// Brick length plus one mortar joint, metres (a stretcher's module).
 pub const MODULE_U_M: f64 = 0.225;
@@ -86,7 +86,15 @@ impl Bond {
 }
 
 /// Brick of `bond` with nominal albedo `base`.
-pub fn brick(bond: Bond, base: Vec3, p: DVec3, n: Vec3, seed: u32, color: bool) -> Pat {
+pub fn brick(
+    bond: Bond,
+    base: Vec3,
+    p: DVec3,
+    n: Vec3,
+    seed: u32,
+    fp: Footprint,
+    color: bool,
+) -> Pat {
     let (u, v, face) = plane::coords(p, n);
     let (row, in_v) = plane::cell(v, MODULE_V_M, 0.0);
     let (col, in_u, len, header) = bond.locate(u, row);
@@ -97,44 +105,68 @@ pub fn brick(bond: Bond, base: Vec3, p: DVec3, n: Vec3, seed: u32, color: bool) 
     let dv = ((in_v - half).abs()).min((in_v - MODULE_V_M - half).abs()) as f32;
     let d = du.min(dv);
     let hb = hash_cell([col, row, face], seed);
-    let h = plane::joint(d, half as f32 - 0.001, 0.002, 0.003)
-        + 0.0005 * signed_unit(rehash(hb, 2)) * smoothstep(half as f32, half as f32 + 0.002, d)
-        + 0.0003 * value_noise(p, 0.004, seed ^ 0xD4);
+    let h = fp.keep(2.0 * MORTAR_M) * plane::joint(d, half as f32 - 0.001, 0.002, 0.003)
+        + 0.0005
+            * fp.keep(MODULE_V_M)
+            * signed_unit(rehash(hb, 2))
+            * smoothstep(half as f32, half as f32 + 0.002, d)
+        + 0.0003 * fp.value_noise(p, 0.004, seed ^ 0xD4);
     if !color {
         return Pat { c: base, r: 1.0, h };
     }
     let lum = base.dot(Vec3::new(0.2126, 0.7152, 0.0722));
     let mortar_rgb = Vec3::new(1.0, 0.97, 0.92) * (1.3 * lum).min(0.9);
     let f_brick = bond.brick_fraction();
-    if d < half as f32 {
-        let sand = 1.0 + 0.15 * cell_noise(p, 0.002, seed ^ 0xD1);
+    // The mortar's share of the footprint: the joints' cover across the
+    // course (v) and along it (u, this course's module).
+    let cover = if fp.keep(MORTAR_M) >= 1.0 {
+        f32::from(u8::from(d < half as f32))
+    } else {
+        let w = fp.band_cover(dv, half as f32, MODULE_V_M as f32);
+        let u = fp.band_cover(du, half as f32, len as f32);
+        let cover = 1.0 - (1.0 - w) * (1.0 - u);
+        fp.fade(MORTAR_M, f32::from(u8::from(d < half as f32)), cover)
+    };
+    let mortar = if cover > 0.0 {
+        mortar_rgb * (1.0 + 0.15 * fp.cell_noise(p, 0.002, seed ^ 0xD1))
+    } else {
+        Vec3::ZERO
+    };
+    if cover >= 1.0 {
         return Pat {
-            c: mortar_rgb * sand,
+            c: mortar,
             r: 1.0,
             h,
         };
     }
     // Brick colour so that f_brick·brick + (1 − f_brick)·mortar = base.
     let brick_rgb = ((base - (1.0 - f_brick) * mortar_rgb) / f_brick).max(Vec3::ZERO);
-    let shade = 1.0 + 0.22 * signed_unit(hb);
-    let hue = 0.08 * rehash_signed(hb);
+    let k_brick = fp.keep(MODULE_V_M);
+    // Uniform ±0.22: std 0.22/√3.
+    let shade = 1.0 + fp.cells(|| 0.22 * signed_unit(hb), 0.127, p, MODULE_V_M, seed ^ 0xD5);
+    let hue = 0.08 * k_brick * rehash_signed(hb);
     // Flemish headers are often burnt darker; shift stretchers up to keep the mean.
     let burnt = match (bond, header) {
         (Bond::Flemish, true) => 0.8,
         (Bond::Flemish, false) => 1.1,
         _ => 1.0,
     };
-    let surface = 1.0 + 0.1 * fbm(p, 0.03, 3, 0.6, seed ^ 0xD2);
+    let burnt = fp.fade(MODULE_V_M, burnt, 1.0);
+    let surface = 1.0 + 0.1 * fp.fbm(p, 0.03, 3, 0.6, seed ^ 0xD2);
     // Sand-faced grain, 3 mm.
-    let grain = 1.0 + 0.12 * cell_noise(p, 0.003, seed ^ 0xD3);
+    let grain = 1.0 + 0.12 * fp.cell_noise(p, 0.003, seed ^ 0xD3);
     let c = brick_rgb * Vec3::new(1.0 + hue, 1.0, 1.0 - hue) * (shade * surface * grain * burnt);
-    Pat { c, r: 1.0, h }
+    Pat {
+        c: c.lerp(mortar, cover),
+        r: 1.0,
+        h,
+    }
 }
 
 /// Ashlar: courses 28–40 cm high (per course), blocks 40–90 cm long (per
 /// course, offset per course), 8 mm joints recessed 4 mm, rock-faced
 /// blocks (3 mm relief), each block tinted ±10 %.
-pub fn stone(base: Vec3, p: DVec3, n: Vec3, seed: u32, color: bool) -> Pat {
+pub fn stone(base: Vec3, p: DVec3, n: Vec3, seed: u32, fp: Footprint, color: bool) -> Pat {
     let (u, v, face) = plane::coords(p, n);
     // Course heights vary: cells of 34 cm with their boundaries jittered ±5 cm.
     let (row0, _) = plane::cell(v, 0.34, 0.0);
@@ -153,16 +185,22 @@ pub fn stone(base: Vec3, p: DVec3, n: Vec3, seed: u32, color: bool) -> Pat {
     let (col, in_u) = plane::cell(u, len, len * unit(rehash(hr, 8)) as f64);
     let d = plane::edge_dist(in_u, len).min(((v - lo).min(hi - v)) as f32);
     let hb = hash_cell([col, row, face], seed ^ 0x59);
-    let h = plane::joint(d, 0.004, 0.003, 0.004)
-        + 0.0015 * fbm(p, 0.06, 3, 0.55, seed ^ 0x5A) * smoothstep(0.004, 0.01, d);
+    let h = fp.keep(0.01) * plane::joint(d, 0.004, 0.003, 0.004)
+        + 0.0015 * fp.fbm(p, 0.06, 3, 0.55, seed ^ 0x5A) * smoothstep(0.004, 0.01, d);
     if !color {
         return Pat { c: base, r: 1.0, h };
     }
-    let block = 1.0 + 0.1 * signed_unit(hb);
-    let hue = 0.04 * rehash_signed(hb);
-    let grain = (1.0 + 0.08 * fbm(p, 0.02, 3, 0.6, seed ^ 0x5B))
-        * (1.0 + 0.08 * cell_noise(p, 0.002, seed ^ 0x5C));
-    let joint = 1.0 - smoothstep(0.004, 0.005, d);
+    let k_block = fp.keep(0.34);
+    let block = 1.0 + 0.1 * k_block * signed_unit(hb);
+    let hue = 0.04 * k_block * rehash_signed(hb);
+    let grain = (1.0 + 0.08 * fp.fbm(p, 0.02, 3, 0.6, seed ^ 0x5B))
+        * (1.0 + 0.08 * fp.cell_noise(p, 0.002, seed ^ 0x5C));
+    // Joints: the box-filtered cover of the course's joints (v, its own
+    // height) and of the blocks' (u, its length) under a wide footprint.
+    let cover = 1.0
+        - (1.0 - fp.band_cover(((v - lo).min(hi - v)) as f32, 0.0045, (hi - lo) as f32))
+            * (1.0 - fp.band_cover(plane::edge_dist(in_u, len), 0.0045, len as f32));
+    let joint = fp.fade(0.009, 1.0 - smoothstep(0.004, 0.005, d), cover);
     let c = base * Vec3::new(1.0 + hue, 1.0, 1.0 - hue) * (block * grain * (1.02 - 0.25 * joint));
     Pat { c, r: 1.0, h }
 }

@@ -21,6 +21,7 @@
 //! `grass`, `soil`.
 
 mod decals;
+mod filter;
 mod masonry;
 mod nature;
 pub mod noise;
@@ -29,6 +30,8 @@ mod road;
 mod surfaces;
 
 use glam::{DVec3, Vec3};
+
+pub use filter::Footprint;
 
 use crate::sampling::Frame;
 
@@ -155,39 +158,59 @@ impl Texture {
         }
     }
 
-    /// The pattern at texture-space `p` (world / scale); `color` false asks
-    /// for the height only (the albedo may then be anything).
-    fn pat(&self, base: Vec3, p: DVec3, n: Vec3, color: bool) -> Pat {
+    /// The pattern at texture-space `p` (world / scale) filtered by the
+    /// footprint `f` (texture space); `color` false asks for the height
+    /// only (the albedo may then be anything).
+    fn pat(&self, base: Vec3, p: DVec3, n: Vec3, f: Footprint, color: bool) -> Pat {
         use TextureKind as K;
         let s = self.seed;
         match self.kind {
-            K::Asphalt => road::asphalt(base, p, n, s, color),
-            K::RoadPaint => road::road_paint(base, p, n, s, color),
-            K::Paving => road::paving(base, p, n, s, color),
-            K::Kerb => road::kerb(base, p, n, s, color),
-            K::Brick => masonry::brick(masonry::Bond::Stretcher, base, p, n, s, color),
-            K::BrickFlemish => masonry::brick(masonry::Bond::Flemish, base, p, n, s, color),
-            K::BrickEnglish => masonry::brick(masonry::Bond::English, base, p, n, s, color),
-            K::Stone => masonry::stone(base, p, n, s, color),
-            K::Plaster => surfaces::plaster(base, p, s, color),
-            K::Concrete => surfaces::concrete(base, p, s, color),
-            K::Glass => surfaces::glass(base, p, s),
-            K::MetalPainted => surfaces::metal_painted(base, p, s, color),
-            K::MetalBrushed => surfaces::metal_brushed(base, p, n, s, color),
-            K::Wood => nature::wood(base, p, n, s, color),
-            K::Bark => nature::bark(base, p, s, color),
-            K::Leaves => nature::leaves(base, p, s, color),
-            K::Foliage => nature::foliage(base, p, s, color),
-            K::Grass => nature::grass(base, p, s, color),
-            K::Soil => nature::soil(base, p, s, color),
+            K::Asphalt => road::asphalt(base, p, n, s, f, color),
+            K::RoadPaint => road::road_paint(base, p, n, s, f, color),
+            K::Paving => road::paving(base, p, n, s, f, color),
+            K::Kerb => road::kerb(base, p, n, s, f, color),
+            K::Brick => masonry::brick(masonry::Bond::Stretcher, base, p, n, s, f, color),
+            K::BrickFlemish => masonry::brick(masonry::Bond::Flemish, base, p, n, s, f, color),
+            K::BrickEnglish => masonry::brick(masonry::Bond::English, base, p, n, s, f, color),
+            K::Stone => masonry::stone(base, p, n, s, f, color),
+            K::Plaster => surfaces::plaster(base, p, s, f, color),
+            K::Concrete => surfaces::concrete(base, p, s, f, color),
+            K::Glass => surfaces::glass(base, p, s, f),
+            K::MetalPainted => surfaces::metal_painted(base, p, s, f, color),
+            K::MetalBrushed => surfaces::metal_brushed(base, p, n, s, f, color),
+            K::Wood => nature::wood(base, p, n, s, f, color),
+            K::Bark => nature::bark(base, p, s, f, color),
+            K::Leaves => nature::leaves(base, p, s, f, color),
+            K::Foliage => nature::foliage(base, p, s, f, color),
+            K::Grass => nature::grass(base, p, s, f, color),
+            K::Soil => nature::soil(base, p, s, f, color),
         }
+    }
+
+    /// The texture-space footprint of a world footprint of `footprint_m`.
+    fn footprint(&self, footprint_m: f32) -> Footprint {
+        Footprint::new(footprint_m / self.scale as f32)
     }
 
     /// Albedo and roughness factor at `p_world` (metres) for a material of
     /// nominal albedo `base`; `n` is the unit geometric normal (either
     /// orientation; patterns laid in a plane use it to find the plane).
     pub fn sample(&self, base: Vec3, p_world: DVec3, n: Vec3) -> TexSample {
-        let pat = self.pat(base, p_world / self.scale, n, true);
+        self.sample_filtered(base, p_world, n, 0.0)
+    }
+
+    /// [`Texture::sample`] filtered by a footprint `footprint_m` metres
+    /// wide (world): detail smaller than it fades to its mean
+    /// ([`Footprint`]); 0 gives [`Texture::sample`]'s bits.
+    pub fn sample_filtered(
+        &self,
+        base: Vec3,
+        p_world: DVec3,
+        n: Vec3,
+        footprint_m: f32,
+    ) -> TexSample {
+        let f = self.footprint(footprint_m);
+        let pat = self.pat(base, p_world / self.scale, n, f, true);
         TexSample {
             albedo: pat.c.clamp(Vec3::ZERO, Vec3::splat(0.99)),
             roughness: pat.r.max(0.0),
@@ -201,7 +224,13 @@ impl Texture {
 
     /// The relief height at `p_world` along `n`, metres (world).
     pub fn height(&self, p_world: DVec3, n: Vec3) -> f32 {
-        self.pat(Vec3::ONE, p_world / self.scale, n, false).h * self.scale as f32
+        self.height_filtered(p_world, n, 0.0)
+    }
+
+    /// [`Texture::height`] filtered by a footprint `footprint_m` metres wide.
+    pub fn height_filtered(&self, p_world: DVec3, n: Vec3, footprint_m: f32) -> f32 {
+        let f = self.footprint(footprint_m).relief();
+        self.pat(Vec3::ONE, p_world / self.scale, n, f, false).h * self.scale as f32
     }
 
     /// Whether the texture has relief.
@@ -210,23 +239,36 @@ impl Texture {
     }
 
     /// Albedo, roughness factor and the relief's shading normal
-    /// ([`Texture::bump_normal`]) at once: the pattern's colour pass gives
-    /// the height at `p_world`, so the gradient needs two more height passes.
+    /// ([`Texture::bump_normal`]) at once, filtered by a footprint
+    /// `footprint_m` metres wide ([`Texture::sample_filtered`]; relief
+    /// finer than the footprint flattens the same way): the pattern's
+    /// colour pass gives the height at `p_world`, so the gradient needs two
+    /// more height passes.
     pub fn shade(
         &self,
         base: Vec3,
         p_world: DVec3,
         n_geo: Vec3,
         n_shading: Vec3,
+        footprint_m: f32,
     ) -> (TexSample, Vec3) {
         let p = p_world / self.scale;
-        let pat = self.pat(base, p, n_geo, true);
+        let f = self.footprint(footprint_m);
+        let pat = self.pat(base, p, n_geo, f, true);
         let sample = TexSample {
             albedo: pat.c.clamp(Vec3::ZERO, Vec3::splat(0.99)),
             roughness: pat.r.max(0.0),
         };
         let normal = if self.has_relief() {
-            self.tilt(p, n_geo, n_shading, pat.h)
+            // The relief without the colour's residual grain: a height pass
+            // of its own unless nothing is filtered (then the colour pass's
+            // height is the same).
+            let h0 = if f.w > 0.0 {
+                self.pat(Vec3::ONE, p, n_geo, f.relief(), false).h
+            } else {
+                pat.h
+            };
+            self.tilt(p, n_geo, n_shading, f.relief(), h0)
         } else {
             n_shading
         };
@@ -243,16 +285,17 @@ impl Texture {
             return n_shading;
         }
         let p = p_world / self.scale;
-        let h0 = self.pat(Vec3::ONE, p, n_geo, false).h;
-        self.tilt(p, n_geo, n_shading, h0)
+        let h0 = self.pat(Vec3::ONE, p, n_geo, Footprint::SHARP, false).h;
+        self.tilt(p, n_geo, n_shading, Footprint::SHARP, h0)
     }
 
-    /// [`Texture::bump_normal`] at texture-space `p` of height `h0`.
-    fn tilt(&self, p: DVec3, n_geo: Vec3, n_shading: Vec3, h0: f32) -> Vec3 {
+    /// [`Texture::bump_normal`] at texture-space `p` of height `h0`, the
+    /// height filtered by `f`.
+    fn tilt(&self, p: DVec3, n_geo: Vec3, n_shading: Vec3, f: Footprint, h0: f32) -> Vec3 {
         let frame = Frame::from_z(n_geo);
         let dh = |t: Vec3| {
             let q = p + t.as_dvec3() * BUMP_STEP_M;
-            (self.pat(Vec3::ONE, q, n_geo, false).h - h0) / BUMP_STEP_M as f32
+            (self.pat(Vec3::ONE, q, n_geo, f, false).h - h0) / BUMP_STEP_M as f32
         };
         let mut g = (frame.x * dh(frame.x) + frame.y * dh(frame.y)) * self.bump;
         let slope = g.length();

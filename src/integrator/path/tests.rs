@@ -46,8 +46,14 @@ fn batched_first_shadows_give_the_same_bits_as_path_by_path() {
         .iter()
         .map(|px| {
             let ray = camera_ray(px);
-            ctx.li_from_hit(ray, ctx.accel.intersect(&ray), &mut stream(px), &mut 0)
-                .l
+            ctx.li_from_hit(
+                ray,
+                ctx.accel.intersect(&ray),
+                cam.cone(ray.d),
+                &mut stream(px),
+                &mut 0,
+            )
+            .l
         })
         .collect();
 
@@ -57,7 +63,7 @@ fn batched_first_shadows_give_the_same_bits_as_path_by_path() {
         .zip(&mut streams)
         .map(|(px, st)| {
             let ray = camera_ray(px);
-            ctx.start_path(ray, ctx.accel.intersect(&ray), st, &mut 0)
+            ctx.start_path(ray, ctx.accel.intersect(&ray), cam.cone(ray.d), st, &mut 0)
         })
         .collect();
     let (mut rays, mut slots) = (Vec::new(), Vec::new());

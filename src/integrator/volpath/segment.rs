@@ -7,7 +7,8 @@ use shaders_cpu::medium::Medium;
 use shaders_cpu::sampling::power_heuristic;
 
 use super::{
-    InScatter, Strategies, SunLobe, LOBE_ALWAYS, LOBE_DIMS, VOL_DIMS, VOL_DIMS_PER_BOUNCE,
+    InScatter, NeeRoulette, Strategies, SunLobe, DEEP_FROM, LOBE_ALWAYS, LOBE_DIMS, VOL_DIMS,
+    VOL_DIMS_PER_BOUNCE,
 };
 use crate::accel::{Accel, Hit, Ray};
 use crate::integrator::path::{LiSample, PathState};
@@ -15,6 +16,10 @@ use crate::integrator::{DenoiseSample, PathContext};
 use crate::sampler::SampleStream;
 
 use super::surf_fog::SurfFog;
+
+/// The camera segment's 4D set (after `SegmentSamples`' five) whose first
+/// number decides the split's roulette (`Strategies::split_per_tr`).
+const SPLIT_SET: u32 = 5;
 
 /// A segment's samples, drawn at its bounce's fixed dimensions.
 pub(super) struct SegmentSamples {
@@ -181,9 +186,14 @@ impl<A: Accel> PathContext<'_, A> {
         let split = first_segment && strategies.split_first;
         if split && seg.collided {
             // Both continuations: the surface's with its expected weight
-            // Tr, the fog's as drawn.
-            let beta_surf = vs.st.beta * seg.tr_seg;
-            vs.first.split = self.trace(*ray, hit, stream, rays, strategies, Some(beta_surf));
+            // Tr (under `split_per_tr`'s roulette, by a number of the
+            // segment's sixth set), the fog's as drawn.
+            let keep = (strategies.split_per_tr * seg.tr_seg).min(1.0);
+            stream.set_dimension(VOL_DIMS + SPLIT_SET);
+            if stream.next_1d() < keep {
+                let beta_surf = vs.st.beta * (seg.tr_seg / keep);
+                vs.first.split = self.trace(*ray, hit, stream, rays, strategies, Some(beta_surf));
+            }
         } else if split {
             vs.st.beta *= seg.tr_seg;
         }
@@ -229,6 +239,23 @@ impl<A: Accel> PathContext<'_, A> {
         if !every && !seg.collided {
             return;
         }
+        // The roulette of the sky's (and at every-segment points the local
+        // lights') NEE: at collisions `sky_nee_deep`, at every-segment
+        // points by the segment's opacity (`inscatter_per_opacity`).
+        let rr = if every {
+            let keep = vs.strategies.inscatter_per_opacity * (1.0 - seg.tr_seg);
+            NeeRoulette {
+                u: u.u_sky,
+                keep: keep.min(1.0),
+                local: true,
+            }
+        } else {
+            NeeRoulette {
+                u: u.u_sky,
+                keep: vs.strategies.sky_nee_deep,
+                local: false,
+            }
+        };
         let lobe_w = vs.lobe_wo.zip(vs.sun_lobe).map(|(wo_prev, sl)| {
             (
                 sl.k,
@@ -251,7 +278,7 @@ impl<A: Accel> PathContext<'_, A> {
             u.u_light,
             &u.u_distant,
             lobe_w,
-            (!every).then_some((u.u_sky, vs.strategies.sky_nee_deep)),
+            rr,
             rays,
         );
         // Every segment: the point stands for the collision it is with
@@ -297,7 +324,12 @@ impl<A: Accel> PathContext<'_, A> {
             vs.lobe_wo = Some(wo);
         }
         let survives = if vs.strategies.albedo_roulette {
-            st.survives_albedo_roulette(m, u.u_rr)
+            let keep = if st.bounces > DEEP_FROM {
+                vs.strategies.deep_survival
+            } else {
+                1.0
+            };
+            st.survives_albedo_roulette(m, u.u_rr, keep)
         } else {
             st.survives_roulette(u.u_rr)
         };

@@ -191,7 +191,12 @@ fn medium(albedo: Vec3) -> Medium {
 
 #[test]
 fn albedo_roulette_keeps_grey_throughput_and_expected_weight() {
-    for albedo in [Vec3::splat(0.8), Vec3::new(0.9, 0.5, 0.2)] {
+    // `keep` < 1 is the deep roulette on top: fewer survivors, each
+    // divided by it, the same expected weight.
+    let cases = [Vec3::splat(0.8), Vec3::new(0.9, 0.5, 0.2)]
+        .into_iter()
+        .flat_map(|albedo| [(albedo, 1.0), (albedo, 0.5)]);
+    for (albedo, keep) in cases {
         let m = medium(albedo);
         let n = 1000;
         let mut sum = Vec3::ZERO;
@@ -201,10 +206,10 @@ fn albedo_roulette_keeps_grey_throughput_and_expected_weight() {
             st.beta = Vec3::splat(0.4);
             st.scatter(&m, Vec3::ZERO, 1.0);
             let u = (i as f32 + 0.5) / n as f32;
-            if st.survives_albedo_roulette(&m, u) {
+            if st.survives_albedo_roulette(&m, u, keep) {
                 survivors += 1;
                 // β·albedo/max(albedo): grey keeps β from before the collision.
-                let expected = 0.4 * albedo / albedo.max_element();
+                let expected = 0.4 * albedo / albedo.max_element() / keep;
                 assert!(
                     (st.beta - expected).abs().max_element() < 1e-6,
                     "{}",
@@ -213,8 +218,9 @@ fn albedo_roulette_keeps_grey_throughput_and_expected_weight() {
                 sum += st.beta;
             }
         }
-        // Survival probability max(albedo); expected weight β·albedo.
-        assert_eq!(survivors, (albedo.max_element() * n as f32).round() as i32);
+        // Survival probability max(albedo)·keep; expected weight β·albedo.
+        let p = albedo.max_element() * keep;
+        assert_eq!(survivors, (p * n as f32).round() as i32);
         let mean = sum / n as f32;
         assert!((mean - 0.4 * albedo).abs().max_element() < 1e-5, "{mean}");
     }
@@ -272,4 +278,85 @@ fn deep_sky_and_lobe_roulettes_keep_the_mean() {
         (rays_rr as f64) < 0.95 * rays_all as f64,
         "{rays_rr} vs {rays_all}"
     );
+}
+
+#[test]
+fn deep_roulette_keeps_the_mean_for_fewer_rays() {
+    // Collisions after the first scattering event survive half the time
+    // (divided by 1/2) against never rouletted (the default): the same
+    // expected radiance in the fog slab, under sun and sky, for fewer rays.
+    let n = 16384;
+    let scene = format!("{SCENE}{SKY}");
+    let (all, rays_all) = samples_in(&scene, Strategies::default(), &DIRS, n);
+    let (rr, rays_rr) = samples_in(
+        &scene,
+        Strategies {
+            deep_survival: 0.5,
+            ..Strategies::default()
+        },
+        &DIRS,
+        n,
+    );
+    assert_same_means(&DIRS, ("never", &all), ("deep roulette", &rr));
+    eprintln!("rays: never {rays_all}, deep roulette {rays_rr}");
+    assert!(
+        (rays_rr as f64) < 0.9 * rays_all as f64,
+        "{rays_rr} vs {rays_all}"
+    );
+}
+
+#[test]
+fn inscatter_roulette_keeps_the_mean_in_thin_haze() {
+    // A thin slab (σ_t 0.0005/m up to 40 m) under sun and sky: up and
+    // across the sun the slab's opacity is about 7 % (the sky's NEE drawn
+    // about 30 % of the time at 4 per unit opacity); level rays see an
+    // opaque column, always estimated.
+    let thin = format!("{SCENE}{SKY}").replace("sigma_t = 0.05", "sigma_t = 0.0005");
+    let n = 16384;
+    let (rr, rays_rr) = samples_in(&thin, Strategies::default(), &DIRS, n);
+    let (all, rays_all) = samples_in(
+        &thin,
+        Strategies {
+            inscatter_per_opacity: f32::INFINITY,
+            ..Strategies::default()
+        },
+        &DIRS,
+        n,
+    );
+    let vars = assert_same_means(&DIRS, ("always", &all), ("roulette", &rr));
+    eprintln!("rays: always {rays_all}, roulette {rays_rr}, variances {vars:?}");
+    assert!(
+        (rays_rr as f64) < 0.9 * rays_all as f64,
+        "{rays_rr} vs {rays_all}"
+    );
+}
+
+#[test]
+fn split_roulette_keeps_the_mean() {
+    // The split camera segment's surface part traced by the roulette on
+    // its Tr (the default, 8 per unit Tr) against always: the same
+    // expected radiance toward the sunlit ground through a dense, low
+    // slab (σ_t 0.45/m up to 2 m: Tr about 0.1 to the ground, kept about
+    // 75 % of the time).
+    let n = 16384;
+    let dense = SCENE
+        .replace("sigma_t = 0.05", "sigma_t = 0.45")
+        .replace("z_max_m = 40.0", "z_max_m = 2.0");
+    let split = Strategies {
+        split_first: true,
+        ..Strategies::default()
+    };
+    let (rr, rays_rr) = samples_in(&dense, split, &DIRS, n);
+    let (all, rays_all) = samples_in(
+        &dense,
+        Strategies {
+            split_per_tr: f32::INFINITY,
+            ..split
+        },
+        &DIRS,
+        n,
+    );
+    assert_same_means(&DIRS, ("always", &all), ("roulette", &rr));
+    eprintln!("rays: always {rays_all}, roulette {rays_rr}");
+    assert!(rays_rr < rays_all, "{rays_rr} vs {rays_all}");
 }

@@ -6,6 +6,7 @@
 use glam::Vec3;
 use shaders_cpu::sampling::luminance;
 
+use super::super::bvh::acos_clamped;
 use super::super::{power, Light};
 use super::LightBounds;
 use crate::scene::Scene;
@@ -50,8 +51,8 @@ pub(super) fn explicit_bounds(light: &Light) -> LightBounds {
         } => {
             // Full intensity inside θ_o, falloff out to θ_outer = θ_o + θ_e
             // (a small θ_e keeps hard-edged spots inside their own bound).
-            let theta_outer = cos_outer.clamp(-1.0, 1.0).acos();
-            let theta_o = cos_inner.clamp(-1.0, 1.0).acos().min(theta_outer);
+            let theta_outer = acos_clamped(cos_outer);
+            let theta_o = acos_clamped(cos_inner).min(theta_outer);
             let theta_e = (theta_outer - theta_o).max(1e-3);
             point(p, dir, intensity, theta_o.cos(), theta_e.cos())
         }

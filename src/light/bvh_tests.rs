@@ -1,0 +1,143 @@
+//! Light BVH build: the arc-cosine shortcuts keep libm's bits, and the
+//! parallel build gives the serial tree.
+
+use super::*;
+use std::hint::black_box;
+
+/// The cone union as written before its shortcut: three arc cosines.
+fn cone_union_plain(wa: Vec3, cos_a: f32, wb: Vec3, cos_b: f32) -> (Vec3, f32) {
+    if cos_a == -1.0 || cos_b == -1.0 {
+        return (wa, -1.0);
+    }
+    let theta_a = cos_a.clamp(-1.0, 1.0).acos();
+    let theta_b = cos_b.clamp(-1.0, 1.0).acos();
+    let theta_d = wa.dot(wb).clamp(-1.0, 1.0).acos();
+    if (theta_d + theta_b).min(std::f32::consts::PI) <= theta_a {
+        return (wa, cos_a);
+    }
+    if (theta_d + theta_a).min(std::f32::consts::PI) <= theta_b {
+        return (wb, cos_b);
+    }
+    let theta_o = 0.5 * (theta_a + theta_d + theta_b);
+    if theta_o >= std::f32::consts::PI {
+        return (wa, -1.0);
+    }
+    let theta_r = theta_o - theta_a;
+    let axis = wa.cross(wb);
+    if axis.length_squared() < 1e-12 {
+        let theta = (theta_d + theta_b).max(theta_a).min(std::f32::consts::PI);
+        return (wa, theta.cos());
+    }
+    let w = glam::Quat::from_axis_angle(axis.normalize(), theta_r) * wa;
+    (w.normalize(), theta_o.cos())
+}
+
+#[test]
+fn acos_shortcuts_are_the_libm_bits() {
+    for c in [1.0f32, 0.0, -0.0] {
+        assert_eq!(
+            acos_clamped(c).to_bits(),
+            black_box(c).acos().to_bits(),
+            "acos {c}"
+        );
+    }
+    assert_eq!(acos_clamped(1.5), 0.0);
+    assert_eq!(acos_clamped(-0.25), (-0.25f32).acos());
+}
+
+#[test]
+fn cone_union_gives_the_bits_of_three_arc_cosines() {
+    let mut s = 0x9e37_79b9_7f4a_7c15u64;
+    let mut u = move || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        (s >> 40) as f32 / (1u64 << 24) as f32
+    };
+    let axes = [Vec3::Z, -Vec3::Z, Vec3::X, Vec3::new(0.6, 0.0, 0.8)];
+    let (mut shortcut, mut general) = (0, 0);
+    for k in 0..20_000 {
+        let mut dir = || {
+            if u() < 0.5 {
+                axes[(u() * 4.0) as usize % 4]
+            } else {
+                Vec3::new(u() - 0.5, u() - 0.5, u() - 0.5).normalize()
+            }
+        };
+        let (wa, wb) = (dir(), if k % 3 == 0 { Vec3::ZERO } else { dir() });
+        let wb = if wb == Vec3::ZERO { wa } else { wb };
+        let mut cos = || match (u() * 5.0) as u32 {
+            0 => 1.0,
+            1 => 0.0,
+            2 => -1.0,
+            _ => 2.0 * u() - 1.0,
+        };
+        let (ca, cb) = (cos(), cos());
+        let cb = if k % 5 == 0 { ca } else { cb };
+        let fast = cone_union(wa, ca, wb, cb);
+        let plain = cone_union_plain(wa, ca, wb, cb);
+        assert_eq!(
+            (fast.0.to_array().map(f32::to_bits), fast.1.to_bits()),
+            (plain.0.to_array().map(f32::to_bits), plain.1.to_bits()),
+            "{wa} {ca} ∪ {wb} {cb}"
+        );
+        if wa.dot(wb) >= 1.0 && ca > -1.0 && cb > -1.0 && (cb == 1.0 || cb == ca) {
+            shortcut += 1;
+        } else {
+            general += 1;
+        }
+    }
+    // Both paths were exercised.
+    assert!(shortcut > 1000 && general > 1000, "{shortcut} {general}");
+}
+
+#[test]
+fn a_tree_built_in_parallel_is_the_serial_tree() {
+    let mut s = 0x1234_5678_9abc_def1u64;
+    let mut u = move || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        (s >> 40) as f32 / (1u64 << 24) as f32
+    };
+    let bounds: Vec<LightBounds> = (0..3000)
+        .map(|k| {
+            let p = Vec3::new(u() * 300.0, u() * 200.0, u() * 12.0);
+            let w = [Vec3::Z, -Vec3::Z, Vec3::X, -Vec3::Y][k % 4];
+            LightBounds {
+                p_min: p,
+                p_max: p + Vec3::new(u(), u(), 0.1),
+                w,
+                // Some lights off: left out of both trees.
+                phi: if k % 17 == 0 { 0.0 } else { 0.1 + u() * 50.0 },
+                cos_theta_o: 1.0,
+                cos_theta_e: 0.0,
+                two_sided: k % 5 == 0,
+            }
+        })
+        .collect();
+    let serial = LightBvh::build_with_grain(&bounds, usize::MAX);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
+    for grain in [1, 7, 300] {
+        let parallel = pool.install(|| LightBvh::build_with_grain(&bounds, grain));
+        assert!(parallel == serial, "grain {grain}");
+    }
+    // The trails lead to the lights: what sampling returns, pmf replays.
+    let p = Vec3::new(150.0, 100.0, 1.5);
+    let mut found = 0;
+    for k in 0..200 {
+        if let Some((light, pmf)) = serial.sample(p, (k as f32 + 0.5) / 200.0) {
+            assert_eq!(
+                serial.pmf(p, light).to_bits(),
+                pmf.to_bits(),
+                "light {light}"
+            );
+            assert!(bounds[light as usize].phi > 0.0);
+            found += 1;
+        }
+    }
+    assert!(found > 100, "{found}");
+}
