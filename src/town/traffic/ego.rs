@@ -401,7 +401,7 @@ fn grown_corners(v: &VehiclePose, m: f64) -> [[f64; 2]; 4] {
 }
 
 /// Separating-axis test of two convex quads (touching does not count).
-fn quads_overlap(a: &[[f64; 2]; 4], b: &[[f64; 2]; 4]) -> bool {
+pub(super) fn quads_overlap(a: &[[f64; 2]; 4], b: &[[f64; 2]; 4]) -> bool {
     [a, b].iter().all(|poly| {
         (0..4).all(|k| {
             let (p, q) = (poly[k], poly[(k + 1) % 4]);

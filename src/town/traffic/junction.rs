@@ -12,7 +12,9 @@
 //! have left. Where a street meets a divided highway (right in, right
 //! out: `Crossing::major`), the highway has no signals and the right of
 //! way; the street's drivers also wait until no highway driver whose lane
-//! they merge into is inside or can arrive before they are clear.
+//! they merge into (a bus or truck: any highway driver) is inside or can
+//! arrive before they are clear plus the time it needs to brake from its
+//! limit.
 
 use super::{Schedule, A_LAT_MPS2, A_LON_MPS2};
 use crate::town::routes::drive::{Crossing, DrivePath, Move};
@@ -164,9 +166,16 @@ pub fn blocks(
 ) -> bool {
     match (me.c.major, o.c.major) {
         (Some(true), _) => return false,
-        (Some(false), Some(true)) if !compatible(&me.c, &o.c) => {
+        // A long body turning off the street sweeps its front across the
+        // far carriageway's inner lane too.
+        (Some(false), Some(true))
+            if !compatible(&me.c, &o.c) || (me.long && me.c.turn != Move::Straight) =>
+        {
+            // Merged in, it is slow in the highway driver's lane: that
+            // one must still be able to brake from its limit behind it.
             let t_arr = earliest_arrival_s(o.d_stop, o.v, o.v_max);
-            return o_inside || t_arr < clear_s + YIELD_MARGIN_S;
+            let brake_s = o.v_max / (2.0 * A_LON_MPS2);
+            return o_inside || t_arr < clear_s + YIELD_MARGIN_S + brake_s;
         }
         _ => {}
     }

@@ -16,9 +16,13 @@
 //! whoever is behind them follows). Steps use the state at the start of
 //! the step, in id order; a driver passing a stop line claims the
 //! junction at once, so later drivers of the same step see it inside.
-//! Braking from the current state onto the current positions of what is
-//! ahead, which only moves on along its own path, keeps every gap open;
-//! the junction rules keep crossing paths apart. Lamps per frame: brake
+//! A first pass brakes onto the current positions of what is ahead,
+//! which only moves on along its own path, so every gap stays open; a
+//! second pass lets a follower count on its leader's first-pass motion
+//! and braking distance (`follow_cap`), which keeps the gap open too and
+//! lets platoons run close to the limit; last, a move into another
+//! footprint is held (`keep_out`). The junction rules keep crossing paths
+//! apart. Lamps per frame: brake
 //! lamps while decelerating or standing, the indicator of a turn blinking
 //! from `SIGNAL_AHEAD_M` before its stop line until the turn is done.
 //!
@@ -252,7 +256,8 @@ impl<'a> Ctx<'a> {
         let states: Vec<Option<JState>> = agents
             .iter()
             .map(|a| {
-                let within = a.v_max * a.v_max / (2.0 * A_LON_MPS2) + 60.0;
+                // Far enough for a merging street driver's look.
+                let within = (a.v_max * a.v_max / (2.0 * A_LON_MPS2) + 60.0).max(12.0 * a.v_max);
                 JState::of(&a.path, a.s, a.half(), a.v.max(0.0), a.v_max, within)
             })
             .collect();
@@ -264,20 +269,49 @@ impl<'a> Ctx<'a> {
         }
         let mut claimed = vec![false; n];
         let mut next = vec![0.0; n];
+        let mut caps = Vec::with_capacity(n);
         for i in 0..n {
-            let cap = self.allowed(agents, i, &all, &grid, &states, &at_junction, &claimed, t);
+            let c = self.allowed(agents, i, &all, &grid, &states, &at_junction, &claimed, t);
             let a = &mut agents[i];
             if a.v.is_nan() {
-                a.v = cap;
+                a.v = c.cap;
             }
-            let v = (a.v + A_LON_MPS2 * self.dt).min(cap).max(0.0);
+            let v = (a.v + A_LON_MPS2 * self.dt).min(c.cap).max(0.0);
             if let Some(st) = &states[i] {
                 if !st.inside() && v * self.dt > st.d_stop + 0.01 {
                     claimed[i] = true;
                 }
             }
             next[i] = v;
+            caps.push(c);
         }
+        // Second pass: a follower counts on its leader's own motion and
+        // braking distance (the leader's first-pass speed, which the
+        // second pass only raises), never passing a stop line it did not
+        // claim in the first.
+        let first = next.clone();
+        for (i, c) in caps.iter().enumerate() {
+            // Only a leader ahead in one lane, beyond twice the standstill
+            // gap (closer, the follower brakes to where it is and keeps
+            // the pace of a slow one, a cyclist's).
+            let Some((g, j)) = c.lead.filter(|&(g, j)| j < n && g > FOLLOW_GAP_M) else {
+                continue;
+            };
+            let a = &agents[i];
+            let (_, h) = a.path.pose(a.s + g + a.half() + FOLLOW_GAP_M);
+            let along = (h - all[j].heading_deg.to_radians()).cos();
+            if along < ALIGNED_COS {
+                continue;
+            }
+            let cap = c.other.min(follow_cap(g, first[j] * along, self.dt));
+            let v = (a.v + A_LON_MPS2 * self.dt).min(cap).max(0.0);
+            let crosses =
+                states[i].is_some_and(|st| !st.inside() && v * self.dt > st.d_stop + 0.01);
+            if v > next[i] && (claimed[i] || !crosses) {
+                next[i] = v;
+            }
+        }
+        keep_out(agents, &all, &grid, &mut next, self.dt);
         let blink = (t * BLINK_HZ).fract() < 0.5;
         for (i, a) in agents.iter_mut().enumerate() {
             let p = &mut poses[i];
@@ -292,7 +326,8 @@ impl<'a> Ctx<'a> {
         poses
     }
 
-    /// The highest speed (m/s) agent `i` may take for the next step.
+    /// The highest speed (m/s) agent `i` may take for the next step,
+    /// braking to where the first footprint in its way is now.
     #[allow(clippy::too_many_arguments)]
     fn allowed(
         &self,
@@ -304,7 +339,7 @@ impl<'a> Ctx<'a> {
         at_junction: &BTreeMap<(usize, usize), Vec<usize>>,
         claimed: &[bool],
         t: f64,
-    ) -> f64 {
+    ) -> Caps {
         let a = &agents[i];
         let half = a.half();
         let v = if a.v.is_nan() { a.v_max } else { a.v };
@@ -328,9 +363,9 @@ impl<'a> Ctx<'a> {
             None => look,
         };
         let ahead = first_in_way(a, i, need, all, grid);
-        if let Some((d, _)) = ahead.filter(|(d, _)| *d < look) {
-            cap = cap.min(stop(d - half - FOLLOW_GAP_M));
-        }
+        let lead = ahead
+            .filter(|(d, _)| *d < look)
+            .map(|(d, j)| (d - half - FOLLOW_GAP_M, j));
         if let Some(st) = st {
             let beyond = st.c.clear_m - a.s + 3.0 * half + FOLLOW_GAP_M;
             let free = ahead.is_none_or(|(d, j)| {
@@ -359,9 +394,83 @@ impl<'a> Ctx<'a> {
                 cap = cap.min(stop(st.d_stop));
             }
         }
-        cap
+        Caps {
+            cap: lead.map_or(cap, |(g, _)| cap.min(stop(g))),
+            other: cap,
+            lead,
+        }
     }
 }
+
+/// An agent's speed caps for one step, m/s.
+struct Caps {
+    /// Everything counted, the first footprint in its way standing still.
+    cap: f64,
+    /// Everything but that footprint.
+    other: f64,
+    /// The gap to that footprint (metres beyond the standstill gap, < 0
+    /// inside it) and its index.
+    lead: Option<(f64, usize)>,
+}
+
+/// Highest speed for one step `dt` behind a leader `g` metres beyond the
+/// standstill gap moving on at `u` along the way: it stays behind where
+/// the leader will be, and could stop behind it were the leader to brake
+/// at `A_LON_MPS2` from then on (g + u·dt + u²/2b ≥ v·dt + v²/2b).
+pub(super) fn follow_cap(g: f64, u: f64, dt: f64) -> f64 {
+    let (b, room) = (A_LON_MPS2, g.max(0.0) + u.max(0.0) * dt);
+    let u = u.max(0.0);
+    (room / dt).min(-b * dt + ((b * dt).powi(2) + 2.0 * b * room + u * u).sqrt())
+}
+
+/// The last check of a step: in id order, a vehicle whose move would
+/// take its footprint into another's (where that one stands after its
+/// own move if already checked, else where it stands now) stays where it
+/// is, which the vehicles already checked kept clear of. (The overpass's
+/// vehicles and the ego replayed in a warm-up do not brake and are left
+/// to the removals.) It catches what
+/// the look along the path cannot see: a body drifting in from beside
+/// (a lane change alongside). Returns how many were held.
+fn keep_out(
+    agents: &[Agent],
+    all: &[VehiclePose],
+    grid: &Grid,
+    next: &mut [f64],
+    dt: f64,
+) -> usize {
+    let mut at: Vec<[[f64; 2]; 4]> = all.iter().map(VehiclePose::corners).collect();
+    let mut held = 0;
+    for (i, a) in agents.iter().enumerate() {
+        if next[i] <= 0.0 {
+            continue;
+        }
+        let mut moved = a.clone();
+        moved.s += next[i] * dt;
+        let q = moved.pose();
+        let mut r = q.footprint();
+        // Those already checked moved by at most a step at the fastest.
+        let pad = 40.0 * dt;
+        r.min = r.min.map(|c| c - pad);
+        r.max = r.max.map(|c| c + pad);
+        let c = q.corners();
+        let hit = grid
+            .near(&r)
+            .into_iter()
+            .any(|j| j != i && j < agents.len() && ego::quads_overlap(&c, &at[j]));
+        if hit {
+            next[i] = 0.0;
+            held += 1;
+        } else {
+            at[i] = c;
+        }
+    }
+    held
+}
+
+/// Cosine above which a leader heads along the follower's way where it
+/// meets it (2°: one lane, not a follower changing lanes behind it nor a
+/// junction turn).
+const ALIGNED_COS: f64 = 0.999_39;
 
 /// Distance along agent `i`'s path from its centre to the first sample
 /// within reach of another footprint, up to `look` metres, and whose.
@@ -394,9 +503,26 @@ fn first_in_way(
     if near.is_empty() {
         return None;
     }
+    // Each footprint's frame once (`ego::rect_distance`, squared).
+    let frames: Vec<([f64; 2], [f64; 2], [f64; 2])> = near
+        .iter()
+        .map(|&j| {
+            let [len, wid] = all[j].body.footprint_m();
+            let (sin, cos) = all[j].heading_deg.to_radians().sin_cos();
+            let c = [all[j].position[0], all[j].position[1]];
+            (c, [cos, sin], [len / 2.0, wid / 2.0])
+        })
+        .collect();
+    let reach2 = reach * reach;
     samples.iter().enumerate().find_map(|(k, p)| {
-        near.iter()
-            .find(|&&j| ego::rect_distance(&all[j], *p) < reach)
-            .map(|&j| (k as f64 * SAMPLE_M, j))
+        frames
+            .iter()
+            .position(|(c, [cos, sin], [hl, hw])| {
+                let d = [p[0] - c[0], p[1] - c[1]];
+                let a = ((d[0] * cos + d[1] * sin).abs() - hl).max(0.0);
+                let b = ((-d[0] * sin + d[1] * cos).abs() - hw).max(0.0);
+                a * a + b * b < reach2
+            })
+            .map(|n| (k as f64 * SAMPLE_M, near[n]))
     })
 }

@@ -92,3 +92,30 @@ fn cyclists_keep_below_the_limit_and_never_above_it() {
     assert_eq!(cyclist_speed_mps(40.0 / 3.6), 5.5);
     assert_eq!(cyclist_speed_mps(4.0), 4.0);
 }
+
+#[test]
+fn a_follower_stays_behind_where_its_leader_will_be_and_could_stop_if_it_braked() {
+    use super::sim::follow_cap;
+    let (b, dt) = (A_LON_MPS2, 0.1);
+    for (g, u) in [
+        (0.0, 0.0),
+        (5.0, 0.0),
+        (20.0, 10.0),
+        (40.0, 25.0),
+        (0.5, 20.0),
+    ] {
+        let v = follow_cap(g, u, dt);
+        // No further than the leader's rear after the step, and able to
+        // stop behind it were it to brake at b from then on; one of the
+        // two binds.
+        let room = g + u * dt - v * dt;
+        let braking = g + u * dt + u * u / (2.0 * b) - v * dt - v * v / (2.0 * b);
+        assert!(room >= -1e-9 && braking >= -1e-9, "g {g} u {u}: {v}");
+        assert!(
+            room.abs() < 1e-9 || braking.abs() < 1e-9,
+            "g {g} u {u}: {v}"
+        );
+    }
+    // A standing leader 24 m beyond the gap: √(0.3² + 2·3·24) − 0.3.
+    assert!((follow_cap(24.0, 0.0, dt) - ((0.09f64 + 144.0).sqrt() - 0.3)).abs() < 1e-12);
+}
