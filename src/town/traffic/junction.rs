@@ -269,13 +269,31 @@ mod tests {
             .expect("a red phase");
         assert!(can_clear(&sched, &west, 5.0, red));
         // The street waits for a highway driver 2 s away (50 m at 25 m/s),
-        // not for one 10 s away, nor for the other carriageway.
+        // and 10 s away (clear in 5 s + 1.5 s + 25/(2·3) s to brake from
+        // the limit = 10.67 s), not for one 12 s away, nor for the other
+        // carriageway.
         assert!(blocks(&sched, &street, &west, false, 5.0, 0.0));
-        let far = JState {
-            d_stop: 250.0,
-            ..west
-        };
+        let at = |d_stop| JState { d_stop, ..west };
+        assert!(blocks(&sched, &street, &at(250.0), false, 5.0, 0.0));
+        let far = at(300.0);
         assert!(!blocks(&sched, &street, &far, false, 5.0, 0.0));
+        // A bus turning off the street waits for the far carriageway too.
+        let bus = JState {
+            long: true,
+            ..street
+        };
+        assert!(!blocks(&sched, &street, &at(300.0), false, 5.0, 0.0));
+        assert!(blocks(
+            &sched,
+            &bus,
+            &JState {
+                d_stop: 50.0,
+                ..east
+            },
+            false,
+            5.0,
+            0.0
+        ));
         assert!(!blocks(&sched, &street, &east, true, 5.0, 0.0));
         assert!(blocks(&sched, &street, &far, true, 5.0, 0.0));
     }
