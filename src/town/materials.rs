@@ -348,6 +348,9 @@ fn emitter_materials() -> Vec<MaterialDesc> {
         emitter("lamp_emit", LAMP_RADIANCE),
         emitter("headlight_emit", [300.0, 300.0, 290.0]),
         emitter("taillight_emit", [12.0, 0.5, 0.3]),
+        // Lit brake lamps ~5·10³ cd/m², blinking indicators ~4·10³.
+        emitter("brake_lit", [50.0, 2.0, 1.2]),
+        emitter("indicator_lit", [40.0, 16.0, 0.8]),
         emitter("window_lit", [2.5, 1.9, 1.1]),
     ]
 }
@@ -417,6 +420,8 @@ pub fn vehicle_materials() -> Vec<MaterialDesc> {
         metal("mirror", ConductorPreset::Silver, 0.0),
         metal("rim", ConductorPreset::Aluminium, 0.2),
         lens("lamp_amber", [0.35, 0.14, 0.01]),
+        lens("indicator_left", [0.35, 0.14, 0.01]),
+        lens("indicator_right", [0.35, 0.14, 0.01]),
         lens("lamp_red", [0.25, 0.01, 0.01]),
         diffuse("plate", [0.78, 0.78, 0.74]),
         diffuse("plate_ink", [0.02, 0.02, 0.02]),

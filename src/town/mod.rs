@@ -296,7 +296,12 @@ pub fn dynamic_objects(frame: &TownFrame) -> Vec<ObjectDesc> {
             .chain(plate)
         {
             let mut p = shared.clone();
-            p.shape = parts::instance(&name, v.position, 0.0, &[], l).shape;
+            let map = if name == v.body.lamps_prefab() {
+                lit_lamps(v)
+            } else {
+                Vec::new()
+            };
+            p.shape = parts::instance(&name, v.position, 0.0, &map, l).shape;
             out.push(p);
         }
         // A two-wheeler carries its rider (class `rider`, the vehicle's
@@ -318,6 +323,31 @@ pub fn dynamic_objects(frame: &TownFrame) -> Vec<ObjectDesc> {
         out.push(instance(&prefab, p.position, p.heading_deg, &[], l));
     }
     out
+}
+
+/// The material map of a four-wheeled vehicle's lamps prefab for its lit
+/// lamps: the brake lens and tail lamps to the brake emitter while
+/// braking, each lit indicator's lenses to the indicator emitter. (The
+/// lamps prefab is flat and small: mapping it adds no prototype.)
+/// Two-wheelers' lamps stay as they are.
+fn lit_lamps(v: &VehiclePose) -> Vec<(&'static str, &'static str)> {
+    use vehicles::lamps::{BRAKE_SLOT, INDICATOR_SLOTS};
+    let mut map = Vec::new();
+    if v.body.seat().is_some() {
+        return map;
+    }
+    if v.lamps.brake {
+        map.extend([(BRAKE_SLOT, "brake_lit"), ("taillight_emit", "brake_lit")]);
+    }
+    for (lit, slot) in [v.lamps.left, v.lamps.right]
+        .into_iter()
+        .zip(INDICATOR_SLOTS)
+    {
+        if lit {
+            map.push((slot, "indicator_lit"));
+        }
+    }
+    map
 }
 
 /// What a town frame holds that does not depend on the frame: the static

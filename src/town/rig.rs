@@ -166,6 +166,7 @@ mod tests {
             pitch_deg: 0.0,
             roll_deg: 0.0,
             route: 0,
+            lamps: Default::default(),
         }
     }
 
@@ -203,6 +204,7 @@ mod tests {
             pitch_deg: 2.5,
             roll_deg: -1.5,
             route: 0,
+            lamps: Default::default(),
         };
         let r = crate::town::grade::body_rotation_deg(120.0, 2.5, -1.5).map(f64::to_radians);
         let body = DMat3::from_rotation_z(r[2])

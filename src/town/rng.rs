@@ -21,4 +21,8 @@ pub mod tag {
     pub const LIT_WINDOWS: u64 = 7;
     /// Pedestrians crossing at a junction.
     pub const CROSSER: u64 = 8;
+    /// Background vehicles of a drive (start, body, moves).
+    pub const TRAFFIC: u64 = 9;
+    /// Cars parked along the kerbs.
+    pub const PARKED: u64 = 10;
 }

@@ -1,15 +1,16 @@
-//! Traffic signals that show the phase of the town's stop-and-go clock
-//! (`traffic::Schedule`). Every cross junction has one traffic light per
+//! Traffic signals that show the per-direction phases of
+//! `traffic::Schedule`. Every cross junction has one traffic light per
 //! approach, on the approach's right-hand corner before the junction, its
 //! heads facing the approaching traffic (`signal_sites`, placed by
-//! `furniture`). A head lights exactly one lamp: green from the start of
-//! the clock's ramp up through the drive (vehicles move off as it turns
-//! green, so there is no red+amber phase), amber through the ramp down,
-//! red while everything stands (when pedestrians cross). Approaches that
-//! only the ring drives (it ignores the clock) show green always; those no
-//! route uses follow the clock. The lamps of frame K are a pure function of
-//! (desc, K), set on the traffic-light instances as a material map from the
-//! lens slots of `props::LENS_SLOTS` to their emitters.
+//! `furniture`). A head lights exactly one lamp: the east–west approaches
+//! show green, then amber, then red through an all-red gap, then the
+//! north–south approaches' green, amber and all-red, twice, then the
+//! pedestrians' stand (`axis_lamp`); vehicles move off as it turns green (no red+amber
+//! phase). Junctions without lights but the roundabout (the outer T
+//! junctions and corners) keep the same phases unseen. The lamps of frame
+//! K are a pure function of (desc, K), set on the traffic-light instances
+//! as a material map from the lens slots of `props::LENS_SLOTS` to their
+//! emitters.
 
 use std::collections::BTreeMap;
 
@@ -18,7 +19,6 @@ use crate::scene::desc::{ObjectDesc, ShapeDesc};
 use super::desc::TownDesc;
 use super::layout::Layout;
 use super::props::LENS_SLOTS;
-use super::routes::{Route, RouteKind, Segment};
 use super::traffic::{Plan, Schedule};
 
 /// Name of the traffic-light prefab of one-lane approaches (`street::lights`).
@@ -26,18 +26,15 @@ pub const PREFAB: &str = "traffic_light";
 /// Every traffic-light prefab: the corner pole with a short arm, and the
 /// mast arm with one head per lane of two-lane approaches.
 pub const PREFABS: [&str; 2] = [PREFAB, super::street::lights::SIGNAL_MAST];
-/// How far before a junction's edge a route's straight counts as one of
-/// its approaches, metres.
-const APPROACH_M: f64 = 20.0;
 
 /// The lamp a signal head shows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Lamp {
-    /// Stop: the clock stands.
+    /// Stop.
     Red,
-    /// Stop if you can: the clock ramps down.
+    /// Enter only if the junction can be cleared before red.
     Amber,
-    /// Go: the clock ramps up or drives.
+    /// Go.
     Green,
 }
 
@@ -54,18 +51,6 @@ impl Lamp {
     pub fn lit(self) -> &'static str {
         ["signal_red_lit", "signal_amber_lit", "signal_green_lit"][self as usize]
     }
-}
-
-/// Who drives an approach.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Approach {
-    /// Block loops only: they stand while the clock stands.
-    Clock,
-    /// The ring drives it (it never stands); routes share no lane, so no
-    /// block loop does.
-    Free,
-    /// No route.
-    Empty,
 }
 
 /// One traffic light: a pole on the right-hand corner before a junction.
@@ -86,6 +71,11 @@ impl SignalSite {
     pub fn dir(&self) -> [f64; 2] {
         let h = self.heading_deg.to_radians();
         [h.cos().round(), h.sin().round()]
+    }
+
+    /// The controlled traffic's direction: 0 east, 1 north, 2 west, 3 south.
+    pub fn dir_index(&self) -> usize {
+        ((self.heading_deg / 90.0).round() as i64).rem_euclid(4) as usize
     }
 
     /// The junction centre, world metres (x, y).
@@ -130,58 +120,23 @@ pub fn signal_sites(l: &Layout) -> Vec<SignalSite> {
         .collect()
 }
 
-/// Who drives the approach of `site`: the routes with a straight on its
-/// side of the road (right-hand traffic), heading its way, that runs up
-/// to within `APPROACH_M` of the junction's edge from before it.
-pub fn approach(l: &Layout, routes: &[&Route], site: &SignalSite) -> Approach {
-    let d = site.dir();
-    let right = [d[1], -d[0]];
-    let c = site.centre(l);
-    let hw = l.road_w_m / 2.0;
-    let (mut clock, mut free) = (false, false);
-    for r in routes {
-        for seg in &r.segments {
-            let Segment::Line {
-                from,
-                heading,
-                len_m,
-            } = *seg
-            else {
-                continue;
-            };
-            if (heading.cos() - d[0]).abs() > 1e-6 || (heading.sin() - d[1]).abs() > 1e-6 {
-                continue;
-            }
-            let rel = [from[0] - c[0], from[1] - c[1]];
-            let a0 = rel[0] * d[0] + rel[1] * d[1];
-            let lat = rel[0] * right[0] + rel[1] * right[1];
-            if lat > 0.0 && lat < hw && a0 < -hw && a0 + len_m > -hw - APPROACH_M {
-                match r.kind {
-                    RouteKind::Ring | RouteKind::Overpass => free = true,
-                    RouteKind::Block { .. } => clock = true,
-                }
-            }
-        }
-    }
-    match (free, clock) {
-        (true, _) => Approach::Free,
-        (false, true) => Approach::Clock,
-        (false, false) => Approach::Empty,
+/// The lamp the approaches heading `dir` (0 east, 1 north, 2 west, 3
+/// south) show at time `t`.
+pub fn axis_lamp(s: &Schedule, dir: usize, t: f64) -> Lamp {
+    let u = s.axis_time_s(dir, t);
+    if u < s.green_s {
+        Lamp::Green
+    } else if u < s.green_s + s.amber_s {
+        Lamp::Amber
+    } else {
+        Lamp::Red
     }
 }
 
-/// The lamp the clock shows at time `t`: green from the start of the ramp
-/// up to the end of the drive, amber through the ramp down, red during the
-/// stand (exactly when `Schedule::standing`).
-pub fn clock_lamp(s: &Schedule, t: f64) -> Lamp {
-    let tau = t.rem_euclid(s.cycle_s());
-    if tau >= s.moving_s() {
-        Lamp::Red
-    } else if tau >= s.go_s {
-        Lamp::Amber
-    } else {
-        Lamp::Green
-    }
+/// Seconds until the approaches heading `dir` turn red, from time `t`
+/// (0 while red).
+pub fn until_red_s(s: &Schedule, dir: usize, t: f64) -> f64 {
+    (s.green_s + s.amber_s - s.axis_time_s(dir, t)).max(0.0)
 }
 
 /// One traffic light in one frame.
@@ -189,8 +144,6 @@ pub fn clock_lamp(s: &Schedule, t: f64) -> Lamp {
 pub struct Signal {
     /// Where it stands and what it controls.
     pub site: SignalSite,
-    /// Who drives its approach.
-    pub approach: Approach,
     /// The lamp both its heads show.
     pub lamp: Lamp,
 }
@@ -204,21 +157,12 @@ pub fn signals_at(desc: &TownDesc, frame: u64) -> Vec<Signal> {
 /// [`signals_at`] on the town's already built layout `l`.
 fn signals_on(desc: &TownDesc, l: &Layout, frame: u64) -> Vec<Signal> {
     let plan = Plan::new(desc);
-    let routes: Vec<&Route> = plan.routes.iter().map(|p| &p.route).collect();
-    let lamp = clock_lamp(&plan.schedule, frame as f64 / desc.fps);
+    let t = frame as f64 / desc.fps;
     signal_sites(l)
         .into_iter()
-        .map(|site| {
-            let approach = approach(l, &routes, &site);
-            Signal {
-                site,
-                approach,
-                lamp: if approach == Approach::Free {
-                    Lamp::Green
-                } else {
-                    lamp
-                },
-            }
+        .map(|site| Signal {
+            site,
+            lamp: axis_lamp(&plan.schedule, site.dir_index(), t),
         })
         .collect()
 }
@@ -268,31 +212,54 @@ mod tests {
     use crate::town::routes::Turns;
 
     #[test]
-    fn clock_lamp_switches_at_the_clock_phase_boundaries() {
-        // Cycle 17 s: ramp up 0–2 and drive to 10 (green), ramp down to 12
-        // (amber), stand to 17 (red).
+    fn each_axis_shows_green_amber_red_in_its_windows_and_both_stand_red() {
+        // Window 10 + 3 + 2 = 15 s per axis, two rounds (60 s), stand 5 s.
         let s = Schedule {
-            go_s: 10.0,
-            ramp_s: 2.0,
+            green_s: 10.0,
+            amber_s: 3.0,
+            all_red_s: 2.0,
             stop_s: 5.0,
             speed_mps: 10.0,
             turns: Turns::new(3.5),
             max_len_m: 4.5,
         };
+        assert_eq!(crate::town::traffic::ROUNDS_PER_STAND, 2);
+        assert_eq!(s.cycle_s(), 65.0);
+        assert!(s.standing(0.0) && s.standing(4.999) && !s.standing(5.0));
+        use Lamp::*;
+        // (u, lamp east/west, lamp north/south, until red east, north)
+        // with u on the cycle's clock (0: the first east–west green).
         let want = [
-            (0.0, Lamp::Green),
-            (1.0, Lamp::Green),
-            (9.999, Lamp::Green),
-            (10.0, Lamp::Amber),
-            (11.999, Lamp::Amber),
-            (12.0, Lamp::Red),
-            (16.999, Lamp::Red),
-            (17.0, Lamp::Green),
-            (17.0 * 3.0 + 12.5, Lamp::Red),
+            (0.0, Green, Red, 13.0, 0.0),
+            (9.999, Green, Red, 3.001, 0.0),
+            (10.0, Amber, Red, 3.0, 0.0),
+            (12.999, Amber, Red, 0.001, 0.0),
+            (13.0, Red, Red, 0.0, 0.0),
+            (14.999, Red, Red, 0.0, 0.0),
+            (15.0, Red, Green, 0.0, 13.0),
+            (25.0, Red, Amber, 0.0, 3.0),
+            (28.0, Red, Red, 0.0, 0.0),
+            (30.0, Green, Red, 13.0, 0.0),
+            (41.0, Amber, Red, 2.0, 0.0),
+            (45.0, Red, Green, 0.0, 13.0),
+            (58.0, Red, Red, 0.0, 0.0),
+            (60.0, Red, Red, 0.0, 0.0),
+            (64.999, Red, Red, 0.0, 0.0),
+            (65.0 * 3.0 + 1.0, Green, Red, 12.0, 0.0),
         ];
-        for (t, lamp) in want {
-            assert_eq!(clock_lamp(&s, t), lamp, "t = {t}");
-            assert_eq!(lamp == Lamp::Red, s.standing(t), "t = {t}");
+        for (u, ew, ns, r_e, r_n) in want {
+            // Time 0 is the start of the stand before u = 0.
+            let t = u + 5.0;
+            for d in 0..4 {
+                let (lamp, left) = if d % 2 == 0 { (ew, r_e) } else { (ns, r_n) };
+                assert_eq!(axis_lamp(&s, d, t), lamp, "u = {u}, dir {d}");
+                assert!(
+                    (until_red_s(&s, d, t) - left).abs() < 1e-9,
+                    "u = {u}, dir {d}"
+                );
+            }
+            // Pedestrians cross exactly while both axes stand past their gap.
+            assert_eq!(s.standing(t), (60.0..65.0).contains(&u.rem_euclid(65.0)));
         }
     }
 }

@@ -1,33 +1,26 @@
-//! Traffic over time in closed form, and the ego's drives (`ego`: a
-//! seeded route over the whole grid, simulated from the drive's start,
-//! with the background vehicles in its way removed; docs/drives.md).
-//! Vehicles ride the closed routes of `routes` (block loops turning right
-//! at every corner or round the roundabout, the ring turning left around
-//! the town and going straight through its T junctions). Every vehicle
-//! of route r follows the same speed profile s(τ) (`profile`: slower in
-//! curves, accelerating out) at its own time offset c_n: s_n(t) = s(ρ_r·G(t) + c_n), where G is one
-//! town-wide stop-and-go clock (ramp up, drive, ramp down, stand) and ρ_r
-//! ≤ 1 scales the route so it advances exactly 1/m_r lap per cycle; the
-//! ring (on the outer roads, without crossers) ignores the clock. The
-//! pose of every object at frame K is a pure function of (desc, seed, K).
-//! Each route carries the bodies its corners fit; in multi-lane towns the
-//! ring's long-vehicle route runs a bus line (every third slot a bus or
-//! truck), spaced for the longest body on it.
+//! Traffic over time: the ego's drives (`ego`: a seeded route over the
+//! whole grid, moved against the signals and the road, with the
+//! background vehicles in its way removed; docs/drives.md) and the
+//! background vehicles (`sim`: seeded junction walks on every road,
+//! simulated per drive in chunks that each start from their own seeded
+//! state, that turn at junctions under per-direction signal phases and
+//! keep their distance), plus the overpass's closed loop in closed form.
+//! The signal phases (`Schedule`, shown by `signals`) are the same at
+//! every junction: the east–west approaches' green, amber and all-red,
+//! then the north–south approaches', then a stand in which every
+//! approach shows red and pedestrians cross (`walkers`).
 //!
-//! No overlap, by construction: routes share no road surface (each lane
-//! belongs to one route, corners stay in their own corridor, roundabout
-//! turns in their own quarter of the ring), and time offsets of one route
-//! differ by Δc, chosen so the arc spacing min over τ of s(τ+Δc) − s(τ) is
-//! at least the longest allowed body plus a gap. Stops: the offsets are
-//! shifted by whole Δc each cycle, so the stand positions of a block loop
-//! repeat every m_r cycles; the lead slot stands at the first stop line,
-//! and slots that would stand in a junction, crosswalk or the roundabout at
-//! any of their m_r stands stay empty. Crosswalks on interior roads are
-//! therefore clear while everything stands (pedestrians cross then).
+//! The overpass route (`routes`, `overpass`) keeps its closed form: every
+//! vehicle of it follows one speed profile s(τ) (`profile`) at its own
+//! time offset, spaced so that the closest spacing stays at least the
+//! longest body plus a gap; it meets no junction.
 
 pub mod coverage;
 mod ego;
+mod junction;
 mod profile;
+mod sim;
+mod spawn;
 
 use std::sync::Arc;
 
@@ -36,19 +29,18 @@ use super::grade::Grade;
 use super::layout::{Layout, Rect};
 use super::overpass::Overpass;
 use super::rng::{tag, Rng};
-use super::routes::{routes, Route, RouteKind, Turns};
+use super::routes::{Route, Turns};
 use super::vehicles::{BodyKind, BODIES, BODY_WEIGHTS};
 use super::walkers;
 
 pub use ego::{drive_start_frame, start_link, CHUNK_FRAMES, DRIVE_WINDOW_FRAMES};
 pub use profile::{Limits, SpeedProfile};
+pub use sim::{cyclist_speed_mps, SIM_ROUTE};
 
 /// Gap kept between consecutive bodies of a route at the closest, metres.
 const MIN_GAP_M: f64 = 3.0;
 /// Gap between consecutive bodies on a straight at full speed, at least, metres.
 const CRUISE_GAP_M: f64 = 6.0;
-/// On long-vehicle routes, slots n ≡ 0 (mod this) hold a bus or truck.
-const LINE_EVERY: usize = 3;
 /// Height difference beyond which two vehicles are on different levels,
 /// metres: taller than every body (the bus roof, 3.1 m) and less than the
 /// overpass's `TOP_M`.
@@ -57,6 +49,17 @@ pub const LEVEL_GAP_M: f64 = 4.0;
 pub const A_LAT_MPS2: f64 = 3.0;
 /// Longitudinal acceleration and braking bound, m/s².
 pub const A_LON_MPS2: f64 = 3.0;
+
+/// Which of a vehicle's signal lamps are lit in one frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct VehicleLamps {
+    /// Brake lamps: decelerating or standing.
+    pub brake: bool,
+    /// Left indicator (blinking: lit in this frame).
+    pub left: bool,
+    /// Right indicator (blinking: lit in this frame).
+    pub right: bool,
+}
 
 /// Pose of one vehicle in one frame.
 #[derive(Clone, Debug, PartialEq)]
@@ -75,8 +78,11 @@ pub struct VehiclePose {
     pub pitch_deg: f64,
     /// Roll on a cross-slope, degrees, > 0 with the left side higher.
     pub roll_deg: f64,
-    /// Index into `routes()`.
+    /// Index into `Plan::routes` (the overpass), or `SIM_ROUTE` for a
+    /// simulated background vehicle (`usize::MAX` for the ego).
     pub route: usize,
+    /// Its lit signal lamps.
+    pub lamps: VehicleLamps,
 }
 
 impl VehiclePose {
@@ -144,82 +150,88 @@ pub struct TownFrame {
     pub pedestrians: Vec<PedestrianPose>,
 }
 
-/// The town-wide stop-and-go clock.
+/// The signal phases, the same at every junction. One cycle, from time 0:
+/// every approach stands red while pedestrians cross (`stop_s`); then,
+/// `ROUNDS_PER_STAND` times, the x-axis approaches (heading east or west)
+/// show green, amber, then red through an all-red gap, and the y-axis
+/// approaches the same. Cycle positions count from the first x-axis green
+/// (`cycle_time_s`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Schedule {
-    /// Driving time per cycle at full clock rate, seconds.
-    pub go_s: f64,
-    /// Duration of each of the two clock ramps (start, stop), seconds.
-    pub ramp_s: f64,
+    /// Green time of each axis, seconds.
+    pub green_s: f64,
+    /// Amber time of each axis, seconds (long enough to stop from the
+    /// speed limit at `A_LON_MPS2`, at least 3 s).
+    pub amber_s: f64,
+    /// All-red gap after each axis's amber, seconds.
+    pub all_red_s: f64,
     /// Standing time per cycle, seconds (long enough to cross a road).
     pub stop_s: f64,
     /// Speed limit, m/s.
     pub speed_mps: f64,
-    /// Corner geometry of the block loops and the bodies that fit it.
+    /// Right-turn geometry and the bodies that fit it.
     pub turns: Turns,
-    /// Longest body on the block loops, metres.
+    /// Longest body that fits the turns, metres.
     pub max_len_m: f64,
 }
 
 impl Schedule {
-    /// Cycle length, seconds: ramp up and drive (go_s), ramp down (ramp_s), stand.
+    /// One axis's share of the cycle: green, amber and all-red, seconds.
+    pub fn window_s(&self) -> f64 {
+        self.green_s + self.amber_s + self.all_red_s
+    }
+
+    /// Cycle length, seconds.
     pub fn cycle_s(&self) -> f64 {
-        self.go_s + self.ramp_s + self.stop_s
+        self.moving_s() + self.stop_s
     }
 
-    /// Time from the start of a cycle until everything stands, seconds.
+    /// Time from the start of a cycle until the pedestrians' stand, seconds.
     pub fn moving_s(&self) -> f64 {
-        self.go_s + self.ramp_s
+        2.0 * ROUNDS_PER_STAND as f64 * self.window_s()
     }
 
-    /// Clock time G(t) elapsed by time `t`, seconds: the rate ramps
-    /// linearly 0 → 1 over `ramp_s`, holds, ramps 1 → 0, then stands, so
-    /// each cycle adds exactly `go_s`.
-    pub fn driven_s(&self, t: f64) -> f64 {
-        let n = (t / self.cycle_s()).floor();
-        let tau = t - n * self.cycle_s();
-        let r = self.ramp_s;
-        let g = if tau < r {
-            tau * tau / (2.0 * r)
-        } else if tau < self.go_s {
-            tau - r / 2.0
-        } else if tau < self.go_s + r {
-            let u = self.go_s + r - tau;
-            self.go_s - u * u / (2.0 * r)
-        } else {
-            self.go_s
-        };
-        n * self.go_s + g
+    /// Time `t` on the cycle's clock, seconds: 0 where the x-axis's green
+    /// starts, so time 0 lies in the stand before it.
+    pub fn cycle_time_s(&self, t: f64) -> f64 {
+        t + self.moving_s()
     }
 
-    /// Whether everything stands still at time `t`.
+    /// Whether every approach stands red for the pedestrians at time `t`.
     pub fn standing(&self, t: f64) -> bool {
-        t.rem_euclid(self.cycle_s()) >= self.moving_s()
+        self.cycle_time_s(t).rem_euclid(self.cycle_s()) >= self.moving_s()
+    }
+
+    /// Time since the start of the latest green of the axis of direction
+    /// `dir` (0 east, 1 north, 2 west, 3 south) at `t`, seconds (beyond
+    /// green + amber: red; infinite during the stand).
+    pub fn axis_time_s(&self, dir: usize, t: f64) -> f64 {
+        let tau = self.cycle_time_s(t).rem_euclid(self.cycle_s());
+        if tau >= self.moving_s() {
+            return f64::INFINITY;
+        }
+        let w = self.window_s();
+        (tau - (dir % 2) as f64 * w).rem_euclid(2.0 * w)
     }
 }
 
-/// How the vehicles of one route move.
+/// How the vehicles of one closed route move.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RoutePlan {
     /// The route.
     pub route: Route,
     /// Its speed profile.
     pub profile: SpeedProfile,
-    /// Route time per unit of clock time (≤ 1).
-    pub rate: f64,
-    /// Stops per lap m (block loops), or 0 (the ring stands anywhere).
-    pub stands: usize,
-    /// Slot time offsets c_n (seconds of route time) and whether each may
-    /// hold a vehicle.
-    pub slots: Vec<(f64, bool)>,
+    /// Slot time offsets c_n (seconds of route time).
+    pub slots: Vec<f64>,
 }
 
-/// The schedule and every route's plan of a town.
+/// The schedule and the closed routes (the overpass's) of a town.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Plan {
-    /// The clock.
+    /// The signal phases.
     pub schedule: Schedule,
-    /// One plan per route, in `routes()` order.
+    /// The closed routes: the overpass's loop, if the town has one.
     pub routes: Vec<RoutePlan>,
 }
 
@@ -253,84 +265,49 @@ impl Plan {
             a_lat_mps2: A_LAT_MPS2,
             a_lon_mps2: A_LON_MPS2,
         };
-        let mut all = routes(&l, &turns);
-        all.extend(Overpass::new(desc, &l).map(|o| o.route()));
-        let profiles: Vec<SpeedProfile> = all.iter().map(|r| SpeedProfile::new(r, lim)).collect();
-        // A quarter lap of the slowest block loop per cycle (a plain
-        // lane-0 loop, or one round the roundabout, a little longer).
-        let go_s = all
-            .iter()
-            .zip(&profiles)
-            .filter(|(r, _)| matches!(r.kind, RouteKind::Block { .. }))
-            .map(|(_, p)| p.lap_s() / 4.0)
-            .fold(0.0, f64::max);
-        let go_s = if go_s > 0.0 {
-            go_s
-        } else {
-            profiles.iter().map(|p| p.lap_s() / 4.0).fold(0.0, f64::max)
-        };
         let crossing = (l.road_w_m + 1.6) / walkers::WALK_MPS;
         let schedule = Schedule {
-            go_s,
-            ramp_s: (speed_mps / A_LON_MPS2).min(go_s / 4.0),
+            green_s: GREEN_S,
+            amber_s: (speed_mps / (2.0 * A_LON_MPS2)).max(3.0),
+            all_red_s: ALL_RED_S,
             stop_s: if l.sidewalks { crossing + 2.0 } else { 4.0 },
             speed_mps,
             turns,
             max_len_m,
         };
-        let routes = all
+        let routes = Overpass::new(desc, &l)
+            .map(|o| o.route())
             .into_iter()
-            .zip(profiles)
-            .map(|(route, profile)| route_plan(&schedule, route, profile))
+            .map(|route| {
+                let profile = SpeedProfile::new(&route, lim);
+                route_plan(route, profile)
+            })
             .collect();
         Plan { schedule, routes }
     }
 }
 
-/// Slots of one route: the most vehicles whose closest spacing stays ≥
-/// the longest body plus `MIN_GAP_M` (and ≥ `CRUISE_GAP_M` on average).
-fn route_plan(s: &Schedule, route: Route, profile: SpeedProfile) -> RoutePlan {
+/// Green time of each axis, seconds.
+const GREEN_S: f64 = 10.0;
+/// Rounds of both axes' windows between two pedestrian stands.
+pub const ROUNDS_PER_STAND: usize = 2;
+/// All-red gap after each amber, seconds.
+const ALL_RED_S: f64 = 1.5;
+
+/// Slots of a closed route: the most vehicles whose closest spacing stays
+/// ≥ the longest body plus `MIN_GAP_M` (and ≥ `CRUISE_GAP_M` on average).
+fn route_plan(route: Route, profile: SpeedProfile) -> RoutePlan {
     let lap = profile.lap_s();
     let len = route.length_m();
     let max_len_m = route.max_len_m();
     let need = max_len_m + MIN_GAP_M;
     let fits = |n: usize| n == 1 || profile.min_spacing_m(lap / n as f64) >= need;
     let most = (len / (max_len_m + CRUISE_GAP_M)).floor().max(1.0) as usize;
-    if matches!(route.kind, RouteKind::Ring | RouteKind::Overpass) {
-        let n = (1..=most).rev().find(|&n| fits(n)).unwrap_or(1);
-        let slots = (0..n).map(|k| (k as f64 * lap / n as f64, true)).collect();
-        return RoutePlan {
-            route,
-            profile,
-            rate: 1.0,
-            stands: 0,
-            slots,
-        };
-    }
-    let m = (lap / s.go_s - 1e-9).ceil().max(1.0) as usize;
-    let per = (1..=(most / m).max(1))
-        .rev()
-        .find(|&p| fits(m * p))
-        .unwrap_or(1);
-    let n = m * per;
-    let dc = lap / n as f64;
-    let half = max_len_m / 2.0;
-    let lead = profile.time_at((route.keep_clear_m[0][0] - half).rem_euclid(len));
-    let slots = (0..n)
-        .map(|k| {
-            let c = lead - k as f64 * dc;
-            let open = (0..m).all(|q| {
-                let at = profile.arc_at((c + q as f64 * lap / m as f64).rem_euclid(lap));
-                route.may_stand(at, half)
-            });
-            (c.rem_euclid(lap), open)
-        })
-        .collect();
+    let n = (1..=most).rev().find(|&n| fits(n)).unwrap_or(1);
+    let slots = (0..n).map(|k| k as f64 * lap / n as f64).collect();
     RoutePlan {
         route,
         profile,
-        rate: lap / m as f64 / s.go_s,
-        stands: m,
         slots,
     }
 }
@@ -358,9 +335,10 @@ pub fn frame_at(desc: &TownDesc, seed: u64, frame: u64) -> TownFrame {
     drive_frame_at(desc, seed, 0, frame)
 }
 
-/// Every object's pose at `frame` of drive `drive`: the background traffic
-/// and pedestrians in closed form at the drive's traffic time (town frame
-/// `ego::drive_start_frame(drive)` + `frame`, which `TownFrame::frame`
+/// Every object's pose at `frame` of drive `drive`: the background
+/// vehicles (`sim`), and the overpass's and the pedestrians in closed
+/// form, at the drive's traffic time (town frame
+/// `ego::drive_start_frame(drive) + frame`, which `TownFrame::frame`
 /// holds), without those the drive removes from its way, and the ego
 /// (`ego::ego_at`). Computed in the level grid, then set on the ground.
 pub fn drive_frame_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> TownFrame {
@@ -372,11 +350,11 @@ pub fn drive_frame_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> Tow
     let grade = Grade::new(desc, seed);
     let warp = super::organic::Warp::new(desc, seed);
     let overpass = Overpass::new(desc, &l);
-    let vehicles = background(desc, seed, &plan, overpass.as_ref(), t)
+    let vehicles = others(desc, seed, &plan, overpass.as_ref(), drive, frame)
         .into_iter()
         .filter(|v| !me.removed.contains(&v.id))
-        .map(|v| match (&overpass, plan.routes[v.route].route.kind) {
-            (Some(_), RouteKind::Overpass) => v,
+        .map(|v| match (&overpass, v.route < plan.routes.len()) {
+            (Some(_), true) => v,
             // Organic towns bend the level pose first (a planar warp).
             _ => on_ground(bent(warp.as_ref(), v), grade.as_ref()),
         })
@@ -403,41 +381,53 @@ pub fn drive_frame_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> Tow
 /// The ego's pose (set on the ground) and speed (m/s) at `frame` of drive
 /// `drive`: what `parallax town --trajectory` prints.
 pub fn ego_pose(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> (VehiclePose, f64) {
-    let me = ego::ego_at(desc, seed, drive, frame);
+    let (pose, speed) = ego::ego_motion(desc, seed, drive, frame);
     let grade = Grade::new(desc, seed);
     let warp = super::organic::Warp::new(desc, seed);
-    let pose = on_ground(bent(warp.as_ref(), me.pose), grade.as_ref());
-    (pose, me.speed_mps)
+    (on_ground(bent(warp.as_ref(), pose), grade.as_ref()), speed)
 }
 
-/// Every background vehicle at time `t` in closed form: level grid
-/// positions, z and pitch set on the overpass only.
-fn background(
+/// Every vehicle but the ego at `frame` of drive `drive`, level grid
+/// poses (z and pitch set on the overpass only): the simulated ones, then
+/// the overpass's.
+fn others(
+    desc: &TownDesc,
+    seed: u64,
+    plan: &Plan,
+    overpass: Option<&Overpass>,
+    drive: u64,
+    frame: u64,
+) -> Vec<VehiclePose> {
+    let t = (ego::drive_start_frame(drive) + frame) as f64 / desc.fps;
+    let mut out = sim::vehicles_at(desc, seed, drive, frame).to_vec();
+    out.extend(closed(desc, seed, plan, overpass, t));
+    out
+}
+
+/// First id of the closed routes' vehicles (the simulated ones count up
+/// from 1).
+const CLOSED_ID_BASE: u32 = 20_000;
+
+/// The closed routes' vehicles at time `t`, in closed form.
+fn closed(
     desc: &TownDesc,
     seed: u64,
     plan: &Plan,
     overpass: Option<&Overpass>,
     t: f64,
 ) -> Vec<VehiclePose> {
-    let driven = plan.schedule.driven_s(t);
     let mut vehicles = Vec::new();
-    let mut next_id = 1u32;
+    let mut id = CLOSED_ID_BASE;
     for (ri, rp) in plan.routes.iter().enumerate() {
-        // The ring never stands (it meets no crosswalk that pedestrians
-        // use): its vehicles drive on while the block loops wait.
-        let tau = match rp.route.kind {
-            RouteKind::Ring | RouteKind::Overpass => t,
-            RouteKind::Block { .. } => rp.rate * driven,
-        };
-        for (n, &(offset, open)) in rp.slots.iter().enumerate() {
-            let id = next_id;
-            next_id += 1;
+        for (n, &offset) in rp.slots.iter().enumerate() {
+            id += 1;
             let mut r = Rng::new(&[seed, tag::SLOT, ri as u64, n as u64]);
-            let Some(body) = slot_body(desc, rp, (n, open), &mut r, None) else {
+            if !r.chance(desc.traffic_density) {
                 continue;
-            };
+            }
+            let body = weighted_body(&mut r, &rp.route.bodies);
             let paint = super::materials::draw_paint(r.f64());
-            let (p, heading) = slot_pose(rp, tau + offset, body);
+            let (p, heading) = rp.route.pose(rp.profile.arc_at(t + offset));
             let pose = VehiclePose {
                 id,
                 body,
@@ -447,51 +437,15 @@ fn background(
                 pitch_deg: 0.0,
                 roll_deg: 0.0,
                 route: ri,
+                lamps: VehicleLamps::default(),
             };
-            vehicles.push(match (overpass, rp.route.kind) {
-                (Some(o), RouteKind::Overpass) => on_overpass(pose, o),
-                _ => pose,
+            vehicles.push(match overpass {
+                Some(o) => on_overpass(pose, o),
+                None => pose,
             });
         }
     }
     vehicles
-}
-
-/// The body in slot `n` (`open`: not kept free) of route plan `rp`, drawn
-/// from the slot's stream `r`, or None when the slot stays empty; `ego`:
-/// the ego's body when this is the ego's slot (always occupied). A bus
-/// line: every third slot of a long-vehicle route always holds a bus or
-/// truck; the others fill at the traffic density.
-fn slot_body(
-    desc: &TownDesc,
-    rp: &RoutePlan,
-    (n, open): (usize, bool),
-    r: &mut Rng,
-    ego: Option<BodyKind>,
-) -> Option<BodyKind> {
-    let line = n % LINE_EVERY == 0 && rp.route.bodies.contains(&BodyKind::Bus);
-    let occupied = open && (r.chance(desc.traffic_density) || line);
-    if !(occupied || ego.is_some()) {
-        return None;
-    }
-    Some(match ego {
-        Some(b) => b,
-        None if line => weighted_body(r, &[BodyKind::Bus, BodyKind::Truck]),
-        None => weighted_body(r, &rp.route.bodies),
-    })
-}
-
-/// Position and heading of `body` in the slot at schedule position `at`
-/// of route plan `rp`. Shorter bodies ride forward in their slot, so every
-/// front stands at the stop line (gaps stay ≥ MIN_GAP_M: see `Plan`); the
-/// ring never stands, so its bodies ride their slot centres (up to 3.75 m
-/// ahead, a car would enter corners too fast).
-fn slot_pose(rp: &RoutePlan, at: f64, body: BodyKind) -> ([f64; 2], f64) {
-    let shift = match rp.route.kind {
-        RouteKind::Ring | RouteKind::Overpass => 0.0,
-        RouteKind::Block { .. } => (rp.route.max_len_m() - body.footprint_m()[0]) / 2.0,
-    };
-    rp.route.pose(rp.profile.arc_at(at) + shift)
 }
 
 /// The pose on the overpass road: z and pitch from its height profile.

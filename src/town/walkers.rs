@@ -115,6 +115,7 @@ fn crossings(l: &Layout, x: f64, y: f64) -> [([f64; 2], [f64; 2]); 4] {
 /// where the phase ends first; the four corners and crossings of a junction
 /// are the same lengths.
 fn crosser_walked(l: &Layout, sched: &Schedule, t: f64) -> f64 {
+    let t = sched.cycle_time_s(t);
     let [(a, b), (_, d)] = [crossings(l, 0.0, 0.0)[0], crossings(l, 0.0, 0.0)[3]];
     let dist = |p: [f64; 2], q: [f64; 2]| (q[0] - p[0]).hypot(q[1] - p[1]);
     let (cross, corner) = (dist(a, b), dist(d, a));
@@ -144,8 +145,8 @@ fn crossers(
 ) {
     let hw = l.road_w_m / 2.0;
     let cycle = sched.cycle_s();
-    let n = (t / cycle).floor();
-    let tau = t - n * cycle;
+    let n = (sched.cycle_time_s(t) / cycle).floor();
+    let tau = sched.cycle_time_s(t) - n * cycle;
     let mut id = CROSSER_ID_BASE;
     for j in 1..l.ny {
         for i in 1..l.nx {
@@ -272,8 +273,11 @@ mod tests {
         let l = Layout::new(&desc);
         let sched = super::super::traffic::Plan::new(&desc).schedule.clone();
         let cycle = sched.cycle_s();
-        // Continuous: no jump at the phase boundaries or cycle ends.
-        for t in [sched.moving_s(), cycle, 3.0 * cycle + sched.moving_s()] {
+        // Continuous: no jump at the phase boundaries or cycle ends (on
+        // the cycle's clock, `Schedule::cycle_time_s`, which leads t by
+        // `moving_s`).
+        let m = sched.moving_s();
+        for t in [m, cycle, 3.0 * cycle + m].map(|u| u - m) {
             let d = crosser_walked(&l, &sched, t + 1e-7) - crosser_walked(&l, &sched, t - 1e-7);
             assert!(
                 (0.0..=2.0 * WALK_MPS * 1e-7 + 1e-12).contains(&d),
@@ -285,7 +289,8 @@ mod tests {
         let hw = l.road_w_m / 2.0;
         let cross = 2.0 * (hw + ONTO_WALK_M);
         let corner = std::f64::consts::SQRT_2 * (CROSS_AT_M - ONTO_WALK_M);
-        let per = crosser_walked(&l, &sched, 5.0 * cycle) / 5.0;
+        let per =
+            (crosser_walked(&l, &sched, 6.0 * cycle) - crosser_walked(&l, &sched, cycle)) / 5.0;
         let want = corner.min(WALK_MPS * sched.moving_s())
             + cross.min(WALK_MPS * (cycle - sched.moving_s()));
         assert!((per - want).abs() < 1e-9, "{per} vs {want}");

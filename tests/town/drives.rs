@@ -7,6 +7,7 @@
 use parallax::town::layout::{Layout, Rect};
 use parallax::town::overpass::Overpass;
 use parallax::town::signals::{signals_at, Lamp};
+use parallax::town::traffic::{ego_pose, Plan};
 use parallax::town::{drive_frame_at, frame_at, TownFrame};
 
 use crate::common::towns::town;
@@ -244,4 +245,40 @@ fn lane_length_is_every_lane_between_junction_edges_and_the_preset_covers_most()
     // One drive covers a little of it, all of it lies on the lanes.
     let one = coverage(&desc, 0, 3..4, 590);
     assert!(one.covered_m > 50.0 && one.fraction() < 0.2, "{one:?}");
+}
+
+#[test]
+fn drives_never_stand_longer_than_a_signal_cycle_over_long_horizons() {
+    // Highway merges, left turns in dense traffic and queues behind them:
+    // drives that stood still for good before vehicles held the ego.
+    for (name, seed, d) in [
+        ("town03", 11, 0),
+        ("town04", 11, 2),
+        ("town06", 5, 1),
+        ("town10", 5, 40),
+    ] {
+        let desc = town(name);
+        // A red light and its queue: at most one whole signal cycle, and
+        // a second to move off.
+        let cycle = (Plan::new(&desc).schedule.cycle_s() * desc.fps).ceil() as usize;
+        let bound = cycle + desc.fps as usize;
+        let (mut stood, mut longest, mut moved) = (0, 0, 0.0);
+        let mut last = None;
+        for k in 0..2400 {
+            let (pose, speed) = ego_pose(&desc, seed, d, k);
+            stood = if speed < 0.05 { stood + 1 } else { 0 };
+            longest = longest.max(stood);
+            if let Some(p) = last.replace(pose.position) {
+                let p: [f64; 3] = p;
+                moved += (pose.position[0] - p[0]).hypot(pose.position[1] - p[1]);
+            }
+        }
+        println!("{name} seed {seed} drive {d}: stood {longest} frames at most, {moved:.0} m");
+        assert!(
+            longest <= bound,
+            "{name} seed {seed} drive {d}: stood {longest} frames (a cycle: {cycle})"
+        );
+        // Four minutes of driving pass a few blocks even in dense traffic.
+        assert!(moved > 300.0, "{name} seed {seed} drive {d}: {moved} m");
+    }
 }

@@ -13,6 +13,7 @@ mod generation;
 mod grade;
 mod gt;
 mod highway_loop;
+mod junctions;
 mod median;
 mod organic;
 mod overpass;

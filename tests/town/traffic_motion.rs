@@ -208,3 +208,36 @@ fn buses_and_trucks_drive_and_turn_in_every_multi_lane_town() {
     }
     assert!(turned_long > 0, "no bus or truck turned a corner");
 }
+
+#[test]
+fn a_frame_is_the_same_whatever_the_process_computed_before_and_chunks_start_anew() {
+    use parallax::town::drive_frame_at;
+    use std::collections::BTreeSet;
+    // A description of its own: no other test fills its caches.
+    let mut desc = town("town03");
+    desc.traffic_density *= 0.97;
+    let (seed, drive, k) = (4, 3, 1250);
+    // Frame 1250 (chunk 2) first, cold; then other chunks and another
+    // drive push it out of the caches, and the frames before it follow
+    // in sequence.
+    let cold = drive_frame_at(&desc, seed, drive, k);
+    for f in [700, 1900, 2500] {
+        drive_frame_at(&desc, seed, drive, f);
+    }
+    drive_frame_at(&desc, seed, drive + 1, k);
+    let warm: Vec<TownFrame> = (1190..=k)
+        .map(|f| drive_frame_at(&desc, seed, drive, f))
+        .collect();
+    assert_eq!(warm.last(), Some(&cold));
+    // Within a chunk vehicles keep their ids; at a chunk's first frame the
+    // traffic starts anew under other ids.
+    let ids = |f: &TownFrame| f.vehicles.iter().map(|v| v.id).collect::<BTreeSet<u32>>();
+    // warm[10] is frame 1200, chunk 2's first.
+    let (before, first) = (ids(&warm[9]), ids(&warm[10]));
+    assert!(before.len() > 20 && first.len() > 20);
+    assert!(
+        before.is_disjoint(&first),
+        "ids shared across a chunk start"
+    );
+    assert_eq!(first, ids(&warm[11]));
+}

@@ -15,10 +15,15 @@
 //! block loop's turn (`ring_turn`) and rides 0, 1 or 2 more quarters of its
 //! ring lane for right, straight, left.
 //!
-//! Each junction passed records a `Crossing`: the stop line for the ego's
-//! front and the end of the zone that must be clear while the town stands
-//! (past the departing crosswalk), and whether the move obeys the clock
-//! (every move but one that stays on the ring's lanes, which never stand).
+//! Each junction passed records a `Crossing`: the stop line for the
+//! driver's front, the end of the zone that must be clear before its
+//! approach turns red (past the departing crosswalk), and the approach's
+//! direction, whose signal phase (`signals::until_red_s`) it waits for.
+//!
+//! Background vehicles (`traffic::sim`) walk without lane changes: from
+//! lane 0 they go straight or left, from the outer lane straight or right
+//! (one lane: any move), preferring moves whose next junction again offers
+//! their lane a move; only where none is left do they change lanes.
 
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -57,8 +62,17 @@ pub struct Crossing {
     pub stop_m: f64,
     /// Arc length where the zone kept clear during stands ends, metres.
     pub clear_m: f64,
-    /// Whether the ego waits for the town's clock here.
-    pub obeys_clock: bool,
+    /// Direction of the approach (0 east, 1 north, 2 west, 3 south).
+    pub dir: usize,
+    /// Whether the junction is the roundabout (no signals: first come).
+    pub roundabout: bool,
+    /// The lane the move is made from.
+    pub lane: u32,
+    /// At a right-in, right-out junction of a divided highway
+    /// (`Layout::median_through`): `Some(true)` on the highway (no
+    /// signals, right of way), `Some(false)` on the side street (gives
+    /// way to the highway traffic it merges into); `None` elsewhere.
+    pub major: Option<bool>,
 }
 
 /// The path driven so far and the walk that grows it.
@@ -80,6 +94,12 @@ pub struct DrivePath {
     dir: usize,
     lane: u32,
     at_m: f64,
+    /// Whether the walk changes lanes freely (the ego) or only when its
+    /// lane has no move left (background vehicles).
+    changes: bool,
+    /// Whether it carries a long body (bus, truck): right turns only
+    /// where no other move is legal.
+    long: bool,
 }
 
 /// Unit vector of direction `d`.
@@ -109,9 +129,43 @@ impl DrivePath {
     /// The drive starting on link `start` (index into `links(l)`), lane
     /// and moves drawn from `rng`; the path starts mid-link.
     pub fn new(l: &Layout, turns: &Turns, start: usize, mut rng: Rng) -> Self {
+        let lane = rng.int(0, l.lanes - 1);
+        let mut p = Self::on_link(l, turns, start, lane, None, rng);
+        p.changes = true;
+        p.extend();
+        p
+    }
+
+    /// A background vehicle's walk from link `start`, lane `lane`, `at`
+    /// metres past the link's start junction (None: mid-way along its
+    /// straight), moves drawn from `rng`, without free lane changes;
+    /// `long`: a bus or truck, turning right only where nothing else is
+    /// legal.
+    pub fn background(
+        l: &Layout,
+        turns: &Turns,
+        start: usize,
+        lane: u32,
+        at: f64,
+        rng: Rng,
+        long: bool,
+    ) -> Self {
+        let mut p = Self::on_link(l, turns, start, lane, Some(at), rng);
+        p.long = long;
+        p.extend();
+        p
+    }
+
+    fn on_link(
+        l: &Layout,
+        turns: &Turns,
+        start: usize,
+        lane: u32,
+        at: Option<f64>,
+        rng: Rng,
+    ) -> Self {
         let all = links(l);
         let (from, dir) = all[start % all.len()];
-        let lane = rng.int(0, l.lanes - 1);
         // Mid-way along the link's straight (between loop-corner curves).
         let to = [from.0 as i64 + DIRS[dir][0], from.1 as i64 + DIRS[dir][1]];
         let curve = |j: [i64; 2]| {
@@ -121,8 +175,8 @@ impl DrivePath {
                 0.0
             }
         };
-        let at_m = (curve([from.0 as i64, from.1 as i64]) + l.pitch_m - curve(to)) / 2.0;
-        let mut p = DrivePath {
+        let mid = (curve([from.0 as i64, from.1 as i64]) + l.pitch_m - curve(to)) / 2.0;
+        DrivePath {
             segments: Vec::new(),
             starts_m: Vec::new(),
             crossings: Vec::new(),
@@ -133,10 +187,10 @@ impl DrivePath {
             from: [from.0 as i64, from.1 as i64],
             dir,
             lane,
-            at_m,
-        };
-        p.extend();
-        p
+            at_m: at.unwrap_or(mid),
+            changes: false,
+            long: false,
+        }
     }
 
     /// Length so far, metres.
@@ -210,15 +264,40 @@ impl DrivePath {
         n[0] >= 0 && n[1] >= 0 && n[0] <= self.l.nx as i64 && n[1] <= self.l.ny as i64
     }
 
-    /// Whether the link from `j` in direction `d` carries the ring (an
-    /// outer road, its outer side).
-    fn ring_side(&self, j: [i64; 2], d: usize) -> bool {
-        let (nx, ny) = (self.l.nx as i64, self.l.ny as i64);
-        match d {
-            0 => j[1] == 0,
-            1 => j[0] == nx,
-            2 => j[1] == ny,
-            _ => j[0] == 0,
+    /// Whether lane `lane` may make move `m` without changing lanes.
+    fn lane_allows(&self, lane: u32, m: Move) -> bool {
+        match m {
+            Move::Straight => true,
+            Move::Right => lane + 1 == self.l.lanes,
+            Move::Left => lane == 0,
+        }
+    }
+
+    /// The moves at junction `to` that the current lane makes without
+    /// changing lanes, preferring those after which the next junction
+    /// offers the lane a move too (all of `options` if none).
+    fn lane_options(&self, to: [i64; 2], options: Vec<(Move, usize)>) -> Vec<(Move, usize)> {
+        let lane = self.lane;
+        let next_ok = |d: usize| {
+            let n = [to[0] + DIRS[d][0], to[1] + DIRS[d][1]];
+            let nu = (n[0] as usize, n[1] as usize);
+            self.l.loop_corner_at(nu.0, nu.1)
+                || [(Move::Right, 3), (Move::Straight, 0), (Move::Left, 1)]
+                    .iter()
+                    .any(|&(m, q)| self.valid(n, (d + q) % 4) && self.lane_allows(lane, m))
+        };
+        let own: Vec<_> = options
+            .iter()
+            .copied()
+            .filter(|&(m, _)| self.lane_allows(lane, m))
+            .collect();
+        let good: Vec<_> = own.iter().copied().filter(|&(_, d)| next_ok(d)).collect();
+        if !good.is_empty() {
+            good
+        } else if !own.is_empty() {
+            own
+        } else {
+            options
         }
     }
 
@@ -258,14 +337,29 @@ impl DrivePath {
             .filter(|&(m, _)| m != Move::Left || !self.l.median_through(ju.0, ju.1))
             .map(|(m, q)| (m, (self.dir + q) % 4))
             .filter(|&(_, d)| self.valid(to, d))
-            .collect();
+            .collect::<Vec<_>>();
+        // A long body turns right only where nothing else is legal: the
+        // kerb lane's tight right turn sweeps its ends off the corner.
+        let options: Vec<(Move, usize)> = if self.long && options.iter().any(|o| o.0 != Move::Right)
+        {
+            options.into_iter().filter(|o| o.0 != Move::Right).collect()
+        } else {
+            options
+        };
         let curve = self.l.loop_corner_at(ju.0, ju.1);
+        let free = self.changes;
         let need = |m: Move, cur: u32, r: &mut Rng| match m {
             _ if curve => cur,
             Move::Right => lanes - 1,
             Move::Left => 0,
-            Move::Straight if lanes > 1 && r.chance(CHANGE_P) => r.int(0, lanes - 1),
+            Move::Straight if free && lanes > 1 && r.chance(CHANGE_P) => r.int(0, lanes - 1),
             Move::Straight => cur,
+        };
+        let legal = options.clone();
+        let options = if free || curve {
+            options
+        } else {
+            self.lane_options(to, options)
         };
         let (mut m, mut d_out) = options[self.rng.index(options.len())];
         let mut target = need(m, self.lane, &mut self.rng);
@@ -275,9 +369,10 @@ impl DrivePath {
         };
         let changes = self.lane.abs_diff(target) as f64;
         if straight_m(self, m, target) < changes * LANE_CHANGE_M + 2.0 {
-            // No room to change lanes: a move from the current lane.
+            // No room to change lanes: a move from the current lane
+            // (straight on where that is legal at all).
             target = self.lane;
-            if let Some(&o) = options.iter().find(|o| o.0 == Move::Straight) {
+            if let Some(&o) = legal.iter().find(|o| o.0 == Move::Straight) {
                 (m, d_out) = o;
             }
         }
@@ -360,13 +455,21 @@ impl DrivePath {
                 }
                 Kind::Plain => (hw + STOP_LINE_AT_M, hw + CROSSWALK_CLEAR_M),
             };
-            let ring = self.ring_side(self.from, self.dir) && self.ring_side(to, d_out);
             self.crossings.push(Crossing {
                 junction: ju,
                 turn: m,
                 stop_m: s_entry - (stop - a_in),
                 clear_m: s_exit + (clear - a_in),
-                obeys_clock: !ring,
+                dir: self.dir,
+                roundabout: kind == Kind::Ring,
+                lane: self.lane,
+                major: self.l.median_through(ju.0, ju.1).then(|| {
+                    if self.dir.is_multiple_of(2) {
+                        self.l.median_x(ju.1)
+                    } else {
+                        self.l.median_y(ju.0)
+                    }
+                }),
             });
         }
         self.from = to;

@@ -13,7 +13,7 @@
 
 use std::collections::BTreeSet;
 
-use super::ego::{ego_at, turns_by};
+use super::ego::{ego_motion, turns_by};
 use crate::town::desc::TownDesc;
 use crate::town::layout::Layout;
 use crate::town::roundabout::arm_start_m;
@@ -106,7 +106,7 @@ pub fn coverage(desc: &TownDesc, seed: u64, drives: std::ops::Range<u64>, frames
     for drive in drives.clone() {
         let mut seen = Vec::new();
         for k in 0..frames {
-            let e = ego_at(desc, seed, drive, k).pose;
+            let e = ego_motion(desc, seed, drive, k).0;
             if k % 10 == 0 {
                 seen.push(e.position.map(f64::to_bits));
             }

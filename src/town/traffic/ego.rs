@@ -1,64 +1,60 @@
 //! The ego's drive: a 1-D simulation along its `DrivePath` against the
-//! closed-form traffic, memoised per (town, seed, drive).
+//! signals and the road only, so its state at any frame depends on no
+//! traffic history; the background vehicles in its way are removed.
 //!
 //! Drive N starts its traffic clock at town frame N · `DRIVE_WINDOW_FRAMES`
 //! (its own time window) and its path on a link spread over the network by
 //! N (`start_link`). Each step (1 / fps) the ego takes the highest speed
 //! that lets it brake (at `A_LON_MPS2`) for the curves ahead (lateral
-//! acceleration ≤ `A_LAT_MPS2`), for the stop line of a junction it may not
-//! enter, and for the first vehicle in its way (a path sample within
-//! reach of a footprint), keeping `FOLLOW_GAP_M`; it accelerates at
-//! `A_LON_MPS2` up to the speed limit. It enters a junction that obeys the
-//! clock only when it can clear the junction's keep-clear zone before the
-//! town next stands, and nothing stands in its way beyond (so its lamp, red
-//! while the town stands, never shows red as it passes the stop line).
+//! acceleration ≤ `A_LAT_MPS2`) and for the stop line of a junction it may
+//! not enter; it accelerates at `A_LON_MPS2` up to the speed limit. It
+//! enters a junction that obeys the clock only when it can clear the
+//! junction's keep-clear zone before its lamp turns red (so the lamp
+//! never shows red as it passes the line); the roundabout and a divided
+//! highway's through lanes have no lamps. The motion costs a few
+//! microseconds a frame and is memoised per (town, seed, drive): the same
+//! numbers whichever frame asked first.
 //!
-//! Background vehicles do not react to the ego: the drive is simulated in
-//! chunks of `CHUNK_FRAMES`; after a chunk, every vehicle whose footprint
-//! comes within `MARGIN_M` of the ego's in some frame of the chunk is
-//! removed for the whole chunk, and the chunk is simulated again without
-//! them, a few rounds; the last round's conflicts are removed too, so no
-//! footprint ever overlaps. Pedestrians within reach of the ego are removed
-//! likewise. Frame K of a drive costs the chunks up to K / `CHUNK_FRAMES`
-//! once (a dataset sequence fits in the first).
+//! The background vehicles (`sim`, simulated per chunk of `CHUNK_FRAMES`)
+//! see the ego's footprint as an obstacle and queue behind it; every one
+//! whose footprint still comes within `MARGIN_M` of the ego's in some
+//! frame of the chunk is removed for the whole chunk, and so are the
+//! pedestrians within reach of the ego. Removing vehicles moves none of
+//! the others, so no footprint ever overlaps. Frame K costs the chunk
+//! holding K, whatever K is.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::sync::{Arc, Mutex, OnceLock};
 
-use super::{background, Plan, VehiclePose, A_LAT_MPS2, A_LON_MPS2, LEVEL_GAP_M};
+use super::junction::{clear_time_s, CLEAR_RESERVE_S};
+use super::sim::{BLINK_HZ, SIGNAL_AHEAD_M};
+use super::{others, Plan, VehicleLamps, VehiclePose, A_LAT_MPS2, A_LON_MPS2, LEVEL_GAP_M};
 use crate::town::desc::TownDesc;
 use crate::town::layout::Layout;
 use crate::town::materials::PAINTS;
 use crate::town::overpass::Overpass;
 use crate::town::rng::{tag, Rng};
-use crate::town::routes::drive::{links, DrivePath};
+use crate::town::routes::drive::{links, Crossing, DrivePath, Move};
 use crate::town::routes::Segment;
+use crate::town::signals::until_red_s;
 use crate::town::vehicles::BodyKind;
 use crate::town::walkers;
 
-/// Town frames per simulated chunk (one dataset sequence of 59 frames at
-/// stride 10 fits).
+/// Town frames per simulated chunk of background traffic (one dataset
+/// sequence of 59 frames at stride 10 fits).
 pub const CHUNK_FRAMES: u64 = 600;
 /// Town frames between the traffic clocks of consecutive drives.
 pub const DRIVE_WINDOW_FRAMES: u64 = 6007;
 /// Clearance kept between the ego's footprint and any other, metres.
 pub const MARGIN_M: f64 = 0.5;
-/// Gap the ego keeps behind the vehicle ahead when standing, metres.
-const FOLLOW_GAP_M: f64 = 2.5;
-/// Spacing of the path samples that look for vehicles ahead, metres.
-const SAMPLE_M: f64 = 0.5;
-/// Re-simulations of a chunk without the vehicles in the ego's way.
-const ROUNDS: usize = 3;
-/// Reserve in the clearing-time estimate before the town stands, seconds.
-const CLEAR_RESERVE_S: f64 = 1.0;
+/// Chunks whose removals are kept.
+const KEEP_CHUNKS: usize = 4;
 
 /// The ego in one frame of a drive.
 #[derive(Clone, Debug)]
 pub struct EgoFrame {
     /// Its pose on the level grid (z = 0; the caller sets it on the ground).
     pub pose: VehiclePose,
-    /// Speed over the last frame, m/s.
-    pub speed_mps: f64,
     /// Ids of the background vehicles removed in this frame's chunk.
     pub removed: Arc<BTreeSet<u32>>,
     /// Ids of the pedestrians removed in this frame's chunk.
@@ -88,30 +84,27 @@ pub fn start_link(n: usize, seed: u64, drive: u64) -> usize {
     ((offset as u64 + (drive % n as u64) * stride as u64) % n as u64) as usize
 }
 
-struct Chunk {
-    s: Vec<f64>,
-    v: Vec<f64>,
-    end: (f64, f64),
-    removed: Arc<BTreeSet<u32>>,
-    pedestrians: Arc<BTreeSet<u32>>,
-}
-
+/// One drive's motion: (s, v) per frame from the drive's start.
 struct Drive {
     path: DrivePath,
     body: BodyKind,
     paint: &'static str,
-    chunks: Vec<Chunk>,
+    s: Vec<f64>,
+    v: Vec<f64>,
 }
 
-/// Every drive simulated so far, per (description, seed, drive).
+/// Every drive moved so far, per (description, seed, drive).
 type Drives = Mutex<BTreeMap<(String, u64, u64), Arc<Mutex<Drive>>>>;
 static DRIVES: OnceLock<Drives> = OnceLock::new();
 
-/// The ego of `frame` (counted from the drive's start) of drive `drive`.
-pub fn ego_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> EgoFrame {
+/// What one chunk removes: vehicle ids and pedestrian ids.
+type Removal = (Arc<BTreeSet<u32>>, Arc<BTreeSet<u32>>);
+type Removals = Mutex<Vec<((String, u64, u64, u64), Arc<Mutex<Option<Removal>>>)>>;
+static REMOVALS: OnceLock<Removals> = OnceLock::new();
+
+/// The drive's motion, moved on to frame `upto` at least, locked.
+fn motion(desc: &TownDesc, seed: u64, drive: u64, upto: u64) -> Arc<Mutex<Drive>> {
     let key = (format!("{desc:?}"), seed, drive);
-    // The simulation's context, built only when a drive or chunk is new.
-    let mut ctx = None;
     let entry = {
         let mut c = DRIVES
             .get_or_init(Default::default)
@@ -119,38 +112,102 @@ pub fn ego_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> EgoFrame {
             .expect("drive cache");
         c.entry(key)
             .or_insert_with(|| {
-                let cx = ctx.get_or_insert_with(|| Ctx::new(desc, seed, drive));
+                let cx = Ctx::new(desc, seed, drive);
                 let l = &cx.layout;
-                let n = links(l).len();
-                let start = start_link(n, seed, drive);
+                let start = start_link(links(l).len(), seed, drive);
                 let rng = Rng::new(&[seed, tag::EGO, drive, 1]);
                 let path = DrivePath::new(l, &cx.plan.schedule.turns, start, rng);
                 Arc::new(Mutex::new(Drive {
                     path,
                     body: cx.body,
                     paint: cx.paint,
-                    chunks: Vec::new(),
+                    s: Vec::new(),
+                    v: Vec::new(),
                 }))
             })
             .clone()
     };
-    let mut d = entry.lock().expect("drive");
-    let c = (frame / CHUNK_FRAMES) as usize;
-    while d.chunks.len() <= c {
-        let cx = ctx.get_or_insert_with(|| Ctx::new(desc, seed, drive));
-        let k = d.chunks.len() as u64;
-        let start = d.chunks.last().map(|c| c.end);
-        let Drive { path, chunks, .. } = &mut *d;
-        chunks.push(cx.chunk(path, k, start));
+    {
+        let mut d = entry.lock().expect("drive");
+        if d.s.len() as u64 <= upto {
+            let cx = Ctx::new(desc, seed, drive);
+            while d.s.len() as u64 <= upto {
+                cx.step(&mut d);
+            }
+        }
     }
-    let ch = &d.chunks[c];
-    let n = (frame % CHUNK_FRAMES) as usize;
-    let (p, h) = d.path.pose(ch.s[n]);
+    entry
+}
+
+/// The ego of `frame` (counted from the drive's start) of drive `drive`,
+/// without the removals: its level pose with lamps, and its speed.
+pub fn ego_motion(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> (VehiclePose, f64) {
+    let entry = motion(desc, seed, drive, frame + 1);
+    let d = entry.lock().expect("drive");
+    let n = frame as usize;
+    let (s, v, next) = (d.s[n], d.v[n], d.v[n + 1]);
+    let (p, h) = d.path.pose(s);
+    let mut pose = level_pose(p, h, d.body, d.paint);
+    // Lamps as the background vehicles' (`sim`): the next frame's speed
+    // is the step's decision.
+    pose.lamps.brake = next < v - 1e-3 || (v < 0.05 && next < 0.05);
+    let half = d.body.footprint_m()[0] / 2.0;
+    let t = (drive_start_frame(drive) + frame) as f64 / desc.fps;
+    let c = d.path.crossings.iter().find(|c| c.clear_m + half > s);
+    if let Some(c) = c.filter(|c| c.stop_m - s - half < SIGNAL_AHEAD_M) {
+        let lit = (t * BLINK_HZ).fract() < 0.5;
+        pose.lamps.left = lit && c.turn == Move::Left;
+        pose.lamps.right = lit && c.turn == Move::Right;
+    }
+    (pose, v)
+}
+
+/// The ego's level poses over frames `range` of drive `drive`.
+pub(super) fn level_poses(
+    desc: &TownDesc,
+    seed: u64,
+    drive: u64,
+    range: std::ops::Range<u64>,
+) -> Vec<VehiclePose> {
+    let entry = motion(desc, seed, drive, range.end);
+    let d = entry.lock().expect("drive");
+    range
+        .map(|f| {
+            let (p, h) = d.path.pose(d.s[f as usize]);
+            level_pose(p, h, d.body, d.paint)
+        })
+        .collect()
+}
+
+/// The ego of `frame` (counted from the drive's start) of drive `drive`,
+/// with what its chunk removes from its way.
+pub fn ego_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> EgoFrame {
+    let (pose, _) = ego_motion(desc, seed, drive, frame);
+    let chunk = frame / CHUNK_FRAMES;
+    let key = (format!("{desc:?}"), seed, drive, chunk);
+    let entry = {
+        let mut c = REMOVALS
+            .get_or_init(Default::default)
+            .lock()
+            .expect("removals");
+        let e = match c.iter().position(|(k, _)| *k == key) {
+            Some(i) => c.remove(i).1,
+            None => Arc::new(Mutex::new(None)),
+        };
+        c.push((key, e.clone()));
+        if c.len() > KEEP_CHUNKS {
+            c.remove(0);
+        }
+        e
+    };
+    let mut r = entry.lock().expect("removal");
+    let (removed, removed_pedestrians) = r
+        .get_or_insert_with(|| Ctx::new(desc, seed, drive).removal(chunk))
+        .clone();
     EgoFrame {
-        pose: level_pose(p, h, d.body, d.paint),
-        speed_mps: ch.v[n],
-        removed: ch.removed.clone(),
-        removed_pedestrians: ch.pedestrians.clone(),
+        pose,
+        removed,
+        removed_pedestrians,
     }
 }
 
@@ -165,6 +222,7 @@ fn level_pose(p: [f64; 2], h: f64, body: BodyKind, paint: &'static str) -> Vehic
         pitch_deg: 0.0,
         roll_deg: 0.0,
         route: usize::MAX,
+        lamps: VehicleLamps::default(),
     }
 }
 
@@ -209,87 +267,29 @@ impl<'a> Ctx<'a> {
         }
     }
 
-    /// The ego's pose at (x, y) heading `h` radians, on the level grid.
-    fn pose(&self, p: [f64; 2], h: f64) -> VehiclePose {
-        level_pose(p, h, self.body, self.paint)
-    }
-
     /// Traffic time of the drive's frame `f`, seconds.
     fn time(&self, f: u64) -> f64 {
         (drive_start_frame(self.drive) + f) as f64 / self.desc.fps
     }
 
-    /// Simulates chunk `k` from `start` (s, v), removing the vehicles and
-    /// pedestrians in the ego's way.
-    fn chunk(&self, path: &mut DrivePath, k: u64, start: Option<(f64, f64)>) -> Chunk {
-        let frames: Vec<u64> = (k * CHUNK_FRAMES..(k + 1) * CHUNK_FRAMES).collect();
-        let traffic: Vec<Vec<VehiclePose>> = frames
-            .iter()
-            .map(|&f| {
-                let t = self.time(f);
-                background(self.desc, self.seed, &self.plan, self.overpass.as_ref(), t)
-            })
-            .collect();
-        let mut removed = BTreeSet::new();
-        let mut run = self.simulate(path, &frames, &traffic, &removed, start);
-        for round in 0..=ROUNDS {
-            let hits = self.conflicts(path, &traffic, &run.0);
-            let before = removed.len();
-            removed.extend(hits);
-            if removed.len() == before || round == ROUNDS {
-                break;
+    /// Appends the next frame's (s, v) to the drive: the drive starts at
+    /// the speed its first frame allows.
+    fn step(&self, d: &mut Drive) {
+        let (s, v) = match (d.s.last(), d.v.last()) {
+            (Some(&s), Some(&v)) => {
+                let cap = self.allowed(&mut d.path, s, v, self.time(d.s.len() as u64 - 1));
+                let v = (v + A_LON_MPS2 * self.dt).min(cap).max(0.0);
+                (s + v * self.dt, v)
             }
-            run = self.simulate(path, &frames, &traffic, &removed, start);
-        }
-        let pedestrians = self.pedestrians_in_way(path, &frames, &run.0);
-        let (s, v, end) = run;
-        Chunk {
-            s,
-            v,
-            end,
-            removed: Arc::new(removed),
-            pedestrians: Arc::new(pedestrians),
-        }
-    }
-
-    /// (s, v) per frame of the chunk and the state after it.
-    #[allow(clippy::type_complexity)]
-    fn simulate(
-        &self,
-        path: &mut DrivePath,
-        frames: &[u64],
-        traffic: &[Vec<VehiclePose>],
-        removed: &BTreeSet<u32>,
-        start: Option<(f64, f64)>,
-    ) -> (Vec<f64>, Vec<f64>, (f64, f64)) {
-        let mut s_out = Vec::with_capacity(frames.len());
-        let mut v_out = Vec::with_capacity(frames.len());
-        // The drive starts at the speed its first frame allows.
-        let (mut s, mut v) = start.unwrap_or((0.0, f64::NAN));
-        for (&f, cars) in frames.iter().zip(traffic) {
-            let cap = self.allowed(path, s, v.max(0.0), self.time(f), cars, removed);
-            if v.is_nan() {
-                v = cap;
-            }
-            s_out.push(s);
-            v_out.push(v);
-            v = (v + A_LON_MPS2 * self.dt).min(cap).max(0.0);
-            s += v * self.dt;
-        }
-        (s_out, v_out, (s, v))
+            _ => (0.0, self.allowed(&mut d.path, 0.0, 0.0, self.time(0))),
+        };
+        d.s.push(s);
+        d.v.push(v);
     }
 
     /// The highest speed (m/s) the ego at arc length `s`, speed `v`, time
     /// `t` may take for the next step.
-    fn allowed(
-        &self,
-        path: &mut DrivePath,
-        s: f64,
-        v: f64,
-        t: f64,
-        cars: &[VehiclePose],
-        removed: &BTreeSet<u32>,
-    ) -> f64 {
+    fn allowed(&self, path: &mut DrivePath, s: f64, v: f64, t: f64) -> f64 {
         let half = self.body.footprint_m()[0] / 2.0;
         let look = self.v_max * self.v_max / (2.0 * A_LON_MPS2) + 2.0 * half + 20.0;
         path.reach(s + look + 1.0);
@@ -306,128 +306,68 @@ impl<'a> Ctx<'a> {
                 cap = cap.min((vc * vc + 2.0 * A_LON_MPS2 * d).sqrt());
             }
         }
-        let ahead = self.first_in_way(path, s, look, cars, removed);
-        if let Some(d) = ahead {
-            cap = cap.min(stop(d - half - FOLLOW_GAP_M));
-        }
         let front = s + half;
         let next = path
             .crossings
             .iter()
             .find(|c| c.stop_m >= front - 0.05 && c.stop_m < s + look);
-        if let Some(c) = next.filter(|c| c.obeys_clock) {
-            let free_beyond = ahead.is_none_or(|d| d > c.clear_m - s + 3.0 * half + FOLLOW_GAP_M);
-            if !(free_beyond && self.can_clear(path, c.clear_m + half - s, v, t, c.stop_m)) {
+        if let Some(c) = next {
+            let clear = c.roundabout
+                || c.major == Some(true)
+                || self.can_clear(path, c, c.clear_m + half - s, v, t);
+            if !clear {
                 cap = cap.min(stop(c.stop_m - front));
             }
         }
         cap
     }
 
-    /// Whether the ego, `d` metres from clearing a junction's zone at speed
-    /// `v` at time `t`, clears it before the town next stands.
-    fn can_clear(&self, path: &DrivePath, d: f64, v: f64, t: f64, from: f64) -> bool {
+    /// Whether the ego, `d` metres from clearing the zone of crossing `c`
+    /// at speed `v` at time `t`, clears it before its approach turns red.
+    fn can_clear(&self, path: &DrivePath, c: &Crossing, d: f64, v: f64, t: f64) -> bool {
+        let left = until_red_s(&self.plan.schedule, c.dir, t);
+        clear_time_s(path, c.stop_m, d, v, self.v_max) + CLEAR_RESERVE_S <= left
+    }
+
+    /// The vehicles and pedestrians chunk `k` removes: those within
+    /// `MARGIN_M` of the ego's footprint in some frame of it.
+    fn removal(&self, k: u64) -> Removal {
+        let frames = k * CHUNK_FRAMES..(k + 1) * CHUNK_FRAMES;
+        let egos = level_poses(self.desc, self.seed, self.drive, frames.clone());
+        let mut vehicles = BTreeSet::new();
+        let mut pedestrians = BTreeSet::new();
         let sched = &self.plan.schedule;
-        if sched.standing(t) {
-            return false;
-        }
-        let left = sched.moving_s() - t.rem_euclid(sched.cycle_s());
-        let vc = path
-            .pieces(from, from + d)
-            .filter_map(|(_, seg)| match *seg {
-                Segment::Arc { radius_m, .. } => Some((A_LAT_MPS2 * radius_m).sqrt()),
-                Segment::Line { .. } => None,
-            })
-            .fold(self.v_max, f64::min)
-            .max(1.0);
-        let a = A_LON_MPS2;
-        let need = if v >= vc {
-            d / vc
-        } else {
-            let d_acc = (vc * vc - v * v) / (2.0 * a);
-            if d_acc >= d {
-                ((v * v + 2.0 * a * d).sqrt() - v) / a
-            } else {
-                (vc - v) / a + (d - d_acc) / vc
-            }
-        };
-        need + CLEAR_RESERVE_S <= left
-    }
-
-    /// Distance along the path from the ego's centre (at `s`) to the first
-    /// sample within reach of a vehicle's footprint, up to `look` metres.
-    fn first_in_way(
-        &self,
-        path: &DrivePath,
-        s: f64,
-        look: f64,
-        cars: &[VehiclePose],
-        removed: &BTreeSet<u32>,
-    ) -> Option<f64> {
-        let (me, _) = path.pose(s);
-        let reach = self.body.footprint_m()[1] / 2.0 + 0.3;
-        let near: Vec<&VehiclePose> = cars
-            .iter()
-            .filter(|c| !removed.contains(&c.id) && c.position[2].abs() < LEVEL_GAP_M)
-            .filter(|c| (c.position[0] - me[0]).hypot(c.position[1] - me[1]) < look + 15.0)
-            .collect();
-        if near.is_empty() {
-            return None;
-        }
-        let n = (look / SAMPLE_M) as usize;
-        (0..=n).map(|k| k as f64 * SAMPLE_M).find(|&d| {
-            let (p, _) = path.pose(s + d);
-            near.iter().any(|c| rect_distance(c, p) < reach)
-        })
-    }
-
-    /// Ids of the vehicles whose footprint comes within `MARGIN_M` of the
-    /// ego's in some frame.
-    fn conflicts(&self, path: &DrivePath, traffic: &[Vec<VehiclePose>], s: &[f64]) -> Vec<u32> {
-        let mut out = Vec::new();
-        for (cars, &si) in traffic.iter().zip(s) {
-            let (p, h) = path.pose(si);
-            let ego = self.pose(p, h);
-            let grown = grown_corners(&ego, MARGIN_M);
-            for c in cars {
+        for (f, ego) in frames.zip(&egos) {
+            let op = self.overpass.as_ref();
+            let p = [ego.position[0], ego.position[1]];
+            let grown = grown_corners(ego, MARGIN_M);
+            for c in others(self.desc, self.seed, &self.plan, op, self.drive, f) {
                 let close = (c.position[0] - p[0]).hypot(c.position[1] - p[1]) < 30.0;
                 if close && c.position[2].abs() < LEVEL_GAP_M && quads_overlap(&grown, &c.corners())
                 {
-                    out.push(c.id);
+                    vehicles.insert(c.id);
                 }
             }
-        }
-        out
-    }
-
-    /// Ids of the pedestrians within reach (their 0.5 m square grown by
-    /// `MARGIN_M`) of the ego's footprint in some frame.
-    fn pedestrians_in_way(&self, path: &DrivePath, frames: &[u64], s: &[f64]) -> BTreeSet<u32> {
-        let mut out = BTreeSet::new();
-        if !self.layout.sidewalks {
-            return out;
-        }
-        let sched = &self.plan.schedule;
-        for (&f, &si) in frames.iter().zip(s) {
-            let (p, h) = path.pose(si);
-            let ego = self.pose(p, h);
+            if !self.layout.sidewalks {
+                continue;
+            }
             let t = self.time(f);
             for w in walkers::pedestrians(self.desc, &self.layout, sched, self.seed, t) {
                 let q = [w.position[0], w.position[1]];
                 if (q[0] - p[0]).hypot(q[1] - p[1]) < 10.0
-                    && rect_distance(&ego, q) < 0.25 + MARGIN_M
+                    && rect_distance(ego, q) < 0.25 + MARGIN_M
                 {
-                    out.insert(w.id);
+                    pedestrians.insert(w.id);
                 }
             }
         }
-        out
+        (Arc::new(vehicles), Arc::new(pedestrians))
     }
 }
 
 /// Heading `h` radians as degrees in [0, 360) (a heading a hair below 0
 /// or 2π rounds to 0, not 360).
-fn heading_deg(h: f64) -> f64 {
+pub(super) fn heading_deg(h: f64) -> f64 {
     let d = h.to_degrees().rem_euclid(360.0);
     if d >= 360.0 {
         0.0
@@ -437,7 +377,7 @@ fn heading_deg(h: f64) -> f64 {
 }
 
 /// Distance from `p` to the footprint rectangle of `v` (0 inside).
-fn rect_distance(v: &VehiclePose, p: [f64; 2]) -> f64 {
+pub(super) fn rect_distance(v: &VehiclePose, p: [f64; 2]) -> f64 {
     let [len, wid] = v.body.footprint_m();
     let h = v.heading_deg.to_radians();
     let d = [p[0] - v.position[0], p[1] - v.position[1]];
@@ -461,7 +401,7 @@ fn grown_corners(v: &VehiclePose, m: f64) -> [[f64; 2]; 4] {
 }
 
 /// Separating-axis test of two convex quads (touching does not count).
-fn quads_overlap(a: &[[f64; 2]; 4], b: &[[f64; 2]; 4]) -> bool {
+pub(super) fn quads_overlap(a: &[[f64; 2]; 4], b: &[[f64; 2]; 4]) -> bool {
     [a, b].iter().all(|poly| {
         (0..4).all(|k| {
             let (p, q) = (poly[k], poly[(k + 1) % 4]);
@@ -482,16 +422,12 @@ fn quads_overlap(a: &[[f64; 2]; 4], b: &[[f64; 2]; 4]) -> bool {
 /// Junction turns (left or right, roundabout exits included) the ego has
 /// completed by `frame` of drive `drive`.
 pub fn turns_by(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> usize {
-    // Simulates (and caches) the drive up to the frame first.
-    let _ = ego_at(desc, seed, drive, frame);
-    let cache = DRIVES.get().expect("drive cache");
-    let d = cache.lock().expect("drive cache")[&(format!("{desc:?}"), seed, drive)].clone();
-    let d = d.lock().expect("drive");
-    let c = &d.chunks[(frame / CHUNK_FRAMES) as usize];
-    let s = c.s[(frame % CHUNK_FRAMES) as usize];
+    let entry = motion(desc, seed, drive, frame);
+    let d = entry.lock().expect("drive");
+    let s = d.s[frame as usize];
     d.path
         .crossings
         .iter()
-        .filter(|x| x.clear_m <= s && x.turn != crate::town::routes::drive::Move::Straight)
+        .filter(|x| x.clear_m <= s && x.turn != Move::Straight)
         .count()
 }

@@ -1,5 +1,8 @@
-//! Tests of how traffic slots fill and where bodies ride in them.
+//! Tests of where a drive's background vehicles start and how cyclists
+//! are limited.
 
+use super::sim::Agent;
+use super::spawn::spawn;
 use super::*;
 
 fn town(name: &str) -> TownDesc {
@@ -8,71 +11,111 @@ fn town(name: &str) -> TownDesc {
         .desc
 }
 
+/// The lane (0 = next to the centreline) of a start pose of a link
+/// heading `h` radians: its lateral offset right of the road's centre
+/// line, over the lane width.
+fn lane_of(l: &Layout, p: [f64; 2], h: f64) -> f64 {
+    let (u, r) = ([h.cos(), h.sin()], [h.sin(), -h.cos()]);
+    // The road's centre line: the nearest multiple of the pitch across.
+    let across = if u[0].abs() > 0.5 { p[1] } else { p[0] };
+    let c = (across / l.pitch_m).round() * l.pitch_m;
+    let off = (across - c) * if u[0].abs() > 0.5 { r[1] } else { r[0] };
+    off / l.lane_w_m
+}
+
 #[test]
-fn slots_fill_at_the_density_bus_lines_always_and_the_ego_slot_always() {
-    let mut desc = town("town05");
-    let plan = Plan::new(&desc);
-    let bus = plan
-        .routes
-        .iter()
-        .find(|rp| rp.route.kind == RouteKind::Ring && rp.route.bodies.contains(&BodyKind::Bus));
-    let bus = bus.expect("town05's ring has a long-vehicle route");
-    let cars = plan
-        .routes
-        .iter()
-        .find(|rp| !rp.route.bodies.contains(&BodyKind::Bus))
-        .expect("town05 has car-only routes");
-    let mut r = Rng::new(&[9]);
-    for density in [0.0, 1.0] {
-        desc.traffic_density = density;
-        for n in 0..12 {
-            // A closed slot stays empty unless it is the ego's.
-            assert_eq!(slot_body(&desc, cars, (n, false), &mut r, None), None);
-            let ego = Some(BodyKind::Van);
-            assert_eq!(slot_body(&desc, cars, (n, false), &mut r, ego), ego);
-            let car = slot_body(&desc, cars, (n, true), &mut r, None);
-            assert_eq!(car.is_some(), density == 1.0, "slot {n}");
-            assert!(car.is_none_or(|b| cars.route.bodies.contains(&b)));
-            // Every third slot of the long-vehicle route is a bus line.
-            let b = slot_body(&desc, bus, (n, true), &mut r, None);
-            if n % 3 == 0 {
-                assert!(matches!(b, Some(BodyKind::Bus | BodyKind::Truck)), "{b:?}");
-            } else {
-                assert_eq!(b.is_some(), density == 1.0, "slot {n}");
+fn vehicles_start_apart_on_the_straights_in_the_inner_and_kerb_lanes() {
+    for name in ["town02", "town03", "town06"] {
+        let desc = town(name);
+        let l = Layout::new(&desc);
+        let plan = Plan::new(&desc);
+        let agents: Vec<Agent> = spawn(3, 7, 0, desc.traffic_density, &l, &plan);
+        assert!(agents.len() > 40, "{name}: {} vehicles", agents.len());
+        let hw = l.road_w_m / 2.0;
+        let poses: Vec<VehiclePose> = agents
+            .iter()
+            .map(|a| {
+                let (p, h) = a.path.pose(0.0);
+                let lane = lane_of(&l, p, h);
+                let k = lane.floor();
+                assert!(
+                    (lane - k - 0.5).abs() < 1e-6,
+                    "{name}: off a lane centre: {lane}"
+                );
+                let k = k as u32;
+                assert!(k == 0 || k + 1 == l.lanes, "{name}: lane {k}");
+                if a.body == BodyKind::Bicycle {
+                    assert_eq!(k + 1, l.lanes, "{name}: a bicycle off the kerb lane");
+                    assert_eq!(a.v_max, cyclist_speed_mps(plan.schedule.speed_mps));
+                } else {
+                    assert_eq!(a.v_max, plan.schedule.speed_mps);
+                }
+                if matches!(a.body, BodyKind::Bus | BodyKind::Truck) {
+                    assert!(l.lanes > 1 && k == 0, "{name}: a {:?} in lane {k}", a.body);
+                }
+                // Not in a junction: both coordinates off the grid lines
+                // by more than the half road width plus the body.
+                let along = if h.cos().abs() > 0.5 { p[0] } else { p[1] };
+                let g = (along - (along / l.pitch_m).round() * l.pitch_m).abs();
+                assert!(
+                    g > hw + a.body.footprint_m()[0] / 2.0,
+                    "{name}: {g} m from a junction"
+                );
+                a.pose()
+            })
+            .collect();
+        for (i, a) in poses.iter().enumerate() {
+            for b in &poses[i + 1..] {
+                assert!(
+                    a.footprint().min[0] >= b.footprint().max[0]
+                        || b.footprint().min[0] >= a.footprint().max[0]
+                        || a.footprint().min[1] >= b.footprint().max[1]
+                        || b.footprint().min[1] >= a.footprint().max[1],
+                    "{name}: {} and {} start overlapping",
+                    a.id,
+                    b.id
+                );
             }
         }
+        let ids: std::collections::BTreeSet<u32> = poses.iter().map(|p| p.id).collect();
+        assert_eq!(ids.len(), poses.len());
+        // Another drive starts other traffic.
+        let other = spawn(3, 8, 0, desc.traffic_density, &l, &plan);
+        assert!(
+            other.len() != agents.len() || other.iter().zip(&agents).any(|(a, b)| a.body != b.body)
+        );
     }
 }
 
 #[test]
-fn shorter_bodies_ride_forward_on_block_loops_and_centred_on_the_ring() {
-    let plan = Plan::new(&town("town05"));
-    for rp in &plan.routes {
-        let longest = *rp
-            .route
-            .bodies
-            .iter()
-            .max_by(|a, b| a.footprint_m()[0].total_cmp(&b.footprint_m()[0]))
-            .unwrap();
-        let short = BodyKind::Hatchback;
-        // At the route's start both lie on its first straight.
-        let (p_long, h_long) = slot_pose(rp, 0.0, longest);
-        let (p_short, h_short) = slot_pose(rp, 0.0, short);
-        // The longest body fills its slot: no shift from the slot's pose.
-        let (p_slot, h_slot) = rp.route.pose(rp.profile.arc_at(0.0));
-        let d_long = (p_long[0] - p_slot[0]).hypot(p_long[1] - p_slot[1]);
-        assert!(d_long < 1e-9 && (h_long - h_slot).abs() < 1e-12, "{d_long}");
-        let ahead = [p_short[0] - p_long[0], p_short[1] - p_long[1]];
-        let along = ahead[0] * h_long.cos() + ahead[1] * h_long.sin();
-        let expected = match rp.route.kind {
-            RouteKind::Block { .. } => (longest.footprint_m()[0] - short.footprint_m()[0]) / 2.0,
-            _ => 0.0,
-        };
+fn cyclists_keep_below_the_limit_and_never_above_it() {
+    assert_eq!(cyclist_speed_mps(40.0 / 3.6), 5.5);
+    assert_eq!(cyclist_speed_mps(4.0), 4.0);
+}
+
+#[test]
+fn a_follower_stays_behind_where_its_leader_will_be_and_could_stop_if_it_braked() {
+    use super::sim::follow_cap;
+    let (b, dt) = (A_LON_MPS2, 0.1);
+    for (g, u) in [
+        (0.0, 0.0),
+        (5.0, 0.0),
+        (20.0, 10.0),
+        (40.0, 25.0),
+        (0.5, 20.0),
+    ] {
+        let v = follow_cap(g, u, dt);
+        // No further than the leader's rear after the step, and able to
+        // stop behind it were it to brake at b from then on; one of the
+        // two binds.
+        let room = g + u * dt - v * dt;
+        let braking = g + u * dt + u * u / (2.0 * b) - v * dt - v * v / (2.0 * b);
+        assert!(room >= -1e-9 && braking >= -1e-9, "g {g} u {u}: {v}");
         assert!(
-            (along - expected).abs() < 1e-9,
-            "{:?}: {along}",
-            rp.route.kind
+            room.abs() < 1e-9 || braking.abs() < 1e-9,
+            "g {g} u {u}: {v}"
         );
-        assert!((h_short - h_long).abs() < 1e-12);
     }
+    // A standing leader 24 m beyond the gap: √(0.3² + 2·3·24) − 0.3.
+    assert!((follow_cap(24.0, 0.0, dt) - ((0.09f64 + 144.0).sqrt() - 0.3)).abs() < 1e-12);
 }

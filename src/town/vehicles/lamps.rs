@@ -1,7 +1,9 @@
 //! Lamps of a four-wheeled body: domed head-lamp lenses (emitters) in a
 //! chrome reflector, red tail lamps (emitters) in black housings, amber
 //! indicator lenses front and rear and a high-mounted brake lens, each
-//! set into the body's surface where `Spec::end_x` finds it.
+//! set into the body's surface where `Spec::end_x` finds it. The brake
+//! lens and each side's indicators have their own material slots, which a
+//! frame maps to an emitter while lit (`town::dynamic_objects`).
 
 use glam::{DAffine3, DVec3};
 
@@ -28,6 +30,18 @@ pub fn taillamp_points(s: &Spec) -> [[f64; 3]; 2] {
     [[x, y, z], [x, -y, z]]
 }
 
+/// Material slot of the brake lamps (the tail lamps glow brighter too).
+pub const BRAKE_SLOT: &str = "lamp_red";
+/// Material slots of the left and right indicators.
+pub const INDICATOR_SLOTS: [&str; 2] = ["indicator_left", "indicator_right"];
+/// Every lens slot a frame may light: they live in the lamps prefab.
+pub const LIT_SLOTS: [&str; 3] = [BRAKE_SLOT, INDICATOR_SLOTS[0], INDICATOR_SLOTS[1]];
+
+/// The indicator slot of the side at body-frame `y` (> 0: left).
+fn indicator(y: f64) -> &'static str {
+    INDICATOR_SLOTS[usize::from(y < 0.0)]
+}
+
 fn at(p: [f64; 3]) -> DAffine3 {
     DAffine3::from_translation(DVec3::from(p))
 }
@@ -51,7 +65,7 @@ pub fn lamps(s: &Spec, class: &'static str, parts: &mut Kit) {
         let y = p[1].signum() * (s.width / 2.0 - 0.09);
         let x = s.end_x(1.0, y, p[2]) - 0.02;
         parts.add(
-            "lamp_amber",
+            indicator(y),
             class,
             ellipsoid([0.03, 0.045, 0.03], 12, 6),
             at([x, y, p[2]]),
@@ -73,7 +87,7 @@ pub fn lamps(s: &Spec, class: &'static str, parts: &mut Kit) {
         let y = p[1].signum() * (s.width / 2.0 - 0.42);
         let x = s.end_x(-1.0, y, p[2]) + 0.02;
         parts.add(
-            "lamp_amber",
+            indicator(y),
             class,
             ellipsoid([0.03, 0.06, 0.03], 12, 6),
             at([x, y, p[2]]),

@@ -123,13 +123,11 @@ impl BodyKind {
     }
 
     /// Footprint length and width, metres: the body, mirrors, bumpers and
-    /// plates all stay inside it. A two-wheeler (and its rider) takes a
-    /// small car's length of lane: it keeps a car's spacing in traffic and
-    /// lines up at stop lines like one.
+    /// plates (a two-wheeler's wheels, lamps and rider) all stay inside it.
     pub fn footprint_m(self) -> [f64; 2] {
         match self {
-            BodyKind::Motorcycle => [TWO_WHEEL_SLOT_M, 1.0],
-            BodyKind::Bicycle => [TWO_WHEEL_SLOT_M, 0.8],
+            BodyKind::Motorcycle => [MOTORCYCLE_LEN_M, 1.0],
+            BodyKind::Bicycle => [BICYCLE_LEN_M, 0.8],
             k => {
                 let s = spec::spec_of(k).expect("a four-wheeled body");
                 [s.length + 0.1, s.width + 2.0 * body::MIRROR_REACH_M + 0.02]
@@ -155,9 +153,12 @@ impl BodyKind {
     }
 }
 
-/// Lane length a two-wheeler takes (its footprint's length), metres: a
-/// little more than a hatchback's.
-pub const TWO_WHEEL_SLOT_M: f64 = 4.2;
+/// A motorcycle's footprint length, metres: its wheels (axles ±0.68 m,
+/// radius 0.3 m) and a few centimetres.
+pub const MOTORCYCLE_LEN_M: f64 = 2.1;
+/// A bicycle's footprint length, metres: its wheels (axles ±0.525 m,
+/// radius 0.34 m) and a few centimetres.
+pub const BICYCLE_LEN_M: f64 = 1.85;
 
 /// The emissive materials of vehicle lamps.
 pub const EMITTERS: [&str; 2] = ["headlight_emit", "taillight_emit"];
@@ -179,10 +180,13 @@ fn generate_prefabs() -> Vec<PrefabDesc> {
         });
         // Emitters go apart: a prefab holding one stays flat (the light
         // set finds emitters among flat meshes only), so it must be small.
-        let (lamps, rest): (Vec<_>, Vec<_>) = parts
-            .objects()
-            .into_iter()
-            .partition(|o| o.material.as_deref().is_some_and(|m| EMITTERS.contains(&m)));
+        // The brake and indicator lenses go with them: a frame maps them to
+        // emitters while lit (`town::dynamic_objects`).
+        let (lamps, rest): (Vec<_>, Vec<_>) = parts.objects().into_iter().partition(|o| {
+            o.material
+                .as_deref()
+                .is_some_and(|m| EMITTERS.contains(&m) || lamps::LIT_SLOTS.contains(&m))
+        });
         out.push(PrefabDesc {
             name: b.parts_prefab(),
             objects: rest,
