@@ -67,7 +67,11 @@ impl Footprint {
     /// agree, i.e. when no faded noise finer than the footprint, at most
     /// `finest_m`, leaves a residual.
     #[inline]
-    pub fn relief_and_colour<T: Copy>(self, finest_m: f64, term: impl Fn(Footprint) -> T) -> (T, T) {
+    pub fn relief_and_colour<T: Copy>(
+        self,
+        finest_m: f64,
+        term: impl Fn(Footprint) -> T,
+    ) -> (T, T) {
         if self.grain && self.w as f64 > finest_m {
             (term(self.relief()), term(self))
         } else {

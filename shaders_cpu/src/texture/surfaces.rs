@@ -94,7 +94,8 @@ pub fn metal_painted(base: Vec3, p: DVec3, seed: u32, fp: Footprint, color: bool
 pub fn metal_brushed(base: Vec3, p: DVec3, n: Vec3, seed: u32, fp: Footprint, color: bool) -> Pat {
     let (u, v, face) = plane::coords(p, n);
     let q = DVec3::new(u / 2500.0, v, face as f64);
-    let (streak_h, streak) = fp.relief_and_colour(0.0002, |f| f.value_noise(q, 0.0002, seed ^ 0xB1));
+    let (streak_h, streak) =
+        fp.relief_and_colour(0.0002, |f| f.value_noise(q, 0.0002, seed ^ 0xB1));
     let c = if color {
         base * (1.0 + 0.03 * fp.fbm(p, 0.3, 2, 0.5, seed ^ 0xB2))
     } else {

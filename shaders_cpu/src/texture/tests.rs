@@ -20,7 +20,8 @@ fn points() -> impl Iterator<Item = (DVec3, Vec3)> {
     let (g1, g2) = (0.754_877_666_246_692_8, 0.569_840_290_998_053_3);
     planes.into_iter().flat_map(move |(o, a, b, n)| {
         (0..3000).map(move |i| {
-            let p = o + a * ((0.5 + g1 * i as f64).fract() * 40.0)
+            let p = o
+                + a * ((0.5 + g1 * i as f64).fract() * 40.0)
                 + b * ((0.5 + g2 * i as f64).fract() * 40.0);
             (p, n)
         })
