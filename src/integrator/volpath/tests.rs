@@ -314,7 +314,7 @@ fn deep_roulette_keeps_the_mean_for_fewer_rays() {
 fn deep_roulette_with_a_bounded_boost_keeps_the_mean() {
     // The deep roulette at 1/2 stopped once it has doubled a path's
     // throughput (one survival: a survivor weighs at most twice its
-    // neighbours; the default) against never rouletted: the same expected
+    // neighbours) against never rouletted (the default): the same expected
     // radiance, for fewer rays than never, more than without the bound.
     let n = 16384;
     let scene = format!("{SCENE}{SKY}");
