@@ -22,7 +22,9 @@
 //! fog carries them to the sky.
 //! Collisions estimate the sky's NEE, and those after the first draw the
 //! sun lobe, each half the time (divided by 1/2: `Strategies::sky_nee_deep`,
-//! `Strategies::lobe_deep`): about 16 % fewer rays in fog.
+//! `Strategies::lobe_deep`): about 16 % fewer rays in fog. A deep roulette
+//! with a bounded boost (`Strategies::deep_survival`,
+//! `Strategies::deep_max_boost`) is off by default.
 //!
 //! Sample dimensions of a segment start at `VOL_DIMS` + 16·bounce (the sun
 //! lobe's at `LOBE_DIMS` + 2·bounce), apart from the surface dimensions, so
@@ -358,13 +360,22 @@ struct Strategies {
     inscatter_per_opacity: f32,
     /// Probability that a path survives a collision after
     /// `DEEP_FROM` scattering events (on top of the albedo roulette, divided
-    /// by it; 1.0: off, the default). Fog's deep chains cost most of its
-    /// rays, but their boosted survivors are noise the filters do not
-    /// remove (town03 frame 40 foggy against 256 spp: 0.5 saves 23 % of
-    /// the rays for −1.0 dB, 0.75 saves 19 % for −0.27 dB) and spikes the
-    /// surface filter drops as fireflies (−27 % of its component in
-    /// `tests/denoise/fog.rs` at 0.5).
+    /// by it; 1.0: off, the default) while `deep_max_boost` allows. Fog's
+    /// deep chains cost most of its rays. Still off: even bounded at 2,
+    /// `tests/denoise/fog.rs`'s surface-fog mean test (8 spp) sees the
+    /// surface filter's firefly rule drop over 1 % of its component.
     deep_survival: f32,
+    /// The deep roulette runs only while the boost it has given the path
+    /// (the product of 1/`deep_survival` over its survivals) stays at most
+    /// this. Unbounded, survivors of k roulettes weigh 2^k times their
+    /// neighbours: noise the filters do not remove (town03 frame 40 foggy
+    /// against 256 spp: −1.0 dB for 23 % fewer rays) and spikes the
+    /// surface filter drops as fireflies (−27 % of its component in
+    /// `tests/denoise/fog.rs`). At 2 (one survival at 1/2) a survivor
+    /// weighs at most twice its neighbours, well below the firefly rule's
+    /// ratio (`denoise::surface`): town05 frame 40 foggy, 18 % fewer rays
+    /// for 0.15 dB against 64 spp (unbounded: 23 %, 0.41 dB).
+    deep_max_boost: f32,
     /// The split camera ray's surface part after a collision
     /// (`split_first`) is traced with probability
     /// min(1, `split_per_tr`·Tr) and its weight Tr divided by it: behind
@@ -389,6 +400,7 @@ impl Default for Strategies {
             lobe_deep: 0.5,
             inscatter_per_opacity: 4.0,
             deep_survival: 1.0,
+            deep_max_boost: 2.0,
             split_per_tr: 8.0,
             cone: RayCone::NONE,
         }

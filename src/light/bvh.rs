@@ -39,29 +39,7 @@ impl LightBounds {
 
     /// Bound of the light's contribution at `p` (0: it cannot light `p`).
     pub fn importance(&self, p: Vec3) -> f32 {
-        let pc = self.centroid();
-        // Clamp the distance so points inside a large cluster do not blow up.
-        let d2 = p
-            .distance_squared(pc)
-            .max(0.5 * (self.p_max - self.p_min).length());
-        let wi = (p - pc).normalize_or_zero();
-        let mut cos_w = self.w.dot(wi);
-        if self.two_sided {
-            cos_w = cos_w.abs();
-        }
-        let sin_w = safe_sqrt(1.0 - cos_w * cos_w);
-        // Half-angle θ_b of the cone from pc that holds the whole box as seen from p.
-        let cos_b = bound_subtended_cos(self.p_min, self.p_max, p);
-        let sin_b = safe_sqrt(1.0 - cos_b * cos_b);
-        // θ' = max(0, θ_w − θ_o − θ_b): the smallest angle between a normal
-        // of the cone and a direction from the box towards p.
-        let sin_o = safe_sqrt(1.0 - self.cos_theta_o * self.cos_theta_o);
-        let (cos_x, sin_x) = angle_sub_clamped(sin_w, cos_w, sin_o, self.cos_theta_o);
-        let (cos_p, _) = angle_sub_clamped(sin_x, cos_x, sin_b, cos_b);
-        if cos_p <= self.cos_theta_e {
-            return 0.0;
-        }
-        (self.phi * cos_p / d2).max(0.0)
+        Importance::new(self).at(p)
     }
 
     /// The bounds of both `self` and `o`.
@@ -85,6 +63,74 @@ impl LightBounds {
     }
 }
 
+/// [`LightBounds::importance`] with what does not depend on the point
+/// worked out once per node (the same arithmetic, so the same bits): the
+/// traversal weighs two nodes per level, and at night and under a storm's
+/// overcast the walks are a large share of a frame's time.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Importance {
+    /// Centre of the positions' box.
+    pc: Vec3,
+    /// Floor on the squared distance (half the box's diagonal).
+    d2_min: f32,
+    /// Squared radius of the box's bounding sphere.
+    r2: f32,
+    w: Vec3,
+    phi: f32,
+    cos_theta_o: f32,
+    sin_theta_o: f32,
+    cos_theta_e: f32,
+    two_sided: bool,
+}
+
+impl Importance {
+    fn new(b: &LightBounds) -> Importance {
+        let diag = b.p_max - b.p_min;
+        Importance {
+            pc: b.centroid(),
+            d2_min: 0.5 * diag.length(),
+            r2: (0.25 * diag.length_squared()).max(0.0),
+            w: b.w,
+            phi: b.phi,
+            cos_theta_o: b.cos_theta_o,
+            sin_theta_o: safe_sqrt(1.0 - b.cos_theta_o * b.cos_theta_o),
+            cos_theta_e: b.cos_theta_e,
+            two_sided: b.two_sided,
+        }
+    }
+
+    /// The importance at `p`.
+    #[inline]
+    fn at(&self, p: Vec3) -> f32 {
+        let v = p - self.pc;
+        let d2_centre = v.length_squared();
+        // Clamp the distance so points inside a large cluster do not blow up.
+        let d2 = d2_centre.max(self.d2_min);
+        let wi = v.normalize_or_zero();
+        let mut cos_w = self.w.dot(wi);
+        if self.two_sided {
+            cos_w = cos_w.abs();
+        }
+        let sin_w = safe_sqrt(1.0 - cos_w * cos_w);
+        // Half-angle θ_b of the cone from the centre that holds the whole
+        // box as seen from p (the box's bounding sphere; −1 inside it).
+        let cos_b = if d2_centre < self.r2 || d2_centre == 0.0 {
+            -1.0
+        } else {
+            safe_sqrt(1.0 - self.r2 / d2_centre)
+        };
+        let sin_b = safe_sqrt(1.0 - cos_b * cos_b);
+        // θ' = max(0, θ_w − θ_o − θ_b): the smallest angle between a normal
+        // of the cone and a direction from the box towards p.
+        let (cos_x, sin_x) = angle_sub_clamped(sin_w, cos_w, self.sin_theta_o, self.cos_theta_o);
+        let (cos_p, _) = angle_sub_clamped(sin_x, cos_x, sin_b, cos_b);
+        if cos_p <= self.cos_theta_e {
+            return 0.0;
+        }
+        (self.phi * cos_p / d2).max(0.0)
+    }
+}
+
 fn safe_sqrt(x: f32) -> f32 {
     x.max(0.0).sqrt()
 }
@@ -96,18 +142,6 @@ fn angle_sub_clamped(sin_a: f32, cos_a: f32, sin_b: f32, cos_b: f32) -> (f32, f3
     } else {
         (cos_a * cos_b + sin_a * sin_b, sin_a * cos_b - cos_a * sin_b)
     }
-}
-
-/// Cosine of the half-angle of a cone from `p` around the box centre's
-/// bounding sphere (−1 when `p` is inside it).
-fn bound_subtended_cos(p_min: Vec3, p_max: Vec3, p: Vec3) -> f32 {
-    let c = 0.5 * (p_min + p_max);
-    let r2 = (0.25 * (p_max - p_min).length_squared()).max(0.0);
-    let d2 = p.distance_squared(c);
-    if d2 < r2 || d2 == 0.0 {
-        return -1.0;
-    }
-    safe_sqrt(1.0 - r2 / d2)
 }
 
 /// The smallest cone holding two cones (axis, cosine of half-angle).
@@ -183,6 +217,8 @@ const BUCKETS: usize = 12;
 #[derive(Clone, Debug, PartialEq)]
 pub struct LightBvh {
     nodes: Vec<Node>,
+    /// Per node: its bounds' importance, set up for traversal.
+    importance: Vec<Importance>,
     /// Per light: the branch taken at each depth (bit d = 1: second child).
     trails: Vec<u128>,
 }
@@ -209,6 +245,11 @@ impl LightBvh {
             trails[light as usize] = trail;
         }
         LightBvh {
+            importance: sub
+                .nodes
+                .iter()
+                .map(|n| Importance::new(&n.bounds))
+                .collect(),
             nodes: sub.nodes,
             trails,
         }
@@ -222,10 +263,7 @@ impl LightBvh {
     /// Importance of both children of inner node `k`, first child first.
     fn child_importance(&self, k: usize, p: Vec3) -> [f32; 2] {
         let second = self.nodes[k].child_or_light as usize;
-        [
-            self.nodes[k + 1].bounds.importance(p),
-            self.nodes[second].bounds.importance(p),
-        ]
+        [self.importance[k + 1].at(p), self.importance[second].at(p)]
     }
 
     /// Chooses a light for point `p` with `u` ∈ [0, 1): (light index, pmf),
@@ -240,7 +278,7 @@ impl LightBvh {
             let node = &self.nodes[k];
             if node.leaf {
                 // A lone root was never weighed against a sibling.
-                if k > 0 || node.bounds.importance(p) > 0.0 {
+                if k > 0 || self.importance[k].at(p) > 0.0 {
                     return Some((node.child_or_light, pmf));
                 }
                 return None;
@@ -280,7 +318,7 @@ impl LightBvh {
                 if node.child_or_light != light {
                     return 0.0; // left out of the tree
                 }
-                return if k > 0 || node.bounds.importance(p) > 0.0 {
+                return if k > 0 || self.importance[k].at(p) > 0.0 {
                     pmf
                 } else {
                     0.0

@@ -1,4 +1,5 @@
-//! Light BVH build: the arc-cosine shortcuts keep libm's bits, and the
+//! Light BVH: the arc-cosine shortcuts keep libm's bits, the importance
+//! set up per node keeps the direct formula's bits, and the
 //! parallel build gives the serial tree.
 
 use super::*;
@@ -140,4 +141,82 @@ fn a_tree_built_in_parallel_is_the_serial_tree() {
         }
     }
     assert!(found > 100, "{found}");
+}
+
+/// The importance as written before its per-node set-up: everything
+/// recomputed from the bounds at each call.
+fn importance_plain(b: &LightBounds, p: Vec3) -> f32 {
+    let pc = 0.5 * (b.p_min + b.p_max);
+    let d2 = p
+        .distance_squared(pc)
+        .max(0.5 * (b.p_max - b.p_min).length());
+    let wi = (p - pc).normalize_or_zero();
+    let mut cos_w = b.w.dot(wi);
+    if b.two_sided {
+        cos_w = cos_w.abs();
+    }
+    let sin_w = safe_sqrt(1.0 - cos_w * cos_w);
+    let r2 = (0.25 * (b.p_max - b.p_min).length_squared()).max(0.0);
+    let dc2 = p.distance_squared(pc);
+    let cos_b = if dc2 < r2 || dc2 == 0.0 {
+        -1.0
+    } else {
+        safe_sqrt(1.0 - r2 / dc2)
+    };
+    let sin_b = safe_sqrt(1.0 - cos_b * cos_b);
+    let sin_o = safe_sqrt(1.0 - b.cos_theta_o * b.cos_theta_o);
+    let (cos_x, sin_x) = angle_sub_clamped(sin_w, cos_w, sin_o, b.cos_theta_o);
+    let (cos_p, _) = angle_sub_clamped(sin_x, cos_x, sin_b, cos_b);
+    if cos_p <= b.cos_theta_e {
+        return 0.0;
+    }
+    (b.phi * cos_p / d2).max(0.0)
+}
+
+#[test]
+fn importance_set_up_per_node_gives_the_direct_formulas_bits() {
+    let mut s = 0x2545_f491_4f6c_dd1du64;
+    let mut u = move || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        (s >> 40) as f32 / (1u64 << 24) as f32
+    };
+    let (mut lit, mut dark) = (0, 0);
+    for k in 0..20_000 {
+        let (phi, cos_o) = (0.1 + 100.0 * u(), 2.0 * u() - 1.0);
+        let mut v = |scale: f32| Vec3::new(u() - 0.5, u() - 0.5, u() - 0.5) * scale;
+        let c = v(40.0);
+        // Points (zero box), small lamps and large clusters.
+        let half = match k % 3 {
+            0 => Vec3::ZERO,
+            1 => v(0.5).abs(),
+            _ => v(30.0).abs(),
+        };
+        let w = v(2.0).normalize_or(Vec3::Z);
+        let b = LightBounds {
+            p_min: c - half,
+            p_max: c + half,
+            w,
+            phi,
+            cos_theta_o: [1.0, -1.0, 0.3, cos_o][k % 4],
+            cos_theta_e: [0.0, 0.5, 0.0][k % 3],
+            two_sided: k % 5 == 0,
+        };
+        // Receivers far, near and inside the box, and at its centre.
+        let p = match k % 7 {
+            0 => c,
+            1 => c + half * 0.3,
+            _ => c + v(60.0),
+        };
+        let (fast, plain) = (b.importance(p), importance_plain(&b, p));
+        assert_eq!(fast.to_bits(), plain.to_bits(), "bounds {b:?} at {p}");
+        if plain > 0.0 {
+            lit += 1;
+        } else {
+            dark += 1;
+        }
+    }
+    // Both outcomes exercised.
+    assert!(lit > 1000 && dark > 1000, "lit {lit}, dark {dark}");
 }

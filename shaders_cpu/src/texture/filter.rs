@@ -62,6 +62,24 @@ impl Footprint {
         }
     }
 
+    /// A term evaluated under the relief's footprint and under this one
+    /// (relief, colour), for a term both use: `term` runs once when they
+    /// agree, i.e. when no faded noise finer than the footprint, at most
+    /// `finest_m`, leaves a residual.
+    #[inline]
+    pub fn relief_and_colour<T: Copy>(
+        self,
+        finest_m: f64,
+        term: impl Fn(Footprint) -> T,
+    ) -> (T, T) {
+        if self.grain && self.w as f64 > finest_m {
+            (term(self.relief()), term(self))
+        } else {
+            let x = term(self);
+            (x, x)
+        }
+    }
+
     /// The weight in [0, 1] a feature of `size_m` metres keeps: 1 while the
     /// footprint is below half of it, 0 above twice it, smooth between.
     #[inline]

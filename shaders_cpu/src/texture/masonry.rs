@@ -110,7 +110,7 @@ pub fn brick(
             * fp.keep(MODULE_V_M)
             * signed_unit(rehash(hb, 2))
             * smoothstep(half as f32, half as f32 + 0.002, d)
-        + 0.0003 * fp.value_noise(p, 0.004, seed ^ 0xD4);
+        + 0.0003 * fp.relief().value_noise(p, 0.004, seed ^ 0xD4);
     if !color {
         return Pat { c: base, r: 1.0, h };
     }
@@ -186,7 +186,7 @@ pub fn stone(base: Vec3, p: DVec3, n: Vec3, seed: u32, fp: Footprint, color: boo
     let d = plane::edge_dist(in_u, len).min(((v - lo).min(hi - v)) as f32);
     let hb = hash_cell([col, row, face], seed ^ 0x59);
     let h = fp.keep(0.01) * plane::joint(d, 0.004, 0.003, 0.004)
-        + 0.0015 * fp.fbm(p, 0.06, 3, 0.55, seed ^ 0x5A) * smoothstep(0.004, 0.01, d);
+        + 0.0015 * fp.relief().fbm(p, 0.06, 3, 0.55, seed ^ 0x5A) * smoothstep(0.004, 0.01, d);
     if !color {
         return Pat { c: base, r: 1.0, h };
     }

@@ -138,6 +138,10 @@ pub struct TexSample {
 pub(crate) struct Pat {
     pub c: Vec3,
     pub r: f32,
+    /// The height under the footprint's relief version
+    /// ([`Footprint::relief`]: faded terms leave no residual grain),
+    /// whichever footprint the colour is filtered by, so the colour pass
+    /// gives the relief's height at its point.
     pub h: f32,
 }
 
@@ -242,8 +246,8 @@ impl Texture {
     /// ([`Texture::bump_normal`]) at once, filtered by a footprint
     /// `footprint_m` metres wide ([`Texture::sample_filtered`]; relief
     /// finer than the footprint flattens the same way): the pattern's
-    /// colour pass gives the height at `p_world`, so the gradient needs two
-    /// more height passes.
+    /// colour pass gives the relief's height at `p_world` (`Pat::h`), so
+    /// the gradient needs two more height passes.
     pub fn shade(
         &self,
         base: Vec3,
@@ -260,15 +264,7 @@ impl Texture {
             roughness: pat.r.max(0.0),
         };
         let normal = if self.has_relief() {
-            // The relief without the colour's residual grain: a height pass
-            // of its own unless nothing is filtered (then the colour pass's
-            // height is the same).
-            let h0 = if f.w > 0.0 {
-                self.pat(Vec3::ONE, p, n_geo, f.relief(), false).h
-            } else {
-                pat.h
-            };
-            self.tilt(p, n_geo, n_shading, f.relief(), h0)
+            self.tilt(p, n_geo, n_shading, f.relief(), pat.h)
         } else {
             n_shading
         };
@@ -314,3 +310,6 @@ pub(crate) fn smoothstep(e0: f32, e1: f32, x: f32) -> f32 {
     let t = ((x - e0) / (e1 - e0)).clamp(0.0, 1.0);
     t * t * (3.0 - 2.0 * t)
 }
+
+#[cfg(test)]
+mod tests;

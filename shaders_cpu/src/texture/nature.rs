@@ -61,8 +61,8 @@ pub fn bark(base: Vec3, p: DVec3, seed: u32, fp: Footprint, color: bool) -> Pat 
     } else {
         0.68
     };
-    let fine = fp.fbm(p, 0.01, 2, 0.6, seed ^ 0xE2);
-    let h = 0.008 * (ridge - 0.5) + 0.001 * fine;
+    let (fine_h, fine) = fp.relief_and_colour(0.005, |f| f.fbm(p, 0.01, 2, 0.6, seed ^ 0xE2));
+    let h = 0.008 * (ridge - 0.5) + 0.001 * fine_h;
     if !color {
         return Pat { c: base, r: 1.0, h };
     }
@@ -89,7 +89,7 @@ pub fn leaves(base: Vec3, p: DVec3, seed: u32, fp: Footprint, color: bool) -> Pa
     } else {
         VEIN_SHARE
     };
-    let h = 0.0003 * k_vein * vein + 0.0001 * fp.value_noise(p, 0.003, seed ^ 0xC2);
+    let h = 0.0003 * k_vein * vein + 0.0001 * fp.relief().value_noise(p, 0.003, seed ^ 0xC2);
     if !color {
         return Pat { c: base, r: 1.0, h };
     }
@@ -104,8 +104,9 @@ pub fn leaves(base: Vec3, p: DVec3, seed: u32, fp: Footprint, color: bool) -> Pa
 /// Foliage from afar: per-leaf (5 cm cells) brightness and yellow–blue
 /// hue, clumps (30 cm … 8 cm) and veins (8 mm … 2 mm); 2 mm leaf relief.
 pub fn foliage(base: Vec3, p: DVec3, seed: u32, fp: Footprint, color: bool) -> Pat {
-    let h = 0.002 * fp.value_noise(p, 0.05, seed ^ 0xAD)
-        + 0.0003 * fp.value_noise(p, 0.008, seed ^ 0xAE);
+    let fr = fp.relief();
+    let h = 0.002 * fr.value_noise(p, 0.05, seed ^ 0xAD)
+        + 0.0003 * fr.value_noise(p, 0.008, seed ^ 0xAE);
     if !color {
         return Pat { c: base, r: 1.0, h };
     }
@@ -122,8 +123,9 @@ pub fn foliage(base: Vec3, p: DVec3, seed: u32, fp: Footprint, color: bool) -> P
 /// Grass: blades (5 mm cells of ±35 % brightness, hue), tufts (4 cm
 /// relief of 4 mm), clumps (25 cm) and dry yellow patches (1.5 m, ~15 %).
 pub fn grass(base: Vec3, p: DVec3, seed: u32, fp: Footprint, color: bool) -> Pat {
-    let h = 0.004 * fp.fbm(p, 0.04, 2, 0.5, seed ^ 0x61)
-        + 0.001 * fp.value_noise(p, 0.005, seed ^ 0x62);
+    let fr = fp.relief();
+    let h = 0.004 * fr.fbm(p, 0.04, 2, 0.5, seed ^ 0x61)
+        + 0.001 * fr.value_noise(p, 0.005, seed ^ 0x62);
     if !color {
         return Pat { c: base, r: 1.0, h };
     }
@@ -152,7 +154,7 @@ pub fn soil(base: Vec3, p: DVec3, seed: u32, fp: Footprint, color: bool) -> Pat 
     } else {
         0.0
     };
-    let h = 0.005 * fp.fbm(p, 0.03, 3, 0.5, seed ^ 0x53) + bump;
+    let h = 0.005 * fp.relief().fbm(p, 0.03, 3, 0.5, seed ^ 0x53) + bump;
     if !color {
         return Pat { c: base, r: 1.0, h };
     }

@@ -107,13 +107,20 @@ pub fn asphalt(base: Vec3, p: DVec3, n: Vec3, seed: u32, fp: Footprint, color: b
         };
         // The wobble's noise only near a seam (or a footprint's width).
         if seam(0.0) < 0.07 + fp.w as f64 {
-            let wob = 0.03 * fp.value_noise(p, 0.7, seed ^ 0x55) as f64;
-            let sx = plane::edge_dist(plane::cell(p.x + wob, 9.7, 3.1).1, 9.7);
-            let sy = plane::edge_dist(plane::cell(p.y + wob, 13.3, 5.3).1, 13.3);
-            let band =
-                |d: f32, period: f32| fp.band(1.0 - smoothstep(0.02, 0.03, d), d, 0.025, period);
-            let tar = 1.0 - (1.0 - band(sx, 9.7)) * (1.0 - band(sy, 13.3));
+            let tar_at = |wob: f64| {
+                let sx = plane::edge_dist(plane::cell(p.x + wob, 9.7, 3.1).1, 9.7);
+                let sy = plane::edge_dist(plane::cell(p.y + wob, 13.3, 5.3).1, 13.3);
+                let band = |d: f32, period: f32| {
+                    fp.band(1.0 - smoothstep(0.02, 0.03, d), d, 0.025, period)
+                };
+                1.0 - (1.0 - band(sx, 9.7)) * (1.0 - band(sy, 13.3))
+            };
+            // The relief's wobble has no residual grain (see `Pat::h`).
+            let (wob_h, wob_c) =
+                fp.relief_and_colour(0.7, |f| 0.03 * f.value_noise(p, 0.7, seed ^ 0x55) as f64);
+            let tar = tar_at(wob_h);
             h = h * (1.0 - tar) + 0.0004 * tar;
+            let tar = if wob_c == wob_h { tar } else { tar_at(wob_c) };
             f *= 1.0 - 0.55 * tar;
         }
         // Cracks: zero lines of a 90 cm noise, ~1 cm wide, 4 mm deep, in
@@ -143,14 +150,18 @@ pub fn road_paint(base: Vec3, p: DVec3, _n: Vec3, seed: u32, fp: Footprint, colo
     // than a patch, their area share (fading the field itself would lose
     // the peaks, and the paint would look new from afar).
     const WORN_SHARE: f32 = 0.094;
-    let worn = if fp.keep(0.05) > 0.0 {
-        let wear =
-            fp.fbm(p, 0.25, 3, 0.55, seed ^ 0x88) + 0.4 * fp.fbm(p, 0.02, 2, 0.6, seed ^ 0x89);
-        fp.fade(0.05, smoothstep(0.3, 0.45, wear), WORN_SHARE)
-    } else {
-        WORN_SHARE
+    let worn_at = |fp: Footprint| {
+        if fp.keep(0.05) > 0.0 {
+            let wear =
+                fp.fbm(p, 0.25, 3, 0.55, seed ^ 0x88) + 0.4 * fp.fbm(p, 0.02, 2, 0.6, seed ^ 0x89);
+            fp.fade(0.05, smoothstep(0.3, 0.45, wear), WORN_SHARE)
+        } else {
+            WORN_SHARE
+        }
     };
-    let h = aggregate_height(p, seed, fp) + 0.0003 * fp.keep(0.03) * (1.0 - worn);
+    // The finest octave is 1 cm; the relief's wear has no residual grain.
+    let (worn_h, worn) = fp.relief_and_colour(0.01, worn_at);
+    let h = aggregate_height(p, seed, fp) + 0.0003 * fp.keep(0.03) * (1.0 - worn_h);
     let c = if color {
         let grain = 1.0 + 0.08 * fp.cell_noise(p, 0.003, seed ^ 0x8A);
         let dirt = 1.0 + 0.06 * fp.fbm(p, 0.5, 2, 0.5, seed ^ 0x8B);
@@ -174,7 +185,7 @@ pub fn paving(base: Vec3, p: DVec3, n: Vec3, seed: u32, fp: Footprint, color: bo
         0.003 * (signed_unit(hs) * (ou - 0.3) as f32 + rehash_signed(hs) * (ov - 0.3) as f32);
     let h = fp.keep(SLAB) * tilt
         + fp.keep(0.008) * plane::joint(d, 0.003, 0.002, 0.004)
-        + 0.0002 * fp.value_noise(p, 0.003, seed ^ 0x9B);
+        + 0.0002 * fp.relief().value_noise(p, 0.003, seed ^ 0x9B);
     let c = if color {
         let slab = 1.0 + 0.08 * fp.keep(SLAB) * signed_unit(rehash(hs, 1));
         let grain = (1.0 + 0.1 * fp.fbm(p, 0.02, 2, 0.6, seed ^ 0x9C))
@@ -211,7 +222,7 @@ pub fn kerb(base: Vec3, p: DVec3, n: Vec3, seed: u32, fp: Footprint, color: bool
     let cv = if face == 0 { 0 } else { cv };
     let hs = hash_cell([cu, cv, 0x4B], seed);
     let h = fp.keep(0.006) * plane::joint(d, 0.0025, 0.002, 0.003)
-        + 0.0004 * fp.fbm(p, 0.01, 2, 0.6, seed ^ 0xAB);
+        + 0.0004 * fp.relief().fbm(p, 0.01, 2, 0.6, seed ^ 0xAB);
     let c = if color {
         let stone = 1.0 + 0.06 * fp.keep(STONE) * signed_unit(hs);
         let grain = (1.0 + 0.1 * fp.fbm(p, 0.03, 3, 0.6, seed ^ 0xAC))

@@ -10,8 +10,9 @@ use super::{plane, smoothstep, Footprint, Pat};
 /// Plaster: trowel mottling (40 cm … 10 cm), grain (1 cm … 2 mm), relief
 /// of trowel ridges (0.5 mm at 5 cm) and sand (0.15 mm).
 pub fn plaster(base: Vec3, p: DVec3, seed: u32, fp: Footprint, color: bool) -> Pat {
-    let h = 0.0005 * fp.value_noise(p, 0.05, seed ^ 0x71)
-        + 0.00015 * fp.value_noise(p, 0.002, seed ^ 0x72);
+    let fr = fp.relief();
+    let h = 0.0005 * fr.value_noise(p, 0.05, seed ^ 0x71)
+        + 0.00015 * fr.value_noise(p, 0.002, seed ^ 0x72);
     let c = if color {
         let trowel = 1.0 + 0.07 * fp.fbm(p, 0.4, 3, 0.5, seed ^ 0x77);
         let grain = 1.0 + 0.06 * fp.fbm(p, 0.01, 3, 0.7, seed ^ 0x88);
@@ -34,7 +35,7 @@ pub fn concrete(base: Vec3, p: DVec3, seed: u32, fp: Footprint, color: bool) -> 
     } else {
         0.0
     };
-    let h = pit + 0.0004 * fp.fbm(p, 0.02, 2, 0.6, seed ^ 0x4D);
+    let h = pit + 0.0004 * fp.relief().fbm(p, 0.02, 2, 0.6, seed ^ 0x4D);
     let c = if color {
         let mottle = 1.0 + 0.14 * fp.fbm(p, 0.6, 4, 0.55, seed ^ 0x44);
         let aggregate = 1.0 + 0.1 * fp.fbm(p, 0.02, 3, 0.7, seed ^ 0x55);
@@ -72,7 +73,7 @@ pub fn metal_painted(base: Vec3, p: DVec3, seed: u32, fp: Footprint, color: bool
     } else {
         CHIP_SHARE
     };
-    let h = 0.00005 * fp.value_noise(p, 0.003, seed ^ 0x92) - 0.0001 * chip;
+    let h = 0.00005 * fp.relief().value_noise(p, 0.003, seed ^ 0x92) - 0.0001 * chip;
     let c = if color {
         let rust = Vec3::new(0.22, 0.1, 0.05) * (1.0 + 0.2 * fp.cell_noise(p, 0.002, seed ^ 0x93));
         let paint = base * (1.0 + 0.04 * fp.fbm(p, 0.5, 2, 0.5, seed ^ 0x94));
@@ -93,7 +94,8 @@ pub fn metal_painted(base: Vec3, p: DVec3, seed: u32, fp: Footprint, color: bool
 pub fn metal_brushed(base: Vec3, p: DVec3, n: Vec3, seed: u32, fp: Footprint, color: bool) -> Pat {
     let (u, v, face) = plane::coords(p, n);
     let q = DVec3::new(u / 2500.0, v, face as f64);
-    let streak = fp.value_noise(q, 0.0002, seed ^ 0xB1);
+    let (streak_h, streak) =
+        fp.relief_and_colour(0.0002, |f| f.value_noise(q, 0.0002, seed ^ 0xB1));
     let c = if color {
         base * (1.0 + 0.03 * fp.fbm(p, 0.3, 2, 0.5, seed ^ 0xB2))
     } else {
@@ -102,6 +104,6 @@ pub fn metal_brushed(base: Vec3, p: DVec3, n: Vec3, seed: u32, fp: Footprint, co
     Pat {
         c,
         r: 1.0 + 0.4 * streak,
-        h: 0.000002 * streak,
+        h: 0.000002 * streak_h,
     }
 }

@@ -116,6 +116,9 @@ pub(super) struct VolState {
     pub lobe_wo: Option<Vec3>,
     /// The denoiser's split of the sample.
     pub first: FirstEvent,
+    /// The boost the deep roulette has given the path
+    /// (`Strategies::deep_max_boost`).
+    deep_boost: f32,
 }
 
 impl VolState {
@@ -128,6 +131,7 @@ impl VolState {
             sun_lobe,
             lobe_wo: None,
             first: FirstEvent::default(),
+            deep_boost: 1.0,
         }
     }
 
@@ -325,11 +329,10 @@ impl<A: Accel> PathContext<'_, A> {
             vs.lobe_wo = Some(wo);
         }
         let survives = if vs.strategies.albedo_roulette {
-            let keep = if st.bounces > DEEP_FROM {
-                vs.strategies.deep_survival
-            } else {
-                1.0
-            };
+            let q = vs.strategies.deep_survival;
+            let deep = st.bounces > DEEP_FROM && vs.deep_boost / q <= vs.strategies.deep_max_boost;
+            let keep = if deep { q } else { 1.0 };
+            vs.deep_boost /= keep;
             st.survives_albedo_roulette(m, u.u_rr, keep)
         } else {
             st.survives_roulette(u.u_rr)

@@ -283,15 +283,20 @@ fn deep_sky_and_lobe_roulettes_keep_the_mean() {
 #[test]
 fn deep_roulette_keeps_the_mean_for_fewer_rays() {
     // Collisions after the first scattering event survive half the time
-    // (divided by 1/2) against never rouletted (the default): the same
+    // (divided by 1/2), however often, against never rouletted: the same
     // expected radiance in the fog slab, under sun and sky, for fewer rays.
     let n = 16384;
     let scene = format!("{SCENE}{SKY}");
-    let (all, rays_all) = samples_in(&scene, Strategies::default(), &DIRS, n);
+    let never = Strategies {
+        deep_survival: 1.0,
+        ..Strategies::default()
+    };
+    let (all, rays_all) = samples_in(&scene, never, &DIRS, n);
     let (rr, rays_rr) = samples_in(
         &scene,
         Strategies {
             deep_survival: 0.5,
+            deep_max_boost: f32::INFINITY,
             ..Strategies::default()
         },
         &DIRS,
@@ -302,6 +307,38 @@ fn deep_roulette_keeps_the_mean_for_fewer_rays() {
     assert!(
         (rays_rr as f64) < 0.9 * rays_all as f64,
         "{rays_rr} vs {rays_all}"
+    );
+}
+
+#[test]
+fn deep_roulette_with_a_bounded_boost_keeps_the_mean() {
+    // The deep roulette at 1/2 stopped once it has doubled a path's
+    // throughput (one survival: a survivor weighs at most twice its
+    // neighbours) against never rouletted (the default): the same expected
+    // radiance, for fewer rays than never, more than without the bound.
+    let n = 16384;
+    let scene = format!("{SCENE}{SKY}");
+    let deep = |max_boost: f32| Strategies {
+        deep_survival: 0.5,
+        deep_max_boost: max_boost,
+        ..Strategies::default()
+    };
+    let never = Strategies {
+        deep_survival: 1.0,
+        ..Strategies::default()
+    };
+    let (all, rays_all) = samples_in(&scene, never, &DIRS, n);
+    let (bounded, rays_bounded) = samples_in(&scene, deep(2.0), &DIRS, n);
+    let (_, rays_unbounded) = samples_in(&scene, deep(f32::INFINITY), &DIRS, n);
+    assert_same_means(&DIRS, ("never", &all), ("bounded roulette", &bounded));
+    eprintln!("rays: never {rays_all}, bounded {rays_bounded}, unbounded {rays_unbounded}");
+    assert!(
+        (rays_bounded as f64) < 0.97 * rays_all as f64,
+        "{rays_bounded} vs {rays_all}"
+    );
+    assert!(
+        (rays_bounded as f64) > 1.02 * rays_unbounded as f64,
+        "{rays_bounded} vs {rays_unbounded}"
     );
 }
 
