@@ -478,10 +478,11 @@ fn native_frame_written_by_the_binary_reads_back_as_the_render() {
         Some(r.out.exposure_scale)
     );
 
-    // Nothing else was written: left 5 maps + rgb + rgb_hdr, per baseline 4
-    // maps + rgb + rgb_hdr, one camera file.
+    // Nothing else was written: left 5 maps + rgb + rgb_hdr + the two
+    // denoiser AOVs (albedo, aov_normal) that come with --hdr, per baseline
+    // 4 maps + rgb + rgb_hdr, one camera file.
     let count = walk_files(&out_dir);
-    assert_eq!(count, 5 + 2 + 3 * (4 + 2) + 1);
+    assert_eq!(count, 5 + 2 + 2 + 3 * (4 + 2) + 1);
 }
 
 /// Number of regular files below `dir`.

@@ -166,7 +166,9 @@ fn every_town_file_loads_and_every_config_validates() {
                     "{name}"
                 );
                 assert!(content.prototypes > 0, "{name}: nothing instanced");
-                assert!(content.unique_triangles < 2_000_000, "{name}: {content:?}");
+                // Parked cars draw (model, paint) pairs the moving traffic
+                // does not: town05 holds 2.09 M unique triangles with them.
+                assert!(content.unique_triangles < 2_500_000, "{name}: {content:?}");
             }
         }
     }
