@@ -19,6 +19,7 @@ pub mod coverage;
 mod ego;
 mod junction;
 mod profile;
+mod recent;
 mod sim;
 mod spawn;
 

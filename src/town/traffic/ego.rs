@@ -27,6 +27,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::sync::{Arc, Mutex, OnceLock};
 
 use super::junction::{clear_time_s, CLEAR_RESERVE_S};
+use super::recent::Recent;
 use super::sim::{BLINK_HZ, SIGNAL_AHEAD_M};
 use super::{others, Plan, VehicleLamps, VehiclePose, A_LAT_MPS2, A_LON_MPS2, LEVEL_GAP_M};
 use crate::town::desc::TownDesc;
@@ -99,8 +100,7 @@ static DRIVES: OnceLock<Drives> = OnceLock::new();
 
 /// What one chunk removes: vehicle ids and pedestrian ids.
 type Removal = (Arc<BTreeSet<u32>>, Arc<BTreeSet<u32>>);
-type Removals = Mutex<Vec<((String, u64, u64, u64), Arc<Mutex<Option<Removal>>>)>>;
-static REMOVALS: OnceLock<Removals> = OnceLock::new();
+static REMOVALS: Recent<(String, u64, u64, u64), Removal> = Recent::new(KEEP_CHUNKS);
 
 /// The drive's motion, moved on to frame `upto` at least, locked.
 fn motion(desc: &TownDesc, seed: u64, drive: u64, upto: u64) -> Arc<Mutex<Drive>> {
@@ -185,21 +185,7 @@ pub fn ego_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> EgoFrame {
     let (pose, _) = ego_motion(desc, seed, drive, frame);
     let chunk = frame / CHUNK_FRAMES;
     let key = (format!("{desc:?}"), seed, drive, chunk);
-    let entry = {
-        let mut c = REMOVALS
-            .get_or_init(Default::default)
-            .lock()
-            .expect("removals");
-        let e = match c.iter().position(|(k, _)| *k == key) {
-            Some(i) => c.remove(i).1,
-            None => Arc::new(Mutex::new(None)),
-        };
-        c.push((key, e.clone()));
-        if c.len() > KEEP_CHUNKS {
-            c.remove(0);
-        }
-        e
-    };
+    let entry = REMOVALS.slot(key);
     let mut r = entry.lock().expect("removal");
     let (removed, removed_pedestrians) = r
         .get_or_insert_with(|| Ctx::new(desc, seed, drive).removal(chunk))

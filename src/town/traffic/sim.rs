@@ -31,9 +31,10 @@
 //! asked first, alone, in sequence or on any thread.
 
 use std::collections::{BTreeMap, HashMap};
-use std::sync::{Arc, Mutex, OnceLock};
+use std::sync::Arc;
 
 use super::junction::{self, JState};
+use super::recent::Recent;
 use super::{closed, ego, Plan, VehicleLamps, VehiclePose, A_LAT_MPS2, A_LON_MPS2, LEVEL_GAP_M};
 use crate::town::desc::TownDesc;
 use crate::town::layout::Layout;
@@ -113,28 +114,15 @@ impl Agent {
 /// One frame's vehicles.
 type Frame = Arc<Vec<VehiclePose>>;
 
-/// One chunk's frames, filled once.
-type Chunk = Arc<Mutex<Option<Arc<Vec<Frame>>>>>;
-type Sims = Mutex<Vec<((String, u64, u64, u64), Chunk)>>;
-static SIMS: OnceLock<Sims> = OnceLock::new();
+/// The latest chunks' frames, per (description, seed, drive, chunk).
+static SIMS: Recent<(String, u64, u64, u64), Arc<Vec<Frame>>> = Recent::new(KEEP_CHUNKS);
 
 /// The background vehicles of `frame` of drive `drive` (level grid).
 pub fn vehicles_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> Frame {
     let chunk = frame / ego::CHUNK_FRAMES;
     let key = (format!("{desc:?}"), seed, drive, chunk);
-    let entry = {
-        let mut c = SIMS.get_or_init(Default::default).lock().expect("sims");
-        let e = match c.iter().position(|(k, _)| *k == key) {
-            Some(i) => c.remove(i).1,
-            None => Arc::new(Mutex::new(None)),
-        };
-        c.push((key, e.clone()));
-        if c.len() > KEEP_CHUNKS {
-            c.remove(0);
-        }
-        e
-    };
-    let frames = entry
+    let frames = SIMS
+        .slot(key)
         .lock()
         .expect("sim chunk")
         .get_or_insert_with(|| Arc::new(simulate(desc, seed, drive, chunk)))
