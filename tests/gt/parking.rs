@@ -8,7 +8,7 @@
 //! behind (the tracer of `vegetation`).
 
 use crate::common;
-use crate::traced::{check_views, H, W};
+use crate::traced::{check_views, placed_triangles, H, W};
 
 use common::towns::town;
 use common::{camera_block, render, scene_from_toml, GREY_UNDER_SKY};
@@ -31,23 +31,7 @@ fn placed(prefab: &PrefabDesc, o: &ObjectDesc) -> Vec<[DVec3; 3]> {
     let (s, c) = h.sin_cos();
     let t = DVec3::from_array(o.transform.translate.unwrap());
     let place = |p: [f64; 3]| DVec3::new(c * p[0] - s * p[1], s * p[0] + c * p[1], p[2]) + t;
-    let mut out = Vec::new();
-    for m in &prefab.objects {
-        let ShapeDesc::Mesh {
-            positions,
-            triangles,
-            ..
-        } = &m.shape
-        else {
-            panic!("vehicle prefabs are meshes");
-        };
-        out.extend(
-            triangles
-                .iter()
-                .map(|t| t.map(|k| place(positions[k as usize]))),
-        );
-    }
-    out
+    placed_triangles(&prefab.objects, place)
 }
 
 #[test]

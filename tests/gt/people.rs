@@ -8,12 +8,11 @@
 //! way (the contract's edge tie); such pixels must stay rare.
 
 use crate::common;
-use crate::traced::{check_views, dir, H, W};
+use crate::traced::{check_views, dir, placed_triangles, H, W};
 
 use common::{camera_block, render, scene_from_toml, GREY_UNDER_SKY};
 use glam::DVec3;
 use parallax::accel::Backend;
-use parallax::scene::desc::ShapeDesc;
 use parallax::scene::serialize_scene;
 use parallax::town::parts::{class, instance};
 use parallax::town::people::{self, person_prefab, prefab_name};
@@ -34,21 +33,7 @@ fn people_triangles() -> Vec<[DVec3; 3]> {
         let place = |p: [f64; 3]| {
             DVec3::new(c * p[0] - s * p[1], s * p[0] + c * p[1], p[2]) + DVec3::from_array(at)
         };
-        for o in person_prefab(v, Some(ph)).objects {
-            let ShapeDesc::Mesh {
-                positions,
-                triangles,
-                ..
-            } = &o.shape
-            else {
-                panic!("a person is meshes");
-            };
-            out.extend(
-                triangles
-                    .iter()
-                    .map(|t| t.map(|k| place(positions[k as usize]))),
-            );
-        }
+        out.extend(placed_triangles(&person_prefab(v, Some(ph)).objects, place));
     }
     out
 }

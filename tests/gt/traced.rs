@@ -6,9 +6,35 @@
 
 use glam::DVec3;
 use parallax::render::FrameOutput;
+use parallax::scene::desc::{ObjectDesc, ShapeDesc};
 
 pub(super) const W: u32 = 96;
 pub(super) const H: u32 = 54;
+/// The triangles of a prefab's mesh objects, each corner placed by `place`
+/// (a turn about z and a shift, written out by each test).
+pub(super) fn placed_triangles(
+    objects: &[ObjectDesc],
+    place: impl Fn([f64; 3]) -> DVec3,
+) -> Vec<[DVec3; 3]> {
+    let mut out = Vec::new();
+    for o in objects {
+        let ShapeDesc::Mesh {
+            positions,
+            triangles,
+            ..
+        } = &o.shape
+        else {
+            panic!("prefabs of generated objects are meshes");
+        };
+        out.extend(
+            triangles
+                .iter()
+                .map(|t| t.map(|k| place(positions[k as usize]))),
+        );
+    }
+    out
+}
+
 /// Ray-to-edge distance below which a pixel is an edge tie, metres.
 const TIE_M: f64 = 1e-5;
 
