@@ -11,7 +11,7 @@ into the cache directory (plain path tracing: --no-filter, sensor noise off) and
 reused. The test image is rendered with the binary's defaults (sensor noise off,
 --baselines 10) plus --extra. Prints one JSON line: psnr_db, mean level error,
 the bias of the mean light (mean_light_bias: linear display light, a share of
-the reference's mean), seconds, and the reference's own noise estimate when two references exist
+the reference's mean), the ratio of the two images' auto exposures, seconds, and the reference's own noise estimate when two references exist
 (--ref-pair renders a second reference with another sample seed: the PSNR
 between the two is about 3 dB below each one's PSNR against the truth).
 """
@@ -55,6 +55,12 @@ def left_png(out, frame):
     return os.path.join(out, "left", "rgb", f"{frame:06d}.png")
 
 
+def exposure_scale(out, frame):
+    """The frame's auto exposure, from the camera file of a render."""
+    with open(os.path.join(out, "cameras", f"{frame:06d}.json")) as f:
+        return json.load(f)["exposure_scale"]
+
+
 def main():
     p = argparse.ArgumentParser()
     p.add_argument("--town", default="town03")
@@ -96,6 +102,10 @@ def main():
            # Light gained (+) or lost (-, e.g. fireflies dropped) as a share
            # of the reference's mean, in linear display light.
            "mean_light_bias": round(float(np.mean(linear(img)) / np.mean(linear(ref)) - 1.0), 4),
+           # Auto exposure of the test image over the reference's: a noisy
+           # image exposed differently is off everywhere, not only noisy.
+           "exposure_ratio": round(exposure_scale(out, a.frame)
+                                   / exposure_scale(os.path.join(a.cache, f"{key}_0"), a.frame), 4),
            "seconds": round(secs, 2), "ref_spp": a.ref_spp * len(refs)}
     if len(refs) == 2:
         res["ref_pair_psnr_db"] = round(psnr(refs[0], refs[1]), 2)

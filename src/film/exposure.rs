@@ -37,7 +37,7 @@ pub fn exposure_ev(scale: f32) -> f32 {
 /// 1.0 (EV 0) when fewer than 1% of the finite pixels have positive luminance
 /// (black frames, or black with a few fireflies). Non-finite pixels are
 /// ignored; negative luminance counts as 0. Fireflies barely move the result:
-/// they enter through a log average and do not reach the 99th percentile.
+/// each pixel enters capped at the 99th percentile, which a few cannot move.
 pub fn auto_exposure(film: &Film) -> f32 {
     match log_average_luminance(film) {
         Some(log_average) => {
@@ -49,8 +49,24 @@ pub fn auto_exposure(film: &Film) -> f32 {
     }
 }
 
-/// Reinhard's log-average luminance L̄ of `film` (floored as described above),
-/// or `None` when the film is (almost) black.
+/// The log average runs over the means of square blocks of pixels, this many
+/// to the image height (blocks of 8 pixels at 180 rows, 38 at 900): a pixel's
+/// noise lowers its logarithm on average (Jensen's inequality), so a per-pixel
+/// log average exposes a noisy render brighter than its converged self; a
+/// block's mean has a fraction of that noise. Sizing blocks by the height
+/// keeps the exposure of a frame the same at every resolution.
+pub const EXPOSURE_BLOCKS_PER_HEIGHT: usize = 24;
+
+/// Side in pixels of the exposure's blocks for a film `height` pixels tall.
+pub fn exposure_block_side(height: usize) -> usize {
+    height.div_ceil(EXPOSURE_BLOCKS_PER_HEIGHT).max(1)
+}
+
+/// Reinhard's log-average luminance L̄ of `film` over block means (see
+/// [`EXPOSURE_BLOCKS_PER_HEIGHT`]), each block weighted by its finite pixels;
+/// `None` when the film is (almost) black. Pixels enter capped at the 99th
+/// percentile: a block's mean would otherwise carry a firefly's whole weight.
+/// The floor is relative to the same percentile, as described above.
 pub fn log_average_luminance(film: &Film) -> Option<f64> {
     let mut lum: Vec<f32> = film
         .rgb
@@ -62,17 +78,47 @@ pub fn log_average_luminance(film: &Film) -> Option<f64> {
     if lum.is_empty() {
         return None;
     }
-    // 99th percentile by selection, O(n): the bright reference for the floor.
+    // 99th percentile by selection, O(n): the bright reference.
     let k = ((lum.len() - 1) as f64 * 0.99).round() as usize;
     let (_, &mut reference, _) = lum.select_nth_unstable_by(k, f32::total_cmp);
     if reference <= 0.0 {
         return None;
     }
     let floor = reference as f64 * EXPOSURE_FLOOR_FRACTION;
-    // Sum in f64: over 1.44 M terms the rounding stays far below f32 precision,
-    // so a uniform film maps to 0.18 to f32 precision.
-    let sum_ln: f64 = lum.iter().map(|&l| (l as f64).max(floor).ln()).sum();
-    Some((sum_ln / lum.len() as f64).exp())
+    // Sums in f64: over 1.44 M terms the rounding stays far below f32
+    // precision, so a uniform film maps to 0.18 to f32 precision.
+    let (mut sum_ln, mut count) = (0.0f64, 0usize);
+    for (mean, n) in block_means(film, reference) {
+        sum_ln += n as f64 * mean.max(floor).ln();
+        count += n;
+    }
+    Some((sum_ln / count as f64).exp())
+}
+
+/// (mean luminance, finite pixel count) of each block holding a finite
+/// pixel; luminance clamped to [0, `cap`].
+fn block_means(film: &Film, cap: f32) -> Vec<(f64, usize)> {
+    let side = exposure_block_side(film.height);
+    let mut blocks = Vec::new();
+    for j0 in (0..film.height).step_by(side) {
+        for i0 in (0..film.width).step_by(side) {
+            let (mut sum, mut n) = (0.0f64, 0usize);
+            for j in j0..(j0 + side).min(film.height) {
+                let row = &film.rgb[j * film.width..(j + 1) * film.width];
+                for &rgb in &row[i0..(i0 + side).min(film.width)] {
+                    let l = luminance_rec709(rgb);
+                    if l.is_finite() {
+                        sum += l.clamp(0.0, cap) as f64;
+                        n += 1;
+                    }
+                }
+            }
+            if n > 0 {
+                blocks.push((sum / n as f64, n));
+            }
+        }
+    }
+    blocks
 }
 
 #[cfg(test)]

@@ -16,8 +16,8 @@ mod tone;
 
 pub use adaptation::{adaptation_factor, frame_exposure, CD_M2_PER_UNIT, DAYLIGHT_CD_M2};
 pub use exposure::{
-    auto_exposure, exposure_ev, log_average_luminance, luminance_rec709, EXPOSURE_EV_MAX,
-    EXPOSURE_FLOOR_FRACTION, MIDDLE_GREY,
+    auto_exposure, exposure_block_side, exposure_ev, log_average_luminance, luminance_rec709,
+    EXPOSURE_BLOCKS_PER_HEIGHT, EXPOSURE_EV_MAX, EXPOSURE_FLOOR_FRACTION, MIDDLE_GREY,
 };
 pub use noise::{apply_sensor_noise, NoiseKey, SensorNoise, BASE_ISO};
 pub use tone::{quantize_u8, srgb_oetf, tone_curve_aces, tonemap_to_srgb8};
