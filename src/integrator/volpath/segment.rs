@@ -21,6 +21,10 @@ use super::surf_fog::SurfFog;
 /// number decides the split's roulette (`Strategies::split_per_tr`).
 const SPLIT_SET: u32 = 5;
 
+/// The segment's 4D set whose first number decides the local lights' NEE
+/// roulette (`NeeRoulette`).
+const LOCAL_SET: u32 = 6;
+
 /// A segment's samples, drawn at its bounce's fixed dimensions.
 pub(super) struct SegmentSamples {
     /// Free flight (and the in-scattering point).
@@ -39,8 +43,10 @@ pub(super) struct SegmentSamples {
     u_light: Vec2,
     /// One 2D sample per distant light.
     u_distant: [Vec2; 4],
-    /// Roulette of the sky's NEE at collisions (`Strategies::sky_nee_deep`).
+    /// Roulette of the sky's NEE (`NeeRoulette`).
     u_sky: f32,
+    /// Roulette of the local lights' NEE (`NeeRoulette`).
+    u_local: f32,
 }
 
 impl SegmentSamples {
@@ -57,6 +63,8 @@ impl SegmentSamples {
         let [u_sel, u_ex, u_ey, u_sky] = stream.next_4d();
         let [a0, a1, a2, a3] = stream.next_4d();
         let [b0, b1, b2, b3] = stream.next_4d();
+        stream.set_dimension(VOL_DIMS + bounces * VOL_DIMS_PER_BOUNCE + LOCAL_SET);
+        let [u_local, ..] = stream.next_4d();
         SegmentSamples {
             u_ff,
             u_phase: Vec2::new(u_ph0, u_ph1),
@@ -73,6 +81,7 @@ impl SegmentSamples {
                 Vec2::new(b2, b3),
             ],
             u_sky,
+            u_local,
         }
     }
 }
@@ -226,41 +235,48 @@ impl<A: Accel> PathContext<'_, A> {
         rays: &mut u64,
     ) {
         let (p, wo) = (ray.at(seg.t), -ray.d);
+        // The roulettes of the sky's and the local lights' terms: on every
+        // segment by its opacity (`inscatter_per_opacity`,
+        // `local_per_opacity`), at collisions `sky_nee_deep` and
+        // `local_nee_deep`.
+        let s = vs.strategies;
+        let (keep_sky, keep_local) = if every {
+            let opacity = 1.0 - seg.tr_seg;
+            (
+                (s.inscatter_per_opacity * opacity).min(1.0),
+                (s.local_per_opacity * opacity).min(1.0),
+            )
+        } else {
+            (s.sky_nee_deep, s.local_nee_deep)
+        };
+        let rr = NeeRoulette {
+            u_sky: u.u_sky,
+            keep_sky,
+            u_local: u.u_local,
+            keep_local,
+        };
         // The in-scattering point's density per metre: σ_t·Tr / (1 − Tr)
         // drawn on every segment, σ_t·Tr as a collision.
         let p_point = if every { 1.0 - seg.tr_seg } else { 1.0 };
-        let c = self.equiangular(
-            m,
-            ray,
-            t_end,
-            p_point,
-            u.u_eq_sel,
-            u.u_eq,
-            u.u_eq_light,
-            rays,
-        );
+        // Equiangular sampling toward the local lights shares their
+        // roulette (on every segment, collided or not).
+        if let Some(scale) = rr.local() {
+            let c = self.equiangular(
+                m,
+                ray,
+                t_end,
+                p_point,
+                u.u_eq_sel,
+                u.u_eq,
+                u.u_eq_light,
+                rays,
+            );
+            vs.st.l += vs.st.beta * c * scale;
+        }
         let st = &mut vs.st;
-        st.l += st.beta * c;
         if !every && !seg.collided {
             return;
         }
-        // The roulette of the sky's (and at every-segment points the local
-        // lights') NEE: at collisions `sky_nee_deep`, at every-segment
-        // points by the segment's opacity (`inscatter_per_opacity`).
-        let rr = if every {
-            let keep = vs.strategies.inscatter_per_opacity * (1.0 - seg.tr_seg);
-            NeeRoulette {
-                u: u.u_sky,
-                keep: keep.min(1.0),
-                local: true,
-            }
-        } else {
-            NeeRoulette {
-                u: u.u_sky,
-                keep: vs.strategies.sky_nee_deep,
-                local: false,
-            }
-        };
         let lobe_w = vs.lobe_wo.zip(vs.sun_lobe).map(|(wo_prev, sl)| {
             (
                 sl.k,

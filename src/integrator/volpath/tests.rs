@@ -397,3 +397,35 @@ fn split_roulette_keeps_the_mean() {
     eprintln!("rays: always {rays_all}, roulette {rays_rr}");
     assert!(rays_rr < rays_all, "{rays_rr} vs {rays_all}");
 }
+
+#[test]
+fn local_light_roulette_keeps_the_mean_for_fewer_rays() {
+    // A point light in the fog slab beside sun and sky (about as bright
+    // as the sun where the rays pass): its in-scattering (NEE and
+    // equiangular sampling) under the default roulettes (the camera
+    // segment's at 0.25 per unit opacity, later segments' at 0.1, each
+    // divided by it) against always estimated: the same expected
+    // radiance, for fewer rays.
+    let lamp = "[[light]]\nkind = \"point\"\nposition = [12.0, 4.0, 3.0]\nintensity = [4000.0, 4000.0, 4000.0]\n";
+    let scene = format!("{SCENE}{SKY}{lamp}");
+    let n = 16384;
+    let (rr, rays_rr) = samples_in(&scene, Strategies::default(), &DIRS, n);
+    let always = Strategies {
+        local_per_opacity: f32::INFINITY,
+        local_nee_deep: 1.0,
+        ..Strategies::default()
+    };
+    let (all, rays_all) = samples_in(&scene, always, &DIRS, n);
+    // Without the lamp, to show it brings a large share of the light.
+    let (dark, _) = samples_in(&format!("{SCENE}{SKY}"), always, &DIRS, n);
+    assert_same_means(&DIRS, ("always", &all), ("roulette", &rr));
+    let total = |runs: &[Vec<f64>]| runs.iter().map(|r| mean_var(r).0).sum::<f64>();
+    let (lit, unlit) = (total(&all), total(&dark));
+    eprintln!("summed means: with the lamp {lit:.3}, without {unlit:.3}");
+    assert!(lit > 1.3 * unlit, "the lamp adds little: {lit} vs {unlit}");
+    eprintln!("rays: always {rays_all}, roulette {rays_rr}");
+    assert!(
+        (rays_rr as f64) < 0.9 * rays_all as f64,
+        "{rays_rr} vs {rays_all}"
+    );
+}
