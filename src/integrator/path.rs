@@ -191,6 +191,9 @@ pub(super) struct PathState {
     pub prev_delta: bool,
     /// The last scattering point.
     pub prev_p: Vec3,
+    /// Its normal as its light-tree choice took it (`LightSet::select_at`):
+    /// a reflecting surface's front geometric normal, else zero.
+    pub prev_n: Vec3,
     /// Scattering events so far.
     pub bounces: u32,
     /// Where the denoised part of a surface path splits off.
@@ -214,6 +217,7 @@ impl PathState {
             prev_pdf: 0.0,
             prev_delta: true,
             prev_p: o,
+            prev_n: Vec3::ZERO,
             bounces: 0,
             split: SplitVertex::default(),
             first_albedo: None,
@@ -497,9 +501,13 @@ impl<A: Accel> PathContext<'_, A> {
             let w = if st.prev_delta {
                 1.0
             } else {
-                let pdf_l =
-                    self.lights
-                        .pdf_triangle(hit.geom_id, hit.prim_id, st.prev_p, si.p, si.n_geo);
+                let pdf_l = self.lights.pdf_triangle(
+                    hit.geom_id,
+                    hit.prim_id,
+                    (st.prev_p, st.prev_n),
+                    si.p,
+                    si.n_geo,
+                );
                 power_heuristic(1.0, st.prev_pdf, 1.0, pdf_l)
             };
             st.l += st.beta * mat.le * w;
@@ -585,6 +593,11 @@ impl<A: Accel> PathContext<'_, A> {
         st.prev_delta = bs.delta;
         st.cone = st.cone.through_delta(dist);
         st.prev_p = si.p;
+        st.prev_n = if is_two_sided(&bsdf) {
+            si.n_geo
+        } else {
+            Vec3::ZERO
+        };
         st.bounces += 1;
         if !st.survives_roulette(u.u_rr) {
             return None;

@@ -512,6 +512,7 @@ impl PathState {
         self.prev_pdf = pdf;
         self.prev_delta = false;
         self.prev_p = p;
+        self.prev_n = Vec3::ZERO;
         self.bounces += 1;
     }
 

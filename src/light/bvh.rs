@@ -6,7 +6,11 @@
 //! θ_e of emission about any of those normals) and intensity `phi`. Traversal
 //! picks a child in proportion to an importance that bounds phi·cosθ'/d², so
 //! the selection pmf of any light is recomputable exactly by replaying the
-//! same arithmetic down its bit trail ([`LightBvh::pmf`]).
+//! same arithmetic down its bit trail ([`LightBvh::pmf`]). A receiver that
+//! reflects only (its normal given) also bounds its own cosine towards the
+//! node, cos max(0, θ_i − θ_b) (pbrt-v4's `LightBounds::Importance` with a
+//! normal): nodes wholly below its horizon get nothing, and lights that meet
+//! it at grazing angles less.
 //!
 //! Render space; `p` is the receiving point. The build is serial and uses
 //! only deterministic selects, so the same lights give the same tree.
@@ -39,7 +43,15 @@ impl LightBounds {
 
     /// Bound of the light's contribution at `p` (0: it cannot light `p`).
     pub fn importance(&self, p: Vec3) -> f32 {
-        Importance::new(self).at(p)
+        Importance::new(self).at(p, Vec3::ZERO)
+    }
+
+    /// [`LightBounds::importance`] at a receiver that reflects only, whose
+    /// unit normal `n` faces the side it reflects on (zero: no receiver
+    /// bound): also times the largest cosine between `n` and a direction
+    /// into the bounds.
+    pub fn importance_facing(&self, p: Vec3, n: Vec3) -> f32 {
+        Importance::new(self).at(p, n)
     }
 
     /// The bounds of both `self` and `o`.
@@ -71,6 +83,8 @@ impl LightBounds {
 struct Importance {
     /// Centre of the positions' box.
     pc: Vec3,
+    /// Half its extent.
+    half: Vec3,
     /// Floor on the squared distance (half the box's diagonal).
     d2_min: f32,
     /// Squared radius of the box's bounding sphere.
@@ -88,6 +102,7 @@ impl Importance {
         let diag = b.p_max - b.p_min;
         Importance {
             pc: b.centroid(),
+            half: 0.5 * diag,
             d2_min: 0.5 * diag.length(),
             r2: (0.25 * diag.length_squared()).max(0.0),
             w: b.w,
@@ -99,9 +114,9 @@ impl Importance {
         }
     }
 
-    /// The importance at `p`.
+    /// The importance at `p` for a receiver of normal `n` (zero: none).
     #[inline]
-    fn at(&self, p: Vec3) -> f32 {
+    fn at(&self, p: Vec3, n: Vec3) -> f32 {
         let v = p - self.pc;
         let d2_centre = v.length_squared();
         // Clamp the distance so points inside a large cluster do not blow up.
@@ -127,7 +142,26 @@ impl Importance {
         if cos_p <= self.cos_theta_e {
             return 0.0;
         }
-        (self.phi * cos_p / d2).max(0.0)
+        let importance = (self.phi * cos_p / d2).max(0.0);
+        if n == Vec3::ZERO {
+            return importance;
+        }
+        // Nothing of a box wholly behind the receiver's plane reaches it
+        // (its nearest corner: the box's sphere would cull less, and a
+        // node whose sphere crossed the plane with both children behind
+        // it would end the walk with no light).
+        if n.dot(self.pc - p) + n.abs().dot(self.half) <= 0.0 {
+            return 0.0;
+        }
+        // θ_i' = max(0, θ_i − θ_b): the smallest angle between n and a
+        // direction from p into the box (−wi points at its centre).
+        let cos_i = -n.dot(wi);
+        let sin_i = safe_sqrt(1.0 - cos_i * cos_i);
+        let (cos_pi, _) = angle_sub_clamped(sin_i, cos_i, sin_b, cos_b);
+        if cos_pi <= 0.0 {
+            return 0.0;
+        }
+        importance * cos_pi
     }
 }
 
@@ -261,14 +295,23 @@ impl LightBvh {
     }
 
     /// Importance of both children of inner node `k`, first child first.
-    fn child_importance(&self, k: usize, p: Vec3) -> [f32; 2] {
+    fn child_importance(&self, k: usize, p: Vec3, n: Vec3) -> [f32; 2] {
         let second = self.nodes[k].child_or_light as usize;
-        [self.importance[k + 1].at(p), self.importance[second].at(p)]
+        [
+            self.importance[k + 1].at(p, n),
+            self.importance[second].at(p, n),
+        ]
     }
 
     /// Chooses a light for point `p` with `u` ∈ [0, 1): (light index, pmf),
     /// or None when no light can reach `p`.
-    pub fn sample(&self, p: Vec3, mut u: f32) -> Option<(u32, f32)> {
+    pub fn sample(&self, p: Vec3, u: f32) -> Option<(u32, f32)> {
+        self.sample_facing(p, Vec3::ZERO, u)
+    }
+
+    /// [`LightBvh::sample`] for a receiver that reflects only, of unit
+    /// normal `n` (zero: any receiver; [`LightBounds::importance_facing`]).
+    pub fn sample_facing(&self, p: Vec3, n: Vec3, mut u: f32) -> Option<(u32, f32)> {
         if self.nodes.is_empty() {
             return None;
         }
@@ -278,12 +321,12 @@ impl LightBvh {
             let node = &self.nodes[k];
             if node.leaf {
                 // A lone root was never weighed against a sibling.
-                if k > 0 || self.importance[k].at(p) > 0.0 {
+                if k > 0 || self.importance[k].at(p, n) > 0.0 {
                     return Some((node.child_or_light, pmf));
                 }
                 return None;
             }
-            let ci = self.child_importance(k, p);
+            let ci = self.child_importance(k, p, n);
             let sum = ci[0] + ci[1];
             if sum == 0.0 || !sum.is_finite() {
                 return None;
@@ -306,6 +349,12 @@ impl LightBvh {
     /// The probability that [`LightBvh::sample`] at `p` returns `light`
     /// (bitwise the value it returns with that light).
     pub fn pmf(&self, p: Vec3, light: u32) -> f32 {
+        self.pmf_facing(p, Vec3::ZERO, light)
+    }
+
+    /// The probability that [`LightBvh::sample_facing`] at `p` for normal
+    /// `n` returns `light` (bitwise the value it returns with that light).
+    pub fn pmf_facing(&self, p: Vec3, n: Vec3, light: u32) -> f32 {
         if self.nodes.is_empty() {
             return 0.0;
         }
@@ -318,13 +367,13 @@ impl LightBvh {
                 if node.child_or_light != light {
                     return 0.0; // left out of the tree
                 }
-                return if k > 0 || self.importance[k].at(p) > 0.0 {
+                return if k > 0 || self.importance[k].at(p, n) > 0.0 {
                     pmf
                 } else {
                     0.0
                 };
             }
-            let ci = self.child_importance(k, p);
+            let ci = self.child_importance(k, p, n);
             let sum = ci[0] + ci[1];
             if sum == 0.0 || !sum.is_finite() {
                 return 0.0;

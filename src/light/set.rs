@@ -425,7 +425,10 @@ impl LightSet {
 
     /// Chooses a local light for point `p` with `u_select` ∈ [0, 1):
     /// (entry index, selection pmf), or None when no light can reach `p`.
-    pub fn select_at(&self, p: Vec3, u_select: f32) -> Option<(usize, f32)> {
+    /// `n`: the unit normal of a receiver that reflects only, on the side
+    /// it reflects (the tree then weighs lights by their cosine to it;
+    /// [`crate::light::bvh::LightBounds::importance_facing`]), or zero.
+    pub fn select_at(&self, p: Vec3, n: Vec3, u_select: f32) -> Option<(usize, f32)> {
         if self.entries.is_empty() {
             return None;
         }
@@ -448,20 +451,20 @@ impl LightSet {
             ));
         }
         let u = ((u_select - self.p_suns) / (1.0 - self.p_suns)).clamp(0.0, 1.0 - f32::EPSILON);
-        let (idx, pmf) = self.bvh.sample(p, u)?;
+        let (idx, pmf) = self.bvh.sample_facing(p, n, u)?;
         Some((idx as usize, pmf * (1.0 - self.p_suns) * self.p_local))
     }
 
-    /// Probability that [`LightSet::select_at`] at `p` returns local light
-    /// `idx` (the same value it returns with that light).
-    pub fn pmf_at(&self, p: Vec3, idx: usize) -> f32 {
+    /// Probability that [`LightSet::select_at`] at `p` for receiver normal
+    /// `n` returns local light `idx` (the same value it returns with it).
+    pub fn pmf_at(&self, p: Vec3, n: Vec3, idx: usize) -> f32 {
         match self.selection {
             _ if idx >= self.entries.len() => 0.0,
             LightSelection::Bvh => match self.entries[idx] {
                 Entry::Explicit(Light::Sun { .. }) => {
                     self.p_suns / self.local_suns.len() as f32 * self.p_local
                 }
-                _ => self.bvh.pmf(p, idx as u32) * (1.0 - self.p_suns) * self.p_local,
+                _ => self.bvh.pmf_facing(p, n, idx as u32) * (1.0 - self.p_suns) * self.p_local,
             },
             _ => self.pmf[idx],
         }
@@ -470,7 +473,20 @@ impl LightSet {
     /// Selects one local light for `p` (by the set's [`LightSelection`]) and
     /// samples it as seen from `p`.
     pub fn sample(&self, scene: &Scene, p: Vec3, u_select: f32, u: Vec2) -> Option<LightSample> {
-        let (idx, pmf) = self.select_at(p, u_select)?;
+        self.sample_facing(scene, p, Vec3::ZERO, u_select, u)
+    }
+
+    /// [`LightSet::sample`] for a receiver of normal `n` (see
+    /// [`LightSet::select_at`]).
+    pub fn sample_facing(
+        &self,
+        scene: &Scene,
+        p: Vec3,
+        n: Vec3,
+        u_select: f32,
+        u: Vec2,
+    ) -> Option<LightSample> {
+        let (idx, pmf) = self.select_at(p, n, u_select)?;
         sample_entry(scene, &self.entries[idx], pmf, p, u)
     }
 
@@ -530,11 +546,19 @@ impl LightSet {
     }
 
     /// Pdf per solid angle (with pmf) that NEE would have chosen point `q` on
-    /// emissive triangle (geom, prim) of a flat mesh, seen from `p` with light
-    /// normal `n_light`. Emitters are never instanced (`scene::instancing`
+    /// emissive triangle (geom, prim) of a flat mesh, seen from `p` (receiver
+    /// normal `n`, as [`LightSet::select_at`] takes it) with light normal
+    /// `n_light`. Emitters are never instanced (`scene::instancing`
     /// flattens prefabs with emissive materials), so a hit on an emitter
     /// always names a flat mesh.
-    pub fn pdf_triangle(&self, geom: u32, prim: u32, p: Vec3, q: Vec3, n_light: Vec3) -> f32 {
+    pub fn pdf_triangle(
+        &self,
+        geom: u32,
+        prim: u32,
+        (p, n): (Vec3, Vec3),
+        q: Vec3,
+        n_light: Vec3,
+    ) -> f32 {
         let Some(&idx) = self
             .tri_entry
             .get(geom as usize)
@@ -554,7 +578,7 @@ impl LightSet {
         if cos_l == 0.0 || area == 0.0 {
             return 0.0;
         }
-        self.pmf_at(p, idx as usize) * dist2 / (cos_l * area)
+        self.pmf_at(p, n, idx as usize) * dist2 / (cos_l * area)
     }
 }
 

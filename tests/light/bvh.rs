@@ -102,6 +102,62 @@ fn pmf_sums_to_one_over_all_lights() {
 }
 
 #[test]
+fn a_reflecting_receivers_normal_skips_lights_behind_it_with_consistent_pmfs() {
+    // Point lights only (every one reaches every point without a normal):
+    // with a receiver normal, lights below its plane get pmf 0, those in
+    // front share what the walk does not lose, and sampling returns the pmf recomputed for its light.
+    let mut rng = Rng(29);
+    let lights: Vec<LightBounds> = random_lights(6000, &mut rng)
+        .into_iter()
+        .step_by(4)
+        .collect();
+    let bvh = LightBvh::build(&lights);
+    let mut behind = 0;
+    for _ in 0..40 {
+        let p = rng.v(60.0);
+        let n = rng.v(2.0).normalize_or(Vec3::Z);
+        let (mut sum, mut front) = (0.0f64, 0);
+        for (i, l) in lights.iter().enumerate() {
+            let (pf, plain) = (bvh.pmf_facing(p, n, i as u32), bvh.pmf(p, i as u32));
+            if (l.p_min - p).dot(n) < 0.0 {
+                assert_eq!(pf, 0.0, "light {i} behind the receiver at {p}, n {n}");
+                behind += 1;
+            } else {
+                assert!(plain > 0.0, "light {i} reaches {p}");
+                front += 1;
+            }
+            sum += pf as f64;
+        }
+        // A walk may still end where both children of a node are out of
+        // reach: it returns None with exactly the mass missing from Σ pmf.
+        assert!(sum <= 1.0 + 1e-5, "sum {sum} at {p}, n {n}");
+        assert!(
+            front == 0 || sum > 0.5,
+            "sum {sum} at {p}, n {n}: {front} in front"
+        );
+        let draws = 4000;
+        let mut none = 0;
+        for k in 0..draws {
+            let Some((i, pmf)) = bvh.sample_facing(p, n, (k as f32 + 0.5) / draws as f32) else {
+                none += 1;
+                continue;
+            };
+            assert!((lights[i as usize].p_min - p).dot(n) >= 0.0);
+            assert_eq!(pmf.to_bits(), bvh.pmf_facing(p, n, i).to_bits());
+        }
+        let missing = 1.0 - sum;
+        assert!(
+            (none as f64 / draws as f64 - missing).abs() < 2e-3,
+            "{none} vs {missing}"
+        );
+        // A zero normal is the plain tree, bit for bit.
+        let u = rng.f();
+        assert_eq!(bvh.sample_facing(p, Vec3::ZERO, u), bvh.sample(p, u));
+    }
+    assert!(behind > 20_000, "{behind} behind");
+}
+
+#[test]
 fn pmf_sum_plus_no_light_probability_is_one_for_mixed_lights() {
     // Points, spots and one- and two-sided emitters: where a whole subtree
     // cannot reach p, sampling returns None with exactly the missing mass.
@@ -234,13 +290,15 @@ fn light_set_pmf_is_consistent_on_many_emitters() {
     let z_floor = -b.scene.origin_world.z as f32;
     for _ in 0..20 {
         let p = Vec3::new(0.0, 0.0, z_floor + 1e-3) + rng.v(18.0) * Vec3::new(1.0, 1.0, 0.0);
-        let sum: f64 = (0..set.len()).map(|i| set.pmf_at(p, i) as f64).sum();
+        let sum: f64 = (0..set.len())
+            .map(|i| set.pmf_at(p, Vec3::ZERO, i) as f64)
+            .sum();
         assert!((sum - 1.0).abs() < 1e-5, "sum {sum}");
         for _ in 0..50 {
             let (i, pmf) = set
-                .select_at(p, rng.f())
+                .select_at(p, Vec3::ZERO, rng.f())
                 .expect("a light reaches the floor");
-            assert_eq!(pmf.to_bits(), set.pmf_at(p, i).to_bits());
+            assert_eq!(pmf.to_bits(), set.pmf_at(p, Vec3::ZERO, i).to_bits());
         }
     }
 }

@@ -91,7 +91,10 @@ impl<A: Accel> PathContext<'_, A> {
             let wi_local = frame.to_local(wi);
             bsdf.eval(wo_local, wi_local) * wi_local.z.abs()
         };
-        let Some(r) = ris::resample(self.lights, self.scene, si.p, u, f_cos) else {
+        // Reflecting surfaces receive nothing from below their (front-facing)
+        // geometric normal: the light tree may skip what lies there.
+        let n = if two_sided { si.n_geo } else { Vec3::ZERO };
+        let Some(r) = ris::resample(self.lights, self.scene, (si.p, n), u, f_cos) else {
             return;
         };
         self.push_shadow(

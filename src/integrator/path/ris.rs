@@ -67,13 +67,14 @@ pub(super) struct Resampled {
     pub inv_pdf: Option<f32>,
 }
 
-/// Resamples one of `u`'s candidate local-light samples seen from `p`;
+/// Resamples one of `u`'s candidate local-light samples seen from `p`
+/// (receiver normal `n` for the light tree, `LightSet::select_at`);
 /// `f_cos(wi)` is the vertex's BSDF × |cos| toward `wi` (zero where the
 /// surface cannot receive it). None when every candidate's target is zero.
 pub(super) fn resample(
     lights: &LightSet,
     scene: &Scene,
-    p: Vec3,
+    (p, n): (Vec3, Vec3),
     u: &RisSamples,
     f_cos: impl Fn(Vec3) -> Vec3,
 ) -> Option<Resampled> {
@@ -84,7 +85,7 @@ pub(super) fn resample(
     // rescaled after each decision so it stays uniform.
     let mut u_pick = u.u[0][3];
     for c in &u.u[..u.m] {
-        let Some(ls) = lights.sample(scene, p, c[0], Vec2::new(c[1], c[2])) else {
+        let Some(ls) = lights.sample_facing(scene, p, n, c[0], Vec2::new(c[1], c[2])) else {
             continue;
         };
         if ls.pdf <= 0.0 || ls.li == Vec3::ZERO {

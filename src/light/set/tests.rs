@@ -141,7 +141,7 @@ fn local_lights_share_sets_candidates_and_the_probability_a_vertex_samples_them(
         let lights = LightSet::build(&scene);
         assert_eq!(lights.len(), 3, "{extra}");
         assert_eq!(lights.local_candidates(), candidates, "{extra}");
-        let total: f32 = (0..3).map(|i| lights.pmf_at(p, i)).sum();
+        let total: f32 = (0..3).map(|i| lights.pmf_at(p, Vec3::ZERO, i)).sum();
         assert!((total - p_local).abs() < 1e-5, "Σ pmf {total} for\n{extra}");
         // select_at returns the pmf pmf_at recomputes, and declines for
         // the share 1 − p_local of the numbers.
@@ -149,8 +149,10 @@ fn local_lights_share_sets_candidates_and_the_probability_a_vertex_samples_them(
         let mut declined = 0;
         for k in 0..n {
             let u = (k as f32 + 0.5) / n as f32;
-            match lights.select_at(p, u) {
-                Some((i, pmf)) => assert_eq!(pmf.to_bits(), lights.pmf_at(p, i).to_bits()),
+            match lights.select_at(p, Vec3::ZERO, u) {
+                Some((i, pmf)) => {
+                    assert_eq!(pmf.to_bits(), lights.pmf_at(p, Vec3::ZERO, i).to_bits())
+                }
                 None => declined += 1,
             }
         }

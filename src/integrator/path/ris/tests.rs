@@ -31,6 +31,11 @@ impl Rng {
 /// A plane under 40 lights: points and downward spots, 1–8 m up, of
 /// intensities spread over two decades.
 fn scene() -> crate::scene::Scene {
+    scene_of(true)
+}
+
+/// [`scene`], its spots points too when `spots` is false.
+fn scene_of(spots: bool) -> crate::scene::Scene {
     let mut rng = Rng(3);
     let mut text = String::from(
         "[camera]\nposition = [0.0, 0.0, 1.5]\n[[material]]\nname = \"m\"\nkind = \"diffuse\"\nalbedo = [0.5, 0.5, 0.5]\n[[object]]\nkind = \"quad\"\nsize = [60.0, 60.0]\nmaterial = \"m\"\n",
@@ -42,7 +47,7 @@ fn scene() -> crate::scene::Scene {
             1.0 + 7.0 * rng.f(),
         );
         let i = 10f32.powf(2.0 * rng.f());
-        if k % 2 == 0 {
+        if k % 2 == 0 || !spots {
             text += &format!("[[light]]\nkind = \"point\"\nposition = [{x}, {y}, {z}]\nintensity = [{i}, {i}, {i}]\n");
         } else {
             let (dx, dy) = (rng.f() - 0.5, rng.f() - 0.5);
@@ -54,13 +59,23 @@ fn scene() -> crate::scene::Scene {
     build_scene(&loaded, DVec3::ZERO).expect("scene builds")
 }
 
+/// ρ/π·cosθ toward `wi` from a Lambert point of normal `n`.
+fn lambert(n: Vec3) -> impl Fn(Vec3) -> Vec3 + Copy {
+    move |wi: Vec3| Vec3::splat(RHO / std::f32::consts::PI * wi.dot(n).max(0.0))
+}
+
 /// ρ/π·cosθ toward `wi` from an upward-facing Lambert point.
 fn f_cos(wi: Vec3) -> Vec3 {
-    Vec3::splat(RHO / std::f32::consts::PI * wi.z.max(0.0))
+    lambert(Vec3::Z)(wi)
 }
 
 /// Reflected radiance at `p` in closed form.
 fn exact(scene: &crate::scene::Scene, p: Vec3) -> f64 {
+    exact_facing(scene, p, Vec3::Z)
+}
+
+/// Reflected radiance at `p` of normal `n` in closed form.
+fn exact_facing(scene: &crate::scene::Scene, p: Vec3, n: Vec3) -> f64 {
     scene
         .lights
         .iter()
@@ -84,7 +99,7 @@ fn exact(scene: &crate::scene::Scene, p: Vec3) -> f64 {
                 Light::Sun { .. } => unreachable!("no sun here"),
             };
             let d = q - p;
-            (f_cos(d.normalize()).y * i * fall / d.length_squared()) as f64
+            (lambert(n)(d.normalize()).y * i * fall / d.length_squared()) as f64
         })
         .sum()
 }
@@ -97,6 +112,19 @@ fn estimates(
     m: usize,
     n: usize,
 ) -> (f64, f64) {
+    estimates_facing(scene, lights, (p, Vec3::ZERO), m, n, f_cos)
+}
+
+/// [`estimates`] at a receiver whose normal the light tree is given as
+/// `at.1` (zero: none) and whose BSDF × cos is `f_cos`.
+fn estimates_facing(
+    scene: &crate::scene::Scene,
+    lights: &LightSet,
+    at: (Vec3, Vec3),
+    m: usize,
+    n: usize,
+    f_cos: impl Fn(Vec3) -> Vec3 + Copy,
+) -> (f64, f64) {
     let mut rng = Rng(11);
     let xs: Vec<f64> = (0..n)
         .map(|_| {
@@ -105,7 +133,7 @@ fn estimates(
                 *c = [rng.f(), rng.f(), rng.f(), rng.f()];
             }
             let u = RisSamples { u, m };
-            resample(lights, scene, p, &u, f_cos).map_or(0.0, |r| {
+            resample(lights, scene, at, &u, f_cos).map_or(0.0, |r| {
                 let inv = r.inv_pdf.unwrap_or(1.0 / r.ls.pdf);
                 (r.f * r.ls.li * inv).y as f64
             })
@@ -147,5 +175,36 @@ fn resampled_local_light_matches_the_closed_form_and_more_candidates_cut_its_var
             vm < bound * v1,
             "{p}: variance {vm} with {CANDIDATES} candidates vs {v1} with 1 (bound {bound})"
         );
+    }
+}
+
+#[test]
+fn a_wall_given_its_normal_keeps_the_closed_form_with_less_variance() {
+    // Points on a wall (normal along ±x or y) see about half the point
+    // lights in front: the tree given the normal never picks the others.
+    let scene = scene_of(false);
+    let lights = LightSet::build(&scene);
+    let n = 40_000;
+    for (p, normal) in [
+        (Vec3::new(0.0, 0.0, 0.5), Vec3::X),
+        (Vec3::new(7.0, -5.0, 2.0), -Vec3::X),
+        (Vec3::new(-3.0, 4.0, 1.0), Vec3::Y),
+    ] {
+        let e = exact_facing(&scene, p, normal);
+        let f = lambert(normal);
+        for m in [1, CANDIDATES] {
+            let (m0, v0) = estimates_facing(&scene, &lights, (p, Vec3::ZERO), m, n, f);
+            let (mf, vf) = estimates_facing(&scene, &lights, (p, normal), m, n, f);
+            eprintln!("{p} n {normal} M={m}: exact {e:.5}, plain {m0:.5} (var {v0:.5}), facing {mf:.5} (var {vf:.5})");
+            for (mean, v) in [(m0, v0), (mf, vf)] {
+                let se = (v / n as f64).sqrt();
+                assert!(
+                    (mean - e).abs() <= 4.0 * se,
+                    "{p}: {mean} vs exact {e} ± {se}"
+                );
+                assert!((mean - e).abs() <= 0.02 * e, "{p}: {mean} vs exact {e}");
+            }
+            assert!(vf < 0.8 * v0, "{p}, M={m}: variance {vf} facing vs {v0}");
+        }
     }
 }
