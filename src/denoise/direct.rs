@@ -217,9 +217,9 @@ const B3: [f32; 5] = [1.0 / 16.0, 0.25, 0.375, 0.25, 1.0 / 16.0];
 /// per pass instead of once per tap (`Est::ratio`).
 #[derive(Clone, Copy, Debug, Default)]
 struct Lum {
-    /// luminance(l) / `r`; meaningless when `r` is not > 0.
+    /// luminance(l) / `r`; 0 without a ratio.
     e: f32,
-    /// luminance(rho).
+    /// luminance(rho) when > 0, else 0 (no ratio).
     r: f32,
 }
 
@@ -227,8 +227,15 @@ impl Lum {
     #[inline]
     fn of(est: &Est) -> Lum {
         let r = luminance(est.rho);
-        let e = if r > 0.0 { luminance(est.l) / r } else { 0.0 };
-        Lum { e, r }
+        if r > 0.0 {
+            Lum {
+                e: luminance(est.l) / r,
+                r,
+            }
+        } else {
+            // No ratio (NaN included): `r` 0 marks it.
+            Lum::default()
+        }
     }
 }
 
@@ -280,8 +287,7 @@ fn pass(
             let c = j * w + i;
             let centre = data[c];
             let Lum { e: e_c, r: r_c } = lum[c];
-            // `r > 0` is false for NaN too: no ratio, as `Est::ratio`.
-            if !(r_c > 0.0) {
+            if r_c == 0.0 {
                 *o = centre;
                 continue;
             }
@@ -297,7 +303,7 @@ fn pass(
                 }
                 let q = jj as usize * w + ii as usize;
                 let Lum { e: e_q, r: r_q } = lum[q];
-                if !(r_q > 0.0) {
+                if r_q == 0.0 {
                     continue;
                 }
                 let Some(g) = key_c.geo_energy(keys[q], geo.inv_rel2, geo.inv_n2) else {
