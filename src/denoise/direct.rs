@@ -44,13 +44,13 @@ struct Est {
     var: f32,
 }
 
-impl Est {
-    /// Demodulated luminance, `None` without rho.
-    #[inline]
-    fn ratio(&self) -> Option<f32> {
-        let r = luminance(self.rho);
-        (r > 0.0).then(|| luminance(self.l) / r)
-    }
+/// One component the edge-stopping filter replaces: per pixel its mean
+/// light, what it is filtered against and the variance of the light's
+/// luminance as a pixel mean.
+struct Part<'a> {
+    l: &'a [Vec3],
+    rho: &'a [Vec3],
+    var: &'a [f32],
 }
 
 /// Replaces `l_direct` in `film` by its filtered estimate (as a ratio to
@@ -63,17 +63,55 @@ pub(super) fn filter_direct(
     widths: &Widths,
     levels: u32,
 ) {
+    let part = Part {
+        l: &inputs.l_direct,
+        rho: &inputs.rho_direct,
+        var: &inputs.var_direct,
+    };
+    filter_part(film, &part, inputs, guide, widths, levels);
+}
+
+/// Replaces `l_refl`, the light along glass's reflection, in `film` by its
+/// filtered estimate as a ratio to `rho_refl` (the Fresnel reflectance):
+/// the same edge-stopping filter as direct light's, so a reflected edge
+/// far above the noise stays while the sparkle of which samples reflected
+/// goes. `levels` as [`filter_direct`]'s.
+pub(super) fn filter_reflection(
+    film: &mut Film,
+    inputs: &ViewInputs,
+    guide: &DepthGuide<'_>,
+    widths: &Widths,
+    levels: u32,
+) {
+    let part = Part {
+        l: &inputs.l_refl,
+        rho: &inputs.rho_refl,
+        var: &inputs.var_refl,
+    };
+    filter_part(film, &part, inputs, guide, widths, levels);
+}
+
+/// [`filter_direct`] for any [`Part`].
+fn filter_part(
+    film: &mut Film,
+    part: &Part<'_>,
+    inputs: &ViewInputs,
+    guide: &DepthGuide<'_>,
+    widths: &Widths,
+    levels: u32,
+) {
     let (w, h) = (film.width, film.height);
     let n = w * h;
     assert!(
-        inputs.l_direct.len() == n && inputs.var_direct.len() == n,
-        "direct-light inputs' size does not match the film"
+        part.l.len() == n && part.rho.len() == n && part.var.len() == n,
+        "filtered light's inputs' size does not match the film"
     );
-    if inputs.rho_direct.iter().all(|&r| r == Vec3::ZERO) {
+    if part.rho.iter().all(|&r| r == Vec3::ZERO) {
         return;
     }
     let normal = |k: usize| guide.normal.get(k).copied().unwrap_or(Vec3::ZERO);
     let keys: Vec<SurfKey> = (0..n)
+        .into_par_iter()
         .map(|k| {
             SurfKey::new(guide.depth_z[k], normal(k), inputs.behind_delta[k])
                 .with_glossy(inputs.glossy[k])
@@ -84,38 +122,51 @@ pub(super) fn filter_direct(
         inv_n2: 1.0 / (SIGMA_NORMAL * SIGMA_NORMAL),
     };
     let mut cur: Vec<Est> = (0..n)
+        .into_par_iter()
         .map(|k| {
-            let (l, rho) = (inputs.l_direct[k], inputs.rho_direct[k]);
+            let (l, rho) = (part.l[k], part.rho[k]);
             let r = luminance(rho);
-            let var = if r > 0.0 {
-                inputs.var_direct[k] / (r * r)
-            } else {
-                0.0
-            };
+            let var = if r > 0.0 { part.var[k] / (r * r) } else { 0.0 };
             Est { l, rho, var }
         })
         .collect();
     let mut sd = prefiltered_sd(&cur, &keys, &geo, (w, h));
+    // Rows with a pixel to filter (a pixel without rho keeps it zero and is
+    // copied through every pass): glass reflections cover few rows.
+    let rows: Vec<bool> = part
+        .rho
+        .par_chunks(w)
+        .map(|r| r.iter().any(|&x| x != Vec3::ZERO))
+        .collect();
     let mut tmp = vec![Est::default(); n];
+    let grid = Grid {
+        w,
+        h,
+        rows: &rows,
+        keys: &keys,
+        geo: &geo,
+    };
     for level in 0..levels {
         let step = 1usize << level;
-        pass(&cur, &mut tmp, &keys, &sd, &geo, (w, h), step, (1, 0));
-        pass(&tmp, &mut cur, &keys, &sd, &geo, (w, h), step, (0, 1));
+        pass(&cur, &mut tmp, &sd, &grid, step, (1, 0));
+        pass(&tmp, &mut cur, &sd, &grid, step, (0, 1));
         // Later levels stop at the filtered estimate's own (smaller) noise.
-        sd = cur.iter().map(|e| e.var.max(0.0).sqrt()).collect();
+        cur.par_iter()
+            .map(|e| e.var.max(0.0).sqrt())
+            .collect_into_vec(&mut sd);
     }
-    for (k, px) in film.rgb.iter_mut().enumerate() {
-        let (s, rho) = (cur[k], inputs.rho_direct[k]);
+    film.rgb.par_iter_mut().enumerate().for_each(|(k, px)| {
+        let (s, rho) = (cur[k], part.rho[k]);
         if rho == Vec3::ZERO {
-            continue;
+            return;
         }
         for c in 0..3 {
             // Below this the ratio is noise over nothing.
             if s.rho[c] > 1e-7 {
-                px[c] += rho[c] * (s.l[c] / s.rho[c]) - inputs.l_direct[k][c];
+                px[c] += rho[c] * (s.l[c] / s.rho[c]) - part.l[k][c];
             }
         }
-    }
+    });
 }
 
 /// The geometric range weights (as the surface component's).
@@ -132,6 +183,10 @@ fn prefiltered_sd(cur: &[Est], keys: &[SurfKey], geo: &Geo, (w, h): (usize, usiz
     (0..w * h)
         .into_par_iter()
         .map(|k| {
+            // Only a pixel to filter reads its σ.
+            if cur[k].rho == Vec3::ZERO {
+                return 0.0;
+            }
             let (i, j) = (k % w, k / w);
             let (mut s, mut ws) = (0.0f32, 0.0f32);
             for jj in j.saturating_sub(1)..(j + 2).min(h) {
@@ -158,29 +213,86 @@ fn prefiltered_sd(cur: &[Est], keys: &[SurfKey], geo: &Geo, (w, h): (usize, usiz
 /// The B3-spline taps at offsets −2..=2 (see `atrous.rs`).
 const B3: [f32; 5] = [1.0 / 16.0, 0.25, 0.375, 0.25, 1.0 / 16.0];
 
+/// A pixel's demodulated luminance and its rho's luminance, computed once
+/// per pass instead of once per tap (`Est::ratio`).
+#[derive(Clone, Copy, Debug, Default)]
+struct Lum {
+    /// luminance(l) / `r`; 0 without a ratio.
+    e: f32,
+    /// luminance(rho) when > 0, else 0 (no ratio).
+    r: f32,
+}
+
+impl Lum {
+    #[inline]
+    fn of(est: &Est) -> Lum {
+        let r = luminance(est.rho);
+        if r > 0.0 {
+            Lum {
+                e: luminance(est.l) / r,
+                r,
+            }
+        } else {
+            // No ratio (NaN included): `r` 0 marks it.
+            Lum::default()
+        }
+    }
+}
+
+/// What every pass of one component shares: the image size, which rows
+/// hold a pixel to filter, the guide keys and range widths.
+#[derive(Clone, Copy)]
+struct Grid<'a> {
+    w: usize,
+    h: usize,
+    rows: &'a [bool],
+    keys: &'a [SurfKey],
+    geo: &'a Geo,
+}
+
 /// One edge-stopping à-trous pass along `(di, dj)` with dilation `step`:
 /// weights B3 × geometry × luminance; l and rho as weighted means, the
-/// variance of the ratio through the squared rho-weighted weights.
-#[allow(clippy::too_many_arguments)]
+/// variance of the ratio through the squared rho-weighted weights. Rows
+/// without a pixel to filter are copied.
 fn pass(
     data: &[Est],
     out: &mut [Est],
-    keys: &[SurfKey],
     sd: &[f32],
-    geo: &Geo,
-    (w, h): (usize, usize),
+    grid: &Grid<'_>,
     step: usize,
     (di, dj): (isize, isize),
 ) {
+    let Grid {
+        w,
+        h,
+        rows,
+        keys,
+        geo,
+    } = *grid;
+    // Zero (no ratio) outside the active rows, whose pixels have no rho.
+    let mut lum = vec![Lum::default(); data.len()];
+    lum.par_chunks_mut(w).enumerate().for_each(|(j, lr)| {
+        if rows[j] {
+            for (x, est) in lr.iter_mut().zip(&data[j * w..(j + 1) * w]) {
+                *x = Lum::of(est);
+            }
+        }
+    });
     out.par_chunks_mut(w).enumerate().for_each(|(j, row)| {
+        if !rows[j] {
+            row.copy_from_slice(&data[j * w..(j + 1) * w]);
+            return;
+        }
         for (i, o) in row.iter_mut().enumerate() {
             let c = j * w + i;
             let centre = data[c];
-            let Some(e_c) = centre.ratio() else {
+            let Lum { e: e_c, r: r_c } = lum[c];
+            if r_c == 0.0 {
                 *o = centre;
                 continue;
-            };
+            }
             let var_c = sd[c] * sd[c];
+            let key_c = keys[c];
             let (mut l, mut rho, mut wsum) = (Vec3::ZERO, Vec3::ZERO, 0.0f32);
             let (mut var, mut asum) = (0.0f32, 0.0f32);
             for (t, &b3) in B3.iter().enumerate() {
@@ -190,14 +302,14 @@ fn pass(
                     continue;
                 }
                 let q = jj as usize * w + ii as usize;
-                let nb = data[q];
-                let Some(e_q) = nb.ratio() else {
+                let Lum { e: e_q, r: r_q } = lum[q];
+                if r_q == 0.0 {
+                    continue;
+                }
+                let Some(g) = key_c.geo_energy(keys[q], geo.inv_rel2, geo.inv_n2) else {
                     continue;
                 };
-                let g = keys[c].geo_energy(keys[q], geo.inv_rel2, geo.inv_n2);
-                let Some(g) = g else {
-                    continue;
-                };
+                let nb = &data[q];
                 // Under "same light", e_c − e_q has variance var_c + var_q:
                 // a symmetric test, so a bright outlier and its dark
                 // neighbour see each other alike and light is moved, not lost.
@@ -209,7 +321,7 @@ fn pass(
                 l += nb.l * wt;
                 rho += nb.rho * wt;
                 wsum += wt;
-                let a = wt * luminance(nb.rho);
+                let a = wt * r_q;
                 var += a * a * nb.var;
                 asum += a;
             }

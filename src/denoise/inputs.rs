@@ -37,6 +37,14 @@ pub struct ViewInputs {
     pub rho_direct: Vec<Vec3>,
     /// Share of the samples split at a glossy vertex (`DenoiseSample::glossy`).
     pub glossy: Vec<f32>,
+    /// Mean light along glass's reflection per pixel
+    /// (`DenoiseSample::l_refl`, part of the film's radiance).
+    pub l_refl: Vec<Vec3>,
+    /// Variance of `l_refl`'s luminance as a pixel mean.
+    pub var_refl: Vec<f32>,
+    /// Mean throughput × Fresnel reflectance `l_refl` is filtered against
+    /// (`DenoiseSample::rho_refl`).
+    pub rho_refl: Vec<Vec3>,
 }
 
 impl ViewInputs {
@@ -54,6 +62,9 @@ impl ViewInputs {
             var_direct: vec![0.0; width * height],
             rho_direct: vec![Vec3::ZERO; width * height],
             glossy: vec![0.0; width * height],
+            l_refl: vec![Vec3::ZERO; width * height],
+            var_refl: vec![0.0; width * height],
+            rho_refl: vec![Vec3::ZERO; width * height],
         }
     }
 
@@ -66,6 +77,9 @@ impl ViewInputs {
         self.var_direct[k] = mean_variance(luminance(sum.l_direct), sum.direct_lum2, n);
         self.rho_direct[k] = sum.rho_direct / n;
         self.glossy[k] = sum.glossy as f32 / n;
+        self.l_refl[k] = sum.l_refl / n;
+        self.var_refl[k] = mean_variance(luminance(sum.l_refl), sum.refl_lum2, n);
+        self.rho_refl[k] = sum.rho_refl / n;
     }
 
     /// Whether any pixel carries first-scatter radiance or opacity.
@@ -80,6 +94,7 @@ impl ViewInputs {
             && self.l_surf.iter().all(|&l| l == Vec3::ZERO)
             && self.rho.iter().all(|&r| r == Vec3::ZERO)
             && self.rho_direct.iter().all(|&r| r == Vec3::ZERO)
+            && self.rho_refl.iter().all(|&r| r == Vec3::ZERO)
     }
 }
 
@@ -111,6 +126,9 @@ mod tests {
             direct_lum2: 0.2126f32.powi(2) * 10.0,
             rho_direct: Vec3::splat(2.0),
             glossy: 1,
+            l_refl: Vec3::new(0.0, 8.0, 0.0),
+            refl_lum2: 0.7152f32.powi(2) * 20.0,
+            rho_refl: Vec3::splat(0.2),
         };
         v.set_mean(1, &sum, 4.0);
         assert_eq!(v.l_fog[1], Vec3::new(0.5, 1.0, 1.5));
@@ -121,6 +139,11 @@ mod tests {
         assert_eq!(v.l_direct[1], Vec3::new(1.0, 0.0, 0.0));
         assert_eq!(v.rho_direct[1], Vec3::splat(0.5));
         assert_eq!(v.glossy[1], 0.25);
+        assert_eq!(v.l_refl[1], Vec3::new(0.0, 2.0, 0.0));
+        assert_eq!(v.rho_refl[1], Vec3::splat(0.05));
+        // Luminance sum 8g, square sum 20g²: (20 − 4·2²)g²/12 = g²/3.
+        let g2 = 0.7152f32.powi(2);
+        assert!((v.var_refl[1] - g2 / 3.0).abs() < 1e-6, "{}", v.var_refl[1]);
         // Luminance sum 4y and square sum 10y² over 4 samples: variance of
         // the mean (Σx² − n·m²)/(n(n − 1)).
         let y = 0.2126f32;

@@ -17,7 +17,12 @@
 //! - direct light on that surface (`direct.rs`, medium-free scenes): its
 //!   next-event estimates of sun, sky and lamps, also as a ratio to the
 //!   albedo, with edge-stopping on the per-pixel noise level (variance
-//!   from the sample moments) so that shadow edges stay.
+//!   from the sample moments) so that shadow edges stay;
+//! - light along smooth glass's reflection (`direct.rs`, medium-free
+//!   scenes): what a window mirrors, as a ratio to the Fresnel reflectance
+//!   that every sample meeting the glass records (reflected or not), with
+//!   the same edge-stopping filter: a window's sparkle is the share of
+//!   samples that happened to reflect, and the ratio does not have it.
 //!
 //! [`Features`] is the one place that switches the image side's added
 //! features on; `--no-filter` turns every one off.
@@ -50,7 +55,8 @@ use crate::film::Film;
 /// Pixels whose neighbourhood has no opacity keep their radiance. Then the
 /// same for the light on the first surface (`surface.rs`: fog light, or in
 /// a medium-free scene sky and indirect light): `film −= l_surf − rho · Ẽ`;
-/// and for direct light (`l_direct`, `widths.direct_levels` > 0).
+/// and for direct light (`l_direct`) and light along glass's reflection
+/// (`l_refl`), when `widths.direct_levels` > 0.
 /// [`denoise_view`] calls it with the guide and widths of a rendered view.
 /// Preconditions: `inputs` and `guide` match `film`'s size (`guide.normal`
 /// may be empty).
@@ -81,6 +87,7 @@ pub fn denoise_guided(
     surface::filter_surface(film, inputs, guide, widths);
     if widths.direct_levels > 0 {
         direct::filter_direct(film, inputs, guide, widths, widths.direct_levels);
+        direct::filter_reflection(film, inputs, guide, widths, widths.direct_levels);
     }
 }
 

@@ -60,6 +60,7 @@ pub(super) fn filter_surface(
     }
     let normal = |k: usize| guide.normal.get(k).copied().unwrap_or(Vec3::ZERO);
     let keys: Vec<SurfKey> = (0..n)
+        .into_par_iter()
         .map(|k| SurfKey::new(guide.depth_z[k], normal(k), fog.behind_delta[k]))
         .collect();
     let firefly = fireflies(&fog.l_surf, &fog.rho, (w, h));
@@ -67,7 +68,7 @@ pub(super) fn filter_surface(
     // ratio (the weights cancel in the ratio).
     let mut cur: Vec<Pair> = fog
         .l_surf
-        .iter()
+        .par_iter()
         .zip(&fog.rho)
         .zip(&firefly)
         .map(|((&l, &rho), &f)| if f { Pair::default() } else { Pair { l, rho } })
@@ -81,10 +82,10 @@ pub(super) fn filter_surface(
         atrous_pass(&cur, &mut tmp, &keys, (w, h), step, &weight, Axis::Row);
         atrous_pass(&tmp, &mut cur, &keys, (w, h), step, &weight, Axis::Column);
     }
-    for (k, px) in film.rgb.iter_mut().enumerate() {
+    film.rgb.par_iter_mut().enumerate().for_each(|(k, px)| {
         let (s, rho) = (cur[k], fog.rho[k]);
         if rho == Vec3::ZERO {
-            continue;
+            return;
         }
         for c in 0..3 {
             // Below this the ratio is noise over nothing.
@@ -92,7 +93,7 @@ pub(super) fn filter_surface(
                 px[c] += rho[c] * (s.l[c] / s.rho[c]) - fog.l_surf[k][c];
             }
         }
-    }
+    });
 }
 
 /// Per pixel (row-major), whether its light per unit albedo, summed over
@@ -100,26 +101,31 @@ pub(super) fn filter_surface(
 /// the pixels within `FIREFLY_RADIUS` that have a rho (itself included).
 fn fireflies(l: &[Vec3], rho: &[Vec3], (w, h): (usize, usize)) -> Vec<bool> {
     let ratio: Vec<Option<f32>> = l
-        .iter()
+        .par_iter()
         .zip(rho)
         .map(|(l, r)| (r.element_sum() > 0.0).then(|| l.element_sum() / r.element_sum()))
         .collect();
     (0..w * h)
         .into_par_iter()
-        .map_init(Vec::new, |window: &mut Vec<f32>, k| {
+        .map(|k| {
             let Some(e) = ratio[k].filter(|&e| e > 0.0) else {
                 return false;
             };
             let (i, j) = (k % w, k / w);
-            window.clear();
+            // e > FIREFLY_RATIO × the window's median (its element `mid`
+            // in order) exactly when more than `mid` of its values v have
+            // FIREFLY_RATIO · v < e (v ↦ FIREFLY_RATIO · v is monotone):
+            // a count, no sort.
+            let (mut len, mut below) = (0usize, 0usize);
             for jj in j.saturating_sub(FIREFLY_RADIUS)..(j + FIREFLY_RADIUS + 1).min(h) {
                 let row = &ratio[jj * w..(jj + 1) * w];
                 let cols = i.saturating_sub(FIREFLY_RADIUS)..(i + FIREFLY_RADIUS + 1).min(w);
-                window.extend(row[cols].iter().flatten());
+                for v in row[cols].iter().flatten() {
+                    len += 1;
+                    below += (FIREFLY_RATIO * v < e) as usize;
+                }
             }
-            let mid = window.len() / 2;
-            let (_, median, _) = window.select_nth_unstable_by(mid, f32::total_cmp);
-            e > FIREFLY_RATIO * *median
+            below > len / 2
         })
         .collect()
 }

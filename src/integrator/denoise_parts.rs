@@ -5,6 +5,7 @@
 //! filtered part splits off ([`SplitVertex`]).
 
 use glam::Vec3;
+use shaders_cpu::bsdf::fresnel::fr_dielectric;
 use shaders_cpu::bsdf::{Bsdf, CoatBase, Facet};
 
 /// The denoiser's parts of one camera sample's radiance: `l_fog` is the
@@ -50,6 +51,17 @@ pub struct DenoiseSample {
     /// Whether the split vertex is glossy (`l_direct` holds all its light):
     /// the filter keeps such pixels apart from Lambertian ones.
     pub glossy: bool,
+    /// All the light arriving along a specular reflection at smooth glass
+    /// that the camera ray meets through delta scatters (a pane's front or
+    /// back face), when the sample took that reflection (zero when it
+    /// refracted throughout): the sky and street a window mirrors. Filtered
+    /// as a ratio to `rho_refl`.
+    pub l_refl: Vec3,
+    /// Σ throughput × Fresnel reflectance over those glass faces, on every
+    /// sample that met them, reflected or not: the mean of `l_refl` is the
+    /// pixel's mean `rho_refl` times the reflected radiance, whatever share
+    /// of the samples happened to reflect (a window's sparkle is that share).
+    pub rho_refl: Vec3,
 }
 
 /// The albedo estimate a glossy (non-delta, non-Lambertian) split vertex's
@@ -99,6 +111,12 @@ pub struct DenoiseSum {
     pub rho_direct: Vec3,
     /// Samples split at a glossy vertex (`DenoiseSample::glossy`).
     pub glossy: u32,
+    /// Σ `DenoiseSample::l_refl`.
+    pub l_refl: Vec3,
+    /// Σ luminance(`l_refl`)².
+    pub refl_lum2: f32,
+    /// Σ `DenoiseSample::rho_refl`.
+    pub rho_refl: Vec3,
 }
 
 impl DenoiseSum {
@@ -113,6 +131,9 @@ impl DenoiseSum {
         self.direct_lum2 += luminance(d.l_direct).powi(2);
         self.rho_direct += d.rho_direct;
         self.glossy += d.glossy as u32;
+        self.l_refl += d.l_refl;
+        self.refl_lum2 += luminance(d.l_refl).powi(2);
+        self.rho_refl += d.rho_refl;
     }
 }
 
@@ -138,6 +159,38 @@ pub(super) struct SplitVertex {
     /// Throughput × [`glossy_albedo`] at a glossy split vertex (else zero):
     /// `DenoiseSample::rho_direct` there.
     pub rho_gloss: Vec3,
+    /// Σ throughput × Fresnel reflectance over the smooth glass met
+    /// through delta scatters (else zero): `DenoiseSample::rho_refl`.
+    pub rho_refl: Vec3,
+    /// The radiance gathered when the path took that glass's reflection
+    /// (None: it did not): what it gathers after is `DenoiseSample::l_refl`.
+    pub refl_from: Option<Vec3>,
+}
+
+impl SplitVertex {
+    /// At a vertex reached from the camera through delta scatters only
+    /// (`ahead`), whose BSDF in its shading frame is `bsdf`, seen from
+    /// `wo` and continued toward `wi` (both local), with throughput `beta`
+    /// and radiance `l` gathered so far: smooth glass adds its reflectance
+    /// (a pane's front face, and its back face for samples that refracted
+    /// at the front), and where `wi` is its reflection, records `l` (what
+    /// the path gathers from here on is `DenoiseSample::l_refl`; a
+    /// reflection ends `ahead`, so a path records at most one).
+    pub fn at_glass(&mut self, bsdf: &Bsdf, wo: Vec3, wi: Vec3, beta: Vec3, l: Vec3) {
+        let Bsdf::Dielectric { eta, .. } = *bsdf else {
+            return;
+        };
+        if !bsdf.is_delta() {
+            return;
+        }
+        // The smooth interface reflects with probability q and weight R/q
+        // (`dielectric::sample_smooth`): the reflected light's mean is
+        // beta·R·L whatever q is.
+        self.rho_refl += beta * fr_dielectric(wo.z, eta);
+        if wi.z * wo.z > 0.0 {
+            self.refl_from = Some(l);
+        }
+    }
 }
 
 impl Default for SplitVertex {
@@ -147,6 +200,8 @@ impl Default for SplitVertex {
             ahead: true,
             behind_delta: false,
             rho_gloss: Vec3::ZERO,
+            rho_refl: Vec3::ZERO,
+            refl_from: None,
         }
     }
 }
@@ -166,6 +221,8 @@ mod tests {
             l_direct: Vec3::new(0.0, 2.0, 0.0),
             rho_direct: Vec3::splat(0.25),
             glossy: true,
+            l_refl: Vec3::new(0.0, 0.0, 4.0),
+            rho_refl: Vec3::splat(0.125),
         };
         let b = DenoiseSample {
             l_fog: Vec3::splat(1.0),
@@ -188,6 +245,51 @@ mod tests {
         assert_eq!(sum.direct_lum2, 2.0 * (2.0f32 * 0.7152).powi(2));
         assert_eq!(sum.rho_direct, Vec3::splat(0.5));
         assert_eq!(sum.glossy, 2);
+        assert_eq!(sum.l_refl, Vec3::new(0.0, 0.0, 8.0));
+        assert_eq!(sum.refl_lum2, 2.0 * (4.0f32 * 0.0722).powi(2));
+        assert_eq!(sum.rho_refl, Vec3::splat(0.25));
+    }
+
+    #[test]
+    fn glass_adds_its_reflectance_on_every_sample_and_marks_the_reflected_ones() {
+        let glass = Bsdf::Dielectric {
+            eta: 1.5,
+            alpha: 0.0,
+            tint: Vec3::new(1.0, 0.5, 1.0),
+        };
+        // Normal incidence: R = ((1.5 − 1)/(1.5 + 1))² = 0.04.
+        let (wo, beta, l) = (Vec3::Z, Vec3::new(1.0, 0.5, 0.25), Vec3::splat(3.0));
+        let mut reflected = SplitVertex::default();
+        reflected.at_glass(&glass, wo, Vec3::Z, beta, l);
+        assert!((reflected.rho_refl - beta * 0.04).abs().max_element() < 1e-6);
+        assert_eq!(reflected.refl_from, Some(l));
+        let mut refracted = SplitVertex::default();
+        refracted.at_glass(&glass, wo, -Vec3::Z, beta, l);
+        assert_eq!(refracted.rho_refl, reflected.rho_refl);
+        assert_eq!(refracted.refl_from, None);
+        // The back face, from inside (wo.z < 0), adds its own reflectance.
+        refracted.at_glass(&glass, -Vec3::Z, Vec3::Z, beta, Vec3::ONE);
+        assert!((refracted.rho_refl - beta * 0.08).abs().max_element() < 1e-6);
+        assert_eq!(
+            refracted.refl_from, None,
+            "leaving the pane is no reflection"
+        );
+        // Rough glass, walls and mirrors are not this component's.
+        let rough = Bsdf::Dielectric {
+            eta: 1.5,
+            alpha: 0.3,
+            tint: Vec3::ONE,
+        };
+        let mirror = Bsdf::Conductor {
+            eta: Vec3::splat(0.2),
+            k: Vec3::splat(3.0),
+            alpha: 0.0,
+        };
+        for bsdf in [rough, mirror, Bsdf::Lambert { albedo: Vec3::ONE }] {
+            let mut s = SplitVertex::default();
+            s.at_glass(&bsdf, wo, Vec3::Z, beta, l);
+            assert_eq!((s.rho_refl, s.refl_from), (Vec3::ZERO, None), "{bsdf:?}");
+        }
     }
 
     #[test]

@@ -158,7 +158,9 @@ fn split_direct(st: &PathState, before: Vec3, sun: Vec3) -> Vec3 {
 }
 
 /// `d` with the direct-light part: `l_direct` and what it is filtered
-/// against (`rho`, or at a glossy split vertex its albedo estimate).
+/// against (`rho`, or at a glossy split vertex its albedo estimate); and
+/// the light along glass's reflection (`l_refl`, `rho_refl`), for a path
+/// that has ended.
 fn direct_part(st: &PathState, l_direct: Vec3, d: DenoiseSample) -> DenoiseSample {
     let glossy = st.split.rho_gloss != Vec3::ZERO;
     DenoiseSample {
@@ -170,6 +172,8 @@ fn direct_part(st: &PathState, l_direct: Vec3, d: DenoiseSample) -> DenoiseSampl
         },
         glossy,
         split_behind_delta: st.split.behind_delta,
+        l_refl: st.split.refl_from.map_or(Vec3::ZERO, |l0| st.l - l0),
+        rho_refl: st.split.rho_refl,
         ..d
     }
 }
@@ -575,8 +579,13 @@ impl<A: Accel> PathContext<'_, A> {
         if bs.pdf <= 0.0 {
             return None;
         }
+        if st.split.ahead && scene.filter_indirect {
+            st.split
+                .at_glass(&bsdf, vertex.wo_local, bs.wi, st.beta, st.l);
+        }
         // Glass's reflection is not followed to a split vertex: its light
-        // would be filtered with that of the refracted samples behind it.
+        // would be filtered with that of the refracted samples behind it
+        // (it is filtered apart: `SplitVertex::at_glass`).
         if st.split.ahead && !is_two_sided(&bsdf) && bs.wi.z * vertex.wo_local.z > 0.0 {
             st.split.ahead = false;
         }

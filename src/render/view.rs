@@ -326,7 +326,7 @@ fn render_chunk<A: Accel>(
                     acc.total.add(luminance(li.l));
                     let d = &li.denoise;
                     acc.unfiltered
-                        .add(luminance(li.l - d.l_fog - d.l_surf - d.l_direct));
+                        .add(luminance(li.l - d.l_fog - d.l_surf - d.l_direct - d.l_refl));
                 }
             } else {
                 non_finite += 1;

@@ -8,4 +8,5 @@ mod common;
 mod aov;
 mod direct;
 mod fog;
+mod glass;
 mod indirect;
