@@ -88,7 +88,8 @@ fn striped(spp: Option<u32>) -> Film {
                 Some(n) => {
                     let hits = (0..n)
                         .filter(|&s| {
-                            let x = (j * w + i) as u32 * 0x9E37_79B9 ^ s.wrapping_mul(0x85EB_CA6B);
+                            let x = ((j * w + i) as u32).wrapping_mul(0x9E37_79B9)
+                                ^ s.wrapping_mul(0x85EB_CA6B);
                             x.wrapping_mul(0xC2B2_AE35).rotate_left(13) & 1 == 1
                         })
                         .count();
