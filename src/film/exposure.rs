@@ -68,57 +68,46 @@ pub fn exposure_block_side(height: usize) -> usize {
 /// percentile: a block's mean would otherwise carry a firefly's whole weight.
 /// The floor is relative to the same percentile, as described above.
 pub fn log_average_luminance(film: &Film) -> Option<f64> {
-    let mut lum: Vec<f32> = film
-        .rgb
+    let lum: Vec<f32> = film.rgb.iter().map(|&rgb| luminance_rec709(rgb)).collect();
+    let mut finite: Vec<f32> = lum
         .iter()
-        .map(|&rgb| luminance_rec709(rgb))
         .filter(|l| l.is_finite())
         .map(|l| l.max(0.0))
         .collect();
-    if lum.is_empty() {
+    if finite.is_empty() {
         return None;
     }
     // 99th percentile by selection, O(n): the bright reference.
-    let k = ((lum.len() - 1) as f64 * 0.99).round() as usize;
-    let (_, &mut reference, _) = lum.select_nth_unstable_by(k, f32::total_cmp);
+    let k = ((finite.len() - 1) as f64 * 0.99).round() as usize;
+    let (_, &mut reference, _) = finite.select_nth_unstable_by(k, f32::total_cmp);
     if reference <= 0.0 {
         return None;
     }
     let floor = reference as f64 * EXPOSURE_FLOOR_FRACTION;
     // Sums in f64: over 1.44 M terms the rounding stays far below f32
     // precision, so a uniform film maps to 0.18 to f32 precision.
-    let (mut sum_ln, mut count) = (0.0f64, 0usize);
-    for (mean, n) in block_means(film, reference) {
-        sum_ln += n as f64 * mean.max(floor).ln();
-        count += n;
-    }
-    Some((sum_ln / count as f64).exp())
+    let (sums, counts) = block_sums(&lum, film.width, film.height, reference);
+    let sum_ln: f64 = (sums.iter().zip(&counts))
+        .filter(|(_, &n)| n > 0)
+        .map(|(&sum, &n)| n as f64 * (sum / n as f64).max(floor).ln())
+        .sum();
+    Some((sum_ln / finite.len() as f64).exp())
 }
 
-/// (mean luminance, finite pixel count) of each block holding a finite
-/// pixel; luminance clamped to [0, `cap`].
-fn block_means(film: &Film, cap: f32) -> Vec<(f64, usize)> {
-    let side = exposure_block_side(film.height);
-    let mut blocks = Vec::new();
-    for j0 in (0..film.height).step_by(side) {
-        for i0 in (0..film.width).step_by(side) {
-            let (mut sum, mut n) = (0.0f64, 0usize);
-            for j in j0..(j0 + side).min(film.height) {
-                let row = &film.rgb[j * film.width..(j + 1) * film.width];
-                for &rgb in &row[i0..(i0 + side).min(film.width)] {
-                    let l = luminance_rec709(rgb);
-                    if l.is_finite() {
-                        sum += l.clamp(0.0, cap) as f64;
-                        n += 1;
-                    }
-                }
-            }
-            if n > 0 {
-                blocks.push((sum / n as f64, n));
-            }
-        }
+/// Per block (raster order of blocks): the sum of its finite luminances
+/// `lum` (raster order, `width × height`) clamped to [0, `cap`], and how
+/// many there are.
+fn block_sums(lum: &[f32], width: usize, height: usize, cap: f32) -> (Vec<f64>, Vec<usize>) {
+    let side = exposure_block_side(height);
+    let blocks_x = width.div_ceil(side);
+    let blocks = blocks_x * height.div_ceil(side);
+    let (mut sums, mut counts) = (vec![0.0f64; blocks], vec![0usize; blocks]);
+    for (k, &l) in lum.iter().enumerate().filter(|(_, l)| l.is_finite()) {
+        let b = (k / width / side) * blocks_x + (k % width) / side;
+        sums[b] += l.clamp(0.0, cap) as f64;
+        counts[b] += 1;
     }
-    blocks
+    (sums, counts)
 }
 
 #[cfg(test)]
