@@ -183,6 +183,18 @@ fn is_two_sided(bsdf: &Bsdf) -> bool {
     !matches!(bsdf, Bsdf::Dielectric { .. })
 }
 
+/// The receiver normal a vertex gives the light tree (`LightSet::select_at`):
+/// a reflecting surface receives nothing from below its (front-facing)
+/// geometric normal `n_geo`; glass receives from both sides (zero). Light
+/// sampling and the BSDF-hit MIS weight must take the same one.
+fn receiver_normal(bsdf: &Bsdf, n_geo: Vec3) -> Vec3 {
+    if is_two_sided(bsdf) {
+        n_geo
+    } else {
+        Vec3::ZERO
+    }
+}
+
 /// The running state of one path.
 pub(super) struct PathState {
     /// Radiance gathered so far.
@@ -602,11 +614,7 @@ impl<A: Accel> PathContext<'_, A> {
         st.prev_delta = bs.delta;
         st.cone = st.cone.through_delta(dist);
         st.prev_p = si.p;
-        st.prev_n = if is_two_sided(&bsdf) {
-            si.n_geo
-        } else {
-            Vec3::ZERO
-        };
+        st.prev_n = receiver_normal(&bsdf, si.n_geo);
         st.bounces += 1;
         if !st.survives_roulette(u.u_rr) {
             return None;

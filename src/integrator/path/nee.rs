@@ -8,7 +8,7 @@ use shaders_cpu::sampling::power_heuristic;
 
 use super::ris::{self, RisSamples};
 use super::shadows::PendingShadows;
-use super::{is_two_sided, Vertex};
+use super::{is_two_sided, receiver_normal, Vertex};
 use crate::accel::Accel;
 use crate::integrator::PathContext;
 
@@ -91,9 +91,7 @@ impl<A: Accel> PathContext<'_, A> {
             let wi_local = frame.to_local(wi);
             bsdf.eval(wo_local, wi_local) * wi_local.z.abs()
         };
-        // Reflecting surfaces receive nothing from below their (front-facing)
-        // geometric normal: the light tree may skip what lies there.
-        let n = if two_sided { si.n_geo } else { Vec3::ZERO };
+        let n = receiver_normal(bsdf, si.n_geo);
         let Some(r) = ris::resample(self.lights, self.scene, (si.p, n), u, f_cos) else {
             return;
         };
