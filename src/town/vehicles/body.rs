@@ -9,6 +9,7 @@ use std::f64::consts::PI;
 use crate::scene::mesh::ellipsoid;
 use crate::town::street::kit::Kit;
 
+use super::bed::open_lower_body;
 use super::loft::grid;
 use super::spec::Spec;
 
@@ -25,18 +26,25 @@ pub fn body(s: &Spec, class: &'static str, paint: &mut Kit, parts: &mut Kit) {
     let id = DAffine3::IDENTITY;
     let nx = ((s.length * LOFT_PER_M) as usize).clamp(60, 110);
     let lower = |x: f64, th: f64| s.lower(x, th);
-    paint.add(
-        PAINT,
-        class,
-        grid(
-            &lower,
-            (-hl, hl, nx),
-            (0.0, 2.0 * PI, SECTION_STEPS),
-            0.0,
-            true,
+    match &s.bed {
+        None => paint.add(
+            PAINT,
+            class,
+            grid(
+                &lower,
+                (-hl, hl, nx),
+                (0.0, 2.0 * PI, SECTION_STEPS),
+                0.0,
+                true,
+            ),
+            id,
         ),
-        id,
-    );
+        Some(bed) => {
+            for m in open_lower_body(s, bed, SECTION_STEPS, LOFT_PER_M) {
+                paint.add(PAINT, class, m, id);
+            }
+        }
+    }
     glass_house(s, class, paint, parts);
     seams_and_trim(s, class, parts);
     mirrors_and_wipers(s, class, paint, parts);

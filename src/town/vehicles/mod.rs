@@ -12,6 +12,7 @@
 //! Local frame: x forward, y left, z up, origin on the ground at the centre
 //! of the footprint, so a vehicle's footprint is `length × width` about it.
 
+pub mod bed;
 pub mod body;
 pub mod interior;
 pub mod lamps;
@@ -48,7 +49,7 @@ pub enum BodyKind {
     Estate,
     /// Low two-door coupé with a fast roof line.
     Coupe,
-    /// Pickup: a tall cab and a covered bed.
+    /// Pickup: a tall cab and an open load bed.
     Pickup,
     /// Motorcycle.
     Motorcycle,

@@ -5,6 +5,8 @@
 //! Body frame: x forward, y left, z up, origin on the ground at the centre
 //! of the footprint; the nose is at x = length / 2.
 
+pub use super::bed::Bed;
+
 /// What a body looks like, metres (x stations are body-frame x).
 #[derive(Clone, Copy, Debug)]
 pub struct Spec {
@@ -46,6 +48,8 @@ pub struct Spec {
     pub doors: u8,
     /// A cargo box behind the cab from this x to the tail (box truck).
     pub cargo_front_x: Option<f64>,
+    /// An open load bed behind the cab (pickup).
+    pub bed: Option<Bed>,
 }
 
 /// `sign(v)·|v|^e`, the superellipse coordinate.
@@ -222,6 +226,7 @@ pub fn spec_of(kind: super::BodyKind) -> Option<Spec> {
         section_n: 6.0,
         doors: 3,
         cargo_front_x: None,
+        bed: None,
     };
     Some(match kind {
         K::Sedan => car,
@@ -301,6 +306,13 @@ pub fn spec_of(kind: super::BodyKind) -> Option<Spec> {
             plan_p: 12.0,
             section_n: 8.0,
             doors: 2,
+            // Open from behind the cab to a 12 cm tailgate, 28 cm deep.
+            bed: Some(Bed {
+                front_x: -0.65,
+                tail_x: -2.53,
+                floor_z: 0.86,
+                rail_steps: 4,
+            }),
             ..car
         },
         K::Van => Spec {
@@ -344,6 +356,7 @@ pub fn spec_of(kind: super::BodyKind) -> Option<Spec> {
             section_n: 10.0,
             doors: 1,
             cargo_front_x: Some(1.95),
+            bed: None,
         },
         K::Bus => Spec {
             length: 11.5,
