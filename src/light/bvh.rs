@@ -117,6 +117,31 @@ impl Importance {
     /// The importance at `p` for a receiver of normal `n` (zero: none).
     #[inline]
     fn at(&self, p: Vec3, n: Vec3) -> f32 {
+        // Nothing of a box wholly behind the receiver's plane reaches it.
+        if n != Vec3::ZERO && self.side(p, n) == Side::Behind {
+            return 0.0;
+        }
+        self.at_unculled(p, n)
+    }
+
+    /// Where the box lies against the plane through `p` of normal `n`
+    /// (its corners farthest in front and behind).
+    #[inline]
+    fn side(&self, p: Vec3, n: Vec3) -> Side {
+        let (s, r) = (n.dot(self.pc - p), n.abs().dot(self.half));
+        if s + r <= 0.0 {
+            Side::Behind
+        } else if s - r > 0.0 {
+            Side::Front
+        } else {
+            Side::Crossing
+        }
+    }
+
+    /// [`Importance::at`] for a box known not to lie wholly behind the
+    /// receiver's plane.
+    #[inline]
+    fn at_unculled(&self, p: Vec3, n: Vec3) -> f32 {
         let v = p - self.pc;
         let d2_centre = v.length_squared();
         // Clamp the distance so points inside a large cluster do not blow up.
@@ -146,15 +171,17 @@ impl Importance {
         if n == Vec3::ZERO {
             return importance;
         }
-        // Nothing of a box wholly behind the receiver's plane reaches it
-        // (its nearest corner: the box's sphere would cull less, and a
-        // node whose sphere crossed the plane with both children behind
-        // it would end the walk with no light).
-        if n.dot(self.pc - p) + n.abs().dot(self.half) <= 0.0 {
-            return 0.0;
-        }
         // θ_i' = max(0, θ_i − θ_b): the smallest angle between n and a
         // direction from p into the box (−wi points at its centre).
+        // sin θ_b from r/d: through cos θ_b it rounds to 0 for a box a few
+        // thousand radii away, and a box that crosses the plane at a
+        // grazing angle would weigh 0 (a walk's last kept node with no
+        // kept child).
+        let sin_b = if cos_b == -1.0 {
+            sin_b
+        } else {
+            safe_sqrt(self.r2 / d2_centre)
+        };
         let cos_i = -n.dot(wi);
         let sin_i = safe_sqrt(1.0 - cos_i * cos_i);
         let (cos_pi, _) = angle_sub_clamped(sin_i, cos_i, sin_b, cos_b);
@@ -163,6 +190,14 @@ impl Importance {
         }
         importance * cos_pi
     }
+}
+
+/// A box against a receiver's plane.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Side {
+    Behind,
+    Crossing,
+    Front,
 }
 
 fn safe_sqrt(x: f32) -> f32 {
@@ -294,13 +329,73 @@ impl LightBvh {
         self.nodes.is_empty()
     }
 
-    /// Importance of both children of inner node `k`, first child first.
-    fn child_importance(&self, k: usize, p: Vec3, n: Vec3) -> [f32; 2] {
+    /// Weights of both children of inner node `k` (whose subtree ends
+    /// before node `end`), first child first; see [`LightBvh::weight`].
+    fn child_weights(&self, k: usize, end: usize, p: Vec3, n: Vec3, walk: &mut Walk) -> [f32; 2] {
         let second = self.nodes[k].child_or_light as usize;
         [
-            self.importance[k + 1].at(p, n),
-            self.importance[second].at(p, n),
+            self.weight(k + 1..second, p, n, walk),
+            self.weight(second..end, p, n, walk),
         ]
+    }
+
+    /// The importance of the subtree in `nodes` (its root first), zero
+    /// unless one of its lights reaches the receiver's side of its plane. A
+    /// node's box is the union of its children's, so it can cross the plane
+    /// while both children lie wholly behind it: weighed by its box alone, a
+    /// walk ended there with no light. Weighed so, a kept node always has a
+    /// kept child. The value depends on the node, `p` and `n` only; `walk`
+    /// only spares repeating a search.
+    #[inline]
+    fn weight(&self, nodes: std::ops::Range<usize>, p: Vec3, n: Vec3, walk: &mut Walk) -> f32 {
+        let (k, b) = (nodes.start, &self.importance[nodes.start]);
+        if !walk.in_front {
+            let reaches = match b.side(p, n) {
+                Side::Behind => false,
+                Side::Front => true,
+                Side::Crossing => {
+                    walk.witness.iter().any(|w| nodes.contains(w))
+                        || self.node_in_front(k, p, n).is_some_and(|w| {
+                            walk.witness = [w, walk.witness[0]];
+                            true
+                        })
+                }
+            };
+            if !reaches {
+                return 0.0;
+            }
+        }
+        b.at_unculled(p, n)
+    }
+
+    /// A leaf or node under node `k` whose box lies at least partly (a
+    /// leaf) or wholly in front of the plane through `p` of normal `n`, if
+    /// any: depth first, pruning boxes wholly behind it.
+    fn node_in_front(&self, k: usize, p: Vec3, n: Vec3) -> Option<usize> {
+        // At most one pending sibling per level of the tree.
+        let mut stack = [0u32; 128];
+        let mut top = 0;
+        let mut k = k;
+        loop {
+            let node = &self.nodes[k];
+            if node.leaf {
+                return Some(k);
+            }
+            stack[top] = node.child_or_light;
+            top += 1;
+            k += 1;
+            loop {
+                match self.importance[k].side(p, n) {
+                    Side::Front => return Some(k),
+                    Side::Crossing => break,
+                    Side::Behind if top == 0 => return None,
+                    Side::Behind => {
+                        top -= 1;
+                        k = stack[top] as usize;
+                    }
+                }
+            }
+        }
     }
 
     /// Chooses a light for point `p` with `u` ∈ [0, 1): (light index, pmf),
@@ -317,6 +412,8 @@ impl LightBvh {
         }
         let mut k = 0;
         let mut pmf = 1.0f32;
+        let mut end = self.nodes.len();
+        let mut walk = Walk::new(n);
         loop {
             let node = &self.nodes[k];
             if node.leaf {
@@ -326,22 +423,26 @@ impl LightBvh {
                 }
                 return None;
             }
-            let ci = self.child_importance(k, p, n);
-            let sum = ci[0] + ci[1];
+            let second = node.child_or_light as usize;
+            let [w0, w1] = self.child_weights(k, end, p, n, &mut walk);
+            let sum = w0 + w1;
             if sum == 0.0 || !sum.is_finite() {
                 return None;
             }
-            let p0 = ci[0] / sum;
+            let p0 = w0 / sum;
             // Reuse u: rescale the chosen sub-interval back to [0, 1).
             if u < p0 {
                 pmf *= p0;
                 u = (u / p0).min(ONE_MINUS_EPS);
+                walk.descend(p, n, &self.importance[k + 1]);
+                end = second;
                 k += 1;
             } else {
-                let p1 = ci[1] / sum;
+                let p1 = w1 / sum;
                 pmf *= p1;
                 u = ((u - p0) / p1).clamp(0.0, ONE_MINUS_EPS);
-                k = node.child_or_light as usize;
+                walk.descend(p, n, &self.importance[second]);
+                k = second;
             }
         }
     }
@@ -361,6 +462,8 @@ impl LightBvh {
         let mut trail = self.trails[light as usize];
         let mut k = 0;
         let mut pmf = 1.0f32;
+        let mut end = self.nodes.len();
+        let mut walk = Walk::new(n);
         loop {
             let node = &self.nodes[k];
             if node.leaf {
@@ -373,19 +476,49 @@ impl LightBvh {
                     0.0
                 };
             }
-            let ci = self.child_importance(k, p, n);
-            let sum = ci[0] + ci[1];
+            let second = node.child_or_light as usize;
+            let w = self.child_weights(k, end, p, n, &mut walk);
+            let sum = w[0] + w[1];
             if sum == 0.0 || !sum.is_finite() {
                 return 0.0;
             }
-            let second = (trail & 1) as usize;
-            pmf *= ci[second] / sum;
+            let taken = (trail & 1) as usize;
+            pmf *= w[taken] / sum;
             trail >>= 1;
-            k = if second == 0 {
-                k + 1
+            if taken == 0 {
+                end = second;
+                k += 1;
             } else {
-                node.child_or_light as usize
-            };
+                k = second;
+            }
+            walk.descend(p, n, &self.importance[k]);
+        }
+    }
+}
+
+/// What a walk down the tree knows of the receiver's plane (no bearing on
+/// the weights, only on the work of finding them).
+struct Walk {
+    /// Every light of the current node lies in front (or no normal).
+    in_front: bool,
+    /// The last two nodes found to reach the front, under the current
+    /// node or not (`usize::MAX`: none).
+    witness: [usize; 2],
+}
+
+impl Walk {
+    fn new(n: Vec3) -> Walk {
+        Walk {
+            in_front: n == Vec3::ZERO,
+            witness: [usize::MAX; 2],
+        }
+    }
+
+    /// Steps to a node of importance `b`.
+    #[inline]
+    fn descend(&mut self, p: Vec3, n: Vec3, b: &Importance) {
+        if !self.in_front {
+            self.in_front = b.side(p, n) == Side::Front;
         }
     }
 }
