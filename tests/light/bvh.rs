@@ -204,6 +204,7 @@ fn walks_from_receivers_with_a_light_in_front_always_find_one() {
     // facing up and down, where every lamp box crosses the plane at a
     // grazing angle far away (the bound on the receiver's cosine must not
     // round to zero there).
+    let mut rng = Rng(43);
     let mut lamps = Vec::new();
     for i in 0..40 {
         for j in 0..40 {
