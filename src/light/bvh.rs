@@ -17,6 +17,9 @@
 
 use glam::Vec3;
 
+mod build;
+use build::{Subtree, PARALLEL_GRAIN};
+
 /// Bounds of one light or of a cluster of lights.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LightBounds {
@@ -117,6 +120,31 @@ impl Importance {
     /// The importance at `p` for a receiver of normal `n` (zero: none).
     #[inline]
     fn at(&self, p: Vec3, n: Vec3) -> f32 {
+        // Nothing of a box wholly behind the receiver's plane reaches it.
+        if n != Vec3::ZERO && self.side(p, n) == Side::Behind {
+            return 0.0;
+        }
+        self.at_unculled(p, n)
+    }
+
+    /// Where the box lies against the plane through `p` of normal `n`
+    /// (its corners farthest in front and behind).
+    #[inline]
+    fn side(&self, p: Vec3, n: Vec3) -> Side {
+        let (s, r) = (n.dot(self.pc - p), n.abs().dot(self.half));
+        if s + r <= 0.0 {
+            Side::Behind
+        } else if s - r > 0.0 {
+            Side::Front
+        } else {
+            Side::Crossing
+        }
+    }
+
+    /// [`Importance::at`] for a box known not to lie wholly behind the
+    /// receiver's plane.
+    #[inline]
+    fn at_unculled(&self, p: Vec3, n: Vec3) -> f32 {
         let v = p - self.pc;
         let d2_centre = v.length_squared();
         // Clamp the distance so points inside a large cluster do not blow up.
@@ -146,15 +174,17 @@ impl Importance {
         if n == Vec3::ZERO {
             return importance;
         }
-        // Nothing of a box wholly behind the receiver's plane reaches it
-        // (its nearest corner: the box's sphere would cull less, and a
-        // node whose sphere crossed the plane with both children behind
-        // it would end the walk with no light).
-        if n.dot(self.pc - p) + n.abs().dot(self.half) <= 0.0 {
-            return 0.0;
-        }
         // θ_i' = max(0, θ_i − θ_b): the smallest angle between n and a
         // direction from p into the box (−wi points at its centre).
+        // sin θ_b from r/d: through cos θ_b it rounds to 0 for a box a few
+        // thousand radii away, and a box that crosses the plane at a
+        // grazing angle would weigh 0 (a walk's last kept node with no
+        // kept child).
+        let sin_b = if cos_b == -1.0 {
+            sin_b
+        } else {
+            safe_sqrt(self.r2 / d2_centre)
+        };
         let cos_i = -n.dot(wi);
         let sin_i = safe_sqrt(1.0 - cos_i * cos_i);
         let (cos_pi, _) = angle_sub_clamped(sin_i, cos_i, sin_b, cos_b);
@@ -163,6 +193,14 @@ impl Importance {
         }
         importance * cos_pi
     }
+}
+
+/// A box against a receiver's plane.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Side {
+    Behind,
+    Crossing,
+    Front,
 }
 
 fn safe_sqrt(x: f32) -> f32 {
@@ -242,11 +280,6 @@ struct Node {
     leaf: bool,
 }
 
-/// Depth past which splits are by count, keeping every trail within 128 bits.
-const MAX_SAH_DEPTH: u32 = 64;
-/// Buckets per axis in the split search.
-const BUCKETS: usize = 12;
-
 /// A light BVH over lights `0..n` given by their bounds.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LightBvh {
@@ -294,13 +327,73 @@ impl LightBvh {
         self.nodes.is_empty()
     }
 
-    /// Importance of both children of inner node `k`, first child first.
-    fn child_importance(&self, k: usize, p: Vec3, n: Vec3) -> [f32; 2] {
+    /// Weights of both children of inner node `k` (whose subtree ends
+    /// before node `end`), first child first; see [`LightBvh::weight`].
+    fn child_weights(&self, k: usize, end: usize, p: Vec3, n: Vec3, walk: &mut Walk) -> [f32; 2] {
         let second = self.nodes[k].child_or_light as usize;
         [
-            self.importance[k + 1].at(p, n),
-            self.importance[second].at(p, n),
+            self.weight(k + 1..second, p, n, walk),
+            self.weight(second..end, p, n, walk),
         ]
+    }
+
+    /// The importance of the subtree in `nodes` (its root first), zero
+    /// unless one of its lights reaches the receiver's side of its plane. A
+    /// node's box is the union of its children's, so it can cross the plane
+    /// while both children lie wholly behind it: weighed by its box alone, a
+    /// walk ended there with no light. Weighed so, a kept node always has a
+    /// kept child. The value depends on the node, `p` and `n` only; `walk`
+    /// only spares repeating a search.
+    #[inline]
+    fn weight(&self, nodes: std::ops::Range<usize>, p: Vec3, n: Vec3, walk: &mut Walk) -> f32 {
+        let (k, b) = (nodes.start, &self.importance[nodes.start]);
+        if !walk.in_front {
+            let reaches = match b.side(p, n) {
+                Side::Behind => false,
+                Side::Front => true,
+                Side::Crossing => {
+                    walk.witness.iter().any(|w| nodes.contains(w))
+                        || self.node_in_front(k, p, n).is_some_and(|w| {
+                            walk.witness = [w, walk.witness[0]];
+                            true
+                        })
+                }
+            };
+            if !reaches {
+                return 0.0;
+            }
+        }
+        b.at_unculled(p, n)
+    }
+
+    /// A leaf or node under node `k` whose box lies at least partly (a
+    /// leaf) or wholly in front of the plane through `p` of normal `n`, if
+    /// any: depth first, pruning boxes wholly behind it.
+    fn node_in_front(&self, k: usize, p: Vec3, n: Vec3) -> Option<usize> {
+        // At most one pending sibling per level of the tree.
+        let mut stack = [0u32; 128];
+        let mut top = 0;
+        let mut k = k;
+        loop {
+            let node = &self.nodes[k];
+            if node.leaf {
+                return Some(k);
+            }
+            stack[top] = node.child_or_light;
+            top += 1;
+            k += 1;
+            loop {
+                match self.importance[k].side(p, n) {
+                    Side::Front => return Some(k),
+                    Side::Crossing => break,
+                    Side::Behind if top == 0 => return None,
+                    Side::Behind => {
+                        top -= 1;
+                        k = stack[top] as usize;
+                    }
+                }
+            }
+        }
     }
 
     /// Chooses a light for point `p` with `u` ∈ [0, 1): (light index, pmf),
@@ -317,6 +410,8 @@ impl LightBvh {
         }
         let mut k = 0;
         let mut pmf = 1.0f32;
+        let mut end = self.nodes.len();
+        let mut walk = Walk::new(n);
         loop {
             let node = &self.nodes[k];
             if node.leaf {
@@ -326,22 +421,26 @@ impl LightBvh {
                 }
                 return None;
             }
-            let ci = self.child_importance(k, p, n);
-            let sum = ci[0] + ci[1];
+            let second = node.child_or_light as usize;
+            let [w0, w1] = self.child_weights(k, end, p, n, &mut walk);
+            let sum = w0 + w1;
             if sum == 0.0 || !sum.is_finite() {
                 return None;
             }
-            let p0 = ci[0] / sum;
+            let p0 = w0 / sum;
             // Reuse u: rescale the chosen sub-interval back to [0, 1).
             if u < p0 {
                 pmf *= p0;
                 u = (u / p0).min(ONE_MINUS_EPS);
+                walk.descend(p, n, &self.importance[k + 1]);
+                end = second;
                 k += 1;
             } else {
-                let p1 = ci[1] / sum;
+                let p1 = w1 / sum;
                 pmf *= p1;
                 u = ((u - p0) / p1).clamp(0.0, ONE_MINUS_EPS);
-                k = node.child_or_light as usize;
+                walk.descend(p, n, &self.importance[second]);
+                k = second;
             }
         }
     }
@@ -361,6 +460,8 @@ impl LightBvh {
         let mut trail = self.trails[light as usize];
         let mut k = 0;
         let mut pmf = 1.0f32;
+        let mut end = self.nodes.len();
+        let mut walk = Walk::new(n);
         loop {
             let node = &self.nodes[k];
             if node.leaf {
@@ -373,200 +474,54 @@ impl LightBvh {
                     0.0
                 };
             }
-            let ci = self.child_importance(k, p, n);
-            let sum = ci[0] + ci[1];
+            let second = node.child_or_light as usize;
+            let w = self.child_weights(k, end, p, n, &mut walk);
+            let sum = w[0] + w[1];
             if sum == 0.0 || !sum.is_finite() {
                 return 0.0;
             }
-            let second = (trail & 1) as usize;
-            pmf *= ci[second] / sum;
+            let taken = (trail & 1) as usize;
+            pmf *= w[taken] / sum;
             trail >>= 1;
-            k = if second == 0 {
-                k + 1
+            if taken == 0 {
+                end = second;
+                k += 1;
             } else {
-                node.child_or_light as usize
-            };
-        }
-    }
-}
-
-/// Lights per subtree from which its two halves are built in parallel
-/// (below it a fork costs more than the half it saves).
-const PARALLEL_GRAIN: usize = 4096;
-
-/// Nodes of a subtree in depth-first order (inner nodes' child indices
-/// relative to its first node) and the trails of its lights.
-#[derive(Default)]
-struct Subtree {
-    nodes: Vec<Node>,
-    trails: Vec<(u32, u128)>,
-}
-
-impl Subtree {
-    /// Appends the subtree over `ids` at `(trail, depth)`.
-    fn build(&mut self, all: &[LightBounds], ids: &mut [u32], at: (u128, u32), grain: usize) {
-        let (trail, depth) = at;
-        let node = self.nodes.len();
-        if ids.len() == 1 {
-            self.nodes.push(Node {
-                bounds: all[ids[0] as usize],
-                child_or_light: ids[0],
-                leaf: true,
-            });
-            self.trails.push((ids[0], trail));
-            return;
-        }
-        let total = ids[1..]
-            .iter()
-            .fold(all[ids[0] as usize], |b, &i| b.union(&all[i as usize]));
-        self.nodes.push(Node {
-            bounds: total,
-            child_or_light: 0,
-            leaf: false,
-        });
-        let mid = if depth < MAX_SAH_DEPTH {
-            sah_split(all, ids, &total)
-        } else {
-            None
-        }
-        .unwrap_or_else(|| {
-            // Fallback: halve by count along the widest centroid axis.
-            let axis = centroid_box(all, ids).1.max_position();
-            let mid = ids.len() / 2;
-            ids.select_nth_unstable_by(mid, |&a, &b| {
-                let (ca, cb) = (all[a as usize].centroid(), all[b as usize].centroid());
-                ca[axis].total_cmp(&cb[axis]).then(a.cmp(&b))
-            });
-            mid
-        });
-        let (left, right) = ids.split_at_mut(mid);
-        let right_at = (trail | (1u128 << depth), depth + 1);
-        if ids_len_at_least(left, right, grain) {
-            let (mut l, mut r) = (Subtree::default(), Subtree::default());
-            rayon::join(
-                || l.build(all, left, (trail, depth + 1), grain),
-                || r.build(all, right, right_at, grain),
-            );
-            self.append(l);
-            self.nodes[node].child_or_light = self.nodes.len() as u32;
-            self.append(r);
-        } else {
-            self.build(all, left, (trail, depth + 1), grain);
-            self.nodes[node].child_or_light = self.nodes.len() as u32;
-            self.build(all, right, right_at, grain);
-        }
-    }
-
-    /// Appends `sub`'s nodes (their child indices shifted to where they land).
-    fn append(&mut self, sub: Subtree) {
-        let offset = self.nodes.len() as u32;
-        self.nodes.extend(sub.nodes.into_iter().map(|mut n| {
-            if !n.leaf {
-                n.child_or_light += offset;
+                k = second;
             }
-            n
-        }));
-        self.trails.extend(sub.trails);
+            walk.descend(p, n, &self.importance[k]);
+        }
     }
 }
 
-/// Whether both halves are big enough to be built in parallel.
-fn ids_len_at_least(left: &[u32], right: &[u32], grain: usize) -> bool {
-    left.len().min(right.len()) >= grain
+/// What a walk down the tree knows of the receiver's plane (no bearing on
+/// the weights, only on the work of finding them).
+struct Walk {
+    /// Every light of the current node lies in front (or no normal).
+    in_front: bool,
+    /// The last two nodes found to reach the front, under the current
+    /// node or not (`usize::MAX`: none).
+    witness: [usize; 2],
+}
+
+impl Walk {
+    fn new(n: Vec3) -> Walk {
+        Walk {
+            in_front: n == Vec3::ZERO,
+            witness: [usize::MAX; 2],
+        }
+    }
+
+    /// Steps to a node of importance `b`.
+    #[inline]
+    fn descend(&mut self, p: Vec3, n: Vec3, b: &Importance) {
+        if !self.in_front {
+            self.in_front = b.side(p, n) == Side::Front;
+        }
+    }
 }
 
 const ONE_MINUS_EPS: f32 = 1.0 - f32::EPSILON / 2.0;
-
-/// Box of the centroids of `ids` and its extent.
-fn centroid_box(all: &[LightBounds], ids: &[u32]) -> (Vec3, Vec3) {
-    let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
-    for &i in ids {
-        let c = all[i as usize].centroid();
-        lo = lo.min(c);
-        hi = hi.max(c);
-    }
-    (lo, hi - lo)
-}
-
-/// Orientation measure M_Ω of a cone (pbrt-v4 eq. 12.x / Conty & Kulla eq. 1).
-fn orientation_measure(b: &LightBounds) -> f32 {
-    use std::f32::consts::PI;
-    let theta_o = acos_clamped(b.cos_theta_o);
-    let theta_e = acos_clamped(b.cos_theta_e);
-    let theta_w = (theta_o + theta_e).min(PI);
-    let sin_o = theta_o.sin();
-    2.0 * PI * (1.0 - b.cos_theta_o)
-        + PI / 2.0
-            * (2.0 * theta_w * sin_o - (theta_o - 2.0 * theta_w).cos() - 2.0 * theta_o * sin_o
-                + b.cos_theta_o)
-}
-
-/// Split cost of a cluster: power × orientation × surface area, stretched
-/// along `axis` when the parent box is thin there (Conty & Kulla §4.4).
-fn cost(b: &LightBounds, parent: &LightBounds, axis: usize) -> f32 {
-    let d = parent.p_max - parent.p_min;
-    let kr = if d[axis] > 0.0 {
-        d.max_element() / d[axis]
-    } else {
-        1.0
-    };
-    let e = b.p_max - b.p_min;
-    let area = 2.0 * (e.x * e.y + e.y * e.z + e.z * e.x);
-    b.phi * orientation_measure(b) * kr * area.max(1e-8)
-}
-
-/// Bucketed split minimising [`cost`]; partitions `ids` and returns the split
-/// index, or None when no bucket split separates the lights.
-fn sah_split(all: &[LightBounds], ids: &mut [u32], parent: &LightBounds) -> Option<usize> {
-    let (lo, ext) = centroid_box(all, ids);
-    let bucket = |i: u32, axis: usize| {
-        let t = (all[i as usize].centroid()[axis] - lo[axis]) / ext[axis];
-        ((t * BUCKETS as f32) as usize).min(BUCKETS - 1)
-    };
-    let mut best: Option<(f32, usize, usize)> = None;
-    for axis in 0..3 {
-        if ext[axis] <= 0.0 {
-            continue;
-        }
-        let mut bins: [Option<LightBounds>; BUCKETS] = [None; BUCKETS];
-        for &i in ids.iter() {
-            let b = &mut bins[bucket(i, axis)];
-            let l = &all[i as usize];
-            *b = Some(b.map_or(*l, |x| x.union(l)));
-        }
-        // Unions of buckets below and above each split, swept once per side.
-        let mut below = [None::<LightBounds>; BUCKETS];
-        let mut above = [None::<LightBounds>; BUCKETS];
-        let join = |a: Option<LightBounds>, b: &Option<LightBounds>| match (a, b) {
-            (Some(a), Some(b)) => Some(a.union(b)),
-            (a, b) => a.or(*b),
-        };
-        for k in 1..BUCKETS {
-            below[k] = join(below[k - 1], &bins[k - 1]);
-            let j = BUCKETS - 1 - k;
-            above[j] = join(above[j + 1], &bins[j + 1]);
-        }
-        for split in 1..BUCKETS {
-            // below[split] holds buckets 0..split; above[split − 1] holds split..
-            let (Some(l), Some(r)) = (below[split], above[split - 1]) else {
-                continue;
-            };
-            let c = cost(&l, parent, axis) + cost(&r, parent, axis);
-            if best.is_none_or(|(bc, _, _)| c < bc) {
-                best = Some((c, axis, split));
-            }
-        }
-    }
-    let (_, axis, split) = best?;
-    let mut mid = 0;
-    for k in 0..ids.len() {
-        if bucket(ids[k], axis) < split {
-            ids.swap(k, mid);
-            mid += 1;
-        }
-    }
-    (mid > 0 && mid < ids.len()).then_some(mid)
-}
 
 #[cfg(test)]
 #[path = "bvh_tests.rs"]

@@ -64,7 +64,19 @@ fn a_window_mirroring_the_sky_is_smooth_and_keeps_its_light() {
          filtered − plain {bias:.2e} ± {se:.1e} of mean {m_ref:.4}",
         mse_off / mse_on
     );
-    // 8 samples at R ≈ 0.04: most pixels reflect none or one.
-    assert!(mse_on * 20.0 < mse_off, "{mse_on} vs {mse_off}");
+    // Per pixel: the share of pixels within 25 % of the reference's.
+    let close = |r: &Rendered| {
+        (0..n)
+            .filter(|&k| (green(r, k) - green(&reference, k)).abs() < 0.25 * green(&reference, k))
+            .count() as f64
+            / n as f64
+    };
+    let (close_off, close_on) = (close(&off), close(&on));
+    eprintln!("within 25 %: plain {close_off:.3}, filtered {close_on:.3}");
+    // 8 samples at R ≈ 0.04: most pixels reflect none or one. (Filtered:
+    // 33× and 91 %; Fresnel reflectance recorded on reflected samples only
+    // gave 19×, no filter 1× and 0.2 %.)
+    assert!(mse_on * 25.0 < mse_off, "{mse_on} vs {mse_off}");
+    assert!(close_on > 0.8, "{close_on} of pixels within 25 %");
     assert!(bias.abs() < 0.01 * m_ref, "{bias} of {m_ref}");
 }

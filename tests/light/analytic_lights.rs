@@ -3,7 +3,9 @@
 //! rays that hit the emitter — contribute):
 //! - a point light: L = ρ/π · I·cosθ/d²;
 //! - an emissive quad: L = ρ/π · E with E from Lambert's polygon formula,
-//!   E = L_e/2 · Σ_k angle(u_k, u_k+1) · n·normalize(u_k × u_k+1).
+//!   E = L_e/2 · Σ_k angle(u_k, u_k+1) · n·normalize(u_k × u_k+1), alone or
+//!   with a brighter emitter under the plane that the light tree must not
+//!   offer the plane's points (nor count in the MIS weights of BSDF rays).
 //!
 //! A camera 3 m up looks straight down on a Lambert plane; interior plane pixels
 //! are compared by the mean of rendered/expected (within 1%, z-score ≤ 4).
@@ -73,35 +75,64 @@ fn point_light_irradiance_matches_inverse_square_law() {
     }));
 }
 
-#[test]
-fn emissive_quad_irradiance_matches_lambert_polygon_formula() {
-    // A 1 m square at 2 m, facing down, radiance 10.
-    let (c, le) = (DVec3::new(0.4, 0.3, 2.0), 10.0);
-    let text = scene(&format!(
+/// A 1 m square emitter at `c` facing down, radiance `le`.
+fn lamp_above(c: DVec3, le: f64) -> String {
+    format!(
         "[[material]]\nname = \"lamp\"\nkind = \"emissive\"\nradiance = [{le:?}, {le:?}, {le:?}]\n\
 [[object]]\nkind = \"quad\"\nsize = [1.0, 1.0]\nmaterial = \"lamp\"\ninstance = 9\ntransform = {{ translate = [{:?}, {:?}, {:?}], rotate_deg = [180.0, 0.0, 0.0] }}\n",
         c.x, c.y, c.z
-    ));
-    let r = render(&scene_from_toml(&text), Backend::default_backend(), 128);
+    )
+}
+
+/// ρ/π · E at plane point `x` under [`lamp_above`] (Lambert's polygon formula).
+fn lamp_above_radiance(c: DVec3, le: f64, x: DVec3) -> f64 {
     let corners = [
         c + DVec3::new(-0.5, -0.5, 0.0),
         c + DVec3::new(0.5, -0.5, 0.0),
         c + DVec3::new(0.5, 0.5, 0.0),
         c + DVec3::new(-0.5, 0.5, 0.0),
     ];
-    check(&ratios(&r, |x| {
-        let u: Vec<DVec3> = corners.iter().map(|v| (*v - x).normalize()).collect();
-        let e: f64 = (0..4)
-            .map(|k| {
-                let (a, b) = (u[k], u[(k + 1) % 4]);
-                a.dot(b).clamp(-1.0, 1.0).acos() * a.cross(b).normalize().z
-            })
-            .sum::<f64>()
-            .abs()
-            * le
-            / 2.0;
-        RHO / std::f64::consts::PI * e
-    }));
+    let u: Vec<DVec3> = corners.iter().map(|v| (*v - x).normalize()).collect();
+    let e: f64 = (0..4)
+        .map(|k| {
+            let (a, b) = (u[k], u[(k + 1) % 4]);
+            a.dot(b).clamp(-1.0, 1.0).acos() * a.cross(b).normalize().z
+        })
+        .sum::<f64>()
+        .abs()
+        * le
+        / 2.0;
+    RHO / std::f64::consts::PI * e
+}
+
+#[test]
+fn emissive_quad_irradiance_matches_lambert_polygon_formula() {
+    // A 1 m square at 2 m, facing down, radiance 10.
+    let (c, le) = (DVec3::new(0.4, 0.3, 2.0), 10.0);
+    let r = render(
+        &scene_from_toml(&scene(&lamp_above(c, le))),
+        Backend::default_backend(),
+        128,
+    );
+    check(&ratios(&r, |x| lamp_above_radiance(c, le, x)));
+}
+
+#[test]
+fn quad_light_seen_past_a_brighter_one_below_the_plane_matches_the_closed_form() {
+    // The lamp above plus a far brighter 4 m square 0.5 m under the plane,
+    // facing up at its underside: the light tree gives the plane's points
+    // (receiver normal +z) the lamp only, but without the normal it would
+    // give the square ~99 % of its choices. A BSDF ray that hits the lamp
+    // weighs itself against light sampling with the lamp's pmf; taken
+    // without the receiver's normal, that pmf is ~1 % of the one light
+    // sampling used, and the two MIS weights sum to nearly 2 where the
+    // BSDF ray would have carried weight.
+    let (c, le) = (DVec3::new(0.4, 0.3, 2.0), 10.0);
+    let below = "[[material]]\nname = \"under\"\nkind = \"emissive\"\nradiance = [50.0, 50.0, 50.0]\n\
+[[object]]\nkind = \"quad\"\nsize = [4.0, 4.0]\nmaterial = \"under\"\ninstance = 8\ntransform = { translate = [0.0, 0.0, -0.5] }\n";
+    let text = scene(&(lamp_above(c, le) + below));
+    let r = render(&scene_from_toml(&text), Backend::default_backend(), 128);
+    check(&ratios(&r, |x| lamp_above_radiance(c, le, x)));
 }
 
 /// A light: position, intensity, and for a spot (axis, cos inner, cos outer).
