@@ -203,3 +203,27 @@ fn fused_eval_pdf_gives_the_bits_of_eval_and_pdf() {
     }
     assert!(nonzero > 1000, "{nonzero} directions with a pdf");
 }
+
+#[test]
+fn sampled_directions_are_unit_for_normals_a_hair_off_z() {
+    // Tilts of a few milliradians: cos θp rounds to within an ulp or two
+    // of 1, where sin θp = √(1 − cos²) loses most of its digits. The
+    // groove's tangent facet ωt must still be a unit vector, or its
+    // mirror lengthens the directions it reflects (a phase function then
+    // sees a cosine above 1).
+    let mut worst = 0.0f32;
+    for k in 1..=60 {
+        let theta_deg = 0.004 * k as f32;
+        let wp = dir(theta_deg, 37.0 * k as f32);
+        for wo in views() {
+            let bsdf = lambert_mapped(0.8, wp);
+            for i in 0..2_000 {
+                let (u, l) = r2(i);
+                if let Some(s) = bsdf.sample(wo, l, u) {
+                    worst = worst.max((s.wi.length() - 1.0).abs());
+                }
+            }
+        }
+    }
+    assert!(worst < 1e-5, "|wi| off 1 by up to {worst}");
+}

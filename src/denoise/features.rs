@@ -8,8 +8,9 @@ use crate::scene::Scene;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Features {
     /// Filter the direct light (sky, lamps) on the first diffuse surface
-    /// (`direct.rs`; it needs the indirect filter's split, so medium-free
-    /// scenes only).
+    /// and all the light of a glossy one (`direct.rs`; it needs the
+    /// indirect filter's split, or with a medium the fog filter's, which
+    /// splits glossy first surfaces only).
     pub direct: bool,
 }
 
@@ -17,11 +18,11 @@ impl Features {
     /// Every feature off: plain path tracing.
     pub const OFF: Features = Features { direct: false };
 
-    /// The features `scene` asks for: on when it filters indirect light,
-    /// off under `--no-filter`.
+    /// The features `scene` asks for: on when it filters indirect light
+    /// or fog light, off under `--no-filter`.
     pub fn for_scene(scene: &Scene) -> Features {
         Features {
-            direct: scene.filter_indirect,
+            direct: scene.filter_indirect || scene.filter_inscatter,
         }
     }
 }

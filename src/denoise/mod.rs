@@ -14,10 +14,12 @@
 //!   medium-free scene its sky and indirect light, filtered as a ratio to
 //!   the surface's albedo; in medium-free scenes the first-scatter cascade
 //!   is skipped;
-//! - direct light on that surface (`direct.rs`, medium-free scenes): its
-//!   next-event estimates of sun, sky and lamps, also as a ratio to the
-//!   albedo, with edge-stopping on the per-pixel noise level (variance
-//!   from the sample moments) so that shadow edges stay;
+//! - direct light on that surface (`direct.rs`): in medium-free scenes its
+//!   next-event estimates of sun, sky and lamps, and at a glossy surface
+//!   (paint) all its light, which is all a medium's scenes hand over;
+//!   also as a ratio to the albedo, with edge-stopping on the per-pixel
+//!   noise level (variance from the sample moments) so that shadow edges
+//!   stay;
 //! - light along smooth glass's reflection (`direct.rs`, medium-free
 //!   scenes): what a window mirrors, as a ratio to the Fresnel reflectance
 //!   that every sample meeting the glass records (reflected or not), with

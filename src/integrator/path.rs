@@ -217,6 +217,10 @@ pub(super) struct PathState {
     /// The first surface vertex's Lambertian albedo (None: not Lambertian,
     /// or not shaded), recorded as it is shaded for the fog's split.
     pub first_albedo: Option<Vec3>,
+    /// The first surface vertex's [`glossy_albedo`] when it is glossy and
+    /// emits nothing (None otherwise), recorded as it is shaded for the
+    /// fog's split: all its light is then filtered as direct light.
+    pub first_glossy: Option<Vec3>,
     /// The pixel's cone at the last vertex (`RayCone`): the footprint
     /// textures are filtered by at hits seen through delta bounces.
     pub cone: RayCone,
@@ -237,6 +241,7 @@ impl PathState {
             bounces: 0,
             split: SplitVertex::default(),
             first_albedo: None,
+            first_glossy: None,
             cone: RayCone::NONE,
             aov: AovState::default(),
         }
@@ -545,6 +550,7 @@ impl<A: Accel> PathContext<'_, A> {
             .bsdf_filtered(&si, wo, st.prev_delta, footprint);
         if st.bounces == 0 {
             st.first_albedo = bsdf.diffuse_albedo();
+            st.first_glossy = glossy_albedo(&bsdf).filter(|_| mat.le == Vec3::ZERO);
         }
         if is_two_sided(&bsdf) && !front {
             si.n_geo = -si.n_geo;

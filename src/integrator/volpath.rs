@@ -37,7 +37,9 @@
 //! `l_fog`, denoised in image space (`crate::denoise`); renders that filter
 //! also split that first segment (`Strategies::split_first`) and mark the
 //! fog light on the first surface: what the segment after a Lambertian
-//! first vertex x1 brings by in-scattering or a collision (`surf_fog.rs`).
+//! first vertex x1 brings by in-scattering or a collision (`surf_fog.rs`);
+//! at a glossy x1 (paint, rough metal) all the light the path gathers from
+//! x1 on, handed over as direct light as in medium-free scenes.
 //! One segment's medium events are `segment.rs`.
 
 use glam::{Vec2, Vec3};
@@ -177,10 +179,14 @@ impl<A: Accel> PathContext<'_, A> {
             // record is read and textured once).
             let first = (st.bounces == 0 && strategies.split_first && st.bounces < self.max_depth)
                 .then_some(st.beta);
+            let l_at_x1 = st.l;
             let next = self.surface_vertex(&ray, &hit, st, stream, rays);
             if let Some(beta) = first {
                 let rho = st.first_albedo.map(|a| a * beta);
                 vs.first.surf_fog.at_first_vertex(rho);
+                // A glossy x1 (paint): everything it reflects, fog light
+                // included, is filtered as direct light (`l_direct`).
+                vs.first.glossy = st.first_glossy.map(|a| (l_at_x1, a * beta));
             }
             match next {
                 Some(next) => ray = next,

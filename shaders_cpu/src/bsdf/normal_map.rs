@@ -121,10 +121,16 @@ impl Groove {
         let wp = bend(wp.normalize(), Vec3::Z, MIN_COS);
         let wp = bend(wp, wo, MIN_FACING * wo.z);
         let cos_p = wp.z.min(1.0);
-        let sin_p = (1.0 - cos_p * cos_p).max(0.0).sqrt();
-        // ωt lies in the plane of z and ωp, perpendicular to ωp, facing up.
+        // From ωp's horizontal part, not √(1 − cos²): near z that
+        // difference cancels to a few bits, and ωt built on it was far
+        // from unit length (its mirror then lengthened directions).
+        let sin_p = wp.x.hypot(wp.y);
+        // ωt lies in the plane of z and ωp, perpendicular to ωp, facing
+        // up: (z − ωp cos θp) / sin θp, its z component cos² + sin² − cos²
+        // taken as sin θp directly.
         let wt = if sin_p > 1e-6 {
-            (Vec3::Z - wp * cos_p) / sin_p
+            let k = -cos_p / sin_p;
+            Vec3::new(wp.x * k, wp.y * k, sin_p)
         } else {
             Vec3::X
         };

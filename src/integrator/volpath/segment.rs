@@ -108,6 +108,9 @@ pub(super) struct FirstEvent {
     opacity: f32,
     /// Fog light on the first surface.
     pub surf_fog: SurfFog,
+    /// At a glossy first vertex: the path radiance before it was shaded
+    /// and β·`glossy_albedo` there (`DenoiseSample::l_direct`, `rho_direct`).
+    pub glossy: Option<(Vec3, Vec3)>,
     /// The split camera ray's surface part, traced apart after a collision.
     split: LiSample,
 }
@@ -147,15 +150,25 @@ impl VolState {
     /// The path's sample once it has ended.
     pub fn finish(self) -> LiSample {
         let VolState { st, first, .. } = self;
+        let split = first.split.denoise;
+        // Only one of the path and its split surface part reaches x1.
+        let (l_direct, rho_direct) = first
+            .glossy
+            .map_or((split.l_direct, split.rho_direct), |(l_at_x1, rho)| {
+                (st.l - l_at_x1, rho)
+            });
         LiSample {
             l: st.l + first.split.l,
             denoise: DenoiseSample {
                 l_fog: first.l_fog_passed.unwrap_or(st.l),
                 opacity: first.opacity,
-                l_surf: first.surf_fog.l_surf(st.l) + first.split.denoise.l_surf,
-                rho: first.surf_fog.rho + first.split.denoise.rho,
+                l_surf: first.surf_fog.l_surf(st.l) + split.l_surf,
+                rho: first.surf_fog.rho + split.rho,
                 split_behind_delta: false,
-                // Direct light is filtered in medium-free scenes only.
+                // Direct light only at a glossy x1: all its light.
+                l_direct,
+                rho_direct,
+                glossy: first.glossy.is_some() || split.glossy,
                 ..DenoiseSample::default()
             },
             aov: st.aov.aov,

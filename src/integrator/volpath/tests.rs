@@ -429,3 +429,70 @@ fn local_light_roulette_keeps_the_mean_for_fewer_rays() {
         "{rays_rr} vs {rays_all}"
     );
 }
+
+#[test]
+fn glossy_first_vertex_hands_all_its_light_to_direct_light_in_fog() {
+    // Paint on the ground under the fog slab, seen through the split
+    // camera segment: every sample meets the paint with throughput Tr of
+    // the camera segment (passing, or as the split's surface part), so
+    // rho_direct is exactly Tr·(base + 0.04), and all the light after the
+    // paint is l_direct: the sample is its fog part plus that.
+    let base = Vec3::new(0.5, 0.1, 0.1);
+    let paint = SCENE.replace(
+        "kind = \"diffuse\"\nalbedo = [0.3, 0.3, 0.3]",
+        "kind = \"coated\"\nalbedo = [0.5, 0.1, 0.1]\ncoat_roughness = 0.3",
+    );
+    assert_ne!(paint, SCENE, "the ground's material was not replaced");
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/inline.toml");
+    let loaded = parse_scene_str(&paint, &path).expect("scene parses");
+    let scene = build_scene(&loaded, DVec3::ZERO).expect("scene builds");
+    let accel = build_accel(Backend::Bvh, &scene.accel_geometry()).expect("accel builds");
+    let shading = Shading::new(&scene, &accel);
+    let ctx = shading.context(4);
+    let key = StreamKey {
+        seed: 3,
+        frame: 0,
+        view: 0,
+    };
+    let split = Strategies {
+        split_first: true,
+        ..Strategies::default()
+    };
+    let o = Vec3::new(0.0, 0.0, 1.5);
+    let d = Vec3::new(1.0, 0.2, -0.4).normalize();
+    // Homogeneous σ_t = 0.05/m over the 1.5 m drop to the ground (z = 0).
+    let tr = (-0.05 * 1.5 / -d.z).exp();
+    let rho_want = (base + Vec3::splat(0.04)) * tr;
+    let (mut rays, mut reflected) = (0, Vec3::ZERO);
+    for k in 0..2048 {
+        let mut stream = SampleStream::new(key, 0, k / 256, k % 256);
+        let ray = Ray::new(o, d);
+        let s = ctx.trace(
+            ray,
+            accel.intersect(&ray),
+            &mut stream,
+            &mut rays,
+            split,
+            None,
+        );
+        let dn = s.denoise;
+        assert!(dn.glossy, "sample {k}: not split at the paint");
+        assert!(
+            (dn.rho_direct - rho_want).abs().max_element() <= 1e-5,
+            "sample {k}: rho_direct {} vs {rho_want}",
+            dn.rho_direct
+        );
+        assert_eq!((dn.l_surf, dn.rho), (Vec3::ZERO, Vec3::ZERO));
+        let rest = s.l - dn.l_fog - dn.l_direct;
+        assert!(
+            rest.abs().max_element() <= 1e-4 * (1.0 + s.l.max_element()),
+            "sample {k}: l {} = fog {} + direct {} + {rest}",
+            s.l,
+            dn.l_fog,
+            dn.l_direct
+        );
+        reflected += dn.l_direct;
+    }
+    // The paint reflects the sun and sky: the handed-over light is not nil.
+    assert!(reflected.min_element() > 0.0, "{reflected}");
+}
