@@ -15,6 +15,7 @@
 //! time offset, spaced so that the closest spacing stays at least the
 //! longest body plus a gap; it meets no junction.
 
+mod convoy;
 pub mod coverage;
 mod ego;
 mod junction;
@@ -34,7 +35,10 @@ use super::routes::{Route, Turns};
 use super::vehicles::{BodyKind, BODIES, BODY_WEIGHTS};
 use super::walkers;
 
-pub use ego::{drive_start_frame, start_link, CHUNK_FRAMES, DRIVE_WINDOW_FRAMES};
+pub use convoy::{CONVOY_GAP_M, CONVOY_ROUTE, LEADER_ID_BASE};
+pub use ego::{
+    convoy_at, drive_start_frame, start_link, ConvoyMember, CHUNK_FRAMES, DRIVE_WINDOW_FRAMES,
+};
 pub use profile::{Limits, SpeedProfile};
 pub use sim::{cyclist_speed_mps, SIM_ROUTE};
 
@@ -80,7 +84,8 @@ pub struct VehiclePose {
     /// Roll on a cross-slope, degrees, > 0 with the left side higher.
     pub roll_deg: f64,
     /// Index into `Plan::routes` (the overpass), or `SIM_ROUTE` for a
-    /// simulated background vehicle (`usize::MAX` for the ego).
+    /// simulated background vehicle, `CONVOY_ROUTE` for one of the ego's
+    /// leaders (`usize::MAX` for the ego).
     pub route: usize,
     /// Its lit signal lamps.
     pub lamps: VehicleLamps,
@@ -340,8 +345,8 @@ pub fn frame_at(desc: &TownDesc, seed: u64, frame: u64) -> TownFrame {
 /// vehicles (`sim`), and the overpass's and the pedestrians in closed
 /// form, at the drive's traffic time (town frame
 /// `ego::drive_start_frame(drive) + frame`, which `TownFrame::frame`
-/// holds), without those the drive removes from its way, and the ego
-/// (`ego::ego_at`). Computed in the level grid, then set on the ground.
+/// holds), without those the drive removes from its way, then the ego's
+/// leaders, and the ego (`ego::ego_at`). Computed in the level grid, then set on the ground.
 pub fn drive_frame_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> TownFrame {
     let l = Layout::new(desc);
     let plan = Plan::new(desc);
@@ -354,6 +359,7 @@ pub fn drive_frame_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> Tow
     let vehicles = others(desc, seed, &plan, overpass.as_ref(), drive, frame)
         .into_iter()
         .filter(|v| !me.removed.contains(&v.id))
+        .chain(me.leaders)
         .map(|v| match (&overpass, v.route < plan.routes.len()) {
             (Some(_), true) => v,
             // Organic towns bend the level pose first (a planar warp).
@@ -422,6 +428,10 @@ fn closed(
     for (ri, rp) in plan.routes.iter().enumerate() {
         for (n, &offset) in rp.slots.iter().enumerate() {
             id += 1;
+            assert!(
+                id <= convoy::LEADER_ID_BASE,
+                "closed route ids reach the leaders'"
+            );
             let mut r = Rng::new(&[seed, tag::SLOT, ri as u64, n as u64]);
             if !r.chance(desc.traffic_density) {
                 continue;

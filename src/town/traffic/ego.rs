@@ -1,6 +1,7 @@
 //! The ego's drive: a 1-D simulation along its `DrivePath` against the
-//! signals and the road only, so its state at any frame depends on no
-//! traffic history; the background vehicles in its way are removed.
+//! signals, the road and its convoy's leaders only (`convoy`), so its
+//! state at any frame depends on no traffic history; the background
+//! vehicles in the convoy's way are removed.
 //!
 //! Drive N starts its traffic clock at town frame N · `DRIVE_WINDOW_FRAMES`
 //! (its own time window) and its path on a link spread over the network by
@@ -11,25 +12,30 @@
 //! enters a junction that obeys the clock only when it can clear the
 //! junction's keep-clear zone before its lamp turns red (so the lamp
 //! never shows red as it passes the line); the roundabout and a divided
-//! highway's through lanes have no lamps. The motion costs a few
+//! highway's through lanes have no lamps. The leaders ahead of it on the
+//! same path move by the same rules, front to back, and each member
+//! behind one also keeps the speed from which it could stop
+//! `CONVOY_GAP_M` behind the one ahead (`sim::follow_cap`) and enters a
+//! junction only with room beyond it. The motion costs a few
 //! microseconds a frame and is memoised per (town, seed, drive): the same
 //! numbers whichever frame asked first.
 //!
 //! The background vehicles (`sim`, simulated per chunk of `CHUNK_FRAMES`)
-//! see the ego's footprint as an obstacle and queue behind it; every one
-//! whose footprint still comes within `MARGIN_M` of the ego's in some
-//! frame of the chunk is removed for the whole chunk, and so are the
-//! pedestrians within reach of the ego. Removing vehicles moves none of
+//! see the convoy's footprints as obstacles and queue behind them; every
+//! one whose footprint still comes within `MARGIN_M` of a member's in
+//! some frame of the chunk is removed for the whole chunk, and so are the
+//! pedestrians within reach of a member. Removing vehicles moves none of
 //! the others, so no footprint ever overlaps. Frame K costs the chunk
 //! holding K, whatever K is.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::sync::{Arc, Mutex, OnceLock};
 
+use super::convoy::{Drive, Member, CONVOY_GAP_M};
 use super::junction::{clear_time_s, CLEAR_RESERVE_S};
 use super::recent::Recent;
-use super::sim::{BLINK_HZ, SIGNAL_AHEAD_M};
-use super::{others, Plan, VehicleLamps, VehiclePose, A_LAT_MPS2, A_LON_MPS2, LEVEL_GAP_M};
+use super::sim::{follow_cap, MOVING_LEADER_MPS};
+use super::{others, Plan, VehiclePose, A_LAT_MPS2, A_LON_MPS2, LEVEL_GAP_M};
 use crate::town::desc::TownDesc;
 use crate::town::layout::Layout;
 use crate::town::materials::PAINTS;
@@ -46,7 +52,8 @@ use crate::town::walkers;
 pub const CHUNK_FRAMES: u64 = 600;
 /// Town frames between the traffic clocks of consecutive drives.
 pub const DRIVE_WINDOW_FRAMES: u64 = 6007;
-/// Clearance kept between the ego's footprint and any other, metres.
+/// Clearance kept between a convoy member's footprint and any
+/// background one, metres.
 pub const MARGIN_M: f64 = 0.5;
 /// Chunks whose removals are kept.
 const KEEP_CHUNKS: usize = 4;
@@ -56,6 +63,8 @@ const KEEP_CHUNKS: usize = 4;
 pub struct EgoFrame {
     /// Its pose on the level grid (z = 0; the caller sets it on the ground).
     pub pose: VehiclePose,
+    /// Its leaders' level poses, front to back.
+    pub leaders: Vec<VehiclePose>,
     /// Ids of the background vehicles removed in this frame's chunk.
     pub removed: Arc<BTreeSet<u32>>,
     /// Ids of the pedestrians removed in this frame's chunk.
@@ -85,15 +94,6 @@ pub fn start_link(n: usize, seed: u64, drive: u64) -> usize {
     ((offset as u64 + (drive % n as u64) * stride as u64) % n as u64) as usize
 }
 
-/// One drive's motion: (s, v) per frame from the drive's start.
-struct Drive {
-    path: DrivePath,
-    body: BodyKind,
-    paint: &'static str,
-    s: Vec<f64>,
-    v: Vec<f64>,
-}
-
 /// Every drive moved so far, per (description, seed, drive).
 type Drives = Mutex<BTreeMap<(String, u64, u64), Arc<Mutex<Drive>>>>;
 static DRIVES: OnceLock<Drives> = OnceLock::new();
@@ -111,27 +111,14 @@ fn motion(desc: &TownDesc, seed: u64, drive: u64, upto: u64) -> Arc<Mutex<Drive>
             .lock()
             .expect("drive cache");
         c.entry(key)
-            .or_insert_with(|| {
-                let cx = Ctx::new(desc, seed, drive);
-                let l = &cx.layout;
-                let start = start_link(links(l).len(), seed, drive);
-                let rng = Rng::new(&[seed, tag::EGO, drive, 1]);
-                let path = DrivePath::new(l, &cx.plan.schedule.turns, start, rng);
-                Arc::new(Mutex::new(Drive {
-                    path,
-                    body: cx.body,
-                    paint: cx.paint,
-                    s: Vec::new(),
-                    v: Vec::new(),
-                }))
-            })
+            .or_insert_with(|| Arc::new(Mutex::new(Ctx::new(desc, seed, drive).start())))
             .clone()
     };
     {
         let mut d = entry.lock().expect("drive");
-        if d.s.len() as u64 <= upto {
+        if d.ego().s.len() as u64 <= upto {
             let cx = Ctx::new(desc, seed, drive);
-            while d.s.len() as u64 <= upto {
+            while d.ego().s.len() as u64 <= upto {
                 cx.step(&mut d);
             }
         }
@@ -144,37 +131,61 @@ fn motion(desc: &TownDesc, seed: u64, drive: u64, upto: u64) -> Arc<Mutex<Drive>
 pub fn ego_motion(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> (VehiclePose, f64) {
     let entry = motion(desc, seed, drive, frame + 1);
     let d = entry.lock().expect("drive");
-    let n = frame as usize;
-    let (s, v, next) = (d.s[n], d.v[n], d.v[n + 1]);
-    let (p, h) = d.path.pose(s);
-    let mut pose = level_pose(p, h, d.body, d.paint);
-    // Lamps as the background vehicles' (`sim`): the next frame's speed
-    // is the step's decision.
-    pose.lamps.brake = next < v - 1e-3 || (v < 0.05 && next < 0.05);
-    let half = d.body.footprint_m()[0] / 2.0;
     let t = (drive_start_frame(drive) + frame) as f64 / desc.fps;
-    let c = d.path.crossings.iter().find(|c| c.clear_m + half > s);
-    if let Some(c) = c.filter(|c| c.stop_m - s - half < SIGNAL_AHEAD_M) {
-        let lit = (t * BLINK_HZ).fract() < 0.5;
-        pose.lamps.left = lit && c.turn == Move::Left;
-        pose.lamps.right = lit && c.turn == Move::Right;
-    }
-    (pose, v)
+    let ego = d.members.len() - 1;
+    (d.pose(ego, frame as usize, t), d.ego().v[frame as usize])
 }
 
-/// The ego's level poses over frames `range` of drive `drive`.
+/// One convoy member in one frame: its place along the drive's path.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ConvoyMember {
+    /// Its vehicle id (0: the ego; leaders from `LEADER_ID_BASE + 1`).
+    pub id: u32,
+    /// Arc length of its centre along the drive's path, metres.
+    pub s_m: f64,
+    /// Speed, m/s.
+    pub speed_mps: f64,
+    /// Half its body length, metres.
+    pub half_length_m: f64,
+    /// Its pose on the level grid, lamps lit as in the frame.
+    pub pose: VehiclePose,
+}
+
+/// The convoy of `frame` of drive `drive`, front to back, the ego last.
+pub fn convoy_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> Vec<ConvoyMember> {
+    let entry = motion(desc, seed, drive, frame + 1);
+    let d = entry.lock().expect("drive");
+    let n = frame as usize;
+    let t = (drive_start_frame(drive) + frame) as f64 / desc.fps;
+    d.members
+        .iter()
+        .enumerate()
+        .map(|(i, m)| ConvoyMember {
+            id: m.id,
+            s_m: m.s[n],
+            speed_mps: m.v[n],
+            half_length_m: m.half(),
+            pose: d.pose(i, n, t),
+        })
+        .collect()
+}
+
+/// The convoy's level poses (leaders front to back, the ego last) over
+/// frames `range` of drive `drive`, one list per frame.
 pub(super) fn level_poses(
     desc: &TownDesc,
     seed: u64,
     drive: u64,
     range: std::ops::Range<u64>,
-) -> Vec<VehiclePose> {
+) -> Vec<Vec<VehiclePose>> {
     let entry = motion(desc, seed, drive, range.end);
     let d = entry.lock().expect("drive");
     range
         .map(|f| {
-            let (p, h) = d.path.pose(d.s[f as usize]);
-            level_pose(p, h, d.body, d.paint)
+            let t = (drive_start_frame(drive) + f) as f64 / desc.fps;
+            (0..d.members.len())
+                .map(|i| d.pose(i, f as usize, t))
+                .collect()
         })
         .collect()
 }
@@ -182,7 +193,8 @@ pub(super) fn level_poses(
 /// The ego of `frame` (counted from the drive's start) of drive `drive`,
 /// with what its chunk removes from its way.
 pub fn ego_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> EgoFrame {
-    let (pose, _) = ego_motion(desc, seed, drive, frame);
+    let mut leaders = level_poses(desc, seed, drive, frame..frame + 1).remove(0);
+    let pose = leaders.pop().expect("the ego");
     let chunk = frame / CHUNK_FRAMES;
     let key = (format!("{desc:?}"), seed, drive, chunk);
     let entry = REMOVALS.slot(key);
@@ -192,23 +204,9 @@ pub fn ego_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> EgoFrame {
         .clone();
     EgoFrame {
         pose,
+        leaders,
         removed,
         removed_pedestrians,
-    }
-}
-
-/// The ego's pose at (x, y) heading `h` radians, on the level grid.
-fn level_pose(p: [f64; 2], h: f64, body: BodyKind, paint: &'static str) -> VehiclePose {
-    VehiclePose {
-        id: 0,
-        body,
-        paint,
-        position: [p[0], p[1], 0.0],
-        heading_deg: heading_deg(h),
-        pitch_deg: 0.0,
-        roll_deg: 0.0,
-        route: usize::MAX,
-        lamps: VehicleLamps::default(),
     }
 }
 
@@ -253,30 +251,76 @@ impl<'a> Ctx<'a> {
         }
     }
 
+    /// The drive before its first frame: its path and convoy.
+    fn start(&self) -> Drive {
+        let l = &self.layout;
+        let start = start_link(links(l).len(), self.seed, self.drive);
+        let rng = Rng::new(&[self.seed, tag::EGO, self.drive, 1]);
+        let turns = &self.plan.schedule.turns;
+        let path = DrivePath::new(l, turns, start, rng);
+        let ego = Member {
+            id: 0,
+            body: self.body,
+            paint: self.paint,
+            start_m: 0.0,
+            s: Vec::new(),
+            v: Vec::new(),
+        };
+        Drive::new(path, ego, &turns.bodies, self.seed, self.drive)
+    }
+
     /// Traffic time of the drive's frame `f`, seconds.
     fn time(&self, f: u64) -> f64 {
         (drive_start_frame(self.drive) + f) as f64 / self.desc.fps
     }
 
-    /// Appends the next frame's (s, v) to the drive: the drive starts at
-    /// the speed its first frame allows.
+    /// Appends the next frame's (s, v) to every member, front to back:
+    /// each starts at the speed its first frame allows. A member behind
+    /// another brakes for where that one's rear is at the step's start
+    /// and for its speed after the step (`follow_cap`), so its front ends
+    /// the step at least `CONVOY_GAP_M` behind that rear.
     fn step(&self, d: &mut Drive) {
-        let (s, v) = match (d.s.last(), d.v.last()) {
-            (Some(&s), Some(&v)) => {
-                let cap = self.allowed(&mut d.path, s, v, self.time(d.s.len() as u64 - 1));
-                let v = (v + A_LON_MPS2 * self.dt).min(cap).max(0.0);
-                (s + v * self.dt, v)
+        let frames = d.ego().s.len() as u64;
+        let t = self.time(frames.saturating_sub(1));
+        // The rear (arc length) of the member ahead and its next speed.
+        let mut ahead: Option<(f64, f64)> = None;
+        for m in d.members.iter_mut() {
+            let half = m.half();
+            let (s, v) = match (m.s.last(), m.v.last()) {
+                (Some(&s), Some(&v)) => (s, Some(v)),
+                _ => (m.start_m, None),
+            };
+            let mut cap = self.allowed(&mut d.path, half, s, v.unwrap_or(0.0), t, ahead);
+            if let Some((rear, u)) = ahead {
+                cap = cap.min(follow_cap(rear - s - half - CONVOY_GAP_M, u, self.dt));
             }
-            _ => (0.0, self.allowed(&mut d.path, 0.0, 0.0, self.time(0))),
-        };
-        d.s.push(s);
-        d.v.push(v);
+            let (s1, v1) = match v {
+                Some(v) => {
+                    let v = (v + A_LON_MPS2 * self.dt).min(cap).max(0.0);
+                    (s + v * self.dt, v)
+                }
+                None => (s, cap),
+            };
+            ahead = Some((s - half, v1));
+            m.s.push(s1);
+            m.v.push(v1);
+        }
     }
 
-    /// The highest speed (m/s) the ego at arc length `s`, speed `v`, time
-    /// `t` may take for the next step.
-    fn allowed(&self, path: &mut DrivePath, s: f64, v: f64, t: f64) -> f64 {
-        let half = self.body.footprint_m()[0] / 2.0;
+    /// The highest speed (m/s) a member `half` metres long from centre to
+    /// front at arc length `s`, speed `v`, time `t` may take for the next
+    /// step, without the follower cap; `ahead`: the rear (arc length) of
+    /// the member ahead and its next speed. A junction is entered only
+    /// when the one ahead is moving or has left room beyond it.
+    fn allowed(
+        &self,
+        path: &mut DrivePath,
+        half: f64,
+        s: f64,
+        v: f64,
+        t: f64,
+        ahead: Option<(f64, f64)>,
+    ) -> f64 {
         let look = self.v_max * self.v_max / (2.0 * A_LON_MPS2) + 2.0 * half + 20.0;
         path.reach(s + look + 1.0);
         // Stopping within d metres, also within one step.
@@ -298,10 +342,13 @@ impl<'a> Ctx<'a> {
             .iter()
             .find(|c| c.stop_m >= front - 0.05 && c.stop_m < s + look);
         if let Some(c) = next {
+            let room = ahead.is_none_or(|(rear, u)| {
+                u > MOVING_LEADER_MPS || rear >= c.clear_m + 2.0 * half + CONVOY_GAP_M
+            });
             let clear = c.roundabout
                 || c.major == Some(true)
                 || self.can_clear(path, c, c.clear_m + half - s, v, t);
-            if !clear {
+            if !(clear && room) {
                 cap = cap.min(stop(c.stop_m - front));
             }
         }
@@ -316,22 +363,26 @@ impl<'a> Ctx<'a> {
     }
 
     /// The vehicles and pedestrians chunk `k` removes: those within
-    /// `MARGIN_M` of the ego's footprint in some frame of it.
+    /// `MARGIN_M` of a convoy member's footprint in some frame of it.
     fn removal(&self, k: u64) -> Removal {
         let frames = k * CHUNK_FRAMES..(k + 1) * CHUNK_FRAMES;
-        let egos = level_poses(self.desc, self.seed, self.drive, frames.clone());
+        let convoys = level_poses(self.desc, self.seed, self.drive, frames.clone());
         let mut vehicles = BTreeSet::new();
         let mut pedestrians = BTreeSet::new();
         let sched = &self.plan.schedule;
-        for (f, ego) in frames.zip(&egos) {
+        for (f, convoy) in frames.zip(&convoys) {
             let op = self.overpass.as_ref();
-            let p = [ego.position[0], ego.position[1]];
-            let grown = grown_corners(ego, MARGIN_M);
-            for c in others(self.desc, self.seed, &self.plan, op, self.drive, f) {
-                let close = (c.position[0] - p[0]).hypot(c.position[1] - p[1]) < 30.0;
-                if close && c.position[2].abs() < LEVEL_GAP_M && quads_overlap(&grown, &c.corners())
-                {
-                    vehicles.insert(c.id);
+            let near = |p: &[f64; 3], q: &[f64; 3], r: f64| (p[0] - q[0]).hypot(p[1] - q[1]) < r;
+            let others = others(self.desc, self.seed, &self.plan, op, self.drive, f);
+            for m in convoy {
+                let grown = grown_corners(m, MARGIN_M);
+                for c in &others {
+                    if near(&m.position, &c.position, 30.0)
+                        && c.position[2].abs() < LEVEL_GAP_M
+                        && quads_overlap(&grown, &c.corners())
+                    {
+                        vehicles.insert(c.id);
+                    }
                 }
             }
             if !self.layout.sidewalks {
@@ -340,9 +391,9 @@ impl<'a> Ctx<'a> {
             let t = self.time(f);
             for w in walkers::pedestrians(self.desc, &self.layout, sched, self.seed, t) {
                 let q = [w.position[0], w.position[1]];
-                if (q[0] - p[0]).hypot(q[1] - p[1]) < 10.0
-                    && rect_distance(ego, q) < 0.25 + MARGIN_M
-                {
+                if convoy.iter().any(|m| {
+                    near(&m.position, &w.position, 10.0) && rect_distance(m, q) < 0.25 + MARGIN_M
+                }) {
                     pedestrians.insert(w.id);
                 }
             }
@@ -410,10 +461,42 @@ pub(super) fn quads_overlap(a: &[[f64; 2]; 4], b: &[[f64; 2]; 4]) -> bool {
 pub fn turns_by(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> usize {
     let entry = motion(desc, seed, drive, frame);
     let d = entry.lock().expect("drive");
-    let s = d.s[frame as usize];
+    let s = d.ego().s[frame as usize];
     d.path
         .crossings
         .iter()
         .filter(|x| x.clear_m <= s && x.turn != Move::Straight)
         .count()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A drive's convoy moves the same whether its path was grown far
+    /// ahead first or only as the members reach it, and the memoised
+    /// drive asked for a late frame first agrees with both.
+    #[test]
+    fn convoy_motion_does_not_depend_on_how_far_the_path_was_grown() {
+        let desc = crate::town::source::load_named_town("town03", None)
+            .unwrap()
+            .desc;
+        let frames = 1500;
+        for drive in 0..6 {
+            let cx = Ctx::new(&desc, 5, drive);
+            let mut lazy = cx.start();
+            let mut grown = cx.start();
+            grown.path.reach(40_000.0);
+            for _ in 0..frames {
+                cx.step(&mut lazy);
+                cx.step(&mut grown);
+            }
+            let late = convoy_at(&desc, 5, drive, frames as u64 - 1);
+            assert_eq!(late.len(), lazy.members.len());
+            for ((a, b), c) in lazy.members.iter().zip(&grown.members).zip(&late) {
+                assert_eq!((&a.s, &a.v), (&b.s, &b.v), "drive {drive} member {}", a.id);
+                assert_eq!((a.s[frames - 1], a.v[frames - 1]), (c.s_m, c.speed_mps));
+            }
+        }
+    }
 }

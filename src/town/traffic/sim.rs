@@ -10,7 +10,7 @@
 //! step per frame: each takes the highest speed that lets it brake (at
 //! `A_LON_MPS2`) for the curves ahead (lateral ≤ `A_LAT_MPS2`), for the
 //! first footprint within reach of its path ahead (keeping
-//! `FOLLOW_GAP_M`; the ego's, known in advance, counts), and for the stop
+//! `FOLLOW_GAP_M`; the ego's convoy's, known in advance, count), and for the stop
 //! line of a junction it may not enter (`junction`); it accelerates at
 //! `A_LON_MPS2` up to its limit (cyclists ride at `cyclist_speed_mps`, and
 //! whoever is behind them follows). Steps use the state at the start of
@@ -144,23 +144,24 @@ fn simulate(desc: &TownDesc, seed: u64, drive: u64, chunk: u64) -> Vec<Frame> {
     let frames = first..first + ego::CHUNK_FRAMES;
     let cx = Ctx::new(desc, seed, drive);
     // The warm-up: queues form at red lights and platoons spread out
-    // before the chunk's first frame (with the ego where it has driven).
+    // before the chunk's first frame (with the convoy where it has driven).
     let from = first.saturating_sub(WARM_UP_FRAMES);
-    let egos = ego::level_poses(desc, seed, drive, from..first);
+    let convoys = ego::level_poses(desc, seed, drive, from..first);
     for k in 0..WARM_UP_FRAMES {
         let me = (first + k)
             .checked_sub(WARM_UP_FRAMES)
-            .map(|f| egos[(f - from) as usize].clone());
+            .map(|f| convoys[(f - from) as usize].clone())
+            .unwrap_or_default();
         cx.step(
             &mut agents,
             first as i64 + k as i64 - WARM_UP_FRAMES as i64,
             me,
         );
     }
-    let egos = ego::level_poses(desc, seed, drive, frames.clone());
+    let convoys = ego::level_poses(desc, seed, drive, frames.clone());
     frames
-        .zip(egos)
-        .map(|(f, me)| Arc::new(cx.step(&mut agents, f as i64, Some(me))))
+        .zip(convoys)
+        .map(|(f, me)| Arc::new(cx.step(&mut agents, f as i64, me)))
         .collect()
 }
 
@@ -221,9 +222,9 @@ impl<'a> Ctx<'a> {
     }
 
     /// The poses of frame `f` (from the drive's start; < 0 in the first
-    /// chunk's warm-up), then one step on (`me`: the ego's pose in frame
-    /// `f`, an obstacle, if the drive has started).
-    fn step(&self, agents: &mut [Agent], f: i64, me: Option<VehiclePose>) -> Vec<VehiclePose> {
+    /// chunk's warm-up), then one step on (`me`: the ego's convoy's poses
+    /// in frame `f`, obstacles, once the drive has started).
+    fn step(&self, agents: &mut [Agent], f: i64, me: Vec<VehiclePose>) -> Vec<VehiclePose> {
         let t = (ego::drive_start_frame(self.drive) as f64 + f as f64) / self.desc.fps;
         let n = agents.len();
         for a in agents.iter_mut() {
@@ -415,7 +416,7 @@ pub(super) fn follow_cap(g: f64, u: f64, dt: f64) -> f64 {
 /// take its footprint into another's (where that one stands after its
 /// own move if already checked, else where it stands now) stays where it
 /// is, which the vehicles already checked kept clear of. (The overpass's
-/// vehicles and the ego replayed in a warm-up do not brake and are left
+/// vehicles and the convoy replayed in a warm-up do not brake and are left
 /// to the removals.) It catches what
 /// the look along the path cannot see: a body drifting in from beside
 /// (a lane change alongside). Returns how many were held.
