@@ -119,8 +119,9 @@ pub struct TownDesc {
     /// Outskirts (default false): rows of buildings on lots beyond the
     /// outer roads' far sidewalks, and a line of trees past the road stubs,
     /// so that a view out of the town ends at a street front rather than an
-    /// empty field (see `outskirts`). Needs a level `grid` town with square
-    /// corners on `grass` or `dry` ground, without hills, grade or ramps.
+    /// empty field (see `outskirts`). Needs a level `grid` or `organic` town
+    /// with square corners on `grass` or `dry` ground, without hills, grade
+    /// or ramps.
     #[serde(default, skip_serializing_if = "is_false")]
     pub outskirts: bool,
     /// Fraction of traffic slots holding a vehicle, in [0, 1].
@@ -311,7 +312,9 @@ impl TownDesc {
                 self.block_size_m
             ));
         }
-        let plain = self.road_style == RoadStyle::Grid
+        // An organic town's outskirts bend with it (buildings rigidly, lots
+        // per vertex), so only the highway style and uneven ground refuse them.
+        let plain = self.road_style != RoadStyle::Highway
             && self.terrain != TerrainKind::Field
             && self.hills_m == 0.0
             && self.road_grade_m == 0.0
@@ -319,8 +322,8 @@ impl TownDesc {
             && !self.ramps;
         if self.outskirts && !plain {
             return Err(format!(
-                "outskirts: needs a level grid town with square corners and no ramps \
-                 (road_style = \"grid\", terrain grass or dry, hills_m = 0, road_grade_m = 0, \
+                "outskirts: needs a level grid or organic town with square corners and no ramps \
+                 (road_style = \"grid\" or \"organic\", terrain grass or dry, hills_m = 0, road_grade_m = 0, \
                  loop_corner_radius_m = 0, ramps = false); got road_style = {:?}, terrain = {:?}, \
                  hills_m = {}, road_grade_m = {}, loop_corner_radius_m = {}, ramps = {}",
                 self.road_style,

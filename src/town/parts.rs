@@ -5,6 +5,7 @@
 use std::collections::BTreeMap;
 
 use crate::scene::desc::{ObjectDesc, RepeatDesc, ScaleDesc, ShapeDesc, TransformDesc};
+use crate::scene::mesh::LocalMesh;
 
 /// Label of an object: semantic class name and instance id (0 = none).
 #[derive(Clone, Copy, Debug)]
@@ -77,6 +78,12 @@ pub fn ground_quad(min: [f64; 2], max: [f64; 2], z: f64, mat: &str, l: Label) ->
     let size = [max[0] - min[0], max[1] - min[1]];
     let at = [(min[0] + max[0]) / 2.0, (min[1] + max[1]) / 2.0, z];
     object(ShapeDesc::Quad { size }, Some(mat), l, transform(at, 0.0))
+}
+
+/// A mesh already in world coordinates (identity transform), which the
+/// organic warp bends vertex by vertex.
+pub fn world_mesh(mesh: LocalMesh, mat: &str, l: Label) -> ObjectDesc {
+    object(mesh.into_shape(), Some(mat), l, TransformDesc::default())
 }
 
 /// A vertical cylinder with its base at `at`.

@@ -6,15 +6,20 @@
 //!
 //! The block loops with a corner here drive a quarter of the ring each
 //! (`routes::ring_turn`: lane k of the road on ring lane k), so routes
-//! still share no surface. Ring pieces are boxes or quads turned about z,
-//! so road surfaces stay exactly at z = 0 (the GT tests rely on it).
+//! still share no surface. The ring asphalt is quads turned about z, the
+//! markings, curbs, sidewalk and island rim are world meshes (bent vertex
+//! by vertex in an organic town); road surfaces stay exactly at z = 0 (the
+//! GT tests rely on it).
 
-use std::f64::consts::{FRAC_PI_2, PI};
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
+
+use glam::DVec3;
 
 use crate::scene::desc::ObjectDesc;
+use crate::scene::mesh::{self, LocalMesh};
 
 use super::layout::Layout;
-use super::parts::{class, cuboid, cylinder, turned_quad, Label};
+use super::parts::{class, turned_quad, world_mesh, Label};
 use super::vegetation::{self, Plant, Species};
 
 /// Distance from the roundabout centre at which each approach arm's
@@ -46,13 +51,14 @@ fn arcs(open: Option<f64>) -> Vec<(f64, f64)> {
     }
 }
 
-/// Boxes covering the annulus r0..r1 between heights z over the given
-/// arcs, in pieces of about `piece_m` at r1; with `dash`, every other piece
-/// at half length (a dashed line).
+/// The annulus r0..r1 between heights z over the given arcs as one world
+/// mesh, its vertices about `piece_m` apart at r1; with `dash`, only every
+/// other piece at half length (a dashed line). A mesh, not chord boxes, so
+/// that an organic town's warp bends it smoothly vertex by vertex.
 #[allow(clippy::too_many_arguments)]
 fn ring(
     c: [f64; 2],
-    (r0, r1): (f64, f64),
+    r: (f64, f64),
     z: (f64, f64),
     open: Option<f64>,
     piece_m: f64,
@@ -61,21 +67,55 @@ fn ring(
     l: Label,
     out: &mut Vec<ObjectDesc>,
 ) {
+    let mut m = LocalMesh::default();
     for (t0, t1) in arcs(open) {
-        let n = ((t1 - t0) * r1 / piece_m).ceil().max(1.0) as usize;
+        let n = ((t1 - t0) * r.1 / piece_m).ceil().max(1.0) as usize;
         let dt = (t1 - t0) / n as f64;
-        // The chord at r1 covers the outer arc; neighbours overlap inside.
-        let mut len = 2.0 * r1 * (dt / 2.0).tan();
         if dash {
-            len /= 2.0;
+            for k in (0..n).step_by(2) {
+                let t = t0 + (k as f64 + 0.5) * dt;
+                band(&mut m, c, r, z, &[t - dt / 4.0, t + dt / 4.0]);
+            }
+        } else {
+            let phis: Vec<f64> = (0..=n).map(|k| t0 + k as f64 * dt).collect();
+            band(&mut m, c, r, z, &phis);
         }
-        for k in (0..n).filter(|k| !dash || k % 2 == 0) {
-            let t = t0 + (k as f64 + 0.5) * dt;
-            let rc = (r0 + r1) / 2.0;
-            let at = [c[0] + rc * t.cos(), c[1] + rc * t.sin(), (z.0 + z.1) / 2.0];
-            let size = [r1 - r0, len, z.1 - z.0];
-            out.push(cuboid(size, at, t.to_degrees(), mat, l));
+    }
+    out.push(world_mesh(m, mat, l));
+}
+
+/// Appends a curved box about `c` between radii r0..r1 and heights z0..z1
+/// over the increasing angles `phis` (radians): top, inner and outer walls
+/// and end walls unless it closes a full turn; no floor (every ring piece
+/// stands on or in the ground). Counter-clockwise seen from outside.
+fn band(m: &mut LocalMesh, c: [f64; 2], (r0, r1): (f64, f64), (z0, z1): (f64, f64), phis: &[f64]) {
+    let base = m.positions.len() as u32;
+    for &t in phis {
+        let (s, co) = t.sin_cos();
+        for (r, z) in [(r0, z0), (r1, z0), (r0, z1), (r1, z1)] {
+            m.positions.push(DVec3::new(c[0] + r * co, c[1] + r * s, z));
         }
+    }
+    // Vertex v of angle k: 0 inner bottom, 1 outer bottom, 2 inner top, 3 outer top.
+    let at = |k: usize, v: u32| base + 4 * k as u32 + v;
+    for k in 0..phis.len() - 1 {
+        let (a, b) = (k, k + 1);
+        m.triangles.push([at(a, 2), at(a, 3), at(b, 3)]);
+        m.triangles.push([at(a, 2), at(b, 3), at(b, 2)]);
+        if z1 > z0 {
+            m.triangles.push([at(a, 1), at(b, 1), at(b, 3)]);
+            m.triangles.push([at(a, 1), at(b, 3), at(a, 3)]);
+            m.triangles.push([at(a, 0), at(b, 2), at(b, 0)]);
+            m.triangles.push([at(a, 0), at(a, 2), at(b, 2)]);
+        }
+    }
+    let closed = phis[phis.len() - 1] - phis[0] >= TAU - 1e-9;
+    if z1 > z0 && !closed {
+        let e = phis.len() - 1;
+        m.triangles.push([at(0, 0), at(0, 1), at(0, 3)]);
+        m.triangles.push([at(0, 0), at(0, 3), at(0, 2)]);
+        m.triangles.push([at(e, 0), at(e, 3), at(e, 1)]);
+        m.triangles.push([at(e, 0), at(e, 2), at(e, 3)]);
     }
 }
 
@@ -180,10 +220,21 @@ fn ring_roadside(l: &Layout, c: [f64; 2], open: Option<f64>, out: &mut Vec<Objec
 /// Central island of radius `r_in`: a curb drum, a lawn top, a low grass
 /// mound, a tree in the middle and four smaller plants round it.
 fn island(c: [f64; 2], r_in: f64, out: &mut Vec<ObjectDesc>) {
-    let at = [c[0], c[1], 0.0];
-    out.push(cylinder(r_in, 0.15, 64, at, "curb", class("sidewalk")));
-    let top = [c[0], c[1], 0.15];
-    out.push(cylinder(r_in - 0.3, 0.1, 64, top, "lawn", class("terrain")));
+    // World meshes, so that an organic warp bends the island's rim with
+    // the ring's inner edge (a rigid drum would cover the bent inner lane).
+    let drum = |r: f64, z: (f64, f64)| {
+        let mut m = mesh::cylinder(r, z.1 - z.0, 64, true);
+        let at = DVec3::new(c[0], c[1], z.0);
+        m.positions.iter_mut().for_each(|p| *p += at);
+        m
+    };
+    out.push(world_mesh(
+        drum(r_in, (0.0, 0.15)),
+        "curb",
+        class("sidewalk"),
+    ));
+    let lawn = drum(r_in - 0.3, (0.15, 0.25));
+    out.push(world_mesh(lawn, "lawn", class("terrain")));
     let mound = super::parts::blob(
         [r_in - 2.5, r_in - 2.5, 0.9],
         [c[0], c[1], 0.25],
@@ -209,6 +260,53 @@ fn island(c: [f64; 2], r_in: f64, out: &mut Vec<ObjectDesc>) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::desc::ShapeDesc;
+
+    /// Signed volume enclosed by the triangles with the origin at `o`
+    /// (divergence theorem; a missing floor in the plane z = o.z adds 0).
+    fn volume(m: &LocalMesh, o: DVec3) -> f64 {
+        m.triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| m.positions[i as usize] - o);
+                a.dot(b.cross(c)) / 6.0
+            })
+            .sum()
+    }
+
+    #[test]
+    fn a_band_is_a_closed_outward_wound_annulus_sector_on_the_ground() {
+        let (c, r, z) = ([30.0, -20.0], (10.0, 13.0), (0.0, 0.15));
+        let n = 12;
+        let phis: Vec<f64> = (0..=n).map(|k| 0.4 + 0.1 * k as f64).collect();
+        let mut m = LocalMesh::default();
+        band(&mut m, c, r, z, &phis);
+        // Polygonal annulus sector: n trapezoids of ½(r1² − r0²)·sin(dφ).
+        let want = 0.5 * (r.1 * r.1 - r.0 * r.0) * n as f64 * 0.1f64.sin() * (z.1 - z.0);
+        let got = volume(&m, DVec3::new(c[0], c[1], z.0));
+        assert!((got - want).abs() < 1e-9 * want, "{got} vs {want}");
+        // Every edge off the floor is shared by two triangles in opposite
+        // directions (walls and end walls present, consistently wound).
+        let mut edges = std::collections::BTreeMap::new();
+        for t in &m.triangles {
+            for k in 0..3 {
+                *edges.entry((t[k], t[(k + 1) % 3])).or_insert(0) += 1;
+            }
+        }
+        for (&(a, b), &count) in &edges {
+            let on_floor = [a, b].iter().all(|&i| m.positions[i as usize].z == z.0);
+            let back = edges.get(&(b, a)).copied().unwrap_or(0);
+            assert_eq!(count, 1, "edge {a}–{b} used {count} times");
+            assert!(back == 1 || on_floor, "edge {a}–{b} has no twin");
+        }
+        // A full turn: no end walls, the same volume law.
+        let mut full = LocalMesh::default();
+        let phis: Vec<f64> = (0..=64).map(|k| k as f64 * TAU / 64.0).collect();
+        band(&mut full, c, r, z, &phis);
+        let want = 0.5 * (r.1 * r.1 - r.0 * r.0) * 64.0 * (TAU / 64.0).sin() * (z.1 - z.0);
+        let got = volume(&full, DVec3::new(c[0], c[1], z.0));
+        assert!((got - want).abs() < 1e-9 * want, "{got} vs {want}");
+    }
 
     #[test]
     fn arcs_leave_four_equal_openings() {
@@ -299,17 +397,21 @@ mod tests {
             kinds.dedup();
             assert_eq!(kinds, want);
             for o in &out {
-                let t = o.transform.translate.unwrap();
-                let (d, a) = (
-                    (t[0] - c[0]).hypot(t[1] - c[1]),
-                    (t[1] - c[1]).atan2(t[0] - c[0]),
-                );
-                assert!(d > r_out && d < r_out + 3.0, "{d}");
-                // Nothing in an arm's opening (about each axis direction).
-                let off_axis = (a - (a / FRAC_PI_2).round() * FRAC_PI_2).abs();
-                assert!(off_axis > opening_half_angle(&l), "{a}");
-                let top = t[2] + if sidewalks { 0.0 } else { 0.005 };
-                assert!((0.0..=0.075).contains(&top), "{t:?}");
+                let ShapeDesc::Mesh { positions, .. } = &o.shape else {
+                    panic!("a ring piece is not a world mesh: {o:?}")
+                };
+                assert!(o.transform.is_identity());
+                for p in positions {
+                    let (d, a) = (
+                        (p[0] - c[0]).hypot(p[1] - c[1]),
+                        (p[1] - c[1]).atan2(p[0] - c[0]),
+                    );
+                    assert!(d > r_out - 1e-9 && d < r_out + 3.0 + 1e-9, "{d}");
+                    // Nothing in an arm's opening (about each axis direction).
+                    let off_axis = (a - (a / FRAC_PI_2).round() * FRAC_PI_2).abs();
+                    assert!(off_axis > opening_half_angle(&l) - 1e-9, "{a}");
+                    assert!((-0.01..=0.15).contains(&p[2]), "{p:?}");
+                }
             }
         }
         // The island: curb drum, lawn, mound, then five plants.

@@ -6,7 +6,8 @@ use parallax::accel::Accel;
 use parallax::camera::StereoRig;
 use parallax::render::{render_frame, FrameOutput, RenderSettings};
 use parallax::scene::Scene;
-use parallax::town::{load_town, rig_desc, CameraConfig, TownDesc, VehiclePose};
+use parallax::town::organic::Warp;
+use parallax::town::{load_town, rig_desc, CameraConfig, TownDesc, TownFrame, VehiclePose};
 
 /// Every town shipped in `scenes/`.
 pub const TOWNS: [&str; 8] = [
@@ -21,6 +22,18 @@ pub fn town_file(name: &str) -> PathBuf {
 /// The parsed town file `scenes/NAME.toml` (panics with the loader's message).
 pub fn town(name: &str) -> TownDesc {
     load_town(&town_file(name)).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// A town frame carried back into the level grid's plane: unchanged,
+/// unless the town is organic, then through `Warp::unwarp_frame` (W⁻¹),
+/// so that its poses can be checked against the `Layout`. Headings come
+/// back through J⁻¹, so a level heading returns within rounding (1e-12°),
+/// not bit for bit.
+pub fn level_frame(desc: &TownDesc, seed: u64, f: TownFrame) -> TownFrame {
+    match Warp::new(desc, seed) {
+        Some(w) => w.unwarp_frame(&f),
+        None => f,
+    }
 }
 
 /// The ground-truth pass alone (spp 0) of `config`'s rig on `ego`, resized

@@ -10,7 +10,7 @@ use parallax::town::signals::{signals_at, Lamp};
 use parallax::town::traffic::{ego_pose, Plan};
 use parallax::town::{drive_frame_at, frame_at, TownFrame};
 
-use crate::common::towns::town;
+use crate::common::towns::{level_frame, town};
 use crate::traffic::{on_road, quads_overlap};
 
 const FRAMES: u64 = 590;
@@ -38,6 +38,12 @@ fn drives_never_overlap_and_stay_on_the_road_over_whole_sequences() {
         let over = Overpass::new(&desc, &l);
         let step_max = desc.speed_kmh / 3.6 / desc.fps;
         let frames = drive(name, seed, d);
+        // Overlaps in the world; road and speed in the level grid's plane
+        // (an organic town bends the roads and stretches lengths).
+        let level: Vec<TownFrame> = frames
+            .iter()
+            .map(|f| level_frame(&desc, seed, f.clone()))
+            .collect();
         let mut travelled = 0.0;
         for (k, f) in frames.iter().enumerate() {
             let e = &f.ego;
@@ -63,13 +69,14 @@ fn drives_never_overlap_and_stay_on_the_road_over_whole_sequences() {
                     p.id
                 );
             }
+            let e = &level[k].ego;
             assert!(
                 on_road(&l, &roads, over.as_ref(), e),
                 "{name} drive {d} frame {k}: the ego is off the road at {:?}",
                 e.position
             );
             if k > 0 {
-                let p = frames[k - 1].ego.position;
+                let p = level[k - 1].ego.position;
                 let step = (e.position[0] - p[0]).hypot(e.position[1] - p[1]);
                 assert!(step <= step_max + 1e-9, "{name} frame {k}: step {step}");
                 travelled += step;
@@ -95,7 +102,10 @@ fn the_ego_passes_stop_lines_on_green_or_amber_and_waits_at_red() {
         let hw = l.road_w_m / 2.0;
         let line = -(hw + 4.2);
         for d in 0..4 {
-            let frames = drive(name, 1, d);
+            let frames: Vec<TownFrame> = drive(name, 1, d)
+                .into_iter()
+                .map(|f| level_frame(&desc, 1, f))
+                .collect();
             let half = frames[0].ego.body.footprint_m()[0] / 2.0;
             // The ego's front relative to a site: (along its traffic, to
             // the right of it), when heading its way.

@@ -16,14 +16,19 @@ use parallax::town::vehicles::BodyKind;
 use parallax::town::walkers::WALK_MPS;
 use parallax::town::{frame_at, TownFrame};
 
-use crate::common::towns::town;
+use crate::common::towns::{level_frame, town};
 use crate::traffic::quads_overlap;
 
 const SEED: u64 = 11;
 
+/// Frames 0..n in the level grid's plane (an organic town's carried back
+/// by W⁻¹), where junction centres and stop lines lie on the grid; W is a
+/// bijection, so footprints apart there stay apart in the bent world.
 fn frames(name: &str, n: u64) -> Vec<TownFrame> {
     let desc = town(name);
-    (0..n).map(|k| frame_at(&desc, SEED, k)).collect()
+    (0..n)
+        .map(|k| level_frame(&desc, SEED, frame_at(&desc, SEED, k)))
+        .collect()
 }
 
 /// Heading quadrant (0 east … 3 south) when within 2° of one, else None.

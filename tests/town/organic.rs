@@ -156,3 +156,119 @@ fn organic_towns_refuse_ramps_and_overpass_by_name() {
         "{err}"
     );
 }
+
+/// Radius of the circle through three points, metres (∞ on a line).
+fn circumradius(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
+    let d = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]);
+    let cross = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    d(a, b) * d(b, c) * d(c, a) / (2.0 * cross.abs())
+}
+
+/// Town03's roundabout bent by the warp of 300 seeds stays drivable: W of
+/// each ring lane's centre circle turns no tighter than `MIN_RADIUS_SHARE`
+/// of its level radius (near a point W is about linear, and an ellipse of
+/// J's stretch σ ≤ 1.16 has radii ≥ r/σ³ ≈ 0.64 r), and the ring's lanes
+/// keep their width within `MIN_WIDTH_SHARE` … 1 / `MIN_WIDTH_SHARE`
+/// (J's stretches 1/σ … σ). The ring must bend at all (guard).
+#[test]
+fn town03_roundabout_stays_round_enough_to_drive_under_every_warp() {
+    const MIN_RADIUS_SHARE: f64 = 0.6;
+    const MIN_WIDTH_SHARE: f64 = 0.85;
+    let desc = town("town03");
+    let l = Layout::new(&desc);
+    let c = l.roundabout_center().unwrap();
+    let (r_in, r_out) = l.roundabout_radii();
+    let lane = (r_out - r_in) / l.lanes as f64;
+    let n = 720;
+    let circle = |w: &Warp, r: f64| -> Vec<[f64; 2]> {
+        (0..n)
+            .map(|i| {
+                let t = i as f64 * std::f64::consts::TAU / n as f64;
+                w.map([c[0] + r * t.cos(), c[1] + r * t.sin()])
+            })
+            .collect()
+    };
+    let (mut tightest, mut narrowest, mut widest) = (f64::MAX, f64::MAX, 0.0f64);
+    for seed in 0..300 {
+        let w = Warp::new(&desc, seed).unwrap();
+        for k in 0..l.lanes {
+            let r = r_in + (k as f64 + 0.5) * lane;
+            let p = circle(&w, r);
+            for i in 0..n {
+                let rc = circumradius(p[(i + n - 1) % n], p[i], p[(i + 1) % n]);
+                tightest = tightest.min(rc / r);
+            }
+        }
+        // Lane width: from each point of one bent lane edge to the nearest
+        // point of the next (its neighbours within ±0.3 rad).
+        for k in 0..l.lanes {
+            let (a, b) = (r_in + k as f64 * lane, r_in + (k + 1) as f64 * lane);
+            let (pa, pb) = (circle(&w, a), circle(&w, b));
+            for (i, q) in pa.iter().enumerate() {
+                let near = (i + n - 40..i + n + 40)
+                    .map(|j| {
+                        let p = pb[j % n];
+                        (p[0] - q[0]).hypot(p[1] - q[1])
+                    })
+                    .fold(f64::MAX, f64::min);
+                narrowest = narrowest.min(near / lane);
+                widest = widest.max(near / lane);
+            }
+        }
+    }
+    println!(
+        "town03 ring over 300 warps: tightest lane radius {tightest:.3} r, \
+         lane width {narrowest:.3} … {widest:.3} of {lane} m"
+    );
+    assert!(tightest >= MIN_RADIUS_SHARE, "{tightest}");
+    assert!(tightest < 0.8, "the ring never bends: {tightest}");
+    assert!(narrowest >= MIN_WIDTH_SHARE, "{narrowest}");
+    assert!(widest <= 1.0 / MIN_WIDTH_SHARE, "{widest}");
+}
+
+/// Town03's ring curbs (island drum and outer kerb) and island lawn are
+/// bent vertex by vertex: carried back by W⁻¹, every vertex lies on one of
+/// their level circles (a rigid drum would leave the bent ring's inner
+/// edge and cover the inner lane where W squeezes the ring).
+#[test]
+fn town03_ring_curbs_and_island_follow_the_warp_vertex_by_vertex() {
+    let desc = town("town03");
+    let l = Layout::new(&desc);
+    let c = l.roundabout_center().unwrap();
+    let (r_in, r_out) = l.roundabout_radii();
+    for seed in [0, 5] {
+        let w = Warp::new(&desc, seed).unwrap();
+        let (mut curb, mut lawn) = (0, 0);
+        for o in static_objects(&desc, seed) {
+            let ShapeDesc::Mesh { positions, .. } = &o.shape else {
+                continue;
+            };
+            let radii: Vec<f64> = positions
+                .iter()
+                .map(|p| {
+                    let q = w.unmap([p[0], p[1]]);
+                    (q[0] - c[0]).hypot(q[1] - c[1])
+                })
+                .collect();
+            if radii.iter().any(|&r| r > r_out + 10.0) {
+                continue;
+            }
+            let (want, count) = match o.material.as_deref() {
+                Some("curb") => (vec![0.0, r_in, r_out, r_out + 0.25], &mut curb),
+                Some("lawn") => (vec![0.0, r_in - 0.3], &mut lawn),
+                _ => continue,
+            };
+            for r in radii {
+                assert!(
+                    want.iter().any(|v| (r - v).abs() < 1e-6),
+                    "seed {seed}: a {:?} vertex at level radius {r}",
+                    o.material
+                );
+                *count += 1;
+            }
+        }
+        // The drum (2 · 64 side and 2 · 65 cap vertices) and the kerb arcs;
+        // the lawn's drum.
+        assert!(curb > 258 && lawn == 258, "seed {seed}: {curb} {lawn}");
+    }
+}

@@ -26,7 +26,7 @@ use parallax::town::{
 };
 
 use crate::common;
-use common::towns::town;
+use common::towns::{level_frame, town};
 
 /// A plain grid (town02: 5 × 5 blocks, one lane) and a two-lane grid with
 /// a roundabout (town03).
@@ -279,7 +279,11 @@ fn under_red_no_vehicle_moves_or_stands_past_its_stop_line() {
         let desc = town(name);
         let l = Layout::new(&desc);
         let n = cycle_frames(&desc);
-        let frames: Vec<_> = (0..n).map(|k| frame_at(&desc, SEED, k)).collect();
+        // In the level grid's plane, where the stop lines are (an organic
+        // town's frames carried back by W⁻¹).
+        let frames: Vec<_> = (0..n)
+            .map(|k| level_frame(&desc, SEED, frame_at(&desc, SEED, k)))
+            .collect();
         let (mut at_line, mut through_green) = (0, 0);
         for k in 0..n as usize - 1 {
             let sigs = signals::signals_at(&desc, k as u64);
