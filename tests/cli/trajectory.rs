@@ -45,7 +45,9 @@ fn trajectory(town: &str, seed: &str, sequence: &str, count: &str) -> Vec<Line> 
 #[test]
 fn trajectory_lines_move_at_their_speed_and_differ_per_sequence() {
     let fps = 10.0;
-    let lines = trajectory("town03", "5", "2", "300");
+    // A grid town: an organic town's warp (town03) stretches the level
+    // motion by up to 3 % against the reported speed.
+    let lines = trajectory("town05", "5", "2", "300");
     assert_eq!(lines.len(), 300);
     let (mut moving, mut stood) = (0, 0);
     for (k, w) in lines.windows(2).enumerate() {
@@ -72,9 +74,9 @@ fn trajectory_lines_move_at_their_speed_and_differ_per_sequence() {
     }
     assert!(moving > 100 && stood > 0, "moving {moving}, stood {stood}");
     // Another sequence (drive) starts elsewhere; the same one repeats.
-    let other = trajectory("town03", "5", "3", "2");
+    let other = trajectory("town05", "5", "3", "2");
     assert_ne!(other[0].2, lines[0].2);
-    assert_eq!(trajectory("town03", "5", "2", "2")[..], lines[..2]);
+    assert_eq!(trajectory("town05", "5", "2", "2")[..], lines[..2]);
 }
 
 #[test]
