@@ -328,8 +328,16 @@ impl LightBvh {
     }
 
     /// Weights of both children of inner node `k` (whose subtree ends
-    /// before node `end`), first child first; see [`LightBvh::weight`].
-    fn child_weights(&self, k: usize, end: usize, p: Vec3, n: Vec3, walk: &mut Walk) -> [f32; 2] {
+    /// before node `end`), first child first, with where each box lies
+    /// against the receiver's plane; see [`LightBvh::weight`].
+    fn child_weights(
+        &self,
+        k: usize,
+        end: usize,
+        p: Vec3,
+        n: Vec3,
+        walk: &mut Walk,
+    ) -> [(f32, Side); 2] {
         let second = self.nodes[k].child_or_light as usize;
         [
             self.weight(k + 1..second, p, n, walk),
@@ -343,12 +351,21 @@ impl LightBvh {
     /// while both children lie wholly behind it: weighed by its box alone, a
     /// walk ended there with no light. Weighed so, a kept node always has a
     /// kept child. The value depends on the node, `p` and `n` only; `walk`
-    /// only spares repeating a search.
+    /// only spares repeating a search. The side is `Front` inside a walk
+    /// already wholly in front (every box under it is).
     #[inline]
-    fn weight(&self, nodes: std::ops::Range<usize>, p: Vec3, n: Vec3, walk: &mut Walk) -> f32 {
+    fn weight(
+        &self,
+        nodes: std::ops::Range<usize>,
+        p: Vec3,
+        n: Vec3,
+        walk: &mut Walk,
+    ) -> (f32, Side) {
         let (k, b) = (nodes.start, &self.importance[nodes.start]);
+        let mut side = Side::Front;
         if !walk.in_front {
-            let reaches = match b.side(p, n) {
+            side = b.side(p, n);
+            let reaches = match side {
                 Side::Behind => false,
                 Side::Front => true,
                 Side::Crossing => {
@@ -360,10 +377,10 @@ impl LightBvh {
                 }
             };
             if !reaches {
-                return 0.0;
+                return (0.0, side);
             }
         }
-        b.at_unculled(p, n)
+        (b.at_unculled(p, n), side)
     }
 
     /// A leaf or node under node `k` whose box lies at least partly (a
@@ -422,7 +439,7 @@ impl LightBvh {
                 return None;
             }
             let second = node.child_or_light as usize;
-            let [w0, w1] = self.child_weights(k, end, p, n, &mut walk);
+            let [(w0, side0), (w1, side1)] = self.child_weights(k, end, p, n, &mut walk);
             let sum = w0 + w1;
             if sum == 0.0 || !sum.is_finite() {
                 return None;
@@ -432,14 +449,14 @@ impl LightBvh {
             if u < p0 {
                 pmf *= p0;
                 u = (u / p0).min(ONE_MINUS_EPS);
-                walk.descend(p, n, &self.importance[k + 1]);
+                walk.descend(side0);
                 end = second;
                 k += 1;
             } else {
                 let p1 = w1 / sum;
                 pmf *= p1;
                 u = ((u - p0) / p1).clamp(0.0, ONE_MINUS_EPS);
-                walk.descend(p, n, &self.importance[second]);
+                walk.descend(side1);
                 k = second;
             }
         }
@@ -476,12 +493,12 @@ impl LightBvh {
             }
             let second = node.child_or_light as usize;
             let w = self.child_weights(k, end, p, n, &mut walk);
-            let sum = w[0] + w[1];
+            let sum = w[0].0 + w[1].0;
             if sum == 0.0 || !sum.is_finite() {
                 return 0.0;
             }
             let taken = (trail & 1) as usize;
-            pmf *= w[taken] / sum;
+            pmf *= w[taken].0 / sum;
             trail >>= 1;
             if taken == 0 {
                 end = second;
@@ -489,7 +506,7 @@ impl LightBvh {
             } else {
                 k = second;
             }
-            walk.descend(p, n, &self.importance[k]);
+            walk.descend(w[taken].1);
         }
     }
 }
@@ -512,12 +529,11 @@ impl Walk {
         }
     }
 
-    /// Steps to a node of importance `b`.
+    /// Steps to a child whose box lies `side` of the receiver's plane (as
+    /// `LightBvh::weight` found it).
     #[inline]
-    fn descend(&mut self, p: Vec3, n: Vec3, b: &Importance) {
-        if !self.in_front {
-            self.in_front = b.side(p, n) == Side::Front;
-        }
+    fn descend(&mut self, side: Side) {
+        self.in_front = side == Side::Front;
     }
 }
 

@@ -76,6 +76,12 @@ pub fn drive_start_frame(drive: u64) -> u64 {
     drive.wrapping_mul(DRIVE_WINDOW_FRAMES)
 }
 
+/// Traffic time of frame `frame` (from the drive's start) of drive
+/// `drive`, seconds.
+fn drive_time_s(desc: &TownDesc, drive: u64, frame: u64) -> f64 {
+    (drive_start_frame(drive) + frame) as f64 / desc.fps
+}
+
 /// The index into `links` where drive `drive` starts: a seeded offset
 /// plus `drive` times a stride near 0.618 · n coprime with n, so
 /// consecutive drives start far apart and n drives start on n links.
@@ -131,7 +137,7 @@ fn motion(desc: &TownDesc, seed: u64, drive: u64, upto: u64) -> Arc<Mutex<Drive>
 pub fn ego_motion(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> (VehiclePose, f64) {
     let entry = motion(desc, seed, drive, frame + 1);
     let d = entry.lock().expect("drive");
-    let t = (drive_start_frame(drive) + frame) as f64 / desc.fps;
+    let t = drive_time_s(desc, drive, frame);
     let ego = d.members.len() - 1;
     (d.pose(ego, frame as usize, t), d.ego().v[frame as usize])
 }
@@ -156,7 +162,7 @@ pub fn convoy_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> Vec<Conv
     let entry = motion(desc, seed, drive, frame + 1);
     let d = entry.lock().expect("drive");
     let n = frame as usize;
-    let t = (drive_start_frame(drive) + frame) as f64 / desc.fps;
+    let t = drive_time_s(desc, drive, frame);
     d.members
         .iter()
         .enumerate()
@@ -182,7 +188,7 @@ pub(super) fn level_poses(
     let d = entry.lock().expect("drive");
     range
         .map(|f| {
-            let t = (drive_start_frame(drive) + f) as f64 / desc.fps;
+            let t = drive_time_s(desc, drive, f);
             (0..d.members.len())
                 .map(|i| d.pose(i, f as usize, t))
                 .collect()
@@ -271,7 +277,7 @@ impl<'a> Ctx<'a> {
 
     /// Traffic time of the drive's frame `f`, seconds.
     fn time(&self, f: u64) -> f64 {
-        (drive_start_frame(self.drive) + f) as f64 / self.desc.fps
+        drive_time_s(self.desc, self.drive, f)
     }
 
     /// Appends the next frame's (s, v) to every member, front to back:
