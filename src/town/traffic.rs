@@ -385,13 +385,33 @@ pub fn drive_frame_at(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> Tow
     }
 }
 
-/// The ego's pose (set on the ground) and speed (m/s) at `frame` of drive
-/// `drive`: what `parallax town --trajectory` prints.
+/// The ego's pose (set on the ground) and speed (m/s over the last frame,
+/// in the world) at `frame` of drive `drive`: what `parallax town
+/// --trajectory` prints.
 pub fn ego_pose(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> (VehiclePose, f64) {
-    let (pose, speed) = ego::ego_motion(desc, seed, drive, frame);
+    let (pose, level_speed) = ego::ego_motion(desc, seed, drive, frame);
     let grade = Grade::new(desc, seed);
     let warp = super::organic::Warp::new(desc, seed);
-    (on_ground(bent(warp.as_ref(), pose), grade.as_ref()), speed)
+    let world = |p: VehiclePose| on_ground(bent(warp.as_ref(), p), grade.as_ref());
+    // The drive moves on the level grid; the warp and the grade stretch
+    // the last frame's step (frame 0: the next one) by its chords' ratio.
+    let (k0, k1) = if frame > 0 { (frame - 1, frame) } else { (0, 1) };
+    let level = |k| ego::ego_motion(desc, seed, drive, k).0;
+    let (a, b) = (level(k0), level(k1));
+    let level_chord = distance(&a, &b);
+    let stretch = if level_chord > 1e-9 {
+        distance(&world(a), &world(b)) / level_chord
+    } else {
+        1.0
+    };
+    (world(pose), level_speed * stretch)
+}
+
+fn distance(a: &VehiclePose, b: &VehiclePose) -> f64 {
+    (0..3)
+        .map(|i| (a.position[i] - b.position[i]).powi(2))
+        .sum::<f64>()
+        .sqrt()
 }
 
 /// Every vehicle but the ego at `frame` of drive `drive`, level grid

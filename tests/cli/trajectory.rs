@@ -79,6 +79,36 @@ fn trajectory_lines_move_at_their_speed_and_differ_per_sequence() {
     assert_eq!(trajectory("town05", "5", "2", "2")[..], lines[..2]);
 }
 
+/// The world distance of each frame's step against the printed speed
+/// (m/s over the last frame): at least 0.999 of it (the chord of a turn)
+/// and no more; returns how many frames moved faster than 1 m/s.
+fn steps_match_speed(town: &str, lines: &[Line]) -> usize {
+    let fps = 10.0;
+    let mut moving = 0;
+    for w in lines.windows(2) {
+        let ((_, _, p, _, _), (f, _, q, _, v)) = (w[0], w[1]);
+        let chord =
+            ((q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2) + (q[2] - p[2]).powi(2)).sqrt() * fps;
+        assert!(
+            chord <= v * (1.0 + 2e-5) + 1e-9 && chord >= v * 0.999 - 1e-9,
+            "{town} frame {f}: moved {chord} m/s, speed {v}"
+        );
+        moving += usize::from(v > 1.0);
+    }
+    moving
+}
+
+#[test]
+fn bent_and_graded_towns_report_the_speed_the_positions_move_at() {
+    // town03's warp stretches level motion by up to ~3 %, town04's grade
+    // lengthens it along slopes: the printed speed is the world's.
+    for town in ["town03", "town04"] {
+        let lines = trajectory(town, "5", "2", "200");
+        let moving = steps_match_speed(town, &lines);
+        assert!(moving > 50, "{town}: {moving} moving frames");
+    }
+}
+
 #[test]
 fn a_bad_trajectory_count_exits_2_naming_it() {
     for bad in ["0", "100000"] {
