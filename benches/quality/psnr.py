@@ -91,7 +91,10 @@ def main():
             os.rename(d + ".tmp", d)
         refs.append(load(left_png(d, a.frame)))
     out = a.out or f"/tmp/psnr_{os.getpid()}"
-    args = common + (["--spp", str(a.spp)] if a.spp else []) + shlex.split(a.extra)
+    extra = shlex.split(a.extra)
+    # Reference mode turns sensor noise off itself and refuses the flag.
+    test_common = common[:-2] if "--reference" in extra else common
+    args = test_common + (["--spp", str(a.spp)] if a.spp else []) + extra
     secs = render(a.bin, out, args)
     img = load(left_png(out, a.frame))
     ref = refs[0] if len(refs) == 1 else (refs[0] + refs[1]) / 2
