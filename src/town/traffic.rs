@@ -395,7 +395,11 @@ pub fn ego_pose(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> (VehicleP
     let world = |p: VehiclePose| on_ground(bent(warp.as_ref(), p), grade.as_ref());
     // The drive moves on the level grid; the warp and the grade stretch
     // the last frame's step (frame 0: the next one) by its chords' ratio.
-    let (k0, k1) = if frame > 0 { (frame - 1, frame) } else { (0, 1) };
+    let (k0, k1) = if frame > 0 {
+        (frame - 1, frame)
+    } else {
+        (0, 1)
+    };
     let level = |k| ego::ego_motion(desc, seed, drive, k).0;
     let (a, b) = (level(k0), level(k1));
     let level_chord = distance(&a, &b);
