@@ -525,7 +525,7 @@ impl<A: Accel> PathContext<'_, A> {
                 let pdf_l = self.lights.pdf_triangle(
                     hit.geom_id,
                     hit.prim_id,
-                    (st.prev_p, st.prev_n),
+                    (st.prev_p, st.prev_n, st.bounces - 1),
                     si.p,
                     si.n_geo,
                 );

@@ -214,7 +214,7 @@ impl<A: Accel> PathContext<'_, A> {
         u_l: Vec2,
         u_distant: &[Vec2; 4],
         lobe_w: Option<(usize, f32)>,
-        rr: NeeRoulette,
+        (rr, bounce): (NeeRoulette, u32),
         rays: &mut u64,
     ) -> Vec3 {
         let scene = self.scene;
@@ -265,7 +265,7 @@ impl<A: Accel> PathContext<'_, A> {
             };
         }
         if let Some(scale) = rr.local() {
-            let ls = self.lights.sample(scene, p, u_sel, u_l);
+            let ls = self.lights.sample(scene, p, u_sel, u_l, bounce);
             l += one(ls, ls.is_some_and(|s| s.delta && s.dist.is_finite())) * scale;
         }
         l

@@ -74,31 +74,11 @@ pub struct LightSet {
     /// Whether a local light is a point or spot light (equiangular
     /// sampling's lights).
     delta_local: bool,
-    /// Candidates resampled per vertex for the local lights
-    /// ([`LightSet::local_candidates`]).
-    candidates: usize,
-    /// Probability that a vertex samples a local light at all (the rest
-    /// skip them; the pmfs include it, so the estimate keeps its mean).
-    p_local: f32,
+    /// Candidates per vertex and the probability that a vertex samples the
+    /// local lights at all (the rest skip them; the pmfs include it, so the
+    /// estimate keeps its mean).
+    budget: LocalBudget,
 }
-
-/// Local lights are resampled from this many candidates where they matter
-/// (`LightSet::local_candidates`).
-pub const LOCAL_CANDIDATES: usize = 2;
-
-/// Share of the emitted power from which local lights are resampled from
-/// `LOCAL_CANDIDATES` (night: nearly all of it; under a storm's overcast
-/// they bring 8 %, where the extra BVH walks per vertex cost more than the
-/// lamps' noise).
-const LOCAL_SHARE_FOR_RIS: f32 = 0.25;
-/// Share below which a vertex samples the local lights only with
-/// probability share / this (at least `MIN_P_LOCAL`): by day the sun and
-/// sky outshine every lamp by 10³–10⁴, and a light BVH walk and shadow ray
-/// at every vertex cost time (a fifth of a foggy frame's) for light nobody
-/// sees.
-const LOCAL_SHARE_FULL: f32 = 0.01;
-/// Least probability of sampling the local lights at a vertex.
-const MIN_P_LOCAL: f32 = 0.1;
 
 /// Area and unit normal of a triangle.
 fn triangle_geometry(scene: &Scene, geom: u32, prim: u32) -> (f32, Vec3, [Vec3; 3]) {
@@ -268,24 +248,17 @@ impl LightSet {
         let local_power: f32 = weights.iter().map(|w| w.max(0.0)).sum();
         let distant_power = distant_power(scene, radius);
         let share = local_power / (local_power + distant_power).max(f32::MIN_POSITIVE);
-        let candidates = if share >= LOCAL_SHARE_FOR_RIS {
-            LOCAL_CANDIDATES
-        } else {
-            1
-        };
-        // Only the BVH selection (the renderer's) skips vertices; the
-        // point-independent kinds stay as they were for comparisons.
-        let p_local = if selection == LightSelection::Bvh {
-            (share / LOCAL_SHARE_FULL).clamp(MIN_P_LOCAL, 1.0)
-        } else {
-            1.0
-        };
+        let budget = LocalBudget::new(
+            share,
+            selection == LightSelection::Bvh,
+            !local_suns.is_empty(),
+        );
         let suns = suns
             .into_iter()
             .map(|(disk, local)| SunDisk {
                 pmf: match (local, selection) {
                     (None, _) => 1.0,
-                    (Some(_), LightSelection::Bvh) => p_suns / n_suns * p_local,
+                    (Some(_), LightSelection::Bvh) => p_suns / n_suns * budget.p_first,
                     (Some(i), _) => pmf[i],
                 },
                 ..disk
@@ -293,8 +266,7 @@ impl LightSet {
             .collect();
         LightSet {
             delta_local,
-            candidates,
-            p_local,
+            budget,
             distant,
             entries,
             selection,
@@ -333,7 +305,7 @@ impl LightSet {
     /// [`LOCAL_CANDIDATES`]): all of them where the local lights bring at
     /// least `LOCAL_SHARE_FOR_RIS` of the emitted power, else one.
     pub fn local_candidates(&self) -> usize {
-        self.candidates
+        self.budget.candidates
     }
 
     /// Number of local lights one is selected from.
@@ -428,7 +400,9 @@ impl LightSet {
     /// `n`: the unit normal of a receiver that reflects only, on the side
     /// it reflects (the tree then weighs lights by their cosine to it;
     /// [`crate::light::bvh::LightBounds::importance_facing`]), or zero.
-    pub fn select_at(&self, p: Vec3, n: Vec3, u_select: f32) -> Option<(usize, f32)> {
+    /// `bounce`: the scattering events of the path before this vertex
+    /// ([`LightSet::p_local_at`]).
+    pub fn select_at(&self, p: Vec3, n: Vec3, u_select: f32, bounce: u32) -> Option<(usize, f32)> {
         if self.entries.is_empty() {
             return None;
         }
@@ -438,55 +412,71 @@ impl LightSet {
         }
         // Vertices past `p_local` skip the local lights; the rest reuse
         // the number rescaled.
-        if u_select >= self.p_local {
+        let p_local = self.p_local_at(bounce);
+        if u_select >= p_local {
             return None;
         }
-        let u_select = u_select / self.p_local;
+        let u_select = u_select / p_local;
         if u_select < self.p_suns {
             let n = self.local_suns.len();
             let k = ((u_select / self.p_suns * n as f32) as usize).min(n - 1);
             return Some((
                 self.local_suns[k] as usize,
-                self.p_suns / n as f32 * self.p_local,
+                self.p_suns / n as f32 * p_local,
             ));
         }
         let u = ((u_select - self.p_suns) / (1.0 - self.p_suns)).clamp(0.0, 1.0 - f32::EPSILON);
         let (idx, pmf) = self.bvh.sample_facing(p, n, u)?;
-        Some((idx as usize, pmf * (1.0 - self.p_suns) * self.p_local))
+        Some((idx as usize, pmf * (1.0 - self.p_suns) * p_local))
+    }
+
+    /// Probability that a vertex after `bounce` scattering events samples
+    /// the local lights at all (BVH selection; 1 for the others).
+    pub fn p_local_at(&self, bounce: u32) -> f32 {
+        self.budget.p_local(bounce)
     }
 
     /// Probability that [`LightSet::select_at`] at `p` for receiver normal
-    /// `n` returns local light `idx` (the same value it returns with it).
-    pub fn pmf_at(&self, p: Vec3, n: Vec3, idx: usize) -> f32 {
+    /// `n` after `bounce` scattering events returns local light `idx` (the
+    /// same value it returns with it).
+    pub fn pmf_at(&self, p: Vec3, n: Vec3, idx: usize, bounce: u32) -> f32 {
+        let p_local = self.p_local_at(bounce);
         match self.selection {
             _ if idx >= self.entries.len() => 0.0,
             LightSelection::Bvh => match self.entries[idx] {
                 Entry::Explicit(Light::Sun { .. }) => {
-                    self.p_suns / self.local_suns.len() as f32 * self.p_local
+                    self.p_suns / self.local_suns.len() as f32 * p_local
                 }
-                _ => self.bvh.pmf_facing(p, n, idx as u32) * (1.0 - self.p_suns) * self.p_local,
+                _ => self.bvh.pmf_facing(p, n, idx as u32) * (1.0 - self.p_suns) * p_local,
             },
             _ => self.pmf[idx],
         }
     }
 
-    /// Selects one local light for `p` (by the set's [`LightSelection`]) and
-    /// samples it as seen from `p`.
-    pub fn sample(&self, scene: &Scene, p: Vec3, u_select: f32, u: Vec2) -> Option<LightSample> {
-        self.sample_facing(scene, p, Vec3::ZERO, u_select, u)
+    /// Selects one local light for `p` after `bounce` scattering events (by
+    /// the set's [`LightSelection`]) and samples it as seen from `p`.
+    pub fn sample(
+        &self,
+        scene: &Scene,
+        p: Vec3,
+        u_select: f32,
+        u: Vec2,
+        bounce: u32,
+    ) -> Option<LightSample> {
+        self.sample_facing(scene, (p, Vec3::ZERO), u_select, u, bounce)
     }
 
-    /// [`LightSet::sample`] for a receiver of normal `n` (see
+    /// [`LightSet::sample`] for a receiver at `p` of normal `n` (see
     /// [`LightSet::select_at`]).
     pub fn sample_facing(
         &self,
         scene: &Scene,
-        p: Vec3,
-        n: Vec3,
+        (p, n): (Vec3, Vec3),
         u_select: f32,
         u: Vec2,
+        bounce: u32,
     ) -> Option<LightSample> {
-        let (idx, pmf) = self.select_at(p, n, u_select)?;
+        let (idx, pmf) = self.select_at(p, n, u_select, bounce)?;
         sample_entry(scene, &self.entries[idx], pmf, p, u)
     }
 
@@ -547,15 +537,15 @@ impl LightSet {
 
     /// Pdf per solid angle (with pmf) that NEE would have chosen point `q` on
     /// emissive triangle (geom, prim) of a flat mesh, seen from `p` (receiver
-    /// normal `n`, as [`LightSet::select_at`] takes it) with light normal
-    /// `n_light`. Emitters are never instanced (`scene::instancing`
+    /// normal `n`, as [`LightSet::select_at`] takes it, after `bounce`
+    /// scattering events) with light normal `n_light`. Emitters are never instanced (`scene::instancing`
     /// flattens prefabs with emissive materials), so a hit on an emitter
     /// always names a flat mesh.
     pub fn pdf_triangle(
         &self,
         geom: u32,
         prim: u32,
-        (p, n): (Vec3, Vec3),
+        (p, n, bounce): (Vec3, Vec3, u32),
         q: Vec3,
         n_light: Vec3,
     ) -> f32 {
@@ -578,10 +568,13 @@ impl LightSet {
         if cos_l == 0.0 || area == 0.0 {
             return 0.0;
         }
-        self.pmf_at(p, n, idx as usize) * dist2 / (cos_l * area)
+        self.pmf_at(p, n, idx as usize, bounce) * dist2 / (cos_l * area)
     }
 }
 
+mod share;
+use share::LocalBudget;
+pub use share::LOCAL_CANDIDATES;
 mod weights;
 use weights::{distant_power, explicit_bounds, scene_radius, selection_pmf};
 

@@ -365,14 +365,14 @@ fn light_set_pmf_is_consistent_on_many_emitters() {
     for _ in 0..20 {
         let p = Vec3::new(0.0, 0.0, z_floor + 1e-3) + rng.v(18.0) * Vec3::new(1.0, 1.0, 0.0);
         let sum: f64 = (0..set.len())
-            .map(|i| set.pmf_at(p, Vec3::ZERO, i) as f64)
+            .map(|i| set.pmf_at(p, Vec3::ZERO, i, 0) as f64)
             .sum();
         assert!((sum - 1.0).abs() < 1e-5, "sum {sum}");
         for _ in 0..50 {
             let (i, pmf) = set
-                .select_at(p, Vec3::ZERO, rng.f())
+                .select_at(p, Vec3::ZERO, rng.f(), 0)
                 .expect("a light reaches the floor");
-            assert_eq!(pmf.to_bits(), set.pmf_at(p, Vec3::ZERO, i).to_bits());
+            assert_eq!(pmf.to_bits(), set.pmf_at(p, Vec3::ZERO, i, 0).to_bits());
         }
     }
 }

@@ -39,6 +39,9 @@ pub(super) struct RisSamples {
     u: [[f32; 4]; CANDIDATES],
     /// Candidates used (1 ..= `CANDIDATES`).
     m: usize,
+    /// Scattering events of the path before the vertex
+    /// (`LightSet::p_local_at`).
+    bounce: u32,
 }
 
 impl RisSamples {
@@ -51,7 +54,11 @@ impl RisSamples {
         for c in u.iter_mut().take(m).skip(1) {
             *c = stream.next_4d();
         }
-        RisSamples { u, m }
+        RisSamples {
+            u,
+            m,
+            bounce: bounces,
+        }
     }
 }
 
@@ -85,7 +92,8 @@ pub(super) fn resample(
     // rescaled after each decision so it stays uniform.
     let mut u_pick = u.u[0][3];
     for c in &u.u[..u.m] {
-        let Some(ls) = lights.sample_facing(scene, p, n, c[0], Vec2::new(c[1], c[2])) else {
+        let Some(ls) = lights.sample_facing(scene, (p, n), c[0], Vec2::new(c[1], c[2]), u.bounce)
+        else {
             continue;
         };
         if ls.pdf <= 0.0 || ls.li == Vec3::ZERO {

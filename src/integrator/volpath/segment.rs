@@ -312,7 +312,7 @@ impl<A: Accel> PathContext<'_, A> {
             u.u_light,
             &u.u_distant,
             lobe_w,
-            rr,
+            (rr, st.bounces),
             rays,
         );
         // Every segment: the point stands for the collision it is with

@@ -141,7 +141,7 @@ fn local_lights_share_sets_candidates_and_the_probability_a_vertex_samples_them(
         let lights = LightSet::build(&scene);
         assert_eq!(lights.len(), 3, "{extra}");
         assert_eq!(lights.local_candidates(), candidates, "{extra}");
-        let total: f32 = (0..3).map(|i| lights.pmf_at(p, Vec3::ZERO, i)).sum();
+        let total: f32 = (0..3).map(|i| lights.pmf_at(p, Vec3::ZERO, i, 0)).sum();
         assert!((total - p_local).abs() < 1e-5, "Σ pmf {total} for\n{extra}");
         // select_at returns the pmf pmf_at recomputes, and declines for
         // the share 1 − p_local of the numbers.
@@ -149,9 +149,9 @@ fn local_lights_share_sets_candidates_and_the_probability_a_vertex_samples_them(
         let mut declined = 0;
         for k in 0..n {
             let u = (k as f32 + 0.5) / n as f32;
-            match lights.select_at(p, Vec3::ZERO, u) {
+            match lights.select_at(p, Vec3::ZERO, u, 0) {
                 Some((i, pmf)) => {
-                    assert_eq!(pmf.to_bits(), lights.pmf_at(p, Vec3::ZERO, i).to_bits())
+                    assert_eq!(pmf.to_bits(), lights.pmf_at(p, Vec3::ZERO, i, 0).to_bits())
                 }
                 None => declined += 1,
             }
@@ -179,4 +179,53 @@ fn scene_radius_is_the_farthest_point_within_its_clamp() {
     assert!((quad(10.0) - 50f32.sqrt()).abs() < 1e-5, "{}", quad(10.0));
     assert_eq!(quad(1.0), 1.0);
     assert_eq!(quad(300.0), 100.0);
+}
+
+#[test]
+fn deeper_vertices_sample_faint_lamps_less_often_and_keep_their_mean() {
+    // Lamps with a few percent of the power under an overcast sky: every
+    // first vertex samples them, later ones with a probability below 1.
+    // At both, the selection's pmf is the one pmf_at recomputes, and the
+    // irradiance estimate from stratified numbers is the closed form
+    // Σ I·cos θ / d² of the three points.
+    let found = [30.0f32, 100.0, 300.0, 1e3, 3e3].into_iter().find_map(|i| {
+        let scene = scene_with(&format!("{OVERCAST}{}", points(i)));
+        let lights = LightSet::build(&scene);
+        let deep = lights.p_local_at(1);
+        (lights.p_local_at(0) == 1.0 && deep > 0.1 && deep < 0.9).then_some((i, scene, lights))
+    });
+    let (i, scene, lights) = found.expect("an intensity with 0.1 < p_local_at(1) < 0.9");
+    let (p, n) = (Vec3::new(0.3, 0.2, 0.0), Vec3::Z);
+    let exact: f32 = [(1.0, 0.0, 2.0), (-2.0, 1.0, 3.0), (0.5, -3.0, 4.0)]
+        .iter()
+        .map(|&(x, y, z)| {
+            let d = Vec3::new(x, y, z) - p;
+            i * n.dot(d.normalize()) / d.length_squared()
+        })
+        .sum();
+    for bounce in [0, 1, 5] {
+        let m = 20_000;
+        let mut sum = 0.0f64;
+        let mut taken = 0;
+        for k in 0..m {
+            let u = (k as f32 + 0.5) / m as f32;
+            if let Some((idx, pmf)) = lights.select_at(p, n, u, bounce) {
+                assert_eq!(pmf.to_bits(), lights.pmf_at(p, n, idx, bounce).to_bits());
+                taken += 1;
+            }
+            if let Some(ls) = lights.sample_facing(&scene, (p, n), u, Vec2::splat(0.5), bounce) {
+                sum += (ls.li.y * n.dot(ls.wi) / ls.pdf) as f64;
+            }
+        }
+        let share = taken as f32 / m as f32;
+        assert!(
+            (share - lights.p_local_at(bounce)).abs() < 1e-3,
+            "bounce {bounce}: sampled at {share} of the vertices"
+        );
+        let mean = (sum / m as f64) as f32;
+        assert!(
+            (mean - exact).abs() < 2e-3 * exact,
+            "bounce {bounce}: mean {mean}, exact {exact}"
+        );
+    }
 }

@@ -132,7 +132,7 @@ fn estimates_facing(
             for c in &mut u {
                 *c = [rng.f(), rng.f(), rng.f(), rng.f()];
             }
-            let u = RisSamples { u, m };
+            let u = RisSamples { u, m, bounce: 0 };
             resample(lights, scene, at, &u, f_cos).map_or(0.0, |r| {
                 let inv = r.inv_pdf.unwrap_or(1.0 / r.ls.pdf);
                 (r.f * r.ls.li * inv).y as f64
