@@ -175,7 +175,6 @@ impl VolState {
                 glossy: first.glossy.is_some() || split.glossy,
                 l_refl,
                 rho_refl,
-                ..DenoiseSample::default()
             },
             aov: st.aov.aov,
         }
