@@ -31,11 +31,6 @@ pub(super) const DIRECT_LEVELS: u32 = 4;
 /// pixels' demodulated luminances (cut at 3 of these: `soft_gaussian`).
 const SIGMA_LUM: f32 = 2.0;
 
-/// The same width for glass reflections: a reflected scene is mostly edges
-/// (lamps, lit facades against dark sky) that a wider window blurs into
-/// their surroundings.
-const SIGMA_LUM_REFL: f32 = 1.0;
-
 /// Relative luminance step always allowed (a floor on the noise σ, so a
 /// noise-free pixel still mixes with neighbours of equal light).
 const REL_FLOOR: f32 = 0.05;
@@ -56,8 +51,6 @@ struct Part<'a> {
     l: &'a [Vec3],
     rho: &'a [Vec3],
     var: &'a [f32],
-    /// Luminance edge-stop width (standard deviations).
-    sigma_lum: f32,
 }
 
 /// Replaces `l_direct` in `film` by its filtered estimate (as a ratio to
@@ -74,7 +67,6 @@ pub(super) fn filter_direct(
         l: &inputs.l_direct,
         rho: &inputs.rho_direct,
         var: &inputs.var_direct,
-        sigma_lum: SIGMA_LUM,
     };
     filter_part(film, &part, inputs, guide, widths, levels);
 }
@@ -95,7 +87,6 @@ pub(super) fn filter_reflection(
         l: &inputs.l_refl,
         rho: &inputs.rho_refl,
         var: &inputs.var_refl,
-        sigma_lum: SIGMA_LUM_REFL,
     };
     filter_part(film, &part, inputs, guide, widths, levels);
 }
@@ -154,7 +145,6 @@ fn filter_part(
         rows: &rows,
         keys: &keys,
         geo: &geo,
-        sigma_lum: part.sigma_lum,
     };
     for level in 0..levels {
         let step = 1usize << level;
@@ -258,7 +248,6 @@ struct Grid<'a> {
     rows: &'a [bool],
     keys: &'a [SurfKey],
     geo: &'a Geo,
-    sigma_lum: f32,
 }
 
 /// One edge-stopping à-trous pass along `(di, dj)` with dilation `step`:
@@ -279,7 +268,6 @@ fn pass(
         rows,
         keys,
         geo,
-        sigma_lum,
     } = *grid;
     // Zero (no ratio) outside the active rows, whose pixels have no rho.
     let mut lum = vec![Lum::default(); data.len()];
@@ -326,7 +314,7 @@ fn pass(
                 // a symmetric test, so a bright outlier and its dark
                 // neighbour see each other alike and light is moved, not lost.
                 let de = e_c - e_q;
-                let sigma2 = sigma_lum * sigma_lum * (var_c + sd[q] * sd[q])
+                let sigma2 = SIGMA_LUM * SIGMA_LUM * (var_c + sd[q] * sd[q])
                     + (REL_FLOOR * e_c.max(e_q)).powi(2)
                     + 1e-20;
                 let wt = b3 * soft_gaussian(g + de * de / sigma2);
