@@ -597,7 +597,8 @@ impl<A: Accel> PathContext<'_, A> {
         if bs.pdf <= 0.0 {
             return None;
         }
-        if st.split.ahead && scene.filter_indirect {
+        // In fog too: glass's reflection is filtered apart there as well.
+        if st.split.ahead && (scene.filter_indirect || scene.filter_inscatter) {
             st.split
                 .at_glass(&bsdf, vertex.wo_local, bs.wi, st.beta, st.l);
         }

@@ -154,6 +154,9 @@ impl<A: Accel> PathContext<'_, A> {
                 match self.medium_segment(m, seg, &mut vs, stream, rays) {
                     SegmentEnd::Passed => {}
                     SegmentEnd::Scattered(next) => {
+                        // Glass met after a medium scatter is not seen
+                        // from the camera: its reflection is fog light.
+                        vs.st.split.ahead = false;
                         ray = next;
                         continue;
                     }

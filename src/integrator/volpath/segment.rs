@@ -157,6 +157,10 @@ impl VolState {
             .map_or((split.l_direct, split.rho_direct), |(l_at_x1, rho)| {
                 (st.l - l_at_x1, rho)
             });
+        // Light along the reflection of glass seen from the camera
+        // (`SplitVertex::at_glass`), from the path or its split surface part.
+        let l_refl = st.split.refl_from.map_or(Vec3::ZERO, |l0| st.l - l0) + split.l_refl;
+        let rho_refl = st.split.rho_refl + split.rho_refl;
         LiSample {
             l: st.l + first.split.l,
             denoise: DenoiseSample {
@@ -169,7 +173,8 @@ impl VolState {
                 l_direct,
                 rho_direct,
                 glossy: first.glossy.is_some() || split.glossy,
-                ..DenoiseSample::default()
+                l_refl,
+                rho_refl,
             },
             aov: st.aov.aov,
         }

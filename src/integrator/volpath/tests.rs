@@ -496,3 +496,93 @@ fn glossy_first_vertex_hands_all_its_light_to_direct_light_in_fog() {
     // The paint reflects the sun and sky: the handed-over light is not nil.
     assert!(reflected.min_element() > 0.0, "{reflected}");
 }
+
+#[test]
+fn glass_first_vertex_hands_its_reflection_to_the_reflection_filter_in_fog() {
+    // A smooth glass floor under the fog slab, seen through the split camera
+    // segment: every sample meets the glass with throughput Tr, so rho_refl
+    // is exactly Tr·R(cos θ); the reflected samples' light after the glass
+    // is l_refl, whose mean over rho_refl's must be the radiance along the
+    // mirrored ray, estimated independently by tracing that ray itself.
+    let glass = SCENE.replace(
+        "kind = \"diffuse\"\nalbedo = [0.3, 0.3, 0.3]",
+        "kind = \"dielectric\"\nior = 1.5\nroughness = 0.0\ntint = [1.0, 1.0, 1.0]",
+    );
+    assert_ne!(glass, SCENE, "the ground's material was not replaced");
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/inline.toml");
+    let loaded = parse_scene_str(&glass, &path).expect("scene parses");
+    let scene = build_scene(&loaded, DVec3::ZERO).expect("scene builds");
+    let accel = build_accel(Backend::Bvh, &scene.accel_geometry()).expect("accel builds");
+    let shading = Shading::new(&scene, &accel);
+    let ctx = shading.context(4);
+    let key = |seed| StreamKey {
+        seed,
+        frame: 0,
+        view: 0,
+    };
+    let split = Strategies {
+        split_first: true,
+        ..Strategies::default()
+    };
+    let o = Vec3::new(0.0, 0.0, 1.5);
+    let d = Vec3::new(1.0, 0.2, -0.4).normalize();
+    let t_hit = 1.5 / -d.z;
+    let tr = (-0.05 * t_hit).exp();
+    let r = shaders_cpu::bsdf::fresnel::fr_dielectric(-d.z, 1.5);
+    let n = 16384;
+    let mut rays = 0;
+    let mut refl = Vec::new();
+    for k in 0..n {
+        let mut stream = SampleStream::new(key(3), 0, k / 256, k % 256);
+        let ray = Ray::new(o, d);
+        let hit = accel.intersect(&ray);
+        let s = ctx.trace(ray, hit, &mut stream, &mut rays, split, None);
+        let dn = s.denoise;
+        assert!(
+            (dn.rho_refl - Vec3::splat(tr * r)).abs().max_element() <= 1e-5,
+            "sample {k}: rho_refl {} vs Tr·R {}",
+            dn.rho_refl,
+            tr * r
+        );
+        // The rest is what refracted: never negative.
+        let rest = s.l - dn.l_fog - dn.l_refl;
+        assert!(
+            rest.min_element() >= -1e-4 * (1.0 + s.l.max_element()),
+            "sample {k}: l {} = fog {} + reflection {} + {rest}",
+            s.l,
+            dn.l_fog,
+            dn.l_refl
+        );
+        refl.push(dn.l_refl.y as f64 / (tr * r) as f64);
+    }
+    // The mirrored ray from the glass, traced plainly with the scattering
+    // events the reflected samples have left (the glass took one).
+    let ctx_after = shading.context(3);
+    let p = o + d * t_hit + Vec3::Z * 1e-3;
+    let d_mirror = Vec3::new(d.x, d.y, -d.z);
+    let mirrored: Vec<f64> = (0..n)
+        .map(|k| {
+            let mut stream = SampleStream::new(key(5), 0, k / 256, k % 256);
+            let ray = Ray::new(p, d_mirror);
+            let hit = accel.intersect(&ray);
+            let s = ctx_after.trace(
+                ray,
+                hit,
+                &mut stream,
+                &mut rays,
+                Strategies::default(),
+                None,
+            );
+            s.l.y as f64
+        })
+        .collect();
+    let (m_refl, v_refl) = mean_var(&refl);
+    let (m_mirror, v_mirror) = mean_var(&mirrored);
+    let se = ((v_refl + v_mirror) / n as f64).sqrt();
+    eprintln!("l_refl / rho_refl {m_refl:.4} vs mirrored ray {m_mirror:.4} ± {se:.4}");
+    assert!(m_mirror > 0.0);
+    assert!(
+        (m_refl - m_mirror).abs() < 4.0 * se,
+        "{m_refl} vs {m_mirror} ± {se}"
+    );
+}
