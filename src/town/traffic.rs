@@ -395,13 +395,12 @@ pub fn ego_pose(desc: &TownDesc, seed: u64, drive: u64, frame: u64) -> (VehicleP
     let world = |p: VehiclePose| on_ground(bent(warp.as_ref(), p), grade.as_ref());
     // The drive moves on the level grid; the warp and the grade stretch
     // the last frame's step (frame 0: the next one) by its chords' ratio.
-    let (k0, k1) = if frame > 0 {
-        (frame - 1, frame)
-    } else {
-        (0, 1)
-    };
     let level = |k| ego::ego_motion(desc, seed, drive, k).0;
-    let (a, b) = (level(k0), level(k1));
+    let (a, b) = if frame > 0 {
+        (level(frame - 1), pose.clone())
+    } else {
+        (pose.clone(), level(1))
+    };
     let level_chord = distance(&a, &b);
     let stretch = if level_chord > 1e-9 {
         distance(&world(a), &world(b)) / level_chord

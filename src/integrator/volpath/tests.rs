@@ -9,12 +9,12 @@ use std::path::Path;
 use glam::{DVec3, Vec3};
 use shaders_cpu::medium::{Density, HenyeyGreenstein, Medium};
 
-use crate::accel::{build_accel, Accel, Backend, Ray};
+use crate::accel::{build_accel, Accel, AnyAccel, Backend, Ray};
 use crate::integrator::path::PathState;
 use crate::integrator::volpath::Strategies;
 use crate::integrator::Shading;
 use crate::sampler::{SampleStream, StreamKey};
-use crate::scene::{build_scene, parse_scene_str};
+use crate::scene::{build_scene, parse_scene_str, Scene};
 
 const SCENE: &str = r#"
 [camera]
@@ -57,12 +57,18 @@ fn samples(strategies: Strategies, dirs: &[Vec3], n: u32) -> Vec<Vec<f64>> {
     samples_in(SCENE, strategies, dirs, n).0
 }
 
-/// [`samples`] in scene `src`, and the rays they traced.
-fn samples_in(src: &str, strategies: Strategies, dirs: &[Vec3], n: u32) -> (Vec<Vec<f64>>, u64) {
+/// Scene `src` (TOML) built, with its BVH.
+fn built(src: &str) -> (Scene, AnyAccel) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/inline.toml");
     let loaded = parse_scene_str(src, &path).expect("scene parses");
     let scene = build_scene(&loaded, DVec3::ZERO).expect("scene builds");
     let accel = build_accel(Backend::Bvh, &scene.accel_geometry()).expect("accel builds");
+    (scene, accel)
+}
+
+/// [`samples`] in scene `src`, and the rays they traced.
+fn samples_in(src: &str, strategies: Strategies, dirs: &[Vec3], n: u32) -> (Vec<Vec<f64>>, u64) {
+    let (scene, accel) = built(src);
     let shading = Shading::new(&scene, &accel);
     let ctx = shading.context(4);
     let key = StreamKey {
@@ -443,10 +449,7 @@ fn glossy_first_vertex_hands_all_its_light_to_direct_light_in_fog() {
         "kind = \"coated\"\nalbedo = [0.5, 0.1, 0.1]\ncoat_roughness = 0.3",
     );
     assert_ne!(paint, SCENE, "the ground's material was not replaced");
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/inline.toml");
-    let loaded = parse_scene_str(&paint, &path).expect("scene parses");
-    let scene = build_scene(&loaded, DVec3::ZERO).expect("scene builds");
-    let accel = build_accel(Backend::Bvh, &scene.accel_geometry()).expect("accel builds");
+    let (scene, accel) = built(&paint);
     let shading = Shading::new(&scene, &accel);
     let ctx = shading.context(4);
     let key = StreamKey {
@@ -509,10 +512,7 @@ fn glass_first_vertex_hands_its_reflection_to_the_reflection_filter_in_fog() {
         "kind = \"dielectric\"\nior = 1.5\nroughness = 0.0\ntint = [1.0, 1.0, 1.0]",
     );
     assert_ne!(glass, SCENE, "the ground's material was not replaced");
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/inline.toml");
-    let loaded = parse_scene_str(&glass, &path).expect("scene parses");
-    let scene = build_scene(&loaded, DVec3::ZERO).expect("scene builds");
-    let accel = build_accel(Backend::Bvh, &scene.accel_geometry()).expect("accel builds");
+    let (scene, accel) = built(&glass);
     let shading = Shading::new(&scene, &accel);
     let ctx = shading.context(4);
     let key = |seed| StreamKey {
