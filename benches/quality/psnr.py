@@ -11,7 +11,9 @@ into the cache directory (plain path tracing: --no-filter, sensor noise off) and
 reused. The test image is rendered with the binary's defaults (sensor noise off,
 --baselines 10) plus --extra. Prints one JSON line: psnr_db, mean level error,
 the bias of the mean light (mean_light_bias: linear display light, a share of
-the reference's mean), the ratio of the two images' auto exposures, seconds, and the reference's own noise estimate when two references exist
+the reference's mean), the ratio of the two images' auto exposures, the scene
+light's bias (the display light's with the exposures divided out), seconds, and
+the reference's own noise estimate when two references exist
 (--ref-pair renders a second reference with another sample seed: the PSNR
 between the two is about 3 dB below each one's PSNR against the truth).
 """
@@ -98,6 +100,8 @@ def main():
     secs = render(a.bin, out, args)
     img = load(left_png(out, a.frame))
     ref = refs[0] if len(refs) == 1 else (refs[0] + refs[1]) / 2
+    exposure = (exposure_scale(out, a.frame)
+                / exposure_scale(os.path.join(a.cache, f"{key}_0"), a.frame))
     res = {"town": a.town, "frame": a.frame, "weather": a.weather, "size": a.size,
            "spp": a.spp, "extra": a.extra, "psnr_db": round(psnr(img, ref), 2),
            "mean_abs_levels": round(float(np.mean(np.abs(img - ref))), 2),
@@ -107,8 +111,11 @@ def main():
            "mean_light_bias": round(float(np.mean(linear(img)) / np.mean(linear(ref)) - 1.0), 4),
            # Auto exposure of the test image over the reference's: a noisy
            # image exposed differently is off everywhere, not only noisy.
-           "exposure_ratio": round(exposure_scale(out, a.frame)
-                                   / exposure_scale(os.path.join(a.cache, f"{key}_0"), a.frame), 4),
+           "exposure_ratio": round(exposure, 4),
+           # The scene light's bias: the display light's with each image's
+           # exposure divided out (exact where no pixel clips to white).
+           "scene_light_bias": round(float(np.mean(linear(img)) / np.mean(linear(ref))
+                                           / exposure - 1.0), 4),
            "seconds": round(secs, 2), "ref_spp": a.ref_spp * len(refs)}
     if len(refs) == 2:
         res["ref_pair_psnr_db"] = round(psnr(refs[0], refs[1]), 2)
