@@ -12,6 +12,7 @@ pub mod fixtures;
 pub mod light;
 pub mod readback;
 pub mod towns;
+pub mod triangle;
 
 use std::path::Path;
 

@@ -6,6 +6,8 @@
 
 use glam::DVec3;
 use parallax::render::FrameOutput;
+
+use crate::common::triangle::plane_hit;
 use parallax::scene::desc::{ObjectDesc, ShapeDesc};
 
 pub(super) const W: u32 = 96;
@@ -61,20 +63,13 @@ pub(super) fn trace(c: DVec3, d: DVec3, tris: &[[DVec3; 3]], cand: &[u32]) -> (O
     let mut near_edges: Vec<f64> = Vec::new();
     for &k in cand {
         let [a, b, e] = tris[k as usize];
-        let (e1, e2) = (b - a, e - a);
-        let p = d.cross(e2);
-        let det = e1.dot(p);
-        if det.abs() < 1e-300 {
+        let Some((t, u, v)) = plane_hit(c, d, [a, b, e]) else {
             continue;
-        }
-        let s = c - a;
-        let u = s.dot(p) / det;
-        let q = s.cross(e1);
-        let v = d.dot(q) / det;
-        let t = e2.dot(q) / det;
+        };
         if t <= 0.0 {
             continue;
         }
+        let (e1, e2) = (b - a, e - a);
         // Distances of the plane hit point to the three edges, metres:
         // barycentric times the height over that edge.
         let area2 = e1.cross(e2).length();

@@ -502,19 +502,7 @@ fn nearest_hit(scene: &Scene, o: DVec3, d: DVec3) -> Option<f64> {
     let mut best = f64::INFINITY;
     for m in &scene.meshes {
         for t in &m.triangles {
-            let [a, b, c] = t.map(|i| m.p_render[i as usize]);
-            let (e1, e2) = (b - a, c - a);
-            let p = d.cross(e2);
-            let det = e1.dot(p);
-            if det.abs() < 1e-300 {
-                continue;
-            }
-            let s = o - a;
-            let u = s.dot(p) / det;
-            let q = s.cross(e1);
-            let v = d.dot(q) / det;
-            let t = e2.dot(q) / det;
-            if u >= 0.0 && v >= 0.0 && u + v <= 1.0 && t > 0.0 {
+            if let Some(t) = crate::common::triangle::hit(o, d, t.map(|i| m.p_render[i as usize])) {
                 best = best.min(t);
             }
         }
