@@ -65,7 +65,7 @@ pub struct TownDesc {
     /// An underpass (default false): the y-road of block column 1 passes
     /// under the middle x-road in a cut between retaining walls, the
     /// x-road straight over it on a deck; no junction there (see
-    /// `underpass`). Needs a level `grid` town (no grade, hills, river,
+    /// `underpass`). Needs a level `grid` or `organic` town (no grade, hills, river,
     /// ramps or overpass) with 2 × 2 blocks or more, blocks long enough
     /// for a 5.5 m cut at ≤ 10 % and, with a roundabout, 6 block columns.
     #[serde(default, skip_serializing_if = "is_false")]
@@ -315,8 +315,8 @@ impl TownDesc {
                         .into(),
                 );
             }
-            if self.road_style != RoadStyle::Grid {
-                return Err("underpass: only on road_style = \"grid\" so far".into());
+            if self.road_style == RoadStyle::Highway {
+                return Err("underpass: on grid or organic towns only".into());
             }
             super::underpass::check(self)?;
         }

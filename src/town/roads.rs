@@ -178,13 +178,14 @@ pub fn road_objects(l: &Layout, sites: &[RampSite]) -> Vec<ObjectDesc> {
 }
 
 /// The ground quad from `lo` to `hi`, in four pieces round the
-/// underpass's cut (whose road lies below it) if the town has one.
+/// underpass's cut (whose road lies below it) if the town has one; the
+/// hole's sides lie under the kerbs (so a warp's chords stay hidden).
 fn ground_around_cut(l: &Layout, lo: [f64; 2], hi: [f64; 2]) -> Vec<ObjectDesc> {
     let g = |a: [f64; 2], b: [f64; 2]| ground_quad(a, b, -0.02, "ground", class("terrain"));
     let Some(u) = Underpass::of(l) else {
         return vec![g(lo, hi)];
     };
-    let (x0, x1) = (u.x_m - u.half_w_m, u.x_m + u.half_w_m);
+    let (x0, x1) = (u.x_m - u.half_w_m - 0.25, u.x_m + u.half_w_m + 0.25);
     let (y0, y1) = u.ends;
     vec![
         g(lo, [x0, hi[1]]),

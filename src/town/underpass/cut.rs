@@ -1,8 +1,10 @@
 //! The underpass's objects: the sunken y-road's asphalt and lane lines on
 //! the profile (world meshes, lines 8 mm above the road), the retaining
 //! walls from the road up to grade below its kerbs, a parapet on each
-//! sidewalk along the cut, and the deck under the x-road with a parapet
-//! on each of its sidewalks' outer edges. Stations are ≤ `STEP_M` apart
+//! sidewalk along the cut, and the deck under the x-road (its underside
+//! and end faces) with a parapet on each of its sidewalks' outer edges.
+//! Meshes are cut into pieces ≤ `ACROSS_M` across, so that an organic
+//! town's warp bends them vertex by vertex like its roads. Stations are ≤ `STEP_M` apart
 //! and include the profile's knots, so the meshes' chords leave the
 //! profile by < 0.5 mm (exact on the level and constant-grade runs).
 
@@ -17,6 +19,8 @@ use super::{Underpass, DECK_M, TRANSITION_M};
 
 /// Longest station step along the road, metres.
 const STEP_M: f64 = 0.5;
+/// Longest side of a piece across the road or the deck, metres.
+const ACROSS_M: f64 = 5.0;
 /// Height of painted lines above the road, metres.
 const PAINT_M: f64 = 0.008;
 /// Parapets: thickness and top above grade, metres.
@@ -59,13 +63,58 @@ impl Underpass {
     }
 
     /// A strip on the road between x offsets `u0` < `u1` from the
-    /// centreline, `lift` above it, from `y0` to `y1`.
+    /// centreline, `lift` above it, from `y0` to `y1` (cut across into
+    /// pieces ≤ `ACROSS_M`, so an organic warp bends it like the roads).
     fn strip(&self, m: &mut LocalMesh, (u0, u1): (f64, f64), lift: f64, (y0, y1): (f64, f64)) {
         let p = |u: f64, y: f64| DVec3::new(self.x_m + u, y, self.profile(y).0 + lift);
+        let n = ((u1 - u0) / ACROSS_M).ceil().max(1.0) as usize;
+        let us: Vec<f64> = (0..=n)
+            .map(|k| u0 + (u1 - u0) * k as f64 / n as f64)
+            .collect();
         for w in self.stations(y0, y1).windows(2) {
             let (a, b) = (w[0], w[1]);
-            quad(m, [p(u0, a), p(u1, a), p(u1, b), p(u0, b)], DVec3::Z);
+            for c in us.windows(2) {
+                let (c0, c1) = (c[0], c[1]);
+                quad(m, [p(c0, a), p(c1, a), p(c1, b), p(c0, b)], DVec3::Z);
+            }
         }
+    }
+
+    /// The deck's faces seen from the cut: its underside `DECK_M` below
+    /// grade and its two ends down to it, in pieces ≤ `ACROSS_M` (its top
+    /// lies under the x-road's asphalt and sidewalks).
+    fn deck_mesh(&self) -> LocalMesh {
+        let mut m = LocalMesh::default();
+        let (x0, x1) = (self.x_m - self.half_w_m, self.x_m + self.half_w_m);
+        let split = |a: f64, b: f64| {
+            let n = ((b - a) / ACROSS_M).ceil().max(1.0) as usize;
+            (0..=n)
+                .map(|k| a + (b - a) * k as f64 / n as f64)
+                .collect::<Vec<f64>>()
+        };
+        let (xs, ys) = (split(x0, x1), split(self.deck.0, self.deck.1));
+        let z = -DECK_M;
+        for a in xs.windows(2) {
+            for b in ys.windows(2) {
+                let v = [
+                    DVec3::new(a[0], b[0], z),
+                    DVec3::new(a[1], b[0], z),
+                    DVec3::new(a[1], b[1], z),
+                    DVec3::new(a[0], b[1], z),
+                ];
+                quad(&mut m, v, DVec3::NEG_Z);
+            }
+            for (y, face) in [(self.deck.0, DVec3::NEG_Y), (self.deck.1, DVec3::Y)] {
+                let v = [
+                    DVec3::new(a[0], y, z),
+                    DVec3::new(a[1], y, z),
+                    DVec3::new(a[1], y, 0.0),
+                    DVec3::new(a[0], y, 0.0),
+                ];
+                quad(&mut m, v, face);
+            }
+        }
+        m
     }
 
     /// Lane lines as the roads draw them (`roads::lane_lines`): a double
@@ -185,14 +234,6 @@ pub fn underpass_objects(l: &Layout) -> Vec<ObjectDesc> {
         out.push(world_mesh(yellow, "paint_yellow_road", mark));
     }
     out.extend(u.parapets());
-    // The deck: its top 5 mm under the x-road's asphalt and sidewalks.
-    out.push(slab(
-        [u.x_m - hw, u.deck.0],
-        [u.x_m + hw, u.deck.1],
-        -DECK_M,
-        -0.005,
-        "concrete",
-        class("bridge"),
-    ));
+    out.push(world_mesh(u.deck_mesh(), "concrete", class("bridge")));
     out
 }
