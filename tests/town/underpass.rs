@@ -188,7 +188,7 @@ fn the_crossing_has_no_signals_and_traffic_passes_on_two_levels() {
             if (x - u.x_m).abs() < hw && (y - u.y_m).abs() < hw {
                 let q = v.heading_deg.rem_euclid(90.0);
                 assert!(
-                    q < 1e-9 || q > 90.0 - 1e-9,
+                    !(1e-9..=90.0 - 1e-9).contains(&q),
                     "frame {frame}: {}",
                     v.heading_deg
                 );

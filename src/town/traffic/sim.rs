@@ -462,6 +462,10 @@ fn keep_out(
 /// junction turn).
 const ALIGNED_COS: f64 = 0.999_39;
 
+/// A footprint's centre, heading (cos, sin), half length and width, and
+/// height (`VehiclePose::position`'s z).
+type FootprintFrame = ([f64; 2], [f64; 2], [f64; 2], f64);
+
 /// Distance along agent `i`'s path from its centre to the first sample
 /// within reach of another footprint, up to `look` metres, and whose.
 fn first_in_way(
@@ -502,7 +506,7 @@ fn first_in_way(
         return None;
     }
     // Each footprint's frame once (`ego::rect_distance`, squared).
-    let frames: Vec<([f64; 2], [f64; 2], [f64; 2], f64)> = near
+    let frames: Vec<FootprintFrame> = near
         .iter()
         .map(|&j| {
             let [len, wid] = all[j].body.footprint_m();
