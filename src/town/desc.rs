@@ -62,6 +62,14 @@ pub struct TownDesc {
     /// keep away from it.
     #[serde(default)]
     pub roundabout: bool,
+    /// An underpass (default false): the y-road of block column 1 passes
+    /// under the middle x-road in a cut between retaining walls, the
+    /// x-road straight over it on a deck; no junction there (see
+    /// `underpass`). Needs a level `grid` or `organic` town (no grade, hills, river,
+    /// ramps or overpass) with 2 × 2 blocks or more, blocks long enough
+    /// for a 5.5 m cut at ≤ 10 % and, with a roundabout, 6 block columns.
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub underpass: bool,
     /// Highway slip roads (default false): beside every block segment of the
     /// outer x-roads, on their outer side, an off-ramp leaving the outer lane
     /// by a taper and an S-curve and an on-ramp merging back, with edge
@@ -298,6 +306,19 @@ impl TownDesc {
             if few || self.block_size_m < 80.0 {
                 return Err("roundabout: needs 2 × 3 blocks or more and block_size_m ≥ 80".into());
             }
+        }
+        if self.underpass {
+            let level = self.road_grade_m == 0.0 && self.hills_m == 0.0;
+            if !level || self.river || self.ramps || self.overpass {
+                return Err(
+                    "underpass: needs a level town (no road_grade_m or hills_m) without river, ramps or overpass"
+                        .into(),
+                );
+            }
+            if self.road_style == RoadStyle::Highway {
+                return Err("underpass: on grid or organic towns only".into());
+            }
+            super::underpass::check(self)?;
         }
         if self.road_style == RoadStyle::Organic && (self.ramps || self.overpass) {
             return Err(format!(

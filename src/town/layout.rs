@@ -88,6 +88,9 @@ pub struct Layout {
     pub river_row: Option<usize>,
     /// The cross junction (i, j) replaced by a roundabout, if any.
     pub roundabout: Option<(usize, usize)>,
+    /// The junction (i, j) where the y-road i passes under the x-road j
+    /// (`underpass`), if the town has one.
+    pub underpass: Option<(usize, usize)>,
     /// Radius of the loop's curved outer corners on the centreline, metres
     /// (0: square corners with junctions).
     pub loop_radius_m: f64,
@@ -128,14 +131,20 @@ impl Layout {
             sidewalks: desc.sidewalks,
             river_row: None,
             roundabout: None,
+            underpass: None,
             loop_radius_m: desc.loop_corner_radius_m,
             median: desc.road_style == RoadStyle::Highway,
         }
         .with_river(desc.river)
         .with_roundabout(desc.roundabout)
+        .with_underpass(desc.underpass)
     }
     fn with_river(mut self, river: bool) -> Self {
         self.river_row = river.then_some(self.ny / 2);
+        self
+    }
+    fn with_underpass(mut self, on: bool) -> Self {
+        self.underpass = on.then(|| super::underpass::site(self.nx, self.ny));
         self
     }
     fn with_roundabout(mut self, on: bool) -> Self {
@@ -367,6 +376,7 @@ mod tests {
             sidewalks: false,
             river_row: None,
             roundabout: None,
+            underpass: None,
             loop_radius_m: r,
             median: true,
         }

@@ -48,6 +48,7 @@ pub mod source;
 pub mod street;
 pub mod terrain;
 pub mod traffic;
+pub mod underpass;
 pub mod vegetation;
 pub mod vehicles;
 pub mod walkers;

@@ -19,6 +19,7 @@ use super::layout::{Layout, Rect, GROUND_MARGIN_M, STUB_M};
 use super::parts::{class, ground_quad, repeated, slab, Label};
 use super::ramps::{RampSite, TAPER_M};
 use super::roundabout::{arm_start_m, roundabout_objects};
+use super::underpass::{underpass_objects, Underpass};
 
 mod corners;
 pub mod median;
@@ -47,6 +48,9 @@ struct Segment {
     /// Whether each end meets the roundabout ring (a dashed yield line at
     /// the ring, the crosswalk a car length back).
     yield_end: [bool; 2],
+    /// Whether its asphalt and lane lines sink into the underpass's cut
+    /// (built by `underpass`; its kerbs and sidewalks stay at grade).
+    sunk: bool,
 }
 
 impl Segment {
@@ -60,6 +64,7 @@ impl Segment {
             a1,
             junction,
             yield_end: [false; 2],
+            sunk: false,
         }
     }
 
@@ -108,7 +113,7 @@ pub fn road_objects(l: &Layout, sites: &[RampSite]) -> Vec<ObjectDesc> {
     let m = GROUND_MARGIN_M;
     let (lo, hi) = ([b.min[0] - m, b.min[1] - m], [b.max[0] + m, b.max[1] + m]);
     match l.river_band() {
-        None => out.push(ground_quad(lo, hi, -0.02, "ground", class("terrain"))),
+        None => out.extend(ground_around_cut(l, lo, hi)),
         Some(band) => {
             let t = class("terrain");
             out.push(ground_quad(lo, [hi[0], band.min[1]], -0.02, "ground", t));
@@ -127,7 +132,13 @@ pub fn road_objects(l: &Layout, sites: &[RampSite]) -> Vec<ObjectDesc> {
         }
         for i in 0..l.nx {
             let x = i as f64 * p;
-            let s = Segment::new(Axis::X, y, (x + hw, x + p - hw), [true, true]);
+            // Over the underpass the x-road runs straight on through.
+            let (under, next) = (Some((i, j)) == l.underpass, Some((i + 1, j)) == l.underpass);
+            if under {
+                continue;
+            }
+            let end = if next { x + 2.0 * p - hw } else { x + p - hw };
+            let s = Segment::new(Axis::X, y, (x + hw, end), [true, true]);
             let s = roundabout_arm(l, s);
             let s = to_loop_arcs(l, s, (i == 0, i + 1 == l.nx), l.len_x(), curved);
             out.extend(segment_objects(l, sites, &s));
@@ -143,7 +154,10 @@ pub fn road_objects(l: &Layout, sites: &[RampSite]) -> Vec<ObjectDesc> {
         let curved = l.loop_corner_at(i, 0);
         for j in 0..l.ny {
             let y = j as f64 * p;
-            let s = Segment::new(Axis::Y, x, (y + hw, y + p - hw), [true, true]);
+            // The two pieces either side of the underpass's crossing sink.
+            let (from, to) = (Some((i, j)) == l.underpass, Some((i, j + 1)) == l.underpass);
+            let mut s = Segment::new(Axis::Y, x, (y + hw, y + p - hw), [!from, !to]);
+            s.sunk = from || to;
             let s = roundabout_arm(l, s);
             let s = to_loop_arcs(l, s, (j == 0, j + 1 == l.ny), l.len_y(), curved);
             out.extend(segment_objects(l, sites, &s));
@@ -151,14 +165,34 @@ pub fn road_objects(l: &Layout, sites: &[RampSite]) -> Vec<ObjectDesc> {
     }
     for j in 0..=l.ny {
         for i in 0..=l.nx {
-            if l.roundabout != Some((i, j)) && !l.loop_corner_at(i, j) {
+            let special = l.roundabout == Some((i, j)) || l.underpass == Some((i, j));
+            if !special && !l.loop_corner_at(i, j) {
                 junction_objects(l, i, j, &mut out);
             }
         }
     }
     out.extend(roundabout_objects(l));
     out.extend(loop_corner_objects(l));
+    out.extend(underpass_objects(l));
     out
+}
+
+/// The ground quad from `lo` to `hi`, in four pieces round the
+/// underpass's cut (whose road lies below it) if the town has one; the
+/// hole's sides lie under the kerbs (so a warp's chords stay hidden).
+fn ground_around_cut(l: &Layout, lo: [f64; 2], hi: [f64; 2]) -> Vec<ObjectDesc> {
+    let g = |a: [f64; 2], b: [f64; 2]| ground_quad(a, b, -0.02, "ground", class("terrain"));
+    let Some(u) = Underpass::of(l) else {
+        return vec![g(lo, hi)];
+    };
+    let (x0, x1) = (u.x_m - u.half_w_m - 0.25, u.x_m + u.half_w_m + 0.25);
+    let (y0, y1) = u.ends;
+    vec![
+        g(lo, [x0, hi[1]]),
+        g([x1, lo[1]], hi),
+        g([x0, lo[1]], [x1, y0]),
+        g([x0, y1], [x1, hi[1]]),
+    ]
 }
 
 /// The segment ending at the tangent point of a curved loop corner (R from
@@ -255,6 +289,15 @@ fn edge_line(s: &Segment, (s0, s1): (f64, f64), u: f64, ramps: &[&RampSite]) -> 
 fn segment_objects(l: &Layout, sites: &[RampSite], s: &Segment) -> Vec<ObjectDesc> {
     let hw = l.road_w_m / 2.0;
     let mut o = Vec::new();
+    if s.sunk {
+        for end in 0..2 {
+            if s.junction[end] {
+                junction_end(l, s, end, &mut o);
+            }
+        }
+        roadsides(l, sites, s, &mut o);
+        return o;
+    }
     let (p, q) = (s.xy(s.a0, -hw), s.xy(s.a1, hw));
     o.push(ground_quad(
         [p[0].min(q[0]), p[1].min(q[1])],

@@ -356,6 +356,7 @@ mod tests {
             sidewalks: true,
             river_row: None,
             roundabout: Some((1, 1)),
+            underpass: None,
             loop_radius_m: 0.0,
             median: false,
         };
@@ -384,6 +385,7 @@ mod tests {
             sidewalks: true,
             river_row: None,
             roundabout: Some((1, 1)),
+            underpass: None,
             loop_radius_m: 0.0,
             median: false,
         };

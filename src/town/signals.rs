@@ -105,9 +105,9 @@ pub fn junction_sites(l: &Layout, i: usize, j: usize) -> [SignalSite; 4] {
 
 /// Whether junction (i, j) has traffic lights: every cross junction, on
 /// x-roads j = 1 .. ny − 1 (the outer x-roads end y-roads in T junctions
-/// with stop signs), but the roundabout.
+/// with stop signs), but the roundabout and the underpass's crossing.
 pub fn has_signals(l: &Layout, i: usize, j: usize) -> bool {
-    j > 0 && j < l.ny && i <= l.nx && l.roundabout != Some((i, j))
+    j > 0 && j < l.ny && i <= l.nx && l.roundabout != Some((i, j)) && l.underpass != Some((i, j))
 }
 
 /// Every traffic light of the town (`junction_sites` of every junction

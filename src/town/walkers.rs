@@ -150,7 +150,7 @@ fn crossers(
     let mut id = CROSSER_ID_BASE;
     for j in 1..l.ny {
         for i in 1..l.nx {
-            if l.roundabout == Some((i, j)) {
+            if l.roundabout == Some((i, j)) || l.underpass == Some((i, j)) {
                 id += 2;
                 continue;
             }

@@ -126,3 +126,34 @@ fn a_bad_trajectory_count_exits_2_naming_it() {
         "{err}"
     );
 }
+
+/// Town03's underpass (docs/towns.md): seed 0's drive 22 passes under the
+/// deck in its first 600 frames; its z follows the cut's profile (never
+/// below 5.5 m down, level at the bottom) and its pitch is nose down
+/// (falling) or up (rising) at most atan 9.8 % on the way.
+#[test]
+fn town03_drive_goes_through_the_underpass() {
+    let lines = trajectory("town03", "0", "22", "600");
+    assert_eq!(lines.len(), 600);
+    let deepest = lines.iter().map(|l| l.2[2]).fold(f64::INFINITY, f64::min);
+    assert!((deepest + 5.5).abs() < 1e-9, "deepest {deepest}");
+    let steepest = (5.5f64 / 56.0).atan().to_degrees();
+    let (mut down, mut up) = (0, 0);
+    for w in lines.windows(2) {
+        let ((_, _, p, _, _), (_, _, q, rot, _)) = (w[0], w[1]);
+        assert!(
+            q[2] <= 0.0 && rot[1].abs() <= steepest + 1e-9,
+            "{q:?} {rot:?}"
+        );
+        // Falling frames pitch nose down, rising ones nose up (level
+        // where a frame ends on the bottom).
+        if q[2] < p[2] - 1e-6 {
+            assert!(rot[1] <= 0.0, "{q:?} {rot:?}");
+            down += 1;
+        } else if q[2] > p[2] + 1e-6 {
+            assert!(rot[1] >= 0.0, "{q:?} {rot:?}");
+            up += 1;
+        }
+    }
+    assert!(down > 10 && up > 10, "{down} falling, {up} rising frames");
+}

@@ -29,7 +29,8 @@ use common::towns::{pre_carla_names, town, town_file, TOWNS};
 /// (each turn's list of bodies that fit changed; roads and lots did not).
 /// town03's road objects were re-pinned when the roundabout's markings,
 /// curbs, sidewalk and island became world meshes on true arcs (so that an
-/// organic warp bends them vertex by vertex).
+/// organic warp bends them vertex by vertex), and when it got its underpass
+/// (the sunken y-road, walls, parapets and deck; the ground cut open).
 const PINNED_HASHES: [(&str, u64, u64, u64); 8] = [
     (
         "town01",
@@ -45,7 +46,7 @@ const PINNED_HASHES: [(&str, u64, u64, u64); 8] = [
     ),
     (
         "town03",
-        0x25e6_d283_4570_7047,
+        0x5491_77ba_e61a_f11c,
         0x9ee2663ff86c6097,
         0x789a0556b13a60bc,
     ),

@@ -24,3 +24,4 @@ mod signals;
 mod terrain;
 mod traffic;
 mod traffic_motion;
+mod underpass;

@@ -41,7 +41,7 @@ pub(crate) fn quads_overlap(a: &[[f64; 2]; 4], b: &[[f64; 2]; 4]) -> bool {
 }
 
 /// Pairs of overlapping vehicles (sweep over the x bounds).
-fn overlaps(vs: &[&VehiclePose]) -> Vec<(u32, u32)> {
+pub(crate) fn overlaps(vs: &[&VehiclePose]) -> Vec<(u32, u32)> {
     let boxes: Vec<Rect> = vs.iter().map(|v| v.footprint()).collect();
     let corners: Vec<_> = vs.iter().map(|v| v.corners()).collect();
     let mut order: Vec<usize> = (0..vs.len()).collect();

@@ -18,6 +18,7 @@ pub mod cars;
 pub mod layby;
 
 use crate::scene::desc::{ObjectDesc, ShapeDesc};
+use crate::town::underpass::Underpass;
 
 use super::desc::{RoadStyle, TownDesc};
 use super::layout::{Layout, Rect};
@@ -222,7 +223,7 @@ fn section_bays(l: &Layout, sec: &Bay, furniture: &[ObjectDesc], out: &mut Vec<B
 }
 
 /// Whole bays centred in the free stretch `(s0, s1)`, skipping any that
-/// would reach the roundabout, a bridge or a loop corner.
+/// would reach the roundabout, a bridge, the underpass's cut or a loop corner.
 fn run(l: &Layout, sec: &Bay, (s0, s1): (f64, f64), out: &mut Vec<Bay>) {
     let n = ((s1 - s0) / BAY_LEN_M + 1e-9).floor();
     if n < 1.0 {
@@ -240,7 +241,8 @@ fn run(l: &Layout, sec: &Bay, (s0, s1): (f64, f64), out: &mut Vec<Bay>) {
         let corner = [r.min, r.max, [r.min[0], r.max[1]], [r.max[0], r.min[1]]]
             .iter()
             .any(|&q| l.in_loop_corner(q));
-        if !on_bridge && !corner && !l.near_roundabout(&r) {
+        let by_cut = Underpass::of(l).is_some_and(|u| u.beside(&r));
+        if !on_bridge && !corner && !by_cut && !l.near_roundabout(&r) {
             out.push(bay);
         }
     }

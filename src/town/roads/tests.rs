@@ -17,6 +17,7 @@ fn layout(lanes: u32, sidewalks: bool) -> Layout {
         sidewalks,
         river_row: None,
         roundabout: None,
+        underpass: None,
         loop_radius_m: 0.0,
         median: false,
     }

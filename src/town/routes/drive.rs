@@ -20,6 +20,10 @@
 //! approach turns red (past the departing crosswalk), and the approach's
 //! direction, whose signal phase (`signals::until_red_s`) it waits for.
 //!
+//! At the underpass's crossing (`Layout::underpass`) the only move is
+//! straight on, and no `Crossing` is recorded: the two roads' traffic
+//! passes on two levels, without signals.
+//!
 //! Background vehicles (`traffic::sim`) walk without lane changes: from
 //! lane 0 they go straight or left, from the outer lane straight or right
 //! (one lane: any move), preferring moves whose next junction again offers
@@ -193,6 +197,11 @@ impl DrivePath {
         }
     }
 
+    /// The layout it drives on.
+    pub fn layout(&self) -> &Layout {
+        &self.l
+    }
+
     /// Length so far, metres.
     pub fn length_m(&self) -> f64 {
         self.len_m
@@ -331,10 +340,13 @@ impl DrivePath {
         let lanes = self.l.lanes;
         let ju = (to[0] as usize, to[1] as usize);
         // Legal moves at `to` (no U-turns, no stubs, no left turn across a
-        // highway's median barrier).
+        // highway's median barrier, only straight on where one road
+        // passes under the other).
+        let under = self.l.underpass == Some(ju);
         let options: Vec<(Move, usize)> = [(Move::Right, 3), (Move::Straight, 0), (Move::Left, 1)]
             .into_iter()
             .filter(|&(m, _)| m != Move::Left || !self.l.median_through(ju.0, ju.1))
+            .filter(|&(m, _)| m == Move::Straight || !under)
             .map(|(m, q)| (m, (self.dir + q) % 4))
             .filter(|&(_, d)| self.valid(to, d))
             .collect::<Vec<_>>();
@@ -446,7 +458,7 @@ impl DrivePath {
             },
         }
         let s_exit = self.len_m;
-        if !curve {
+        if !curve && !under {
             let hw = self.l.road_w_m / 2.0;
             let (stop, clear) = match kind {
                 Kind::Ring => {

@@ -16,6 +16,7 @@ fn town(roundabout: bool) -> Layout {
         sidewalks: true,
         river_row: None,
         roundabout: roundabout.then_some((1, 1)),
+        underpass: None,
         loop_radius_m: 0.0,
         median: false,
     }

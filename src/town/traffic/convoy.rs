@@ -133,6 +133,7 @@ impl Drive {
         let m = &self.members[i];
         let (s, v, next) = (m.s[n], m.v[n], m.v[n + 1]);
         let (p, h) = self.path.pose(s);
+        let (z, pitch_deg) = crate::town::underpass::level_pose(self.path.layout(), p, h);
         let mut lamps = VehicleLamps {
             brake: next < v - 1e-3 || (v < 0.05 && next < 0.05),
             ..Default::default()
@@ -148,9 +149,9 @@ impl Drive {
             id: m.id,
             body: m.body,
             paint: m.paint,
-            position: [p[0], p[1], 0.0],
+            position: [p[0], p[1], z],
             heading_deg: super::ego::heading_deg(h),
-            pitch_deg: 0.0,
+            pitch_deg,
             roll_deg: 0.0,
             route: if m.id == 0 { usize::MAX } else { CONVOY_ROUTE },
             lamps,

@@ -35,7 +35,7 @@ use super::convoy::{Drive, Member, CONVOY_GAP_M};
 use super::junction::{clear_time_s, CLEAR_RESERVE_S};
 use super::recent::Recent;
 use super::sim::{follow_cap, MOVING_LEADER_MPS};
-use super::{others, Plan, VehiclePose, A_LAT_MPS2, A_LON_MPS2, LEVEL_GAP_M};
+use super::{others, Plan, VehiclePose, A_LAT_MPS2, A_LON_MPS2};
 use crate::town::desc::TownDesc;
 use crate::town::layout::Layout;
 use crate::town::materials::PAINTS;
@@ -384,7 +384,7 @@ impl<'a> Ctx<'a> {
                 let grown = grown_corners(m, MARGIN_M);
                 for c in &others {
                     if near(&m.position, &c.position, 30.0)
-                        && c.position[2].abs() < LEVEL_GAP_M
+                        && m.same_level(c)
                         && quads_overlap(&grown, &c.corners())
                     {
                         vehicles.insert(c.id);

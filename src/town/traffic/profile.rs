@@ -146,6 +146,7 @@ mod tests {
             sidewalks: true,
             river_row: None,
             roundabout: None,
+            underpass: None,
             loop_radius_m: 0.0,
             median: false,
         };

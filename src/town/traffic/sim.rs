@@ -41,6 +41,7 @@ use crate::town::layout::Layout;
 use crate::town::overpass::Overpass;
 use crate::town::routes::drive::{DrivePath, Move};
 use crate::town::routes::Segment;
+use crate::town::underpass;
 use crate::town::vehicles::BodyKind;
 
 /// `VehiclePose::route` of a simulated vehicle.
@@ -97,13 +98,14 @@ impl Agent {
 
     pub fn pose(&self) -> VehiclePose {
         let (p, h) = self.path.pose(self.s);
+        let (z, pitch_deg) = underpass::level_pose(self.path.layout(), p, h);
         VehiclePose {
             id: self.id,
             body: self.body,
             paint: self.paint,
-            position: [p[0], p[1], 0.0],
+            position: [p[0], p[1], z],
             heading_deg: ego::heading_deg(h),
-            pitch_deg: 0.0,
+            pitch_deg,
             roll_deg: 0.0,
             route: SIM_ROUTE,
             lamps: VehicleLamps::default(),
@@ -442,10 +444,9 @@ fn keep_out(
         r.min = r.min.map(|c| c - pad);
         r.max = r.max.map(|c| c + pad);
         let c = q.corners();
-        let hit = grid
-            .near(&r)
-            .into_iter()
-            .any(|j| j != i && j < agents.len() && ego::quads_overlap(&c, &at[j]));
+        let hit = grid.near(&r).into_iter().any(|j| {
+            j != i && j < agents.len() && q.same_level(&all[j]) && ego::quads_overlap(&c, &at[j])
+        });
         if hit {
             next[i] = 0.0;
             held += 1;
@@ -461,6 +462,10 @@ fn keep_out(
 /// junction turn).
 const ALIGNED_COS: f64 = 0.999_39;
 
+/// A footprint's centre, heading (cos, sin), half length and width, and
+/// height (`VehiclePose::position`'s z).
+type FootprintFrame = ([f64; 2], [f64; 2], [f64; 2], f64);
+
 /// Distance along agent `i`'s path from its centre to the first sample
 /// within reach of another footprint, up to `look` metres, and whose.
 fn first_in_way(
@@ -472,8 +477,16 @@ fn first_in_way(
 ) -> Option<(f64, usize)> {
     let reach = a.body.footprint_m()[1] / 2.0 + 0.3;
     let n = (look / SAMPLE_M).ceil() as usize;
-    let samples: Vec<[f64; 2]> = (0..=n)
-        .map(|k| a.path.pose(a.s + k as f64 * SAMPLE_M).0)
+    let poses: Vec<([f64; 2], f64)> = (0..=n)
+        .map(|k| a.path.pose(a.s + k as f64 * SAMPLE_M))
+        .collect();
+    let samples: Vec<[f64; 2]> = poses.iter().map(|q| q.0).collect();
+    // Heights along the way: a footprint on another level (the deck over
+    // the underpass's cut) is not in it.
+    let under = underpass::Underpass::of(a.path.layout());
+    let heights: Vec<f64> = poses
+        .iter()
+        .map(|&(p, h)| under.map_or(0.0, |u| u.pose(p, h).0))
         .collect();
     let pad = reach + 1.0;
     let fold =
@@ -493,20 +506,23 @@ fn first_in_way(
         return None;
     }
     // Each footprint's frame once (`ego::rect_distance`, squared).
-    let frames: Vec<([f64; 2], [f64; 2], [f64; 2])> = near
+    let frames: Vec<FootprintFrame> = near
         .iter()
         .map(|&j| {
             let [len, wid] = all[j].body.footprint_m();
             let (sin, cos) = all[j].heading_deg.to_radians().sin_cos();
             let c = [all[j].position[0], all[j].position[1]];
-            (c, [cos, sin], [len / 2.0, wid / 2.0])
+            (c, [cos, sin], [len / 2.0, wid / 2.0], all[j].position[2])
         })
         .collect();
     let reach2 = reach * reach;
     samples.iter().enumerate().find_map(|(k, p)| {
         frames
             .iter()
-            .position(|(c, [cos, sin], [hl, hw])| {
+            .position(|(c, [cos, sin], [hl, hw], z)| {
+                if (z - heights[k]).abs() >= LEVEL_GAP_M {
+                    return false;
+                }
                 let d = [p[0] - c[0], p[1] - c[1]];
                 let a = ((d[0] * cos + d[1] * sin).abs() - hl).max(0.0);
                 let b = ((-d[0] * sin + d[1] * cos).abs() - hw).max(0.0);
