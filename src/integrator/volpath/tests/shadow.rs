@@ -76,9 +76,9 @@ fn single_scattered_sun_in_a_slab_matches_its_closed_form() {
     // depth 1: only the sun's single scattering. Away from the sun the
     // phase value is a few per cent of 1/4π and the shadow rays are
     // rouletted; toward it they are always traced.
-    let dirs = [[-1.0, -0.3, 0.3], [0.0, 1.0, 0.2], [0.8, 0.5, 0.4]];
+    let dirs: [[f64; 3]; 3] = [[-1.0, -0.3, 0.3], [0.0, 1.0, 0.2], [0.8, 0.5, 0.4]];
     for d in dirs {
-        let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) as f64;
+        let n = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
         let d = [d[0] / n.sqrt(), d[1] / n.sqrt(), d[2] / n.sqrt()];
         let dv = Vec3::new(d[0] as f32, d[1] as f32, d[2] as f32);
         let (l, _) = radiance(SCENE, Strategies::default(), dv, 1, 16384);
