@@ -222,14 +222,21 @@ impl<A: Accel> PathContext<'_, A> {
     ) -> Vec3 {
         let scene = self.scene;
         let mut l = Vec3::ZERO;
-        let mut one = |ls: Option<LightSample>, equi: bool| {
+        let mut one = |ls: Option<LightSample>, equi: bool, u_keep: Option<f32>| {
             let Some(ls) = ls else { return Vec3::ZERO };
             if ls.pdf <= 0.0 || ls.li == Vec3::ZERO {
                 return Vec3::ZERO;
             }
             let f = m.phase.eval(wo, ls.wi);
+            if f == 0.0 {
+                return Vec3::ZERO;
+            }
+            // Away from the forward lobe the shadow ray is rouletted by the
+            // phase value (`NeeRoulette::shadow`), divided by its survival.
+            let keep = u_keep.map_or(Some(1.0), |u| rr.shadow(f, u));
+            let Some(keep) = keep else { return Vec3::ZERO };
             *rays += 1;
-            if f == 0.0 || self.accel.occluded(&shadow_ray(p, &ls)) {
+            if self.accel.occluded(&shadow_ray(p, &ls)) {
                 return Vec3::ZERO;
             }
             let w = if ls.delta {
@@ -243,7 +250,7 @@ impl<A: Accel> PathContext<'_, A> {
             } else {
                 power_heuristic(1.0, ls.pdf, 1.0, m.phase.pdf(wo, ls.wi))
             };
-            ls.li * m.tr(p, ls.wi, ls.dist) * (f * w / ls.pdf)
+            ls.li * m.tr(p, ls.wi, ls.dist) * (f * w / (ls.pdf * keep))
         };
         for (k, &u) in u_distant
             .iter()
@@ -261,7 +268,8 @@ impl<A: Accel> PathContext<'_, A> {
                     None => continue,
                 }
             };
-            let c = one(self.lights.sample_distant(scene, k, p, u), false) * sky_scale;
+            let u_keep = rr.u_shadow.get(k).copied();
+            let c = one(self.lights.sample_distant(scene, k, p, u), false, u_keep) * sky_scale;
             l += match lobe_w {
                 Some((k_sun, w)) if k_sun == k => c * w,
                 _ => c,
@@ -269,7 +277,7 @@ impl<A: Accel> PathContext<'_, A> {
         }
         if let Some(scale) = rr.local() {
             let ls = self.lights.sample(scene, p, u_sel, u_l, bounce);
-            l += one(ls, ls.is_some_and(|s| s.delta && s.dist.is_finite())) * scale;
+            l += one(ls, ls.is_some_and(|s| s.delta && s.dist.is_finite()), None) * scale;
         }
         l
     }
@@ -415,6 +423,15 @@ struct Strategies {
     /// 4 % fewer rays in the foggy street; at 4 (7 %) the surface filter
     /// drops about 1 % of its component as fireflies.
     split_per_tr: f32,
+    /// A distant light's shadow ray from a medium point is traced with
+    /// probability min(1, `shadow_per_phase`·f), f the phase value toward
+    /// it, and divided by it (`NeeRoulette::shadow`): at g = 0.85 most
+    /// medium points see the sun and most of the sky far outside the
+    /// forward lobe, where f is a few per cent of its mean 1/4π. At 4π a
+    /// kept term weighs at most what an isotropic medium's would
+    /// (`f32::INFINITY`: always traced). The sun lobe (`sun_lobe_vertex`)
+    /// is rouletted by the same rule on its phase value toward its direction.
+    shadow_per_phase: f32,
     /// The camera ray's cone: textures seen through the medium are
     /// filtered by it as without one (`path::RayCone`).
     cone: RayCone,
@@ -435,6 +452,7 @@ impl Default for Strategies {
             deep_survival: 1.0,
             deep_max_boost: 2.0,
             split_per_tr: 8.0,
+            shadow_per_phase: 4.0 * std::f32::consts::PI,
             cone: RayCone::NONE,
         }
     }
@@ -455,6 +473,11 @@ struct NeeRoulette {
     u_local: f32,
     /// The local lights' survival probability in (0, 1].
     keep_local: f32,
+    /// The first distant lights' shadow-ray roulettes' uniform numbers.
+    u_shadow: [f32; 2],
+    /// Survival per unit phase value of a distant light's shadow ray
+    /// (`Strategies::shadow_per_phase`).
+    shadow_per_phase: f32,
 }
 
 impl NeeRoulette {
@@ -467,6 +490,13 @@ impl NeeRoulette {
     /// when dropped.
     fn local(&self) -> Option<f32> {
         (self.u_local < self.keep_local).then(|| 1.0 / self.keep_local)
+    }
+
+    /// The survival probability of a shadow ray toward a light of phase
+    /// value `f` > 0 by the uniform number `u`, None when dropped.
+    fn shadow(&self, f: f32, u: f32) -> Option<f32> {
+        let keep = (self.shadow_per_phase * f).min(1.0);
+        (u < keep).then_some(keep)
     }
 }
 
@@ -596,7 +626,9 @@ impl<A: Accel> PathContext<'_, A> {
     /// direction d drawn around the sun, its segment's in-scattering point
     /// drawn as every segment's, and that point's sun NEE, weighted by
     /// p(wo, d)/pdf_lobe(d) and the power heuristic against phase sampling.
-    /// Throughput after `p` not included.
+    /// Throughput after `p` not included. Its rays are rouletted by the
+    /// phase value toward d times w (`Strategies::shadow_per_phase`, by
+    /// `u1[3]`): the term is about the sun's NEE at that phase value.
     #[allow(clippy::too_many_arguments)]
     fn sun_lobe_vertex(
         &self,
@@ -604,8 +636,8 @@ impl<A: Accel> PathContext<'_, A> {
         sl: SunLobe,
         p: Vec3,
         wo: Vec3,
-        u0: [f32; 4],
-        u1: [f32; 4],
+        (u0, u1): ([f32; 4], [f32; 4]),
+        shadow_per_phase: f32,
         rays: &mut u64,
     ) -> Vec3 {
         let s = m.phase.sample(-sl.axis, Vec2::new(u0[0], u0[1]));
@@ -615,6 +647,10 @@ impl<A: Accel> PathContext<'_, A> {
             return Vec3::ZERO;
         }
         let w = power_heuristic(1.0, s.pdf, 1.0, pdf_phase);
+        let keep = (shadow_per_phase * pdf_phase * w).min(1.0);
+        if u1[3] >= keep {
+            return Vec3::ZERO;
+        }
         let ray = Ray::new(p, d);
         *rays += 1;
         let t_end = self.accel.intersect(&ray).map_or(f32::INFINITY, |h| h.t);
@@ -639,6 +675,7 @@ impl<A: Accel> PathContext<'_, A> {
         // The same weight as the NEE of `medium_nee` against phase sampling.
         let w_sun = power_heuristic(1.0, ls.pdf, 1.0, m.phase.pdf(-d, ls.wi));
         let seg_w = m.albedo * (1.0 - seg.tr_seg);
-        seg_w * ls.li * m.tr(x, ls.wi, ls.dist) * (pdf_phase / s.pdf * w * f * w_sun / ls.pdf)
+        let weight = pdf_phase / s.pdf * w * f * w_sun / (ls.pdf * keep);
+        seg_w * ls.li * m.tr(x, ls.wi, ls.dist) * weight
     }
 }

@@ -47,6 +47,8 @@ pub(super) struct SegmentSamples {
     u_sky: f32,
     /// Roulette of the local lights' NEE (`NeeRoulette`).
     u_local: f32,
+    /// Roulettes of the first two distant lights' shadow rays (`NeeRoulette`).
+    u_shadow: [f32; 2],
 }
 
 impl SegmentSamples {
@@ -64,7 +66,7 @@ impl SegmentSamples {
         let [a0, a1, a2, a3] = stream.next_4d();
         let [b0, b1, b2, b3] = stream.next_4d();
         stream.set_dimension(VOL_DIMS + bounces * VOL_DIMS_PER_BOUNCE + LOCAL_SET);
-        let [u_local, ..] = stream.next_4d();
+        let [u_local, u_sh0, u_sh1, _] = stream.next_4d();
         SegmentSamples {
             u_ff,
             u_phase: Vec2::new(u_ph0, u_ph1),
@@ -82,6 +84,7 @@ impl SegmentSamples {
             ],
             u_sky,
             u_local,
+            u_shadow: [u_sh0, u_sh1],
         }
     }
 }
@@ -272,6 +275,8 @@ impl<A: Accel> PathContext<'_, A> {
             keep_sky,
             u_local: u.u_local,
             keep_local,
+            u_shadow: u.u_shadow,
+            shadow_per_phase: s.shadow_per_phase,
         };
         // The in-scattering point's density per metre: σ_t·Tr / (1 − Tr)
         // drawn on every segment, σ_t·Tr as a collision.
@@ -358,7 +363,9 @@ impl<A: Accel> PathContext<'_, A> {
                 1.0
             };
             if u1[2] < keep {
-                st.l += st.beta * self.sun_lobe_vertex(m, sl, p, wo, u0, u1, rays) / keep;
+                let per_phase = vs.strategies.shadow_per_phase;
+                let c = self.sun_lobe_vertex(m, sl, p, wo, (u0, u1), per_phase, rays);
+                st.l += st.beta * c / keep;
             }
             vs.lobe_wo = Some(wo);
         }
