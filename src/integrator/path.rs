@@ -17,8 +17,8 @@ use glam::Vec3;
 use shaders_cpu::bsdf::Bsdf;
 use shaders_cpu::sampling::{power_heuristic, Frame};
 
-use super::aov::{Aov, AovState};
-use super::denoise_parts::{glossy_albedo, DenoiseSample, DenoiseSum, SplitVertex};
+use super::aov::Aov;
+use super::denoise_parts::{glossy_albedo, DenoiseSample, DenoiseSum};
 use super::PathContext;
 use crate::accel::{Accel, Hit, Ray};
 use crate::geometry::{FrontOrigin, SurfaceInteraction};
@@ -29,9 +29,11 @@ mod cone;
 mod nee;
 mod ris;
 mod shadows;
+mod state;
 pub use cone::RayCone;
 use ris::RisSamples;
 use shadows::PendingShadows;
+pub(super) use state::PathState;
 
 /// 4D sample sets per bounce: (BSDF u, BSDF v, lobe, roulette), two 2D
 /// samples for distant lights 0 and 1, (light choice, light u, light v,
@@ -44,8 +46,6 @@ const DISTANT_SETS: [u32; 2] = [1, 3];
 const LOCAL_SET: u32 = 2;
 /// 4D sets used by the camera before the first bounce (pixel jitter).
 pub const CAMERA_DIMS: u32 = 1;
-/// Bounces before Russian roulette may end a path.
-const RR_START: u32 = 3;
 /// Shadow rays one vertex may leave pending: every distant light plus the
 /// sampled light.
 const MAX_SHADOW: usize = crate::light::MAX_DISTANT + 1;
@@ -192,71 +192,6 @@ fn receiver_normal(bsdf: &Bsdf, n_geo: Vec3) -> Vec3 {
         n_geo
     } else {
         Vec3::ZERO
-    }
-}
-
-/// The running state of one path.
-pub(super) struct PathState {
-    /// Radiance gathered so far.
-    pub l: Vec3,
-    /// Throughput.
-    pub beta: Vec3,
-    /// Solid-angle pdf of the last sampled direction.
-    pub prev_pdf: f32,
-    /// Whether the last direction came from the camera or a delta lobe.
-    pub prev_delta: bool,
-    /// The last scattering point.
-    pub prev_p: Vec3,
-    /// Its normal as its light-tree choice took it (`LightSet::select_at`):
-    /// a reflecting surface's front geometric normal, else zero.
-    pub prev_n: Vec3,
-    /// Scattering events so far.
-    pub bounces: u32,
-    /// Where the denoised part of a surface path splits off.
-    pub split: SplitVertex,
-    /// The first surface vertex's Lambertian albedo (None: not Lambertian,
-    /// or not shaded), recorded as it is shaded for the fog's split.
-    pub first_albedo: Option<Vec3>,
-    /// The first surface vertex's [`glossy_albedo`] when it is glossy and
-    /// emits nothing (None otherwise), recorded as it is shaded for the
-    /// fog's split: all its light is then filtered as direct light.
-    pub first_glossy: Option<Vec3>,
-    /// The pixel's cone at the last vertex (`RayCone`): the footprint
-    /// textures are filtered by at hits seen through delta bounces.
-    pub cone: RayCone,
-    /// The search for the first visible surface's albedo and normal.
-    pub aov: AovState,
-}
-
-impl PathState {
-    /// A camera path starting at `o`.
-    pub fn new(o: Vec3) -> Self {
-        PathState {
-            l: Vec3::ZERO,
-            beta: Vec3::ONE,
-            prev_pdf: 0.0,
-            prev_delta: true,
-            prev_p: o,
-            prev_n: Vec3::ZERO,
-            bounces: 0,
-            split: SplitVertex::default(),
-            first_albedo: None,
-            first_glossy: None,
-            cone: RayCone::NONE,
-            aov: AovState::default(),
-        }
-    }
-
-    /// Russian roulette after `RR_START` bounces; false ends the path.
-    pub fn survives_roulette(&mut self, u_rr: f32) -> bool {
-        if self.bounces >= RR_START {
-            let q = (1.0 - self.beta.max_element()).clamp(0.0, 0.95);
-            if u_rr < q {
-                return false;
-            }
-            self.beta /= 1.0 - q;
-        }
-        true
     }
 }
 

@@ -58,11 +58,13 @@ const VOL_DIMS: u32 = 1 << 20;
 const VOL_DIMS_PER_BOUNCE: u32 = 16;
 
 mod segment;
+mod strategies;
 mod surf_fog;
 #[cfg(test)]
 mod tests;
 
 use segment::{SegmentEnd, SegmentSamples, VolState};
+use strategies::{NeeRoulette, Strategies};
 
 /// Collisions up to this many scattering events always draw the sun lobe
 /// (`Strategies::lobe_deep` after).
@@ -342,162 +344,6 @@ impl<A: Accel> PathContext<'_, A> {
 fn equiangular_on(m: &Medium, ray: &Ray, t_end: f32, q: Vec3) -> Option<Equiangular> {
     let (a, b) = m.clip(ray.o, ray.d, t_end)?;
     Some(Equiangular::new(ray.o, ray.d, a as f32, b as f32, q))
-}
-
-/// The optional strategies at medium vertices; each only changes the
-/// variance, never the expected value.
-#[derive(Clone, Copy, Debug)]
-struct Strategies {
-    /// The sun-lobe direction and its MIS (`SunLobe`); off is plain phase
-    /// sampling.
-    sun_lobe: bool,
-    /// Roulette by the albedo (`PathState::survives_albedo_roulette`); off
-    /// is the surface loop's throughput roulette.
-    albedo_roulette: bool,
-    /// Segments after fewer scattering events than this estimate their
-    /// in-scattering on every segment; later ones only at collisions
-    /// (`u32::MAX`: every segment).
-    every_segment_bounces: u32,
-    /// Split the camera ray's first segment: the surface (or sky) behind it
-    /// always traced with weight Tr, the collision's continuation as drawn,
-    /// so the binary collide-or-pass choice leaves no noise on surfaces
-    /// (renders with the fog filter on; about a quarter of the variance
-    /// the filter leaves in the foggy street).
-    split_first: bool,
-    /// Probability that a collision estimates the sky's NEE (divided by
-    /// it), the camera segment's in-scattering point excepted. Sky light
-    /// through fog is smooth and the fog-weighted tables draw it well:
-    /// half the sky's shadow rays at collisions cost about 0.03 dB in the
-    /// foggy street (town03 frame 40) for 6 % fewer rays.
-    sky_nee_deep: f32,
-    /// Probability that a collision after the first (`LOBE_ALWAYS`) draws
-    /// the sun lobe (divided by it); the next sun NEE keeps its MIS weight
-    /// whether or not it was drawn, so the pair's expected value stays.
-    /// At 1/2: 10 % fewer rays in the foggy street for about 0.06 dB.
-    lobe_deep: f32,
-    /// The sky's NEE at an every-segment in-scattering point (weighted by
-    /// the segment's opacity 1 − Tr) is estimated with probability
-    /// min(1, `inscatter_per_opacity`·(1 − Tr)) and divided by it
-    /// (`NeeRoulette`): in thin haze a camera ray's NEE brought a few per
-    /// cent of its light for a shadow ray. A kept term is at most 1/this
-    /// of what an opaque segment would scatter, however thin the haze
-    /// (`f32::INFINITY`: always).
-    inscatter_per_opacity: f32,
-    /// The same for the local lights' in-scattering at an every-segment
-    /// point, NEE and equiangular sampling together (their own number):
-    /// min(1, `local_per_opacity`·(1 − Tr)). By day the lamps' light in
-    /// the fog is nil beside the sun's and sky's (town05 frame 40 foggy:
-    /// 0.003 % of the image mean), but each estimate walks the light BVH:
-    /// at 0.25, and 0.1 for `local_nee_deep`, the foggy street costs about
-    /// 30 % less CPU, the storm 20 %, at the same noise between two sample
-    /// seeds. `li_volume` turns both off (always estimated) where the
-    /// local lights matter.
-    local_per_opacity: f32,
-    /// Probability that a segment after the camera's estimates the local
-    /// lights' in-scattering (divided by it): NEE at its collision and
-    /// equiangular sampling on it.
-    local_nee_deep: f32,
-    /// Probability that a path survives a collision after
-    /// `DEEP_FROM` scattering events (on top of the albedo roulette, divided
-    /// by it; 1.0: off, the default) while `deep_max_boost` allows. Fog's
-    /// deep chains cost most of its rays. Still off: even bounded at 2,
-    /// `tests/denoise/fog.rs`'s surface-fog mean test (8 spp) sees the
-    /// surface filter's firefly rule drop over 1 % of its component.
-    deep_survival: f32,
-    /// The deep roulette runs only while the boost it has given the path
-    /// (the product of 1/`deep_survival` over its survivals) stays at most
-    /// this. Unbounded, survivors of k roulettes weigh 2^k times their
-    /// neighbours: noise the filters do not remove (town03 frame 40 foggy
-    /// against 256 spp: −1.0 dB for 23 % fewer rays) and spikes the
-    /// surface filter drops as fireflies (−27 % of its component in
-    /// `tests/denoise/fog.rs`). At 2 (one survival at 1/2) a survivor
-    /// weighs at most twice its neighbours, well below the firefly rule's
-    /// ratio (`denoise::surface`): town05 frame 40 foggy, 18 % fewer rays
-    /// for 0.15 dB against 64 spp (unbounded: 23 %, 0.41 dB).
-    deep_max_boost: f32,
-    /// The split camera ray's surface part after a collision
-    /// (`split_first`) is traced with probability
-    /// min(1, `split_per_tr`·Tr) and its weight Tr divided by it: behind
-    /// dense fog the surface brings little (a kept part weighs at most
-    /// 1/this) for a whole second path (`f32::INFINITY`: always). At 8:
-    /// 4 % fewer rays in the foggy street; at 4 (7 %) the surface filter
-    /// drops about 1 % of its component as fireflies.
-    split_per_tr: f32,
-    /// A distant light's shadow ray from a medium point is traced with
-    /// probability min(1, `shadow_per_phase`·f), f the phase value toward
-    /// it, and divided by it (`NeeRoulette::shadow`): at g = 0.85 most
-    /// medium points see the sun and most of the sky far outside the
-    /// forward lobe, where f is a few per cent of its mean 1/4π. At 4π a
-    /// kept term weighs at most what an isotropic medium's would
-    /// (`f32::INFINITY`: always traced). The sun lobe (`sun_lobe_vertex`)
-    /// is rouletted by the same rule on its phase value toward its direction.
-    shadow_per_phase: f32,
-    /// The camera ray's cone: textures seen through the medium are
-    /// filtered by it as without one (`path::RayCone`).
-    cone: RayCone,
-}
-
-impl Default for Strategies {
-    fn default() -> Self {
-        Strategies {
-            sun_lobe: true,
-            albedo_roulette: true,
-            every_segment_bounces: 1,
-            split_first: false,
-            sky_nee_deep: 0.5,
-            lobe_deep: 0.5,
-            inscatter_per_opacity: 4.0,
-            local_per_opacity: 0.25,
-            local_nee_deep: 0.1,
-            deep_survival: 1.0,
-            deep_max_boost: 2.0,
-            split_per_tr: 8.0,
-            shadow_per_phase: 4.0 * std::f32::consts::PI,
-            cone: RayCone::NONE,
-        }
-    }
-}
-
-/// Russian roulette of a medium NEE's smooth terms: the sky's, kept with
-/// probability `keep_sky`, and the local lights' (their selection walks
-/// the light BVH), kept with probability `keep_local`, each by its own
-/// number and divided by its probability; suns are always estimated
-/// (their forward-lobe peak would become Bernoulli noise).
-#[derive(Clone, Copy, Debug)]
-struct NeeRoulette {
-    /// The sky roulette's uniform number.
-    u_sky: f32,
-    /// The sky's survival probability in (0, 1].
-    keep_sky: f32,
-    /// The local lights' roulette's uniform number.
-    u_local: f32,
-    /// The local lights' survival probability in (0, 1].
-    keep_local: f32,
-    /// The first distant lights' shadow-ray roulettes' uniform numbers.
-    u_shadow: [f32; 2],
-    /// Survival per unit phase value of a distant light's shadow ray
-    /// (`Strategies::shadow_per_phase`).
-    shadow_per_phase: f32,
-}
-
-impl NeeRoulette {
-    /// The factor of a kept sky estimate (1/`keep_sky`), None when dropped.
-    fn sky(&self) -> Option<f32> {
-        (self.u_sky < self.keep_sky).then(|| 1.0 / self.keep_sky)
-    }
-
-    /// The factor of a kept local-light estimate (1/`keep_local`), None
-    /// when dropped.
-    fn local(&self) -> Option<f32> {
-        (self.u_local < self.keep_local).then(|| 1.0 / self.keep_local)
-    }
-
-    /// The survival probability of a shadow ray toward a light of phase
-    /// value `f` > 0 by the uniform number `u`, None when dropped.
-    fn shadow(&self, f: f32, u: f32) -> Option<f32> {
-        let keep = (self.shadow_per_phase * f).min(1.0);
-        (u < keep).then_some(keep)
-    }
 }
 
 /// One in-scattering point of a segment.

@@ -1,0 +1,76 @@
+//! The running state of one path through the surface loop (and the
+//! volumetric loop, which shares it).
+
+use glam::Vec3;
+
+use super::RayCone;
+use crate::integrator::aov::AovState;
+use crate::integrator::denoise_parts::SplitVertex;
+
+/// Bounces before Russian roulette may end a path.
+const RR_START: u32 = 3;
+
+/// The running state of one path.
+pub(in crate::integrator) struct PathState {
+    /// Radiance gathered so far.
+    pub l: Vec3,
+    /// Throughput.
+    pub beta: Vec3,
+    /// Solid-angle pdf of the last sampled direction.
+    pub prev_pdf: f32,
+    /// Whether the last direction came from the camera or a delta lobe.
+    pub prev_delta: bool,
+    /// The last scattering point.
+    pub prev_p: Vec3,
+    /// Its normal as its light-tree choice took it (`LightSet::select_at`):
+    /// a reflecting surface's front geometric normal, else zero.
+    pub prev_n: Vec3,
+    /// Scattering events so far.
+    pub bounces: u32,
+    /// Where the denoised part of a surface path splits off.
+    pub split: SplitVertex,
+    /// The first surface vertex's Lambertian albedo (None: not Lambertian,
+    /// or not shaded), recorded as it is shaded for the fog's split.
+    pub first_albedo: Option<Vec3>,
+    /// The first surface vertex's `glossy_albedo` when it is glossy and
+    /// emits nothing (None otherwise), recorded as it is shaded for the
+    /// fog's split: all its light is then filtered as direct light.
+    pub first_glossy: Option<Vec3>,
+    /// The pixel's cone at the last vertex (`RayCone`): the footprint
+    /// textures are filtered by at hits seen through delta bounces.
+    pub cone: RayCone,
+    /// The search for the first visible surface's albedo and normal.
+    pub aov: AovState,
+}
+
+impl PathState {
+    /// A camera path starting at `o`.
+    pub fn new(o: Vec3) -> Self {
+        PathState {
+            l: Vec3::ZERO,
+            beta: Vec3::ONE,
+            prev_pdf: 0.0,
+            prev_delta: true,
+            prev_p: o,
+            prev_n: Vec3::ZERO,
+            bounces: 0,
+            split: SplitVertex::default(),
+            first_albedo: None,
+            first_glossy: None,
+            cone: RayCone::NONE,
+            aov: AovState::default(),
+        }
+    }
+
+    /// Russian roulette after `RR_START` bounces; false ends the path.
+    pub fn survives_roulette(&mut self, u_rr: f32) -> bool {
+        if self.bounces >= RR_START {
+            let q = (1.0 - self.beta.max_element()).clamp(0.0, 0.95);
+            if u_rr < q {
+                return false;
+            }
+            self.beta /= 1.0 - q;
+        }
+        true
+    }
+}
