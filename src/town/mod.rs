@@ -45,6 +45,7 @@ pub mod roundabout;
 pub mod routes;
 pub mod signals;
 pub mod source;
+mod stations;
 pub mod street;
 pub mod terrain;
 pub mod traffic;

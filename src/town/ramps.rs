@@ -16,6 +16,7 @@ use glam::DVec3;
 
 use crate::scene::desc::{ObjectDesc, TransformDesc};
 use crate::scene::mesh::LocalMesh;
+use crate::town::stations::stations;
 
 use super::desc::TownDesc;
 use super::layout::{Layout, Rect};
@@ -177,7 +178,7 @@ impl RampSite {
     /// Stations along the site: every breakpoint, at most `STEP_M` apart.
     fn stations(&self, from: f64, to: f64) -> Vec<f64> {
         let len = self.len_m();
-        let mut marks = vec![
+        let marks = [
             0.0,
             TAPER_M,
             self.nose_m,
@@ -187,15 +188,7 @@ impl RampSite {
             len - TAPER_M,
             len,
         ];
-        marks.retain(|&m| m > from && m < to);
-        marks.insert(0, from);
-        marks.push(to);
-        let mut out = vec![from];
-        for w in marks.windows(2) {
-            let n = ((w[1] - w[0]) / STEP_M).ceil().max(1.0) as usize;
-            out.extend((1..=n).map(|k| w[0] + (w[1] - w[0]) * k as f64 / n as f64));
-        }
-        out
+        stations(from, to, &marks, STEP_M)
     }
 
     /// Plan rectangle that holds the whole site with its shoulders plus

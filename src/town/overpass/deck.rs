@@ -12,6 +12,7 @@ use glam::DVec3;
 
 use crate::scene::desc::{ObjectDesc, TransformDesc};
 use crate::scene::mesh::LocalMesh;
+use crate::town::stations::stations;
 
 use super::{Overpass, APPROACH_M, DECK_M, DISC_R_M, HALF_WIDTH_M, LANE_M, PARAPET_M, TOP_M};
 
@@ -33,19 +34,6 @@ fn quad(m: &mut LocalMesh, mut v: [DVec3; 4], front: DVec3) {
         .extend([[base, base + 1, base + 2], [base, base + 2, base + 3]]);
 }
 
-/// Stations along y from `y0` to `y1`, ≤ `STEP_M` apart, through `knots`.
-fn stations(y0: f64, y1: f64, knots: &[f64]) -> Vec<f64> {
-    let mut cuts = vec![y0];
-    cuts.extend(knots.iter().copied().filter(|&k| k > y0 && k < y1));
-    cuts.push(y1);
-    let mut out = vec![y0];
-    for w in cuts.windows(2) {
-        let n = ((w[1] - w[0]) / STEP_M).ceil().max(1.0) as usize;
-        out.extend((1..=n).map(|k| w[0] + (w[1] - w[0]) * k as f64 / n as f64));
-    }
-    out
-}
-
 impl Overpass {
     /// The profile's knots: approach feet and deck ends.
     fn knots(&self) -> [f64; 4] {
@@ -56,7 +44,7 @@ impl Overpass {
     /// A strip on the road surface between offsets `u0` < `u1` from the
     /// centreline, `lift` above it, from `y0` to `y1`.
     fn strip(&self, m: &mut LocalMesh, (u0, u1): (f64, f64), lift: f64, (y0, y1): (f64, f64)) {
-        let ys = stations(y0, y1, &self.knots());
+        let ys = stations(y0, y1, &self.knots(), STEP_M);
         let p = |u: f64, y: f64| DVec3::new(self.x_m + u, y, self.profile(y).0 + lift);
         for w in ys.windows(2) {
             let (a, b) = (w[0], w[1]);
@@ -120,7 +108,7 @@ impl Overpass {
         let (pw, ph) = PARAPET_M;
         let out = HALF_WIDTH_M + pw;
         let x = self.x_m;
-        let ys = stations(d0 - APPROACH_M, d1 + APPROACH_M, &self.knots());
+        let ys = stations(d0 - APPROACH_M, d1 + APPROACH_M, &self.knots(), STEP_M);
         let on_span = |y: f64| y >= d0 && y <= d1;
         let side = DVec3::new(sx, 0.0, 0.0);
         for w in ys.windows(2) {

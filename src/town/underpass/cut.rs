@@ -14,6 +14,7 @@ use crate::scene::desc::ObjectDesc;
 use crate::scene::mesh::LocalMesh;
 use crate::town::layout::Layout;
 use crate::town::parts::{class, slab, world_mesh};
+use crate::town::stations::stations;
 
 use super::{Underpass, DECK_M, TRANSITION_M};
 
@@ -51,15 +52,7 @@ impl Underpass {
 
     /// Stations from `y0` to `y1`, ≤ `STEP_M` apart, through the knots.
     fn stations(&self, y0: f64, y1: f64) -> Vec<f64> {
-        let mut cuts = vec![y0];
-        cuts.extend(self.knots().into_iter().filter(|&k| k > y0 && k < y1));
-        cuts.push(y1);
-        let mut out = vec![y0];
-        for w in cuts.windows(2) {
-            let n = ((w[1] - w[0]) / STEP_M).ceil().max(1.0) as usize;
-            out.extend((1..=n).map(|k| w[0] + (w[1] - w[0]) * k as f64 / n as f64));
-        }
-        out
+        stations(y0, y1, &self.knots(), STEP_M)
     }
 
     /// A strip on the road between x offsets `u0` < `u1` from the
