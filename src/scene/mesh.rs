@@ -27,6 +27,18 @@ pub struct LocalMesh {
 }
 
 impl LocalMesh {
+    /// Appends the planar quad `v` (a loop) as two triangles wound to face
+    /// `front`.
+    pub fn push_quad_facing(&mut self, mut v: [DVec3; 4], front: DVec3) {
+        if (v[1] - v[0]).cross(v[3] - v[0]).dot(front) < 0.0 {
+            v.reverse();
+        }
+        let base = self.positions.len() as u32;
+        self.positions.extend(v);
+        self.triangles
+            .extend([[base, base + 1, base + 2], [base, base + 2, base + 3]]);
+    }
+
     /// This mesh as an inline scene shape (`kind = "mesh"`).
     pub fn into_shape(self) -> ShapeDesc {
         ShapeDesc::Mesh {

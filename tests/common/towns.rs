@@ -73,3 +73,48 @@ pub fn pre_carla_names(debug: &str) -> String {
         .replace("\"truck\"", "\"vehicle\"")
         .replace("\"bus\"", "\"vehicle\"")
 }
+
+/// Frame 0 of a town (`file` names it in errors) without its movers
+/// (vehicles, riders, pedestrians), built around `origin`: the static
+/// world that rays in the road tests should meet.
+pub fn static_town_scene(
+    desc: &TownDesc,
+    seed: u64,
+    file: &Path,
+    origin: glam::DVec3,
+) -> parallax::render::recipe::BuiltScene {
+    let mut loaded = parallax::town::load_town_frame(desc, seed, 0, CameraConfig::Normal, file)
+        .unwrap_or_else(|e| panic!("{e}"));
+    loaded.desc.objects.retain(|ob| {
+        !matches!(
+            ob.semantic.as_deref(),
+            Some("car" | "bus" | "truck" | "pedestrian" | "bicycle" | "motorcycle" | "rider")
+        )
+    });
+    parallax::render::recipe::BuiltScene::build(
+        &loaded,
+        origin,
+        parallax::accel::Backend::default_backend(),
+    )
+    .unwrap()
+}
+
+/// Every surface a ray straight down from world (x, y, from) passes, top
+/// first: (class id, world z).
+pub fn surfaces_below(
+    built: &parallax::render::recipe::BuiltScene,
+    origin: glam::DVec3,
+    (x, y, from): (f64, f64, f64),
+) -> Vec<(u8, f64)> {
+    let mut out = Vec::new();
+    let mut top = from;
+    while let Some(hit) = built.accel.intersect(&parallax::accel::Ray::new(
+        (glam::DVec3::new(x, y, top) - origin).as_vec3(),
+        glam::Vec3::NEG_Z,
+    )) {
+        let z = top - hit.t as f64;
+        out.push((built.scene.hit_labels(&hit).0, z));
+        top = z - 1e-3;
+    }
+    out
+}

@@ -7,8 +7,8 @@
 //! into the highway) and vehicles on the two levels do not count as
 //! overlapping; bad `overpass` keys are rejected.
 
-use glam::{DVec3, Vec3};
-use parallax::accel::{Accel, Backend, Ray};
+use glam::DVec3;
+use parallax::accel::Backend;
 use parallax::render::recipe::BuiltScene;
 use parallax::scene::semantic::class_id;
 use parallax::town::layout::{Layout, Rect};
@@ -16,12 +16,11 @@ use parallax::town::overpass::{Overpass, CLEARANCE_M, TOP_M};
 use parallax::town::routes::RouteKind;
 use parallax::town::traffic::{ego_pose, Plan};
 use parallax::town::{
-    drive_frame_at, frame_at, load_town_drive_frame, load_town_frame, parse_town_str, CameraConfig,
-    TownDesc,
+    drive_frame_at, frame_at, load_town_drive_frame, parse_town_str, CameraConfig, TownDesc,
 };
 
 use crate::common;
-use common::towns::{gt_frame, town, town_file};
+use common::towns::{gt_frame, static_town_scene, surfaces_below, town, town_file};
 
 const SEED: u64 = 5;
 
@@ -30,32 +29,11 @@ fn vertical_ray_at_the_crossing_hits_deck_then_highway_with_clearance() {
     let desc = town("town06");
     let l = Layout::new(&desc);
     let o = Overpass::new(&desc, &l).expect("town06 has an overpass");
-    let mut loaded = load_town_frame(&desc, SEED, 0, CameraConfig::Normal, &town_file("town06"))
-        .expect("town06 loads");
-    loaded.desc.objects.retain(|ob| {
-        !matches!(
-            ob.semantic.as_deref(),
-            Some("car" | "bus" | "truck" | "pedestrian")
-        )
-    });
     let origin = DVec3::new(o.x_m, 0.0, 0.0);
-    let BuiltScene { scene, accel, .. } =
-        BuiltScene::build(&loaded, origin, Backend::default_backend()).unwrap();
+    let built = static_town_scene(&desc, SEED, &town_file("town06"), origin);
     let (road, bridge) = (class_id("road").unwrap(), class_id("bridge").unwrap());
     // Every surface along a ray down from 30 m at (x, y): (class, z).
-    let column = |x: f64, y: f64| {
-        let mut out = Vec::new();
-        let mut top = 30.0;
-        while let Some(hit) = accel.intersect(&Ray::new(
-            (DVec3::new(x, y, top) - origin).as_vec3(),
-            Vec3::NEG_Z,
-        )) {
-            let z = top - hit.t as f64;
-            out.push((scene.hit_labels(&hit).0, z));
-            top = z - 1e-3;
-        }
-        out
-    };
+    let column = |x: f64, y: f64| surfaces_below(&built, origin, (x, y, 30.0));
     let hw = l.road_w_m / 2.0;
     let mut lanes = 0;
     // Over every highway lane centre, at the road's centre and off it.

@@ -8,16 +8,16 @@
 //! pedestrian walks over the cut; some drive of the ego goes under.
 
 use glam::{DVec3, Vec3};
-use parallax::accel::{Accel, Backend, Ray};
+use parallax::accel::{Accel, Ray};
 use parallax::render::recipe::BuiltScene;
 use parallax::scene::semantic::class_id;
 use parallax::town::layout::Layout;
 use parallax::town::signals::signal_sites;
 use parallax::town::traffic::ego_pose;
 use parallax::town::underpass::{Underpass, DECK_M, DEPTH_M};
-use parallax::town::{frame_at, load_town_frame, parse_town_str, CameraConfig, TownDesc};
+use parallax::town::{frame_at, parse_town_str, TownDesc};
 
-use crate::common::towns::town_file;
+use crate::common::towns::{static_town_scene, surfaces_below, town_file};
 use crate::traffic::{on_road, overlaps};
 
 const SEED: u64 = 3;
@@ -50,35 +50,14 @@ fn rays_find_the_deck_over_the_sunken_road_on_its_profile() {
     let l = Layout::new(&desc);
     let u = Underpass::of(&l).expect("the test town has an underpass");
     assert_eq!(u.ij, (1, 2));
-    let mut loaded = load_town_frame(&desc, SEED, 0, CameraConfig::Normal, &town_file("town03"))
-        .expect("the test town loads");
-    loaded.desc.objects.retain(|ob| {
-        !matches!(
-            ob.semantic.as_deref(),
-            Some("car" | "bus" | "truck" | "pedestrian" | "bicycle" | "motorcycle" | "rider")
-        )
-    });
     let origin = DVec3::new(u.x_m, u.y_m, 0.0);
-    let BuiltScene { scene, accel, .. } =
-        BuiltScene::build(&loaded, origin, Backend::default_backend()).unwrap();
+    let built = static_town_scene(&desc, SEED, &town_file("town03"), origin);
     let (road, bridge, mark) = (
         class_id("road").unwrap(),
         class_id("bridge").unwrap(),
         class_id("road_line").unwrap(),
     );
-    let column = |x: f64, y: f64, from: f64| {
-        let mut out = Vec::new();
-        let mut top = from;
-        while let Some(hit) = accel.intersect(&Ray::new(
-            (DVec3::new(x, y, top) - origin).as_vec3(),
-            Vec3::NEG_Z,
-        )) {
-            let z = top - hit.t as f64;
-            out.push((scene.hit_labels(&hit).0, z));
-            top = z - 1e-3;
-        }
-        out
-    };
+    let column = |x: f64, y: f64, from: f64| surfaces_below(&built, origin, (x, y, from));
     // On the deck, over every lane of both roads: the x-road at grade,
     // the deck's underside, then the sunken road DEPTH_M down.
     for k in 0..4 {
@@ -126,13 +105,14 @@ fn rays_find_the_deck_over_the_sunken_road_on_its_profile() {
     let dy = u.ends.0 + 33.0;
     let c = column(u.x_m + u.half_w_m - 0.01, dy, 0.0);
     assert!((c[0].1 - u.profile(dy).0).abs() < 1e-3, "{c:?}");
-    let side = accel
+    let side = built
+        .accel
         .intersect(&Ray::new(
             (DVec3::new(u.x_m, dy, u.profile(dy).0 + 1.0) - origin).as_vec3(),
             Vec3::X,
         ))
         .expect("the east wall");
-    assert_eq!(scene.hit_labels(&side).0, wall);
+    assert_eq!(built.scene.hit_labels(&side).0, wall);
     assert!((side.t as f64 - u.half_w_m).abs() < 1e-4, "{}", side.t);
 }
 
@@ -236,18 +216,10 @@ fn town03_bends_the_underpass_with_its_streets() {
     let l = Layout::new(&desc);
     let u = Underpass::of(&l).expect("town03 has an underpass");
     let w = Warp::new(&desc, SEED).expect("town03 is organic");
-    let mut loaded = load_town_frame(&desc, SEED, 0, CameraConfig::Normal, &town_file("town03"))
-        .expect("town03 loads");
-    loaded.desc.objects.retain(|ob| {
-        !matches!(
-            ob.semantic.as_deref(),
-            Some("car" | "bus" | "truck" | "pedestrian" | "bicycle" | "motorcycle" | "rider")
-        )
-    });
     let c = w.map([u.x_m, u.y_m]);
     let origin = DVec3::new(c[0], c[1], 0.0);
     let BuiltScene { scene, accel, .. } =
-        BuiltScene::build(&loaded, origin, Backend::default_backend()).unwrap();
+        static_town_scene(&desc, SEED, &town_file("town03"), origin);
     let (road, bridge, mark) = (
         class_id("road").unwrap(),
         class_id("bridge").unwrap(),

@@ -121,8 +121,10 @@ impl Default for Strategies {
 /// Russian roulette of a medium NEE's smooth terms: the sky's, kept with
 /// probability `keep_sky`, and the local lights' (their selection walks
 /// the light BVH), kept with probability `keep_local`, each by its own
-/// number and divided by its probability; suns are always estimated
-/// (their forward-lobe peak would become Bernoulli noise).
+/// number and divided by its probability. Suns are never dropped by the
+/// opacity (their forward-lobe peak would become Bernoulli noise); the
+/// first two distant lights' shadow rays are rouletted by their phase
+/// value instead (`shadow`), which keeps every ray in the lobe.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct NeeRoulette {
     /// The sky roulette's uniform number.

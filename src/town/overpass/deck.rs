@@ -23,17 +23,6 @@ const PAINT_M: f64 = 0.008;
 /// The ground's height (the flat ground quad lies 2 cm below the roads).
 const GROUND_Z: f64 = -0.02;
 
-/// Appends the quad a, b, c, d (a planar loop) facing `front`.
-fn quad(m: &mut LocalMesh, mut v: [DVec3; 4], front: DVec3) {
-    if (v[1] - v[0]).cross(v[3] - v[0]).dot(front) < 0.0 {
-        v.reverse();
-    }
-    let base = m.positions.len() as u32;
-    m.positions.extend(v);
-    m.triangles
-        .extend([[base, base + 1, base + 2], [base, base + 2, base + 3]]);
-}
-
 impl Overpass {
     /// The profile's knots: approach feet and deck ends.
     fn knots(&self) -> [f64; 4] {
@@ -48,7 +37,7 @@ impl Overpass {
         let p = |u: f64, y: f64| DVec3::new(self.x_m + u, y, self.profile(y).0 + lift);
         for w in ys.windows(2) {
             let (a, b) = (w[0], w[1]);
-            quad(m, [p(u0, a), p(u1, a), p(u1, b), p(u0, b)], DVec3::Z);
+            m.push_quad_facing([p(u0, a), p(u1, a), p(u1, b), p(u0, b)], DVec3::Z);
         }
     }
 
@@ -123,8 +112,7 @@ impl Overpass {
             let (ba, bb) = (bottom, bottom);
             // Outer wall up to the parapet's top.
             let p = |u: f64, y: f64, z: f64| DVec3::new(x + sx * u, y, z);
-            quad(
-                m,
+            m.push_quad_facing(
                 [
                     p(out, a, ba),
                     p(out, b, bb),
@@ -134,8 +122,7 @@ impl Overpass {
                 side,
             );
             // Parapet: inner face and top.
-            quad(
-                m,
+            m.push_quad_facing(
                 [
                     p(HALF_WIDTH_M, a, za),
                     p(HALF_WIDTH_M, b, zb),
@@ -144,8 +131,7 @@ impl Overpass {
                 ],
                 -side,
             );
-            quad(
-                m,
+            m.push_quad_facing(
                 [
                     p(HALF_WIDTH_M, a, za + ph),
                     p(out, a, za + ph),
@@ -163,8 +149,7 @@ impl Overpass {
         let under = TOP_M - DECK_M;
         let out = HALF_WIDTH_M + PARAPET_M.0;
         let c = |u: f64, y: f64, z: f64| DVec3::new(self.x_m + u, y, z);
-        quad(
-            m,
+        m.push_quad_facing(
             [
                 c(-out, d0, under),
                 c(out, d0, under),
@@ -174,8 +159,7 @@ impl Overpass {
             DVec3::NEG_Z,
         );
         for (y, facing) in [(d0, DVec3::Y), (d1, DVec3::NEG_Y)] {
-            quad(
-                m,
+            m.push_quad_facing(
                 [
                     c(-out, y, GROUND_Z),
                     c(out, y, GROUND_Z),
@@ -223,7 +207,7 @@ fn boxed(m: &mut LocalMesh, lo: [f64; 3], hi: [f64; 3]) {
             }
             let mut front = DVec3::ZERO;
             front[axis] = if side == 1 { 1.0 } else { -1.0 };
-            quad(m, f, front);
+            m.push_quad_facing(f, front);
         }
     }
 }

@@ -31,17 +31,6 @@ const WALK_TOP_M: f64 = 0.14;
 /// Where lane lines stop short of a junction's edge (past its stop line).
 const LINES_CLEAR_M: f64 = 4.6;
 
-/// Appends the planar quad `v` facing `front`.
-fn quad(m: &mut LocalMesh, mut v: [DVec3; 4], front: DVec3) {
-    if (v[1] - v[0]).cross(v[3] - v[0]).dot(front) < 0.0 {
-        v.reverse();
-    }
-    let base = m.positions.len() as u32;
-    m.positions.extend(v);
-    m.triangles
-        .extend([[base, base + 1, base + 2], [base, base + 2, base + 3]]);
-}
-
 impl Underpass {
     /// The profile's knots: ends of the level runs and vertical curves.
     fn knots(&self) -> Vec<f64> {
@@ -68,7 +57,7 @@ impl Underpass {
             let (a, b) = (w[0], w[1]);
             for c in us.windows(2) {
                 let (c0, c1) = (c[0], c[1]);
-                quad(m, [p(c0, a), p(c1, a), p(c1, b), p(c0, b)], DVec3::Z);
+                m.push_quad_facing([p(c0, a), p(c1, a), p(c1, b), p(c0, b)], DVec3::Z);
             }
         }
     }
@@ -95,7 +84,7 @@ impl Underpass {
                     DVec3::new(a[1], b[1], z),
                     DVec3::new(a[0], b[1], z),
                 ];
-                quad(&mut m, v, DVec3::NEG_Z);
+                m.push_quad_facing(v, DVec3::NEG_Z);
             }
             for (y, face) in [(self.deck.0, DVec3::NEG_Y), (self.deck.1, DVec3::Y)] {
                 let v = [
@@ -104,7 +93,7 @@ impl Underpass {
                     DVec3::new(a[1], y, 0.0),
                     DVec3::new(a[0], y, 0.0),
                 ];
-                quad(&mut m, v, face);
+                m.push_quad_facing(v, face);
             }
         }
         m
@@ -160,7 +149,7 @@ impl Underpass {
                     DVec3::new(x, b, 0.0),
                     DVec3::new(x, a, 0.0),
                 ];
-                quad(&mut m, v, front);
+                m.push_quad_facing(v, front);
             }
         }
         m
