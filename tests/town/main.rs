@@ -14,6 +14,7 @@ mod grade;
 mod gt;
 mod highway_loop;
 mod junctions;
+mod long_turns;
 mod median;
 mod organic;
 mod overpass;

@@ -27,7 +27,12 @@
 //! Background vehicles (`traffic::sim`) walk without lane changes: from
 //! lane 0 they go straight or left, from the outer lane straight or right
 //! (one lane: any move), preferring moves whose next junction again offers
-//! their lane a move; only where none is left do they change lanes.
+//! their lane a move; only where none is left do they change lanes. Buses
+//! and trucks (lane 0) turn right only where nothing else is legal (a
+//! town's corner), and then not from the kerb lane, whose tight corner
+//! their ends would sweep over the kerb, but through all their side's
+//! lanes on `Turns::merged`'s line, shifting onto it and back over
+//! `WIDE_SHIFT_M`.
 
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -39,6 +44,8 @@ use crate::town::roundabout::arm_start_m;
 
 /// Length of one lane change along the road, metres.
 pub const LANE_CHANGE_M: f64 = 30.0;
+/// Length of the shift onto a long body's wide right turn and back, metres.
+const WIDE_SHIFT_M: f64 = 15.0;
 /// Chance of a lane change on a straight-through link with several lanes.
 const CHANGE_P: f64 = 0.35;
 /// Unit directions: east, north, west, south (index · 90° = heading).
@@ -104,6 +111,10 @@ pub struct DrivePath {
     /// Whether it carries a long body (bus, truck): right turns only
     /// where no other move is legal.
     long: bool,
+    /// A long body's right turn through all the lanes of its side
+    /// (`Turns::merged`): the route's offset from the centreline and the
+    /// arc's radius, metres.
+    wide_right: (f64, f64),
 }
 
 /// Unit vector of direction `d`.
@@ -156,6 +167,8 @@ impl DrivePath {
     ) -> Self {
         let mut p = Self::on_link(l, turns, start, lane, Some(at), rng);
         p.long = long;
+        let wide = Turns::merged(l.lane_w_m, l.lanes);
+        p.wide_right = (wide.offset_m, wide.radius_m);
         p.extend();
         p
     }
@@ -194,6 +207,7 @@ impl DrivePath {
             at_m: at.unwrap_or(mid),
             changes: false,
             long: false,
+            wide_right: (0.0, 0.0),
         }
     }
 
@@ -312,7 +326,8 @@ impl DrivePath {
 
     /// Where a move at junction `j` starts (= ends) from the centre, and
     /// its segments from the entry point `p` heading `h` on lane offset `e`.
-    fn move_geometry(&self, j: [i64; 2], m: Move, e: f64, lane: u32) -> (f64, Kind) {
+    /// `wide`: a long body's right turn (`wide_right`).
+    fn move_geometry(&self, j: [i64; 2], m: Move, e: f64, lane: u32, wide: bool) -> (f64, Kind) {
         let l = &self.l;
         let hw = l.road_w_m / 2.0;
         let ju = (j[0] as usize, j[1] as usize);
@@ -324,6 +339,7 @@ impl DrivePath {
             return (cut + e, Kind::Ring);
         }
         let a = match m {
+            Move::Right if wide => e + self.wide_right.1,
             Move::Right => e + self.right_r,
             Move::Straight | Move::Left => hw,
         };
@@ -350,8 +366,8 @@ impl DrivePath {
             .map(|(m, q)| (m, (self.dir + q) % 4))
             .filter(|&(_, d)| self.valid(to, d))
             .collect::<Vec<_>>();
-        // A long body turns right only where nothing else is legal: the
-        // kerb lane's tight right turn sweeps its ends off the corner.
+        // A long body turns right only where nothing else is legal: its
+        // wide turn sweeps across the kerb lane.
         let options: Vec<(Move, usize)> = if self.long && options.iter().any(|o| o.0 != Move::Right)
         {
             options.into_iter().filter(|o| o.0 != Move::Right).collect()
@@ -375,12 +391,18 @@ impl DrivePath {
         };
         let (mut m, mut d_out) = options[self.rng.index(options.len())];
         let mut target = need(m, self.lane, &mut self.rng);
+        // A long body's forced right turn sweeps through its side's lanes
+        // from its own lane instead of the kerb lane's tight corner.
+        let wide = self.long && m == Move::Right && !curve && self.l.roundabout != Some(ju);
+        if wide {
+            target = self.lane;
+        }
         let straight_m = |s: &Self, m: Move, k: u32| {
-            let (a, _) = s.move_geometry(to, m, s.e(k), k);
+            let (a, _) = s.move_geometry(to, m, s.e(k), k, false);
             s.l.pitch_m - s.at_m - a
         };
         let changes = self.lane.abs_diff(target) as f64;
-        if straight_m(self, m, target) < changes * LANE_CHANGE_M + 2.0 {
+        if !wide && straight_m(self, m, target) < changes * LANE_CHANGE_M + 2.0 {
             // No room to change lanes: a move from the current lane
             // (straight on where that is legal at all).
             target = self.lane;
@@ -388,11 +410,20 @@ impl DrivePath {
                 (m, d_out) = o;
             }
         }
+        // The offset the move is made at: the target lane's centre, or the
+        // wide turn's line, reached and left by a shift of `WIDE_SHIFT_M`.
+        let e_move = if wide {
+            self.wide_right.0
+        } else {
+            self.e(target)
+        };
+        let off_lane = (e_move - self.e(target)).abs() > 1e-9;
+        let shift_m = if off_lane { WIDE_SHIFT_M } else { 0.0 };
         // The straight, changing lanes in its middle.
-        let (a_in, kind) = self.move_geometry(to, m, self.e(target), target);
+        let (a_in, kind) = self.move_geometry(to, m, e_move, target, wide);
         let run = self.l.pitch_m - self.at_m - a_in;
         let steps = self.lane.abs_diff(target) as f64;
-        let lead = ((run - steps * LANE_CHANGE_M) / 2.0).max(0.0);
+        let lead = ((run - steps * LANE_CHANGE_M - shift_m) / 2.0).max(0.0);
         let (p, h) = self.end();
         self.push(Segment::Line {
             from: p,
@@ -405,19 +436,13 @@ impl DrivePath {
             } else {
                 self.lane - 1
             };
-            let shift = self.e(next) - self.e(self.lane);
-            let theta = 2.0 * (shift.abs() / LANE_CHANGE_M).atan();
-            let rho = LANE_CHANGE_M / (2.0 * theta.sin());
-            // Moving right (larger offset) turns clockwise first.
-            let sg = -shift.signum();
-            let (p, h) = self.end();
-            let first = arc_from(p, h, rho, sg * theta);
-            self.push(first);
-            let (p, h) = self.end();
-            self.push(arc_from(p, h, rho, -sg * theta));
+            self.shift(self.e(next) - self.e(self.lane), LANE_CHANGE_M);
             self.lane = next;
         }
-        let e = self.e(self.lane);
+        if off_lane {
+            self.shift(e_move - self.e(self.lane), shift_m);
+        }
+        let e = e_move;
         let entry = self.point(to, (self.dir + 2) % 4, -e, a_in);
         let (p, h) = self.end();
         let rest = (entry[0] - p[0]).hypot(entry[1] - p[1]);
@@ -484,9 +509,25 @@ impl DrivePath {
                 }),
             });
         }
+        if off_lane {
+            self.shift(self.e(self.lane) - e_move, shift_m);
+        }
         self.from = to;
         self.dir = d_out;
-        self.at_m = a_in;
+        self.at_m = a_in + shift_m;
+    }
+
+    /// An S-curve of two arcs moving the path `shift` metres to the right
+    /// (to the left if negative) over `len` metres of road.
+    fn shift(&mut self, shift: f64, len: f64) {
+        let theta = 2.0 * (shift.abs() / len).atan();
+        let rho = len / (2.0 * theta.sin());
+        // Moving right (larger offset) turns clockwise first.
+        let sg = -shift.signum();
+        let (p, h) = self.end();
+        self.push(arc_from(p, h, rho, sg * theta));
+        let (p, h) = self.end();
+        self.push(arc_from(p, h, rho, -sg * theta));
     }
 }
 

@@ -18,6 +18,7 @@ use crate::town::materials::draw_paint;
 use crate::town::rng::{tag, Rng};
 use crate::town::roundabout::arm_start_m;
 use crate::town::routes::drive::{links, DrivePath};
+use crate::town::routes::Turns;
 use crate::town::vehicles::BodyKind;
 
 /// Share of the places that hold a vehicle, per unit of traffic density.
@@ -66,7 +67,12 @@ pub(super) fn spawn(
         .copied()
         .filter(|b| b.seat().is_none())
         .collect();
-    let long = [BodyKind::Bus, BodyKind::Truck];
+    // Long bodies only where their wide right turn at a town's corner fits.
+    let wide = Turns::merged(l.lane_w_m, l.lanes);
+    let long: Vec<BodyKind> = [BodyKind::Bus, BodyKind::Truck]
+        .into_iter()
+        .filter(|b| wide.bodies.contains(b))
+        .collect();
     // A following distance at the limit (`HEADWAY_S` plus the standing
     // gap `sim` keeps, at least `GAP_M`), places filled more often the
     // further apart they are.
@@ -91,7 +97,7 @@ pub(super) fn spawn(
             } else if l.lanes > 1 {
                 allowed.extend(turns.bodies.iter().filter(|b| b.seat().is_some()));
                 allowed.retain(|b| *b != BodyKind::Bicycle);
-                allowed.extend(long);
+                allowed.extend(&long);
             }
             let mut at = a0 + r.f64() * GAP_M;
             loop {
