@@ -17,6 +17,7 @@
 //! organic town's warp bends it like every road). Meshes: `underpass/cut.rs`.
 
 mod cut;
+mod fittings;
 
 use super::desc::TownDesc;
 use super::layout::{Layout, Rect};

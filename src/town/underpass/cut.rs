@@ -197,7 +197,8 @@ impl Underpass {
 }
 
 /// Every object of the town's underpass (none without one): the sunken
-/// road, its lines, walls, parapets and the deck.
+/// road, its lines, walls, parapets and the deck, and the walls' joints
+/// and the luminaires (`fittings`).
 pub fn underpass_objects(l: &Layout) -> Vec<ObjectDesc> {
     let Some(u) = Underpass::of(l) else {
         return Vec::new();
@@ -217,5 +218,6 @@ pub fn underpass_objects(l: &Layout) -> Vec<ObjectDesc> {
     }
     out.extend(u.parapets());
     out.push(world_mesh(u.deck_mesh(), "concrete", class("bridge")));
+    out.extend(u.fittings(l.lane_w_m));
     out
 }

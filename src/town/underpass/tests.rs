@@ -100,3 +100,77 @@ fn short_blocks_or_sloped_towns_refuse_it() {
     let graded = parse(text("road_grade_m = 4.0\n"));
     assert!(graded.unwrap_err().to_string().contains("level town"));
 }
+
+/// (centre, size, heading) of a box object.
+fn box_of(o: &crate::scene::desc::ObjectDesc) -> ([f64; 3], [f64; 3], f64) {
+    let crate::scene::desc::ShapeDesc::Box { size } = o.shape else {
+        panic!("not a box: {o:?}");
+    };
+    let t = o.transform.translate.unwrap();
+    let heading = o.transform.rotate_deg.map_or(0.0, |r| r[2]);
+    (t, size, heading)
+}
+
+#[test]
+fn joints_run_down_both_walls_and_lamps_clear_the_traffic() {
+    let l = layout();
+    let u = Underpass::of(&l).unwrap();
+    let things = u.fittings(l.lane_w_m);
+    let of = |m: &'static str| {
+        things
+            .iter()
+            .filter(move |o| o.material.as_deref() == Some(m))
+    };
+    // Joints: from the road at their station up to grade, on the walls'
+    // faces, 10 m apart from each deck end outward, as far as the wall is
+    // half a metre high.
+    let mut ys: Vec<f64> = Vec::new();
+    for o in of("rubber") {
+        let (c, size, _) = box_of(o);
+        let bottom = c[2] - size[2] / 2.0;
+        assert!((bottom - u.profile(c[1]).0).abs() < 1e-12 && (c[2] + size[2] / 2.0).abs() < 1e-12);
+        assert!(((c[0] - u.x_m).abs() - u.half_w_m).abs() < 1e-12, "{c:?}");
+        ys.push(c[1]);
+    }
+    ys.sort_by(f64::total_cmp);
+    ys.dedup();
+    assert_eq!(of("rubber").count(), 2 * ys.len());
+    let south: Vec<f64> = ys.iter().copied().filter(|&y| y <= u.deck.0).collect();
+    let north: Vec<f64> = ys.iter().copied().filter(|&y| y >= u.deck.1).collect();
+    for side in [south, north] {
+        for w in side.windows(2) {
+            assert!((w[1] - w[0] - 10.0).abs() < 1e-9, "{side:?}");
+        }
+        let outer = if side[0] < u.y_m {
+            side[0] - 10.0
+        } else {
+            side[side.len() - 1] + 10.0
+        };
+        assert!(-u.profile(outer).0 < 0.5, "{outer}");
+    }
+    assert!(ys.contains(&u.deck.0) && ys.contains(&u.deck.1));
+    // Lit panels: inside the cut, over the road by at least 3.3 m (a
+    // bus is 3.2 m), under the deck's underside there; on both walls.
+    let panels: Vec<_> = of("lamp_emit").map(box_of).collect();
+    let (mut west, mut east, mut under) = (0, 0, 0);
+    for (c, size, heading) in &panels {
+        assert!((heading - 90.0).abs() < 1e-12);
+        let half_x = size[1] / 2.0;
+        assert!((c[0] - u.x_m).abs() + half_x <= u.half_w_m, "{c:?}");
+        let clear = c[2] - size[2] / 2.0 - u.profile(c[1]).0;
+        assert!(clear >= 3.3, "{c:?}: {clear} m over the road");
+        let deck = c[1] > u.deck.0 && c[1] < u.deck.1;
+        if deck {
+            assert!(c[2] + size[2] / 2.0 < -DECK_M);
+            under += 1;
+        } else if c[0] < u.x_m {
+            west += 1;
+        } else {
+            east += 1;
+        }
+    }
+    assert!(
+        west >= 2 && west == east && under == 4,
+        "{west} {east} {under}"
+    );
+}
