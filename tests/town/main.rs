@@ -18,6 +18,7 @@ mod median;
 mod organic;
 mod overpass;
 mod parking;
+mod parking_lane;
 mod ramps;
 mod riders;
 mod signals;
