@@ -140,6 +140,16 @@ pub struct TownDesc {
     /// `parking::min_sidewalk_m()` wide.
     #[serde(default, skip_serializing_if = "is_zero")]
     pub parking_density: f64,
+    /// Width of a parking lane on each side of every road, metres: 0 (the
+    /// default: none) or in `parking::LANE_RANGE_M`. The strip lies at road
+    /// level between the outer driving lane and the kerb, so the road (kerb
+    /// to kerb) is 2 × `parking_lane_m` wider while the driving lanes keep
+    /// their place; with `parking_density` > 0 parked cars stand in it
+    /// instead of in lay-bys (see `parking::lane`). Needs a level grid or
+    /// organic town with sidewalks narrower than `parking::min_sidewalk_m()`
+    /// (wider ones take lay-bys).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub parking_lane_m: f64,
     /// Cruising speed of all traffic and the ego vehicle, km/h, in [5, 130].
     pub speed_kmh: f64,
     /// Frames per second of sequences, in (0, 120] (default 10).
@@ -232,8 +242,14 @@ pub const MAX_VEHICLE_LENGTH_M: f64 = 12.0;
 pub const JUNCTION_MARGIN_M: f64 = 1.5;
 
 impl TownDesc {
-    /// Road width, kerb to kerb, metres.
+    /// Road width, kerb to kerb, metres: the driving lanes and the
+    /// parking lanes either side.
     pub fn road_width_m(&self) -> f64 {
+        self.driving_width_m() + 2.0 * self.parking_lane_m
+    }
+
+    /// Width of the driving lanes of both directions, metres.
+    pub fn driving_width_m(&self) -> f64 {
         2.0 * self.lanes_per_direction as f64 * self.lane_width_m
     }
 
@@ -260,6 +276,8 @@ impl TownDesc {
         )?;
         range("lane_width_m", self.lane_width_m, 3.2, 4.5)?;
         range("sidewalk_width_m", self.sidewalk_width_m, 1.5, 8.0)?;
+        // Before the block size, which depends on the road's width.
+        super::parking::lane::validate(self)?;
         let min_block = self.min_block_size_m();
         range("block_size_m", self.block_size_m, min_block, 1000.0)?;
         for (i, e) in self.extent_m.iter().enumerate() {

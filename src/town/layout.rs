@@ -74,8 +74,10 @@ pub struct Layout {
     pub ny: usize,
     /// Centreline pitch P, metres.
     pub pitch_m: f64,
-    /// Road width kerb to kerb, metres.
+    /// Road width kerb to kerb, metres (parking lanes included).
     pub road_w_m: f64,
+    /// Width of the parking lane on each side, metres (0: none).
+    pub parking_m: f64,
     /// Lane width, metres.
     pub lane_w_m: f64,
     /// Lanes per direction.
@@ -125,6 +127,7 @@ impl Layout {
             ny: ((desc.extent_m[1] / p).round() as usize).max(1),
             pitch_m: p,
             road_w_m: desc.road_width_m(),
+            parking_m: desc.parking_lane_m,
             lane_w_m: desc.lane_width_m,
             lanes: desc.lanes_per_direction,
             sidewalk_m: desc.sidewalk_width_m,
@@ -150,6 +153,11 @@ impl Layout {
     fn with_roundabout(mut self, on: bool) -> Self {
         self.roundabout = on.then_some((self.nx / 2, self.ny / 2));
         self
+    }
+    /// Distance from the centreline to the outer driving lane's edge, metres:
+    /// the road edge less the parking lane.
+    pub fn drive_hw(&self) -> f64 {
+        self.road_w_m / 2.0 - self.parking_m
     }
     /// Centre of the roundabout, world (x, y), if the town has one.
     pub fn roundabout_center(&self) -> Option<[f64; 2]> {
@@ -370,6 +378,7 @@ mod tests {
             ny: 2,
             pitch_m: 200.0,
             road_w_m: 14.0,
+            parking_m: 0.0,
             lane_w_m: 3.5,
             lanes: 2,
             sidewalk_m: 2.0,

@@ -134,9 +134,14 @@ impl<'a> StaticTown<'a> {
             !l.near_roundabout(&layout::Rect::centered([t[0], t[1]], [0.0, 0.0]))
                 && !l.in_loop_corner([t[0], t[1]])
         });
-        // Lay-bys in the gaps the road-side furniture leaves.
+        // Bays in the parking lanes, or lay-bys in the gaps the road-side
+        // furniture leaves.
         let bays = parking::bays(desc, l, &furniture);
-        parking::cut_laybys(&mut out, &bays);
+        if desc.parking_lane_m > 0.0 {
+            out.extend(parking::lane::bay_marks(&bays));
+        } else {
+            parking::cut_laybys(&mut out, &bays);
+        }
         out.extend(furniture);
         if let Some(t) = &self.terrain {
             out.extend(t.vegetation(desc.vegetation_density, seed));
@@ -145,9 +150,11 @@ impl<'a> StaticTown<'a> {
             clear_for_overpass(o, &mut out);
         }
         number_objects(&mut out);
-        // Parked cars: static, numbered after the furniture.
+        // Parked cars: static, numbered after the furniture; placed after
+        // the bend (as vehicles: at W(p), turned by W's Jacobian).
         let ids = (next_static_id(&out), VEHICLE_ID_BASE);
-        out.extend(parking::parked_cars(&bays, seed, desc.parking_density, ids));
+        let parked =
+            parking::parked_cars(&bays, seed, desc.parking_density, ids, self.warp.as_ref());
         if let Some(w) = &self.warp {
             // Graded towns cut finer, for the grade's chord error.
             let step = match self.grade {
@@ -156,6 +163,7 @@ impl<'a> StaticTown<'a> {
             };
             out = organic::bend::bend_objects(out, w, step);
         }
+        out.extend(parked);
         let out = match &self.grade {
             Some(g) => drape::drape_objects(out, g),
             None => out,

@@ -321,7 +321,6 @@ fn segment_objects(l: &Layout, sites: &[RampSite], s: &Segment) -> Vec<ObjectDes
 /// and stop lines at junction ends.
 fn lane_lines(l: &Layout, sites: &[RampSite], s: &Segment, o: &mut Vec<ObjectDesc>) {
     let mark = class("road_line");
-    let hw = l.road_w_m / 2.0;
     let clear = |end: usize| match (s.junction[end], s.yield_end[end]) {
         (_, true) => YIELD_CROSSWALK_M + CROSSWALK_M.1 + 0.6,
         (true, false) => STOP_LINE_AT_M + 0.6,
@@ -345,9 +344,11 @@ fn lane_lines(l: &Layout, sites: &[RampSite], s: &Segment, o: &mut Vec<ObjectDes
                 }
             }
         }
+        // The edge lines bound the driving lanes: a parking lane lies beyond.
+        let edge = l.drive_hw() - 0.25;
         for sign in [-1.0, 1.0] {
             let ramps = sites_beside(s, sign, sites);
-            o.extend(edge_line(s, (s0, s1), sign * (hw - 0.25), &ramps));
+            o.extend(edge_line(s, (s0, s1), sign * edge, &ramps));
         }
     }
 }

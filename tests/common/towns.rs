@@ -118,3 +118,19 @@ pub fn surfaces_below(
     }
     out
 }
+
+/// Town01, town02 and town03 as they were before their parking lanes
+/// (`parking_lane_m` 0, no parked cars, town02's 48 m and town03's 90 m
+/// blocks, which grew with the wider roads): pins computed before hold
+/// with the key at 0. Other towns are left as they are.
+pub fn without_parking_lanes(desc: &mut TownDesc) {
+    if desc.parking_lane_m == 0.0 {
+        return;
+    }
+    (desc.parking_lane_m, desc.parking_density) = (0.0, 0.0);
+    match desc.name.as_str() {
+        "town02" => (desc.block_size_m, desc.extent_m) = (48.0, [240.0, 240.0]),
+        "town03" => (desc.block_size_m, desc.extent_m) = (90.0, [540.0, 450.0]),
+        _ => {}
+    }
+}

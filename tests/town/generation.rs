@@ -239,7 +239,7 @@ fn town03_roundabout_has_ring_road_island_and_sidewalk_and_traffic_keeps_to_the_
     let desc = town("town03");
     let layout = Layout::new(&desc);
     let c = layout.roundabout_center().expect("town03 has a roundabout");
-    assert_eq!(c, [270.0, 180.0]);
+    assert_eq!(c, [285.0, 190.0]);
     let (r_in, r_out) = layout.roundabout_radii();
     // Town03 is organic: the layout's circles hold in the level grid's
     // plane; the world is W of it (probes go to W(p), vertices come back
@@ -339,7 +339,7 @@ fn town03_roundabout_has_ring_road_island_and_sidewalk_and_traffic_keeps_to_the_
     );
     // Too small a town for a roundabout is rejected naming the field.
     let base = std::fs::read_to_string(town_file("town03")).unwrap();
-    let small = base.replace("extent_m = [540.0, 450.0]", "extent_m = [180.0, 180.0]");
+    let small = base.replace("extent_m = [570.0, 475.0]", "extent_m = [190.0, 190.0]");
     let e = parse_town_str(&small, Path::new("bad.toml")).unwrap_err();
     assert!(e.contains("roundabout"), "{e}");
 }

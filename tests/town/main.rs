@@ -19,6 +19,7 @@ mod median;
 mod organic;
 mod overpass;
 mod parking;
+mod parking_lane;
 mod ramps;
 mod riders;
 mod signals;

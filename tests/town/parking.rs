@@ -29,7 +29,7 @@ fn objects_and_bays(desc: &TownDesc, seed: u64) -> (Vec<ObjectDesc>, Vec<Bay>) {
 }
 
 /// The parked cars' body instances (the prefab holding the paint).
-fn parked_bodies(objects: &[ObjectDesc]) -> Vec<&ObjectDesc> {
+pub(crate) fn parked_bodies(objects: &[ObjectDesc]) -> Vec<&ObjectDesc> {
     objects
         .iter()
         .filter(|o| o.semantic.as_deref() == Some("car"))
@@ -42,7 +42,7 @@ fn parked_bodies(objects: &[ObjectDesc]) -> Vec<&ObjectDesc> {
 
 /// Plan corners of a placed car body (its prefab's footprint about the
 /// instance origin, turned by the heading).
-fn corners(o: &ObjectDesc) -> [[f64; 2]; 4] {
+pub(crate) fn corners(o: &ObjectDesc) -> [[f64; 2]; 4] {
     let ShapeDesc::Instance { prefab, .. } = &o.shape else {
         panic!("an instance");
     };
@@ -65,7 +65,7 @@ fn inside(r: &Rect, q: [f64; 2]) -> bool {
 }
 
 /// Whether two convex quads overlap (separating axes of both).
-fn quads_overlap(a: &[[f64; 2]; 4], b: &[[f64; 2]; 4]) -> bool {
+pub(crate) fn quads_overlap(a: &[[f64; 2]; 4], b: &[[f64; 2]; 4]) -> bool {
     for poly in [a, b] {
         for k in 0..4 {
             let (p, q) = (poly[k], poly[(k + 1) % 4]);

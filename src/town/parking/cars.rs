@@ -9,6 +9,7 @@
 use crate::scene::desc::ObjectDesc;
 
 use super::super::materials::draw_paint;
+use super::super::organic::Warp;
 use super::super::parts::{instance, Label};
 use super::super::rng::Rng;
 use super::super::vehicles::{plates::PLATE_VARIANTS, BodyKind, BODIES, BODY_WEIGHTS};
@@ -120,12 +121,15 @@ pub fn cars_in(bays: &[Bay], seed: u64, density: f64) -> Vec<ParkedCar> {
 }
 
 /// The parked cars of `bays` as static instances, instance ids from
-/// `first_id` up to (not including) `end_id` (cars past it are left out).
+/// `first_id` up to (not including) `end_id` (cars past it are left out);
+/// in an organic town moved by its `warp` as the vehicles are (to W(p),
+/// the heading turned by W's Jacobian, so the car follows its kerb).
 pub fn parked_cars(
     bays: &[Bay],
     seed: u64,
     density: f64,
     (first_id, end_id): (u32, u32),
+    warp: Option<&Warp>,
 ) -> Vec<ObjectDesc> {
     let mut out = Vec::new();
     for (car, id) in cars_in(bays, seed, density).iter().zip(first_id..end_id) {
@@ -133,7 +137,11 @@ pub fn parked_cars(
             class: car.body.class(),
             instance: id as u16,
         };
-        let (at, h) = (car.at, car.heading_deg);
+        let (mut at, mut h) = (car.at, car.heading_deg);
+        if let Some(w) = warp {
+            h = w.heading_deg([at[0], at[1]], h);
+            [at[0], at[1]] = w.map([at[0], at[1]]);
+        }
         out.push(instance(
             car.body.prefab(),
             at,

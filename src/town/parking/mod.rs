@@ -1,4 +1,5 @@
-//! Parked cars in lay-bys (`parking_density`): bays cut into the road-side
+//! Parked cars (`parking_density`) in the parking lanes of a town that
+//! has them (`parking_lane_m`, see `lane`), else in lay-bys: bays cut into the road-side
 //! part of the sidewalk, at road level behind a kerb of their own, in runs
 //! of 6 m bays between the street trees, lamps, signs and fixtures that
 //! stand there, never near a junction (its corners, crosswalks and stop
@@ -15,6 +16,7 @@
 //! road edge, so a parked car (mirrors included) stays beyond it.
 
 pub mod cars;
+pub mod lane;
 pub mod layby;
 
 use crate::scene::desc::{ObjectDesc, ShapeDesc};
@@ -67,7 +69,8 @@ pub fn validate(desc: &TownDesc) -> Result<(), String> {
     if !(0.0..=1.0).contains(&d) {
         return Err(format!("parking_density: must be in [0, 1], got {d}"));
     }
-    if d == 0.0 {
+    // A parking lane (checked by `lane::validate`) takes the cars instead.
+    if d == 0.0 || desc.parking_lane_m > 0.0 {
         return Ok(());
     }
     let plain = desc.sidewalks
@@ -107,7 +110,8 @@ pub struct Bay {
     pub side: f64,
     /// Extent along the road, metres.
     pub along: (f64, f64),
-    /// Half the road width: the bay starts at the road edge, metres.
+    /// Where the bay starts from the centreline: the road edge (a
+    /// lay-by) or the driving lanes' edge (a parking lane), metres.
     pub hw: f64,
     /// Depth from the road edge to the bay's kerb, metres.
     pub depth: f64,
@@ -150,10 +154,14 @@ impl Bay {
     }
 }
 
-/// Every bay of the town of `desc`: along both sides of every road section
+/// Every bay of the town of `desc`: the parking lanes' (`lane`) if it
+/// has them, else the lay-bys' along both sides of every road section
 /// between junction areas, in the gaps that the road-side `furniture`
 /// leaves. None when `parking_density` is 0.
 pub fn bays(desc: &TownDesc, l: &Layout, furniture: &[ObjectDesc]) -> Vec<Bay> {
+    if desc.parking_lane_m > 0.0 {
+        return lane::lane_bays(desc, l, furniture);
+    }
     if desc.parking_density <= 0.0 || !l.sidewalks {
         return Vec::new();
     }
@@ -177,22 +185,38 @@ pub fn bays(desc: &TownDesc, l: &Layout, furniture: &[ObjectDesc]) -> Vec<Bay> {
                     hw,
                     depth,
                 };
-                section_bays(l, &bay, furniture, &mut out);
+                section_bays(l, &bay, furniture, Zone::Layby, &mut out);
             }
         }
     }
     out
 }
 
+/// Where a section's bays lie, which decides what furniture cuts them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Zone {
+    /// Cut into the sidewalk: every item standing there, and bus stops.
+    Layby,
+    /// On the road (a parking lane): bus stops only.
+    Lane,
+}
+
 /// The bays of one road section (`sec.along`), in the gaps between the
-/// furniture standing in its bay zone.
-fn section_bays(l: &Layout, sec: &Bay, furniture: &[ObjectDesc], out: &mut Vec<Bay>) {
+/// furniture standing in its bay zone (lay-bys) and the bus stops.
+pub(crate) fn section_bays(
+    l: &Layout,
+    sec: &Bay,
+    furniture: &[ObjectDesc],
+    kind: Zone,
+    out: &mut Vec<Bay>,
+) {
     let (a0, a1) = sec.along;
     if a1 - a0 < BAY_LEN_M {
         return;
     }
     let zone = sec.strip(sec.along, (sec.hw, sec.hw + sec.depth + KERB_M + 0.5));
-    let walk = sec.strip(sec.along, (sec.hw, sec.hw + l.sidewalk_m));
+    // From the bay's inner edge to the sidewalk's back.
+    let walk = sec.strip(sec.along, (sec.hw, l.road_w_m / 2.0 + l.sidewalk_m));
     let along_of = |p: [f64; 2]| match sec.axis {
         Axis::X => p[0],
         Axis::Y => p[1],
@@ -203,7 +227,7 @@ fn section_bays(l: &Layout, sec: &Bay, furniture: &[ObjectDesc], out: &mut Vec<B
         let (lo, hi) = (along_of(f.min), along_of(f.max));
         if is_prefab(o, "bus_shelter") && walk.overlaps(&f) {
             cuts.push((lo - BUS_STOP_M, hi + BUS_STOP_M));
-        } else if zone.overlaps(&f) {
+        } else if kind == Zone::Layby && zone.overlaps(&f) {
             let r = if o.semantic.as_deref() == Some("vegetation") {
                 TREE_CLEAR_M
             } else {
@@ -236,7 +260,7 @@ fn run(l: &Layout, sec: &Bay, (s0, s1): (f64, f64), out: &mut Vec<Bay>) {
             along: (a, a + BAY_LEN_M),
             ..*sec
         };
-        let r = bay.strip(bay.along, (bay.hw, bay.hw + l.sidewalk_m));
+        let r = bay.strip(bay.along, (bay.hw, l.road_w_m / 2.0 + l.sidewalk_m));
         let on_bridge = l.river_band().is_some_and(|b| b.overlaps(&r));
         let corner = [r.min, r.max, [r.min[0], r.max[1]], [r.max[0], r.min[1]]]
             .iter()

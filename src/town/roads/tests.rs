@@ -11,6 +11,7 @@ fn layout(lanes: u32, sidewalks: bool) -> Layout {
         ny: 2,
         pitch_m: 100.0,
         road_w_m: 14.0,
+        parking_m: 0.0,
         lane_w_m: 3.5,
         lanes,
         sidewalk_m: 3.0,

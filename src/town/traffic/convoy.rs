@@ -98,8 +98,11 @@ impl Drive {
             let mut s = behind.start_m + behind.half() + gap + half;
             loop {
                 path.reach(s + half + START_CLEAR_M + 1.0);
+                // (A leader just moved past a crossing ends there: within
+                // rounding of its clear point, which must not hold it.)
                 let inside = |c: &&Crossing| {
-                    s + half > c.stop_m - START_CLEAR_M && s - half < c.clear_m + START_CLEAR_M
+                    s + half > c.stop_m - START_CLEAR_M
+                        && s - half < c.clear_m + START_CLEAR_M - 1e-9
                 };
                 match path.crossings.iter().find(inside) {
                     Some(c) => s = c.clear_m + START_CLEAR_M + half,

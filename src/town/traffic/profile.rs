@@ -140,6 +140,7 @@ mod tests {
             ny: 1,
             pitch_m: 90.0,
             road_w_m: 7.0,
+            parking_m: 0.0,
             lane_w_m: 3.5,
             lanes: 1,
             sidewalk_m: 4.0,

@@ -106,7 +106,8 @@ impl Underpass {
     fn lines(&self, l: &Layout) -> (LocalMesh, LocalMesh) {
         let (mut white, mut yellow) = (LocalMesh::default(), LocalMesh::default());
         let (a, b) = (self.edges.0 + LINES_CLEAR_M, self.edges.1 - LINES_CLEAR_M);
-        let hw = self.half_w_m;
+        // The edge lines bound the driving lanes (a parking lane lies beyond).
+        let hw = l.drive_hw();
         let dashed = |m: &mut LocalMesh, u: f64| {
             let n = ((b - a + 3.0) / 6.0).floor() as u32;
             let start = a + ((b - a) - (n as f64 * 6.0 - 3.0)) / 2.0;

@@ -7,6 +7,7 @@ fn layout() -> Layout {
         ny: 4,
         pitch_m: 90.0,
         road_w_m: 14.0,
+        parking_m: 0.0,
         lane_w_m: 3.5,
         lanes: 2,
         sidewalk_m: 4.0,
