@@ -552,7 +552,6 @@ impl LightSet {
 }
 
 mod global;
-pub use global::GlobalLight;
 mod share;
 use share::LocalBudget;
 pub use share::LOCAL_CANDIDATES;
