@@ -224,36 +224,46 @@ impl<A: Accel> PathContext<'_, A> {
     ) -> Vec3 {
         let scene = self.scene;
         let mut l = Vec3::ZERO;
-        let mut one = |ls: Option<LightSample>, equi: bool, u_keep: Option<f32>| {
-            let Some(ls) = ls else { return Vec3::ZERO };
-            if ls.pdf <= 0.0 || ls.li == Vec3::ZERO {
-                return Vec3::ZERO;
-            }
-            let f = m.phase.eval(wo, ls.wi);
-            if f == 0.0 {
-                return Vec3::ZERO;
-            }
-            // Away from the forward lobe the shadow ray is rouletted by the
-            // phase value (`NeeRoulette::shadow`), divided by its survival.
-            let keep = u_keep.map_or(Some(1.0), |u| rr.shadow(f, u));
-            let Some(keep) = keep else { return Vec3::ZERO };
-            *rays += 1;
-            if self.accel.occluded(&shadow_ray(p, &ls)) {
-                return Vec3::ZERO;
-            }
-            let w = if ls.delta {
-                if equi {
-                    let q = p + ls.wi * ls.dist;
-                    let pdf_eq = equiangular_on(m, ray, t_end, q).map_or(0.0, |e| e.pdf(t));
-                    power_heuristic(1.0, pdf_in, 1.0, pdf_eq)
-                } else {
-                    1.0
+        // `distant`: the sample of that distant light, drawn without its
+        // radiance (`LightSet::sample_distant_dir`), which is looked up only
+        // for a shadow ray the roulette keeps (the sky's is dear).
+        let mut one =
+            |ls: Option<LightSample>, distant: Option<usize>, equi: bool, u_keep: Option<f32>| {
+                let Some(mut ls) = ls else { return Vec3::ZERO };
+                if ls.pdf <= 0.0 || (distant.is_none() && ls.li == Vec3::ZERO) {
+                    return Vec3::ZERO;
                 }
-            } else {
-                power_heuristic(1.0, ls.pdf, 1.0, m.phase.pdf(wo, ls.wi))
+                let f = m.phase.eval(wo, ls.wi);
+                if f == 0.0 {
+                    return Vec3::ZERO;
+                }
+                // Away from the forward lobe the shadow ray is rouletted by the
+                // phase value (`NeeRoulette::shadow`), divided by its survival.
+                let keep = u_keep.map_or(Some(1.0), |u| rr.shadow(f, u));
+                let Some(keep) = keep else { return Vec3::ZERO };
+                if let Some(k) = distant {
+                    ls.li = self.lights.distant_li(scene, k, p, ls.wi);
+                    if ls.li == Vec3::ZERO {
+                        return Vec3::ZERO;
+                    }
+                }
+                *rays += 1;
+                if self.accel.occluded(&shadow_ray(p, &ls)) {
+                    return Vec3::ZERO;
+                }
+                let w = if ls.delta {
+                    if equi {
+                        let q = p + ls.wi * ls.dist;
+                        let pdf_eq = equiangular_on(m, ray, t_end, q).map_or(0.0, |e| e.pdf(t));
+                        power_heuristic(1.0, pdf_in, 1.0, pdf_eq)
+                    } else {
+                        1.0
+                    }
+                } else {
+                    power_heuristic(1.0, ls.pdf, 1.0, m.phase.pdf(wo, ls.wi))
+                };
+                ls.li * m.tr(p, ls.wi, ls.dist) * (f * w / (ls.pdf * keep))
             };
-            ls.li * m.tr(p, ls.wi, ls.dist) * (f * w / (ls.pdf * keep))
-        };
         for (k, &u) in u_distant
             .iter()
             .enumerate()
@@ -271,7 +281,8 @@ impl<A: Accel> PathContext<'_, A> {
                 }
             };
             let u_keep = rr.u_shadow.get(k).copied();
-            let c = one(self.lights.sample_distant(scene, k, p, u), false, u_keep) * sky_scale;
+            let ls = self.lights.sample_distant_dir(scene, k, p, u);
+            let c = one(ls, Some(k), false, u_keep) * sky_scale;
             l += match lobe_w {
                 Some((k_sun, w)) if k_sun == k => c * w,
                 _ => c,
@@ -279,7 +290,8 @@ impl<A: Accel> PathContext<'_, A> {
         }
         if let Some(scale) = rr.local() {
             let ls = self.lights.sample(scene, p, u_sel, u_l, bounce);
-            l += one(ls, ls.is_some_and(|s| s.delta && s.dist.is_finite()), None) * scale;
+            let equi = ls.is_some_and(|s| s.delta && s.dist.is_finite());
+            l += one(ls, None, equi, None) * scale;
         }
         l
     }
@@ -304,15 +316,16 @@ impl<A: Accel> PathContext<'_, A> {
         if !self.lights.has_delta_local() {
             return Vec3::ZERO;
         }
-        // Selection does not depend on the point: the light chosen from the
-        // ray origin is the light lit from the sampled point.
-        let Some(ls0) = self.lights.sample_global(scene, ray.o, u_sel, u_l) else {
+        // Selection does not depend on the point: the light chosen once is
+        // the light lit from the sampled point. Distances are drawn around
+        // its position even where a spot's cone leaves the ray origin dark
+        // (the in-scattering points' NEE counts on this strategy there).
+        let Some(light) = self.lights.select_global(u_sel) else {
             return Vec3::ZERO;
         };
-        if !ls0.delta || !ls0.dist.is_finite() {
+        let Some(q) = self.lights.delta_position(light) else {
             return Vec3::ZERO;
-        }
-        let q = ray.o + ls0.wi * ls0.dist;
+        };
         let Some(e) = equiangular_on(m, ray, t_end, q) else {
             return Vec3::ZERO;
         };
@@ -321,7 +334,7 @@ impl<A: Accel> PathContext<'_, A> {
             return Vec3::ZERO;
         }
         let x = ray.at(t);
-        let Some(ls) = self.lights.sample_global(scene, x, u_sel, u_l) else {
+        let Some(ls) = self.lights.sample_chosen(scene, light, x, u_l) else {
             return Vec3::ZERO;
         };
         let sigma_t = m.sigma_t(x) as f32;

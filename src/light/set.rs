@@ -480,27 +480,6 @@ impl LightSet {
         sample_entry(scene, &self.entries[idx], pmf, p, u)
     }
 
-    /// Selects one local light independently of the point (half by power,
-    /// half uniform) and samples it from `p`: the same `u_select` gives the
-    /// same light at every point, as equiangular sampling needs.
-    pub fn sample_global(
-        &self,
-        scene: &Scene,
-        p: Vec3,
-        u_select: f32,
-        u: Vec2,
-    ) -> Option<LightSample> {
-        if self.entries.is_empty() {
-            return None;
-        }
-        let idx = self.select(u_select);
-        let pmf = self.pmf[idx];
-        if pmf == 0.0 {
-            return None;
-        }
-        sample_entry(scene, &self.entries[idx], pmf, p, u)
-    }
-
     /// Radiance of the sky and sun disks for a ray leaving render-space point
     /// `p` along `dir`, sampled with solid-angle pdf `prev_pdf` (or by a delta
     /// lobe / the camera), MIS-weighted against next-event estimation. Sun
@@ -572,6 +551,7 @@ impl LightSet {
     }
 }
 
+mod global;
 mod share;
 use share::LocalBudget;
 pub use share::LOCAL_CANDIDATES;

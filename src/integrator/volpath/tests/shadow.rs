@@ -46,7 +46,13 @@ fn single_scatter(d: [f64; 3]) -> f64 {
 
 /// Green radiance of `n` camera samples along `d` in scene `src` at path
 /// depth `max_depth`, and the rays they traced.
-fn radiance(src: &str, strategies: Strategies, d: Vec3, max_depth: u32, n: u32) -> (Vec<f64>, u64) {
+pub(super) fn radiance(
+    src: &str,
+    strategies: Strategies,
+    d: Vec3,
+    max_depth: u32,
+    n: u32,
+) -> (Vec<f64>, u64) {
     let (scene, accel) = built(src);
     let shading = Shading::new(&scene, &accel);
     let ctx = shading.context(max_depth);
