@@ -92,31 +92,24 @@ pub fn lane_bays(desc: &TownDesc, l: &Layout, furniture: &[ObjectDesc]) -> Vec<B
         }
     };
     let mut out = Vec::new();
-    let roads = (0..=l.ny)
-        .map(|j| (Axis::X, j, l.nx))
-        .chain((0..=l.nx).map(|i| (Axis::Y, i, l.ny)));
-    for (axis, road, sections) in roads {
-        for side in [-1.0, 1.0] {
-            for k in 0..sections {
-                let (n0, n1) = match axis {
-                    Axis::X => ((k, road), (k + 1, road)),
-                    Axis::Y => ((road, k), (road, k + 1)),
-                };
-                let sec = Bay {
-                    axis,
-                    road,
-                    c: road as f64 * p,
-                    side,
-                    along: (
-                        k as f64 * p + keep_at(n0.0, n0.1),
-                        (k + 1) as f64 * p - keep_at(n1.0, n1.1),
-                    ),
-                    hw: l.drive_hw(),
-                    depth: l.parking_m,
-                };
-                section_bays(l, &sec, furniture, Zone::Lane, &mut out);
-            }
-        }
+    for (axis, road, side, k) in super::road_sections(l) {
+        let (n0, n1) = match axis {
+            Axis::X => ((k, road), (k + 1, road)),
+            Axis::Y => ((road, k), (road, k + 1)),
+        };
+        let sec = Bay {
+            axis,
+            road,
+            c: road as f64 * p,
+            side,
+            along: (
+                k as f64 * p + keep_at(n0.0, n0.1),
+                (k + 1) as f64 * p - keep_at(n1.0, n1.1),
+            ),
+            hw: l.drive_hw(),
+            depth: l.parking_m,
+        };
+        section_bays(l, &sec, furniture, Zone::Lane, &mut out);
     }
     out
 }

@@ -170,26 +170,34 @@ pub fn bays(desc: &TownDesc, l: &Layout, furniture: &[ObjectDesc]) -> Vec<Bay> {
     // As `furniture` keeps lamps and trees off the junction areas.
     let keep = hw + l.sidewalk_m + 6.0;
     let mut out = Vec::new();
-    let roads = (0..=l.ny)
-        .map(|j| (Axis::X, j, l.nx))
-        .chain((0..=l.nx).map(|i| (Axis::Y, i, l.ny)));
-    for (axis, road, sections) in roads {
-        for side in [-1.0, 1.0] {
-            for k in 0..sections {
-                let bay = Bay {
-                    axis,
-                    road,
-                    c: road as f64 * p,
-                    side,
-                    along: (k as f64 * p + keep, (k + 1) as f64 * p - keep),
-                    hw,
-                    depth,
-                };
-                section_bays(l, &bay, furniture, Zone::Layby, &mut out);
-            }
-        }
+    for (axis, road, side, k) in road_sections(l) {
+        let bay = Bay {
+            axis,
+            road,
+            c: road as f64 * p,
+            side,
+            along: (k as f64 * p + keep, (k + 1) as f64 * p - keep),
+            hw,
+            depth,
+        };
+        section_bays(l, &bay, furniture, Zone::Layby, &mut out);
     }
     out
+}
+
+/// Every side of every road section between grid nodes: (axis, road
+/// index, side ∓1, section k), x-roads first, then each road's sides in
+/// turn, sections in order.
+pub(crate) fn road_sections(l: &Layout) -> impl Iterator<Item = (Axis, usize, f64, usize)> {
+    let roads = (0..=l.ny)
+        .map(|j| (Axis::X, j, l.nx))
+        .chain((0..=l.nx).map(|i| (Axis::Y, i, l.ny)))
+        .collect::<Vec<_>>();
+    roads.into_iter().flat_map(|(axis, road, sections)| {
+        [-1.0, 1.0]
+            .into_iter()
+            .flat_map(move |side| (0..sections).map(move |k| (axis, road, side, k)))
+    })
 }
 
 /// Where a section's bays lie, which decides what furniture cuts them.

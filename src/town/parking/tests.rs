@@ -56,11 +56,11 @@ fn parking_density_is_refused_out_of_range_or_where_bays_do_not_fit() {
     country.parking_density = 0.3;
     let e = country.validate().unwrap_err();
     assert!(e.contains("level grid town with sidewalks"), "{e}");
-    // Without the key a town has no bays.
-    let t = town("town03");
-    assert_eq!(t.parking_density, 0.0);
-    let l = Layout::new(&t);
-    assert!(bays(&t, &l, &[]).is_empty());
+    // Town03 parks in lanes; without its keys it has no bays.
+    let mut t = town("town03");
+    assert!(!bays(&t, &Layout::new(&t), &[]).is_empty());
+    (t.parking_density, t.parking_lane_m) = (0.0, 0.0);
+    assert!(bays(&t, &Layout::new(&t), &[]).is_empty());
 }
 
 #[test]
