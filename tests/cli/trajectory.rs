@@ -102,8 +102,10 @@ fn steps_match_speed(town: &str, lines: &[Line]) -> usize {
 fn bent_and_graded_towns_report_the_speed_the_positions_move_at() {
     // town03's warp stretches level motion by up to ~3 %, town04's grade
     // lengthens it along slopes: the printed speed is the world's.
-    for town in ["town03", "town04"] {
-        let lines = trajectory(town, "5", "2", "200");
+    // (Town03's sequence 2 stands at red lights for most of its first
+    // 200 frames since its parking lanes widened the crossings.)
+    for (town, sequence) in [("town03", "4"), ("town04", "2")] {
+        let lines = trajectory(town, "5", sequence, "200");
         let moving = steps_match_speed(town, &lines);
         assert!(moving > 50, "{town}: {moving} moving frames");
     }
