@@ -159,6 +159,14 @@ def rmse(a, b):
     return float(np.sqrt(((a - b) ** 2).mean()))
 
 
+def rmse_to_truth(img, ref, ref_var):
+    """RMSE of `img` against the converged image: its mean squared error
+    against `ref` less the reference's own noise (an independent render's
+    error adds its variance `ref_var` to the expected squared error)."""
+    mse = float(((img - ref) ** 2).mean()) - float(ref_var.mean())
+    return float(np.sqrt(max(mse, 0.0)))
+
+
 def at_budget(render, spp, seconds, round_spp=lambda n: n):
     """Renders with `render(spp) -> (img, seconds, spp taken)` at the spp
     that takes `seconds`: scaled from a first run, corrected once more when
@@ -172,8 +180,14 @@ def at_budget(render, spp, seconds, round_spp=lambda n: n):
     return img, t, taken
 
 
-def equal_time(args, ms, scene, work, ref, seconds, threads, samplers):
-    """RMSE against `ref` of each renderer given `seconds` of wall time."""
+def equal_time(args, ms, scene, work, ref, ref_var, seconds, threads, samplers):
+    """RMSE against `ref` of each renderer given `seconds` of wall time, and
+    against the truth (`rmse_to_truth`, the reference's variance `ref_var`
+    taken out): fireflies left in the reference otherwise set a floor that
+    hides the difference between clean images."""
+    def scores(img):
+        return {"rmse": rmse(img, ref), "rmse_truth": rmse_to_truth(img, ref, ref_var)}
+
     res = {}
     for mode in ("default", "reference"):
         out = os.path.join(work, f"et_{mode}")
@@ -183,7 +197,7 @@ def equal_time(args, ms, scene, work, ref, seconds, threads, samplers):
             return img, t, spp
 
         img, t, spp = at_budget(render, 4, seconds)
-        res[f"parallax_{mode}"] = {"spp": spp, "seconds": t, "rmse": rmse(img, ref)}
+        res[f"parallax_{mode}"] = {"spp": spp, "seconds": t, **scores(img)}
     for sampler in samplers:
         # A power of 4 for ldsampler (it rounds up otherwise).
         round_spp = (lambda n: 4 ** max(1, int(np.log(n) / np.log(4)))) if sampler == "ldsampler" else (lambda n: n)
@@ -193,9 +207,10 @@ def equal_time(args, ms, scene, work, ref, seconds, threads, samplers):
             return ms.render(spp, 10, sampler)
 
         img, t, taken = at_budget(render, 16, seconds, round_spp)
-        res[f"mitsuba_{sampler}"] = {"spp": taken, "seconds": t, "rmse": rmse(img, ref)}
-    best = min(res[f"mitsuba_{s}"]["rmse"] for s in samplers)
-    res["default_over_mitsuba"] = res["parallax_default"]["rmse"] / best
+        res[f"mitsuba_{sampler}"] = {"spp": taken, "seconds": t, **scores(img)}
+    for key, name in (("rmse", "default_over_mitsuba"), ("rmse_truth", "default_over_mitsuba_truth")):
+        best = min(res[f"mitsuba_{s}"][key] for s in samplers)
+        res[name] = res["parallax_default"][key] / max(best, 1e-12)
     return res
 
 
@@ -245,10 +260,13 @@ def main():
         m2 = ms.render(args.spp, 202)[0]
         agree = agreement(p1, p2, m1, m2, args.block)
         ref = (p1 + p2 + m1 + m2) / 4
+        # Unbiased per-pixel variance of `ref` from the halves' differences:
+        # Var(mean of 4) = (Var p + Var m) / 8, Var p = E[(p1 - p2)^2] / 2.
+        ref_var = ((p1 - p2) ** 2 + (m1 - m2) ** 2) / 16
         # Equal time needs the LLVM variant (scalar Mitsuba is not its speed).
         et = None
         if variant.startswith("llvm"):
-            et = equal_time(args, ms, scene, work, ref, args.seconds, args.threads, MITSUBA_SAMPLERS)
+            et = equal_time(args, ms, scene, work, ref, ref_var, args.seconds, args.threads, MITSUBA_SAMPLERS)
         results[name] = {"agreement": agree, "equal_time": et}
         # Within 1 %, or within 4 standard errors (low spp: fireflies).
         ok_mean = all(abs(r) <= max(0.01, 4 * e)
@@ -263,9 +281,12 @@ def main():
               f"[{'ok' if ok_struct else 'STRUCTURED'}]")
         for k, v in (et or {}).items():
             if isinstance(v, dict):
-                print(f"  {k:20s} {v['spp']:6d} spp {v['seconds']:7.2f} s  RMSE {v['rmse']:.5f}")
+                print(f"  {k:20s} {v['spp']:6d} spp {v['seconds']:7.2f} s  RMSE {v['rmse']:.5f}"
+                      f"  (to the truth {v['rmse_truth']:.5f})")
         if et:
-            print(f"  parallax default RMSE / Mitsuba's best: {et['default_over_mitsuba']:.2f}")
+            print(f"  parallax default RMSE / Mitsuba's best: {et['default_over_mitsuba']:.2f}"
+                  f" (to the truth: {et['default_over_mitsuba_truth']:.2f}; reference noise"
+                  f" RMS {float(np.sqrt(ref_var.mean())):.5f})")
     if args.json:
         with open(args.json, "w") as f:
             json.dump(results, f, indent=1)

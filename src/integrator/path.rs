@@ -46,6 +46,10 @@ const DISTANT_SETS: [u32; 2] = [1, 3];
 const LOCAL_SET: u32 = 2;
 /// 4D sets used by the camera before the first bounce (pixel jitter).
 pub const CAMERA_DIMS: u32 = 1;
+/// The least GGX alpha of a metal or clear-coat lobe after a rough bounce
+/// when the scene regularises (`Scene::regularize`): the sun reflected in
+/// it then spans about ±6° and next-event estimation finds it.
+pub const REGULARIZE_ALPHA: f32 = 0.1;
 /// Shadow rays one vertex may leave pending: every distant light plus the
 /// sampled light.
 const MAX_SHADOW: usize = crate::light::MAX_DISTANT + 1;
@@ -144,13 +148,12 @@ struct Vertex<'a> {
 
 /// The split vertex's next-event light to filter, when its shadow rays
 /// were just resolved: the radiance now less `before`, less the sun's part
-/// `sun` (sharp and nearly noise-free; it carries the relief's shading),
-/// zero without a split vertex.
+/// `sun` (sharp and nearly noise-free: it carries the relief's shading,
+/// and at a glossy vertex the sun's highlight, a few pixels of the
+/// brightest light in the frame that a filter would smear), zero without
+/// a split vertex.
 fn split_direct(st: &PathState, before: Vec3, sun: Vec3) -> Vec3 {
-    if st.split.rho_gloss != Vec3::ZERO {
-        // A glossy vertex whose path ended there: all its light.
-        st.l - before
-    } else if st.split.rho == Vec3::ZERO {
+    if st.split.rho == Vec3::ZERO && st.split.rho_gloss == Vec3::ZERO {
         Vec3::ZERO
     } else {
         st.l - before - sun
@@ -345,7 +348,8 @@ impl<A: Accel> PathContext<'_, A> {
         // vertex's next-event estimates (`DenoiseSample::l_direct`).
         let mut l_first = None;
         let mut l_direct = Vec3::ZERO;
-        // At a glossy split vertex: the radiance before its shadow rays.
+        // At a glossy split vertex: the radiance before its shadow rays,
+        // and their sun's part.
         let mut gloss_before = None;
         loop {
             *rays += 1;
@@ -365,7 +369,7 @@ impl<A: Accel> PathContext<'_, A> {
                 l_direct = split_direct(&st, before, sun);
             }
             if st.split.rho_gloss != Vec3::ZERO {
-                gloss_before.get_or_insert(before);
+                gloss_before.get_or_insert((before, sun));
             }
             let Some(hit) = hit else {
                 st.l += st.beta
@@ -384,7 +388,7 @@ impl<A: Accel> PathContext<'_, A> {
                         l_direct = split_direct(&st, before, sun);
                     }
                     if st.split.rho_gloss != Vec3::ZERO {
-                        gloss_before.get_or_insert(before);
+                        gloss_before.get_or_insert((before, sun));
                     }
                     break;
                 }
@@ -393,9 +397,10 @@ impl<A: Accel> PathContext<'_, A> {
         // No l_first with a split vertex: the path ended there, after its
         // own light, so its indirect estimate is zero.
         let l_surf = l_first.map_or(Vec3::ZERO, |l_first| st.l - l_first);
-        // A glossy split vertex's light: all it reflects.
-        if let Some(before) = gloss_before {
-            l_direct = st.l - before;
+        // A glossy split vertex's light: all it reflects but the sun's
+        // next-event estimate.
+        if let Some((before, sun)) = gloss_before {
+            l_direct = st.l - before - sun;
         }
         LiSample {
             l: st.l,
@@ -480,9 +485,12 @@ impl<A: Accel> PathContext<'_, A> {
         } else {
             0.0
         };
-        let bsdf = scene
+        let mut bsdf = scene
             .material_view()
             .bsdf_filtered(&si, wo, st.prev_delta, footprint);
+        if scene.regularize && st.rough_bounce {
+            bsdf = bsdf.regularized(REGULARIZE_ALPHA);
+        }
         if st.bounces == 0 {
             st.first_albedo = bsdf.diffuse_albedo();
             st.first_glossy = glossy_albedo(&bsdf).filter(|_| mat.le == Vec3::ZERO);
@@ -554,6 +562,7 @@ impl<A: Accel> PathContext<'_, A> {
         }
         st.prev_pdf = bs.pdf;
         st.prev_delta = bs.delta;
+        st.rough_bounce |= !bs.delta;
         st.cone = st.cone.through_delta(dist);
         st.prev_p = si.p;
         st.prev_n = receiver_normal(&bsdf, si.n_geo);
@@ -565,5 +574,7 @@ impl<A: Accel> PathContext<'_, A> {
     }
 }
 
+#[cfg(test)]
+mod regularize_tests;
 #[cfg(test)]
 mod tests;

@@ -205,6 +205,10 @@ pub struct Scene {
     /// beyond their next-event estimates (`RenderDesc::filter_indirect`;
     /// false in scenes with a medium, whose paths take the volumetric loop).
     pub filter_indirect: bool,
+    /// Whether paths widen glossy lobes met after a rough bounce
+    /// (`Bsdf::regularized`): on with `RenderDesc::filter_indirect`, also
+    /// in fog; off in plain path tracing.
+    pub regularize: bool,
     /// Rain field centred on the rig; its `seed` is set per frame by the
     /// renderer (`Rain { seed, ..rain }`). None: no rain.
     pub rain: Option<shaders_cpu::medium::Rain>,

@@ -9,4 +9,5 @@ mod aov;
 mod direct;
 mod fog;
 mod glass;
+mod highlight;
 mod indirect;

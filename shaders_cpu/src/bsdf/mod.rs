@@ -142,6 +142,33 @@ impl Bsdf {
             Bsdf::NormalMapped { facet, wp } => normal_map::sample(&facet, wp, wo, u_lobe, u),
         }
     }
+    /// The BSDF with every reflecting microfacet lobe at least `min_alpha`
+    /// rough (conductors, clear coats and their metallic bases); Lambert,
+    /// glass and normal-mapped facets are unchanged. Path regularisation:
+    /// a sun seen in a mirror-like lobe from a diffuse surface is then
+    /// found by next-event estimation instead of by rare BSDF samples.
+    pub fn regularized(self, min_alpha: f32) -> Bsdf {
+        match self {
+            Bsdf::Conductor { eta, k, alpha } => Bsdf::Conductor {
+                eta,
+                k,
+                alpha: alpha.max(min_alpha),
+            },
+            Bsdf::Coated { base, eta, alpha } => Bsdf::Coated {
+                base: match base {
+                    CoatBase::Conductor { eta, k, alpha } => CoatBase::Conductor {
+                        eta,
+                        k,
+                        alpha: alpha.max(min_alpha),
+                    },
+                    lambert => lambert,
+                },
+                eta,
+                alpha: alpha.max(min_alpha),
+            },
+            other => other,
+        }
+    }
     /// Whether every lobe is a delta (eval and pdf are then always zero).
     #[inline]
     pub fn is_delta(&self) -> bool {

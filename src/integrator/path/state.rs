@@ -36,6 +36,9 @@ pub(in crate::integrator) struct PathState {
     /// emits nothing (None otherwise), recorded as it is shaded for the
     /// fog's split: all its light is then filtered as direct light.
     pub first_glossy: Option<Vec3>,
+    /// Whether the path has scattered off a non-delta lobe (its glossy
+    /// lobes are regularised from then on when the scene asks).
+    pub rough_bounce: bool,
     /// The pixel's cone at the last vertex (`RayCone`): the footprint
     /// textures are filtered by at hits seen through delta bounces.
     pub cone: RayCone,
@@ -57,6 +60,7 @@ impl PathState {
             split: SplitVertex::default(),
             first_albedo: None,
             first_glossy: None,
+            rough_bounce: false,
             cone: RayCone::NONE,
             aov: AovState::default(),
         }

@@ -165,7 +165,10 @@ pub struct RenderDesc {
     /// true: far less grain at equal time, at a small bias where that light
     /// changes within a few pixels; false gives the plain path-traced image
     /// bit for bit). Scenes with a medium use its fog filter instead. Ground
-    /// truth is never filtered.
+    /// truth is never filtered. True also regularises paths: metal and
+    /// clear-coat lobes met after a rough bounce are widened to
+    /// `integrator::path::REGULARIZE_ALPHA` (a little bias in caustics for
+    /// far fewer fireflies).
     #[serde(default = "default_true", skip_serializing_if = "is_true")]
     pub filter_indirect: bool,
 }
