@@ -186,9 +186,10 @@ impl Collected {
                     two_sided: mat.two_sided_emission,
                 });
                 self.entries.push(Entry::Triangle {
-                    geom: g as u32,
-                    prim: t as u32,
+                    v,
                     area,
+                    le: mat.le,
+                    two_sided: mat.two_sided_emission,
                 });
             }
             tri_entry[g] = slots;
