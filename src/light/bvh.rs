@@ -209,6 +209,14 @@ impl LightBvh {
         walk: &mut Walk,
     ) -> [(f32, Side); 2] {
         let second = self.nodes[k].index() as usize;
+        // The next level's nodes start loading while these are weighed.
+        for child in [k + 1, second] {
+            let c = &self.nodes[child];
+            if !c.is_leaf() {
+                node::prefetch(&self.nodes[child + 1]);
+                node::prefetch(&self.nodes[c.index() as usize]);
+            }
+        }
         [
             self.weight(k + 1..second, p, n, walk),
             self.weight(second..end, p, n, walk),
@@ -291,45 +299,60 @@ impl LightBvh {
 
     /// [`LightBvh::sample`] for a receiver that reflects only, of unit
     /// normal `n` (zero: any receiver; [`LightBounds::importance_facing`]).
-    pub fn sample_facing(&self, p: Vec3, n: Vec3, mut u: f32) -> Option<(u32, f32)> {
+    pub fn sample_facing(&self, p: Vec3, n: Vec3, u: f32) -> Option<(u32, f32)> {
+        self.sample_facing_many(p, n, [Some(u)])[0]
+    }
+
+    /// [`LightBvh::sample_facing`] for each number of `us` (None: no walk):
+    /// what each gives alone, bit for bit. The walks step down the tree
+    /// level by level together, so their cache misses overlap, and while
+    /// they stand on the same node its children are weighed once.
+    pub fn sample_facing_many<const M: usize>(
+        &self,
+        p: Vec3,
+        n: Vec3,
+        us: [Option<f32>; M],
+    ) -> [Option<(u32, f32)>; M] {
+        let mut out = [None; M];
         if self.nodes.is_empty() {
-            return None;
+            return out;
         }
-        let mut k = 0;
-        let mut pmf = 1.0f32;
-        let mut end = self.nodes.len();
-        let mut walk = Walk::new(n);
-        loop {
-            let node = &self.nodes[k];
-            if node.is_leaf() {
-                // A lone root was never weighed against a sibling.
-                if k > 0 || node.at(p, n) > 0.0 {
-                    return Some((node.index(), pmf));
+        let mut walks = us.map(|u| {
+            u.map(|u| Walker {
+                k: 0,
+                pmf: 1.0,
+                end: self.nodes.len(),
+                u,
+                walk: Walk::new(n),
+            })
+        });
+        while walks.iter().any(Option::is_some) {
+            // This level's child weights: (node, weights) of the last node weighed.
+            let mut weighed: Option<(usize, [(f32, Side); 2])> = None;
+            for (slot, out) in walks.iter_mut().zip(out.iter_mut()) {
+                let Some(w) = slot else {
+                    continue;
+                };
+                let node = &self.nodes[w.k];
+                if node.is_leaf() {
+                    // A lone root was never weighed against a sibling.
+                    if w.k > 0 || node.at(p, n) > 0.0 {
+                        *out = Some((node.index(), w.pmf));
+                    }
+                    *slot = None;
+                    continue;
                 }
-                return None;
-            }
-            let second = node.index() as usize;
-            let [(w0, side0), (w1, side1)] = self.child_weights(k, end, p, n, &mut walk);
-            let sum = w0 + w1;
-            if sum == 0.0 || !sum.is_finite() {
-                return None;
-            }
-            let p0 = w0 / sum;
-            // Reuse u: rescale the chosen sub-interval back to [0, 1).
-            if u < p0 {
-                pmf *= p0;
-                u = (u / p0).min(ONE_MINUS_EPS);
-                walk.descend(side0);
-                end = second;
-                k += 1;
-            } else {
-                let p1 = w1 / sum;
-                pmf *= p1;
-                u = ((u - p0) / p1).clamp(0.0, ONE_MINUS_EPS);
-                walk.descend(side1);
-                k = second;
+                let weights = match weighed {
+                    Some((k, weights)) if k == w.k => weights,
+                    _ => self.child_weights(w.k, w.end, p, n, &mut w.walk),
+                };
+                weighed = Some((w.k, weights));
+                if !w.step(weights, node.index() as usize) {
+                    *slot = None;
+                }
             }
         }
+        out
     }
 
     /// The probability that [`LightBvh::sample`] at `p` returns `light`
@@ -381,8 +404,51 @@ impl LightBvh {
     }
 }
 
+/// One walk of [`LightBvh::sample_facing_many`] under way.
+#[derive(Clone, Copy)]
+struct Walker {
+    /// The node it stands on, and the end of that node's subtree.
+    k: usize,
+    end: usize,
+    /// The probability of the branches taken so far.
+    pmf: f32,
+    /// Its number, rescaled at each branch to [0, 1).
+    u: f32,
+    walk: Walk,
+}
+
+impl Walker {
+    /// Takes a branch of inner node `k` (second child `second`) by the
+    /// children's `weights`; false when neither can be taken.
+    #[inline]
+    fn step(&mut self, weights: [(f32, Side); 2], second: usize) -> bool {
+        let [(w0, side0), (w1, side1)] = weights;
+        let sum = w0 + w1;
+        if sum == 0.0 || !sum.is_finite() {
+            return false;
+        }
+        let p0 = w0 / sum;
+        // Reuse u: rescale the chosen sub-interval back to [0, 1).
+        if self.u < p0 {
+            self.pmf *= p0;
+            self.u = (self.u / p0).min(ONE_MINUS_EPS);
+            self.walk.descend(side0);
+            self.end = second;
+            self.k += 1;
+        } else {
+            let p1 = w1 / sum;
+            self.pmf *= p1;
+            self.u = ((self.u - p0) / p1).clamp(0.0, ONE_MINUS_EPS);
+            self.walk.descend(side1);
+            self.k = second;
+        }
+        true
+    }
+}
+
 /// What a walk down the tree knows of the receiver's plane (no bearing on
 /// the weights, only on the work of finding them).
+#[derive(Clone, Copy)]
 struct Walk {
     /// Every light of the current node lies in front (or no normal).
     in_front: bool,
