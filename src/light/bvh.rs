@@ -18,7 +18,11 @@
 use glam::Vec3;
 
 mod build;
+mod node;
 use build::{Subtree, PARALLEL_GRAIN};
+#[cfg(test)]
+use node::{angle_sub_clamped, safe_sqrt};
+use node::{Packed, Side, MAX_INDEX};
 
 /// Bounds of one light or of a cluster of lights.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -46,7 +50,7 @@ impl LightBounds {
 
     /// Bound of the light's contribution at `p` (0: it cannot light `p`).
     pub fn importance(&self, p: Vec3) -> f32 {
-        Importance::new(self).at(p, Vec3::ZERO)
+        Packed::new(self, 0, true).at(p, Vec3::ZERO)
     }
 
     /// [`LightBounds::importance`] at a receiver that reflects only, whose
@@ -54,7 +58,7 @@ impl LightBounds {
     /// bound): also times the largest cosine between `n` and a direction
     /// into the bounds.
     pub fn importance_facing(&self, p: Vec3, n: Vec3) -> f32 {
-        Importance::new(self).at(p, n)
+        Packed::new(self, 0, true).at(p, n)
     }
 
     /// The bounds of both `self` and `o`.
@@ -75,144 +79,6 @@ impl LightBounds {
             cos_theta_e: self.cos_theta_e.min(o.cos_theta_e),
             two_sided: self.two_sided || o.two_sided,
         }
-    }
-}
-
-/// [`LightBounds::importance`] with what does not depend on the point
-/// worked out once per node (the same arithmetic, so the same bits): the
-/// traversal weighs two nodes per level, and at night and under a storm's
-/// overcast the walks are a large share of a frame's time.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Importance {
-    /// Centre of the positions' box.
-    pc: Vec3,
-    /// Half its extent.
-    half: Vec3,
-    /// Floor on the squared distance (half the box's diagonal).
-    d2_min: f32,
-    /// Squared radius of the box's bounding sphere.
-    r2: f32,
-    w: Vec3,
-    phi: f32,
-    cos_theta_o: f32,
-    sin_theta_o: f32,
-    cos_theta_e: f32,
-    two_sided: bool,
-}
-
-impl Importance {
-    fn new(b: &LightBounds) -> Importance {
-        let diag = b.p_max - b.p_min;
-        Importance {
-            pc: b.centroid(),
-            half: 0.5 * diag,
-            d2_min: 0.5 * diag.length(),
-            r2: (0.25 * diag.length_squared()).max(0.0),
-            w: b.w,
-            phi: b.phi,
-            cos_theta_o: b.cos_theta_o,
-            sin_theta_o: safe_sqrt(1.0 - b.cos_theta_o * b.cos_theta_o),
-            cos_theta_e: b.cos_theta_e,
-            two_sided: b.two_sided,
-        }
-    }
-
-    /// The importance at `p` for a receiver of normal `n` (zero: none).
-    #[inline]
-    fn at(&self, p: Vec3, n: Vec3) -> f32 {
-        // Nothing of a box wholly behind the receiver's plane reaches it.
-        if n != Vec3::ZERO && self.side(p, n) == Side::Behind {
-            return 0.0;
-        }
-        self.at_unculled(p, n)
-    }
-
-    /// Where the box lies against the plane through `p` of normal `n`
-    /// (its corners farthest in front and behind).
-    #[inline]
-    fn side(&self, p: Vec3, n: Vec3) -> Side {
-        let (s, r) = (n.dot(self.pc - p), n.abs().dot(self.half));
-        if s + r <= 0.0 {
-            Side::Behind
-        } else if s - r > 0.0 {
-            Side::Front
-        } else {
-            Side::Crossing
-        }
-    }
-
-    /// [`Importance::at`] for a box known not to lie wholly behind the
-    /// receiver's plane.
-    #[inline]
-    fn at_unculled(&self, p: Vec3, n: Vec3) -> f32 {
-        let v = p - self.pc;
-        let d2_centre = v.length_squared();
-        // Clamp the distance so points inside a large cluster do not blow up.
-        let d2 = d2_centre.max(self.d2_min);
-        let wi = v.normalize_or_zero();
-        let mut cos_w = self.w.dot(wi);
-        if self.two_sided {
-            cos_w = cos_w.abs();
-        }
-        let sin_w = safe_sqrt(1.0 - cos_w * cos_w);
-        // Half-angle θ_b of the cone from the centre that holds the whole
-        // box as seen from p (the box's bounding sphere; −1 inside it).
-        let cos_b = if d2_centre < self.r2 || d2_centre == 0.0 {
-            -1.0
-        } else {
-            safe_sqrt(1.0 - self.r2 / d2_centre)
-        };
-        let sin_b = safe_sqrt(1.0 - cos_b * cos_b);
-        // θ' = max(0, θ_w − θ_o − θ_b): the smallest angle between a normal
-        // of the cone and a direction from the box towards p.
-        let (cos_x, sin_x) = angle_sub_clamped(sin_w, cos_w, self.sin_theta_o, self.cos_theta_o);
-        let (cos_p, _) = angle_sub_clamped(sin_x, cos_x, sin_b, cos_b);
-        if cos_p <= self.cos_theta_e {
-            return 0.0;
-        }
-        let importance = (self.phi * cos_p / d2).max(0.0);
-        if n == Vec3::ZERO {
-            return importance;
-        }
-        // θ_i' = max(0, θ_i − θ_b): the smallest angle between n and a
-        // direction from p into the box (−wi points at its centre).
-        // sin θ_b from r/d: through cos θ_b it rounds to 0 for a box a few
-        // thousand radii away, and a box that crosses the plane at a
-        // grazing angle would weigh 0 (a walk's last kept node with no
-        // kept child).
-        let sin_b = if cos_b == -1.0 {
-            sin_b
-        } else {
-            safe_sqrt(self.r2 / d2_centre)
-        };
-        let cos_i = -n.dot(wi);
-        let sin_i = safe_sqrt(1.0 - cos_i * cos_i);
-        let (cos_pi, _) = angle_sub_clamped(sin_i, cos_i, sin_b, cos_b);
-        if cos_pi <= 0.0 {
-            return 0.0;
-        }
-        importance * cos_pi
-    }
-}
-
-/// A box against a receiver's plane.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Side {
-    Behind,
-    Crossing,
-    Front,
-}
-
-fn safe_sqrt(x: f32) -> f32 {
-    x.max(0.0).sqrt()
-}
-
-/// cos and sin of max(0, a − b) for angles given by their sines and cosines.
-fn angle_sub_clamped(sin_a: f32, cos_a: f32, sin_b: f32, cos_b: f32) -> (f32, f32) {
-    if cos_a > cos_b {
-        (1.0, 0.0)
-    } else {
-        (cos_a * cos_b + sin_a * sin_b, sin_a * cos_b - cos_a * sin_b)
     }
 }
 
@@ -271,7 +137,8 @@ pub(super) fn acos_clamped(c: f32) -> f32 {
     }
 }
 
-/// One node: a leaf holds one light; an inner node's first child follows it.
+/// One node as the build makes it: a leaf holds one light; an inner
+/// node's first child follows it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Node {
     bounds: LightBounds,
@@ -283,9 +150,8 @@ struct Node {
 /// A light BVH over lights `0..n` given by their bounds.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LightBvh {
-    nodes: Vec<Node>,
-    /// Per node: its bounds' importance, set up for traversal.
-    importance: Vec<Importance>,
+    /// Depth first, each inner node's first child after it (`node.rs`).
+    nodes: Vec<Packed>,
     /// Per light: the branch taken at each depth (bit d = 1: second child).
     trails: Vec<u128>,
 }
@@ -311,13 +177,17 @@ impl LightBvh {
         for (light, trail) in sub.trails {
             trails[light as usize] = trail;
         }
+        assert!(
+            sub.nodes.len() <= MAX_INDEX,
+            "light tree of {} nodes",
+            sub.nodes.len()
+        );
         LightBvh {
-            importance: sub
+            nodes: sub
                 .nodes
                 .iter()
-                .map(|n| Importance::new(&n.bounds))
+                .map(|n| Packed::new(&n.bounds, n.child_or_light, n.leaf))
                 .collect(),
-            nodes: sub.nodes,
             trails,
         }
     }
@@ -338,7 +208,15 @@ impl LightBvh {
         n: Vec3,
         walk: &mut Walk,
     ) -> [(f32, Side); 2] {
-        let second = self.nodes[k].child_or_light as usize;
+        let second = self.nodes[k].index() as usize;
+        // The next level's nodes start loading while these are weighed.
+        for child in [k + 1, second] {
+            let c = &self.nodes[child];
+            if !c.is_leaf() {
+                node::prefetch(&self.nodes[child + 1]);
+                node::prefetch(&self.nodes[c.index() as usize]);
+            }
+        }
         [
             self.weight(k + 1..second, p, n, walk),
             self.weight(second..end, p, n, walk),
@@ -361,7 +239,7 @@ impl LightBvh {
         n: Vec3,
         walk: &mut Walk,
     ) -> (f32, Side) {
-        let (k, b) = (nodes.start, &self.importance[nodes.start]);
+        let (k, b) = (nodes.start, &self.nodes[nodes.start]);
         let mut side = Side::Front;
         if !walk.in_front {
             side = b.side(p, n);
@@ -393,14 +271,14 @@ impl LightBvh {
         let mut k = k;
         loop {
             let node = &self.nodes[k];
-            if node.leaf {
+            if node.is_leaf() {
                 return Some(k);
             }
-            stack[top] = node.child_or_light;
+            stack[top] = node.index();
             top += 1;
             k += 1;
             loop {
-                match self.importance[k].side(p, n) {
+                match self.nodes[k].side(p, n) {
                     Side::Front => return Some(k),
                     Side::Crossing => break,
                     Side::Behind if top == 0 => return None,
@@ -421,45 +299,60 @@ impl LightBvh {
 
     /// [`LightBvh::sample`] for a receiver that reflects only, of unit
     /// normal `n` (zero: any receiver; [`LightBounds::importance_facing`]).
-    pub fn sample_facing(&self, p: Vec3, n: Vec3, mut u: f32) -> Option<(u32, f32)> {
+    pub fn sample_facing(&self, p: Vec3, n: Vec3, u: f32) -> Option<(u32, f32)> {
+        self.sample_facing_many(p, n, [Some(u)])[0]
+    }
+
+    /// [`LightBvh::sample_facing`] for each number of `us` (None: no walk):
+    /// what each gives alone, bit for bit. The walks step down the tree
+    /// level by level together, so their cache misses overlap, and while
+    /// they stand on the same node its children are weighed once.
+    pub fn sample_facing_many<const M: usize>(
+        &self,
+        p: Vec3,
+        n: Vec3,
+        us: [Option<f32>; M],
+    ) -> [Option<(u32, f32)>; M] {
+        let mut out = [None; M];
         if self.nodes.is_empty() {
-            return None;
+            return out;
         }
-        let mut k = 0;
-        let mut pmf = 1.0f32;
-        let mut end = self.nodes.len();
-        let mut walk = Walk::new(n);
-        loop {
-            let node = &self.nodes[k];
-            if node.leaf {
-                // A lone root was never weighed against a sibling.
-                if k > 0 || self.importance[k].at(p, n) > 0.0 {
-                    return Some((node.child_or_light, pmf));
+        let mut walks = us.map(|u| {
+            u.map(|u| Walker {
+                k: 0,
+                pmf: 1.0,
+                end: self.nodes.len(),
+                u,
+                walk: Walk::new(n),
+            })
+        });
+        while walks.iter().any(Option::is_some) {
+            // This level's child weights: (node, weights) of the last node weighed.
+            let mut weighed: Option<(usize, [(f32, Side); 2])> = None;
+            for (slot, out) in walks.iter_mut().zip(out.iter_mut()) {
+                let Some(w) = slot else {
+                    continue;
+                };
+                let node = &self.nodes[w.k];
+                if node.is_leaf() {
+                    // A lone root was never weighed against a sibling.
+                    if w.k > 0 || node.at(p, n) > 0.0 {
+                        *out = Some((node.index(), w.pmf));
+                    }
+                    *slot = None;
+                    continue;
                 }
-                return None;
-            }
-            let second = node.child_or_light as usize;
-            let [(w0, side0), (w1, side1)] = self.child_weights(k, end, p, n, &mut walk);
-            let sum = w0 + w1;
-            if sum == 0.0 || !sum.is_finite() {
-                return None;
-            }
-            let p0 = w0 / sum;
-            // Reuse u: rescale the chosen sub-interval back to [0, 1).
-            if u < p0 {
-                pmf *= p0;
-                u = (u / p0).min(ONE_MINUS_EPS);
-                walk.descend(side0);
-                end = second;
-                k += 1;
-            } else {
-                let p1 = w1 / sum;
-                pmf *= p1;
-                u = ((u - p0) / p1).clamp(0.0, ONE_MINUS_EPS);
-                walk.descend(side1);
-                k = second;
+                let weights = match weighed {
+                    Some((k, weights)) if k == w.k => weights,
+                    _ => self.child_weights(w.k, w.end, p, n, &mut w.walk),
+                };
+                weighed = Some((w.k, weights));
+                if !w.step(weights, node.index() as usize) {
+                    *slot = None;
+                }
             }
         }
+        out
     }
 
     /// The probability that [`LightBvh::sample`] at `p` returns `light`
@@ -481,17 +374,17 @@ impl LightBvh {
         let mut walk = Walk::new(n);
         loop {
             let node = &self.nodes[k];
-            if node.leaf {
-                if node.child_or_light != light {
+            if node.is_leaf() {
+                if node.index() != light {
                     return 0.0; // left out of the tree
                 }
-                return if k > 0 || self.importance[k].at(p, n) > 0.0 {
+                return if k > 0 || node.at(p, n) > 0.0 {
                     pmf
                 } else {
                     0.0
                 };
             }
-            let second = node.child_or_light as usize;
+            let second = node.index() as usize;
             let w = self.child_weights(k, end, p, n, &mut walk);
             let sum = w[0].0 + w[1].0;
             if sum == 0.0 || !sum.is_finite() {
@@ -511,8 +404,51 @@ impl LightBvh {
     }
 }
 
+/// One walk of [`LightBvh::sample_facing_many`] under way.
+#[derive(Clone, Copy)]
+struct Walker {
+    /// The node it stands on, and the end of that node's subtree.
+    k: usize,
+    end: usize,
+    /// The probability of the branches taken so far.
+    pmf: f32,
+    /// Its number, rescaled at each branch to [0, 1).
+    u: f32,
+    walk: Walk,
+}
+
+impl Walker {
+    /// Takes a branch of inner node `k` (second child `second`) by the
+    /// children's `weights`; false when neither can be taken.
+    #[inline]
+    fn step(&mut self, weights: [(f32, Side); 2], second: usize) -> bool {
+        let [(w0, side0), (w1, side1)] = weights;
+        let sum = w0 + w1;
+        if sum == 0.0 || !sum.is_finite() {
+            return false;
+        }
+        let p0 = w0 / sum;
+        // Reuse u: rescale the chosen sub-interval back to [0, 1).
+        if self.u < p0 {
+            self.pmf *= p0;
+            self.u = (self.u / p0).min(ONE_MINUS_EPS);
+            self.walk.descend(side0);
+            self.end = second;
+            self.k += 1;
+        } else {
+            let p1 = w1 / sum;
+            self.pmf *= p1;
+            self.u = ((self.u - p0) / p1).clamp(0.0, ONE_MINUS_EPS);
+            self.walk.descend(side1);
+            self.k = second;
+        }
+        true
+    }
+}
+
 /// What a walk down the tree knows of the receiver's plane (no bearing on
 /// the weights, only on the work of finding them).
+#[derive(Clone, Copy)]
 struct Walk {
     /// Every light of the current node lies in front (or no normal).
     in_front: bool,

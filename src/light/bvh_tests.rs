@@ -220,3 +220,66 @@ fn importance_set_up_per_node_gives_the_direct_formulas_bits() {
     // Both outcomes exercised.
     assert!(lit > 1000 && dark > 1000, "lit {lit}, dark {dark}");
 }
+
+#[test]
+fn walks_stepped_together_give_each_walks_own_choice() {
+    let mut s = 0x5851_f42d_4c95_7f2du64;
+    let mut u = move || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        (s >> 40) as f32 / (1u64 << 24) as f32
+    };
+    // Street lamps, windows on facades and some spots.
+    let bounds: Vec<LightBounds> = (0..500)
+        .map(|k| {
+            let p = Vec3::new(u() * 120.0, u() * 80.0, u() * 10.0);
+            let w = [Vec3::Z, -Vec3::Z, Vec3::X, -Vec3::Y][k % 4];
+            LightBounds {
+                p_min: p,
+                p_max: p + Vec3::new(u(), u(), 0.1) * (k % 3) as f32,
+                w,
+                phi: 0.1 + u() * 50.0,
+                cos_theta_o: [1.0, -1.0, 0.9][k % 3],
+                cos_theta_e: [0.0, 0.0, 0.8][k % 3],
+                two_sided: k % 5 == 0,
+            }
+        })
+        .collect();
+    let tree = LightBvh::build(&bounds);
+    let (mut shared, mut apart, mut none) = (0, 0, 0);
+    for k in 0..4000 {
+        let p = Vec3::new(u() * 140.0 - 10.0, u() * 100.0 - 10.0, u() * 12.0);
+        let n = match k % 3 {
+            0 => Vec3::ZERO,
+            1 => Vec3::Z,
+            _ => Vec3::new(u() - 0.5, u() - 0.5, u() - 0.5).normalize(),
+        };
+        let u0 = u();
+        // Equal and nearby numbers walk the same nodes for a while.
+        let u1 = match k % 4 {
+            0 => u0,
+            1 => (u0 + 1e-3 * u()).min(0.999),
+            _ => u(),
+        };
+        let us = [Some(u0), None, Some(u1)];
+        let together = tree.sample_facing_many(p, n, us);
+        let alone = us.map(|u| u.and_then(|u| tree.sample_facing(p, n, u)));
+        let bits = |r: [Option<(u32, f32)>; 3]| r.map(|c| c.map(|(l, pmf)| (l, pmf.to_bits())));
+        assert_eq!(bits(together), bits(alone), "p {p}, n {n}, u {us:?}");
+        // And what the trail replays.
+        for (light, pmf) in together.into_iter().flatten() {
+            assert_eq!(tree.pmf_facing(p, n, light).to_bits(), pmf.to_bits());
+        }
+        match together {
+            [Some(a), _, Some(b)] if a.0 == b.0 => shared += 1,
+            [Some(_), _, Some(_)] => apart += 1,
+            _ => none += 1,
+        }
+    }
+    // Walks that end together, apart, and walks that find nothing.
+    assert!(
+        shared > 500 && apart > 500 && none > 50,
+        "{shared} {apart} {none}"
+    );
+}

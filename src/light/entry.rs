@@ -17,10 +17,16 @@ pub(super) enum Entry {
     /// A sun of the distant group, prepared for sampling.
     Sun(SunSampler),
     Sky,
+    /// An emissive triangle with what sampling it reads (not its mesh's
+    /// records: at night a sample's chain of cache misses through the
+    /// mesh, its indices, vertices and material cost as much as its draw).
     Triangle {
-        geom: u32,
-        prim: u32,
+        /// Its vertices (render space), as the mesh stores them.
+        v: [Vec3; 3],
         area: f32,
+        /// Its material's emitted radiance.
+        le: Vec3,
+        two_sided: bool,
     },
 }
 
@@ -81,9 +87,12 @@ pub(super) fn sample_entry(
                 delta: false,
             })
         }
-        Entry::Triangle { geom, prim, area } => {
-            let m = &scene.meshes[geom as usize];
-            let [a, b, c] = m.triangles[prim as usize].map(|i| m.p_f32[i as usize]);
+        Entry::Triangle {
+            v: [a, b, c],
+            area,
+            le,
+            two_sided,
+        } => {
             let bary = sample_uniform_triangle(u);
             let q = a * bary[0] + b * bary[1] + c * bary[2];
             let d = q - p;
@@ -95,13 +104,12 @@ pub(super) fn sample_entry(
             let dist = dist2.sqrt();
             let wi = d / dist;
             let cos_l = -n.dot(wi);
-            let mat = &scene.materials[m.tri_material[prim as usize] as usize];
-            if cos_l <= 0.0 && !mat.two_sided_emission || cos_l == 0.0 {
+            if cos_l <= 0.0 && !two_sided || cos_l == 0.0 {
                 return None;
             }
             Some(LightSample {
                 wi,
-                li: mat.le,
+                li: le,
                 pdf: pmf * dist2 / (cos_l.abs() * area),
                 dist,
                 delta: false,

@@ -186,9 +186,10 @@ impl Collected {
                     two_sided: mat.two_sided_emission,
                 });
                 self.entries.push(Entry::Triangle {
-                    geom: g as u32,
-                    prim: t as u32,
+                    v,
                     area,
+                    le: mat.le,
+                    two_sided: mat.two_sided_emission,
                 });
             }
             tri_entry[g] = slots;
@@ -428,6 +429,56 @@ impl LightSet {
         let u = ((u_select - self.p_suns) / (1.0 - self.p_suns)).clamp(0.0, 1.0 - f32::EPSILON);
         let (idx, pmf) = self.bvh.sample_facing(p, n, u)?;
         Some((idx as usize, pmf * (1.0 - self.p_suns) * p_local))
+    }
+
+    /// [`LightSet::select_at`] for each number of `us` (None: no choice):
+    /// what each gives alone, bit for bit, the light tree walked for all
+    /// of them at once ([`LightBvh::sample_facing_many`]).
+    pub fn select_many<const M: usize>(
+        &self,
+        (p, n): (Vec3, Vec3),
+        us: [Option<f32>; M],
+        bounce: u32,
+    ) -> [Option<(usize, f32)>; M] {
+        if self.selection != LightSelection::Bvh || self.entries.is_empty() {
+            return us.map(|u| u.and_then(|u| self.select_at(p, n, u, bounce)));
+        }
+        let p_local = self.p_local_at(bounce);
+        let mut picks = [None; M];
+        let mut tree = [None; M];
+        for ((u, pick), t) in us.iter().zip(picks.iter_mut()).zip(tree.iter_mut()) {
+            let Some(u_select) = *u else {
+                continue;
+            };
+            if u_select >= p_local {
+                continue;
+            }
+            let u = u_select / p_local;
+            if u < self.p_suns {
+                *pick = self.select_at(p, n, u_select, bounce);
+            } else {
+                *t = Some(((u - self.p_suns) / (1.0 - self.p_suns)).clamp(0.0, 1.0 - f32::EPSILON));
+            }
+        }
+        let walked = self.bvh.sample_facing_many(p, n, tree);
+        for (pick, w) in picks.iter_mut().zip(walked) {
+            if let Some((idx, pmf)) = w {
+                *pick = Some((idx as usize, pmf * (1.0 - self.p_suns) * p_local));
+            }
+        }
+        picks
+    }
+
+    /// Samples local light `idx` chosen with probability `pmf` (by
+    /// [`LightSet::select_many`]) as seen from `p`.
+    pub fn sample_picked(
+        &self,
+        scene: &Scene,
+        (idx, pmf): (usize, f32),
+        p: Vec3,
+        u: Vec2,
+    ) -> Option<LightSample> {
+        sample_entry(scene, &self.entries[idx], pmf, p, u)
     }
 
     /// Probability that a vertex after `bounce` scattering events samples

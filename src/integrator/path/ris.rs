@@ -91,8 +91,15 @@ pub(super) fn resample(
     // the kept one with probability wᵢ/Σ_{j≤i} w_j, decided by one number
     // rescaled after each decision so it stays uniform.
     let mut u_pick = u.u[0][3];
-    for c in &u.u[..u.m] {
-        let Some(ls) = lights.sample_facing(scene, (p, n), c[0], Vec2::new(c[1], c[2]), u.bounce)
+    // Every candidate's light chosen first, in one walk of the light tree.
+    let mut u_select = [None; CANDIDATES];
+    for (s, c) in u_select.iter_mut().zip(&u.u[..u.m]) {
+        *s = Some(c[0]);
+    }
+    let chosen = lights.select_many((p, n), u_select, u.bounce);
+    for (c, chosen) in u.u[..u.m].iter().zip(chosen) {
+        let Some(ls) =
+            chosen.and_then(|ch| lights.sample_picked(scene, ch, p, Vec2::new(c[1], c[2])))
         else {
             continue;
         };

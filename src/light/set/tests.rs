@@ -229,3 +229,48 @@ fn deeper_vertices_sample_faint_lamps_less_often_and_keep_their_mean() {
         );
     }
 }
+
+#[test]
+fn candidates_chosen_together_get_each_ones_own_choice() {
+    // Faint lamps under a sun (most vertices skip them), lamps alone, and
+    // five suns, the faint last of which the local lights hold (skipped
+    // by most vertices too).
+    let sun = |(az, e): (f32, f32)| {
+        format!("[[light]]\nkind = \"sun\"\nelevation_deg = 40.0\nazimuth_deg = {az:?}\nirradiance = [{e:?}, {e:?}, {e:?}]\n")
+    };
+    let five_suns: String = [(60.0, 50.0), (120.0, 50.0), (180.0, 50.0), (240.0, 0.5)]
+        .map(sun)
+        .concat();
+    let mut s = 0x2545_f491_4f6c_dd1du64;
+    let mut u = move || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        (s >> 40) as f32 / (1u64 << 24) as f32
+    };
+    for extra in [
+        format!("{GRADIENT}{}", points(1.0)),
+        format!("{OVERCAST}{}", points(1e6)),
+        format!("{GRADIENT}{five_suns}{}", points(1.0)),
+    ] {
+        let lights = LightSet::build(&scene_with(&extra));
+        assert!(lights.p_local_at(0) > 0.0, "{extra}");
+        let mut chosen = 0;
+        for k in 0..3000 {
+            let p = Vec3::new(6.0 * u() - 3.0, 6.0 * u() - 3.0, 3.0 * u());
+            let n = if k % 2 == 0 { Vec3::ZERO } else { Vec3::Z };
+            let u0 = u();
+            let u1 = if k % 3 == 0 { u0 } else { u() };
+            let us = [Some(u0), Some(u1), None];
+            for bounce in [0, 2] {
+                let together = lights.select_many((p, n), us, bounce);
+                let alone = us.map(|u| u.and_then(|u| lights.select_at(p, n, u, bounce)));
+                let bits =
+                    |r: [Option<(usize, f32)>; 3]| r.map(|c| c.map(|(i, pmf)| (i, pmf.to_bits())));
+                assert_eq!(bits(together), bits(alone), "{extra}\np {p}, u {us:?}");
+                chosen += together.iter().flatten().count();
+            }
+        }
+        assert!(chosen > 1000, "{chosen} chosen for\n{extra}");
+    }
+}
