@@ -24,7 +24,9 @@
 //! sun lobe, each half the time (divided by 1/2: `Strategies::sky_nee_deep`,
 //! `Strategies::lobe_deep`): about 16 % fewer rays in fog. The local
 //! lights' in-scattering (NEE and equiangular) is rouletted too where they
-//! bring little (`Strategies::local_per_opacity`, `local_nee_deep`). A deep roulette
+//! bring little (`Strategies::local_per_opacity`, `local_nee_deep`), and in
+//! thin haze the camera segment's sun shadow rays by its opacity
+//! (`Strategies::sun_per_opacity`). A deep roulette
 //! with a bounded boost (`Strategies::deep_survival`,
 //! `Strategies::deep_max_boost`) is off by default.
 //!
@@ -238,8 +240,10 @@ impl<A: Accel> PathContext<'_, A> {
                     return Vec3::ZERO;
                 }
                 // Away from the forward lobe the shadow ray is rouletted by the
-                // phase value (`NeeRoulette::shadow`), divided by its survival.
-                let keep = u_keep.map_or(Some(1.0), |u| rr.shadow(f, u));
+                // phase value (`NeeRoulette::shadow`; a sun's also by the
+                // segment's opacity), divided by its survival.
+                let sun = distant.is_some_and(|k| self.lights.distant_is_directional(k));
+                let keep = u_keep.map_or(Some(1.0), |u| rr.shadow(f, u, sun));
                 let Some(keep) = keep else { return Vec3::ZERO };
                 if let Some(k) = distant {
                     ls.li = self.lights.distant_li(scene, k, p, ls.wi);

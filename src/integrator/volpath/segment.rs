@@ -261,14 +261,15 @@ impl<A: Accel> PathContext<'_, A> {
         // `local_per_opacity`), at collisions `sky_nee_deep` and
         // `local_nee_deep`.
         let s = vs.strategies;
-        let (keep_sky, keep_local) = if every {
+        let (keep_sky, keep_local, sun_opacity) = if every {
             let opacity = 1.0 - seg.tr_seg;
             (
                 (s.inscatter_per_opacity * opacity).min(1.0),
                 (s.local_per_opacity * opacity).min(1.0),
+                (s.sun_per_opacity * opacity).min(1.0),
             )
         } else {
-            (s.sky_nee_deep, s.local_nee_deep)
+            (s.sky_nee_deep, s.local_nee_deep, 1.0)
         };
         let rr = NeeRoulette {
             u_sky: u.u_sky,
@@ -277,6 +278,7 @@ impl<A: Accel> PathContext<'_, A> {
             keep_local,
             u_shadow: u.u_shadow,
             shadow_per_phase: s.shadow_per_phase,
+            sun_opacity,
         };
         // The in-scattering point's density per metre: σ_t·Tr / (1 − Tr)
         // drawn on every segment, σ_t·Tr as a collision.

@@ -43,6 +43,14 @@ pub(super) struct Strategies {
     /// of what an opaque segment would scatter, however thin the haze
     /// (`f32::INFINITY`: always).
     pub(super) inscatter_per_opacity: f32,
+    /// The suns' shadow rays from an every-segment in-scattering point are
+    /// rouletted by the phase value times min(1, `sun_per_opacity`·(1 − Tr))
+    /// (`NeeRoulette::sun_opacity`): in thin haze (humid, storm, fog near
+    /// the camera) a camera ray's sun NEE brings (1 − Tr) of a collision's
+    /// for a long shadow ray. Where 1 − Tr ≥ 1/this nothing changes; below,
+    /// a kept term is at most E_sun/(`shadow_per_phase`·this) (`f32::INFINITY`:
+    /// the phase roulette alone).
+    pub(super) sun_per_opacity: f32,
     /// The same for the local lights' in-scattering at an every-segment
     /// point, NEE and equiangular sampling together (their own number):
     /// min(1, `local_per_opacity`·(1 − Tr)). By day the lamps' light in
@@ -107,6 +115,7 @@ impl Default for Strategies {
             sky_nee_deep: 0.5,
             lobe_deep: 0.5,
             inscatter_per_opacity: 4.0,
+            sun_per_opacity: 4.0,
             local_per_opacity: 0.25,
             local_nee_deep: 0.1,
             deep_survival: 1.0,
@@ -140,6 +149,10 @@ pub(super) struct NeeRoulette {
     /// Survival per unit phase value of a distant light's shadow ray
     /// (`Strategies::shadow_per_phase`).
     pub(super) shadow_per_phase: f32,
+    /// The suns' factor on that survival, in (0, 1]: the segment's
+    /// min(1, `Strategies::sun_per_opacity`·(1 − Tr)) at an every-segment
+    /// point, 1 at a collision (which stands for itself, not for 1 − Tr).
+    pub(super) sun_opacity: f32,
 }
 
 impl NeeRoulette {
@@ -155,9 +168,11 @@ impl NeeRoulette {
     }
 
     /// The survival probability of a shadow ray toward a light of phase
-    /// value `f` > 0 by the uniform number `u`, None when dropped.
-    pub(super) fn shadow(&self, f: f32, u: f32) -> Option<f32> {
-        let keep = (self.shadow_per_phase * f).min(1.0);
+    /// value `f` > 0 by the uniform number `u`, None when dropped; `sun`:
+    /// toward a sun, also by the segment's opacity (`sun_opacity`).
+    pub(super) fn shadow(&self, f: f32, u: f32, sun: bool) -> Option<f32> {
+        let scale = if sun { self.sun_opacity } else { 1.0 };
+        let keep = (self.shadow_per_phase * f * scale).min(1.0);
         (u < keep).then_some(keep)
     }
 }

@@ -18,6 +18,7 @@ use crate::scene::{build_scene, parse_scene_str, Scene};
 
 mod shadow;
 mod spot;
+mod thin_sun;
 
 const SCENE: &str = r#"
 [camera]

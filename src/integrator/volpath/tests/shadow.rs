@@ -27,21 +27,22 @@ fn sun_dir() -> [f64; 3] {
 }
 
 /// Single-scattered sun radiance along the upward unit direction `d` from
-/// the camera: ∫ σ_s·e^{−σ_t t}·p(d·ω_sun)·E·e^{−σ_t (z_max − z(t))/sin e} dt
-/// over the slab, in closed form (the integrand is one exponential in t).
-fn single_scatter(d: [f64; 3]) -> f64 {
+/// the camera in `SCENE`'s slab at extinction `sigma_t`: ∫ σ_s·e^{−σ_t t}·
+/// p(d·ω_sun)·E·e^{−σ_t (z_max − z(t))/sin e} dt over the slab, in closed
+/// form (the integrand is one exponential in t).
+pub(super) fn single_scatter(sigma_t: f64, d: [f64; 3]) -> f64 {
     let s = sun_dir();
     let cos = d[0] * s[0] + d[1] * s[1] + d[2] * s[2];
     let hg = (1.0 - G * G) / (4.0 * std::f64::consts::PI * (1.0 + G * G - 2.0 * G * cos).powf(1.5));
     let (sin_e, h0) = (s[2], Z_MAX - CAMERA_Z);
     let t_out = h0 / d[2];
-    let a = SIGMA_T * (1.0 - d[2] / sin_e);
+    let a = sigma_t * (1.0 - d[2] / sin_e);
     let integral = if a.abs() < 1e-12 {
         t_out
     } else {
         -(-a * t_out).exp_m1() / a
     };
-    ALBEDO * SIGMA_T * hg * SUN_IRRADIANCE * (-SIGMA_T * h0 / sin_e).exp() * integral
+    ALBEDO * sigma_t * hg * SUN_IRRADIANCE * (-sigma_t * h0 / sin_e).exp() * integral
 }
 
 /// Green radiance of `n` camera samples along `d` in scene `src` at path
@@ -90,7 +91,7 @@ fn single_scattered_sun_in_a_slab_matches_its_closed_form() {
         let (l, _) = radiance(SCENE, Strategies::default(), dv, 1, 16384);
         let (mean, var) = mean_var(&l);
         let se = (var / l.len() as f64).sqrt();
-        let want = single_scatter(d);
+        let want = single_scatter(SIGMA_T, d);
         eprintln!("{d:?}: {mean:.6} ± {se:.6}, closed form {want:.6}");
         assert!(
             (mean - want).abs() <= 4.0 * se + 2e-3 * want,
