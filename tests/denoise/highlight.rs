@@ -22,7 +22,11 @@ const SCENE: &str = "[sky]\nkind = \"constant\"\nle = [0.2, 0.2, 0.2]\n\
      transform = { translate = [4.0, 0.0, 1.5] }\n";
 
 fn render(filter: bool) -> Rendered {
-    let key = if filter { "" } else { "filter_indirect = false\n" };
+    let key = if filter {
+        ""
+    } else {
+        "filter_indirect = false\n"
+    };
     render_inline(SCENE, (W, H), (16, 3, 4), key, Backend::Bvh)
 }
 
@@ -42,7 +46,11 @@ fn a_sun_highlight_on_metal_keeps_its_pixels_through_the_filter() {
         v.sort_by(f64::total_cmp);
         v[v.len() / 2]
     };
-    assert!(off[peak] > 1000.0 * median, "a highlight: peak {} median {median}", off[peak]);
+    assert!(
+        off[peak] > 1000.0 * median,
+        "a highlight: peak {} median {median}",
+        off[peak]
+    );
     let (pi, pj) = ((peak % W as usize) as i64, (peak / W as usize) as i64);
     let (mut moved, mut light) = (0.0, 0.0);
     for j in pj - 3..=pj + 3 {
