@@ -198,6 +198,16 @@ impl Collected {
     }
 }
 
+/// Where a BVH selection's number goes ([`LightSet::route`]).
+enum Route {
+    /// This vertex skips the local lights.
+    Skip,
+    /// A local sun: (entry, pmf).
+    Sun((usize, f32)),
+    /// The light tree, with this number.
+    Tree(f32),
+}
+
 impl LightSet {
     /// Collects every light of `scene`, local lights chosen by a light BVH.
     pub fn build(scene: &Scene) -> Self {
@@ -411,24 +421,43 @@ impl LightSet {
             let idx = self.select(u_select);
             return (self.pmf[idx] > 0.0).then_some((idx, self.pmf[idx]));
         }
-        // Vertices past `p_local` skip the local lights; the rest reuse
-        // the number rescaled.
+        match self.route(u_select, bounce) {
+            Route::Skip => None,
+            Route::Sun(pick) => Some(pick),
+            Route::Tree(u) => {
+                let walked = self.bvh.sample_facing(p, n, u);
+                walked.map(|w| self.tree_pick(w, bounce))
+            }
+        }
+    }
+
+    /// Where `u_select` sends a BVH selection at a vertex after `bounce`
+    /// events: vertices past `p_local` skip the local lights; the rest
+    /// reuse the number rescaled, for a local sun or for the tree.
+    fn route(&self, u_select: f32, bounce: u32) -> Route {
         let p_local = self.p_local_at(bounce);
         if u_select >= p_local {
-            return None;
+            return Route::Skip;
         }
         let u_select = u_select / p_local;
         if u_select < self.p_suns {
             let n = self.local_suns.len();
             let k = ((u_select / self.p_suns * n as f32) as usize).min(n - 1);
-            return Some((
+            return Route::Sun((
                 self.local_suns[k] as usize,
                 self.p_suns / n as f32 * p_local,
             ));
         }
-        let u = ((u_select - self.p_suns) / (1.0 - self.p_suns)).clamp(0.0, 1.0 - f32::EPSILON);
-        let (idx, pmf) = self.bvh.sample_facing(p, n, u)?;
-        Some((idx as usize, pmf * (1.0 - self.p_suns) * p_local))
+        Route::Tree(((u_select - self.p_suns) / (1.0 - self.p_suns)).clamp(0.0, 1.0 - f32::EPSILON))
+    }
+
+    /// A tree walk's (entry, pmf) as a selection: the pmf times the
+    /// probability of walking the tree at all.
+    fn tree_pick(&self, (idx, pmf): (u32, f32), bounce: u32) -> (usize, f32) {
+        (
+            idx as usize,
+            pmf * (1.0 - self.p_suns) * self.p_local_at(bounce),
+        )
     }
 
     /// [`LightSet::select_at`] for each number of `us` (None: no choice):
@@ -443,27 +472,19 @@ impl LightSet {
         if self.selection != LightSelection::Bvh || self.entries.is_empty() {
             return us.map(|u| u.and_then(|u| self.select_at(p, n, u, bounce)));
         }
-        let p_local = self.p_local_at(bounce);
         let mut picks = [None; M];
         let mut tree = [None; M];
         for ((u, pick), t) in us.iter().zip(picks.iter_mut()).zip(tree.iter_mut()) {
-            let Some(u_select) = *u else {
-                continue;
-            };
-            if u_select >= p_local {
-                continue;
-            }
-            let u = u_select / p_local;
-            if u < self.p_suns {
-                *pick = self.select_at(p, n, u_select, bounce);
-            } else {
-                *t = Some(((u - self.p_suns) / (1.0 - self.p_suns)).clamp(0.0, 1.0 - f32::EPSILON));
+            match u.map(|u| self.route(u, bounce)) {
+                None | Some(Route::Skip) => {}
+                Some(Route::Sun(sun)) => *pick = Some(sun),
+                Some(Route::Tree(u)) => *t = Some(u),
             }
         }
         let walked = self.bvh.sample_facing_many(p, n, tree);
         for (pick, w) in picks.iter_mut().zip(walked) {
-            if let Some((idx, pmf)) = w {
-                *pick = Some((idx as usize, pmf * (1.0 - self.p_suns) * p_local));
+            if let Some(w) = w {
+                *pick = Some(self.tree_pick(w, bounce));
             }
         }
         picks

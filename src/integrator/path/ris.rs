@@ -92,10 +92,7 @@ pub(super) fn resample(
     // rescaled after each decision so it stays uniform.
     let mut u_pick = u.u[0][3];
     // Every candidate's light chosen first, in one walk of the light tree.
-    let mut u_select = [None; CANDIDATES];
-    for (s, c) in u_select.iter_mut().zip(&u.u[..u.m]) {
-        *s = Some(c[0]);
-    }
+    let u_select: [Option<f32>; CANDIDATES] = std::array::from_fn(|k| (k < u.m).then(|| u.u[k][0]));
     let chosen = lights.select_many((p, n), u_select, u.bounce);
     for (c, chosen) in u.u[..u.m].iter().zip(chosen) {
         let Some(ls) =
