@@ -15,7 +15,10 @@ the reference's mean), the ratio of the two images' auto exposures, the scene
 light's bias (the display light's with the exposures divided out), seconds, and
 the reference's own noise estimate when two references exist
 (--ref-pair renders a second reference with another sample seed: the PSNR
-between the two is about 3 dB below each one's PSNR against the truth).
+between the two is about 3 dB below each one's PSNR against the truth), and
+with the pair, psnr_truth_db: the PSNR against the converged image, the
+pair's noise subtracted from the squared error, and ref_psnr_truth_db, the
+pair's mean's own.
 """
 import argparse
 import json
@@ -119,6 +122,14 @@ def main():
            "seconds": round(secs, 2), "ref_spp": a.ref_spp * len(refs)}
     if len(refs) == 2:
         res["ref_pair_psnr_db"] = round(psnr(refs[0], refs[1]), 2)
+        # The reference's own noise sets a floor under every clean image's
+        # error: its variance (of the pair's mean, (r1 - r2)^2 / 4 per pixel,
+        # unbiased for independent halves) subtracted from the squared
+        # error leaves the error against the converged image.
+        ref_var = np.mean((refs[0] - refs[1]) ** 2) / 4.0
+        mse_truth = max(np.mean((img - ref) ** 2) - ref_var, 1e-9)
+        res["psnr_truth_db"] = round(10.0 * np.log10(255.0**2 / mse_truth), 2)
+        res["ref_psnr_truth_db"] = round(10.0 * np.log10(255.0**2 / ref_var), 2)
     if not a.out:
         subprocess.run(["rm", "-rf", out])
     print(json.dumps(res))
