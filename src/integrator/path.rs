@@ -419,7 +419,8 @@ impl<A: Accel> PathContext<'_, A> {
     }
 
     /// One surface vertex: emission (MIS-weighted), NEE, BSDF sampling and
-    /// roulette. Returns the continuation ray, or None when the path ends.
+    /// roulette. Returns the continuation ray (None when the path ends) and
+    /// the suns' next-event part of the light it added.
     pub(super) fn surface_vertex(
         &self,
         ray: &Ray,
@@ -427,7 +428,7 @@ impl<A: Accel> PathContext<'_, A> {
         st: &mut PathState,
         stream: &mut SampleStream,
         rays: &mut u64,
-    ) -> Option<Ray> {
+    ) -> (Option<Ray>, Vec3) {
         let mut pending = PendingShadows::new();
         let u = if st.bounces < self.max_depth {
             BounceSamples::draw(stream, st.bounces, self.lights)
@@ -435,8 +436,8 @@ impl<A: Accel> PathContext<'_, A> {
             BounceSamples::default()
         };
         let next = self.surface_vertex_deferred(ray, hit, st, &u, rays, &mut pending);
-        pending.resolve(self.accel, &mut st.l);
-        next
+        let sun = pending.resolve(self.accel, &mut st.l);
+        (next, sun)
     }
 
     /// [`PathContext::surface_vertex`] with the NEE shadow rays left in

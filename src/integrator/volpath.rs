@@ -187,13 +187,15 @@ impl<A: Accel> PathContext<'_, A> {
             let first = (st.bounces == 0 && strategies.split_first && st.bounces < self.max_depth)
                 .then_some(st.beta);
             let l_at_x1 = st.l;
-            let next = self.surface_vertex(&ray, &hit, st, stream, rays);
+            let (next, sun) = self.surface_vertex(&ray, &hit, st, stream, rays);
             if let Some(beta) = first {
                 let rho = st.first_albedo.map(|a| a * beta);
                 vs.first.surf_fog.at_first_vertex(rho);
                 // A glossy x1 (paint): everything it reflects, fog light
-                // included, is filtered as direct light (`l_direct`).
-                vs.first.glossy = st.first_glossy.map(|a| (l_at_x1, a * beta));
+                // included, is filtered as direct light (`l_direct`), but
+                // the suns' next-event estimate, left as traced as in a
+                // clear scene (`path::split_direct`).
+                vs.first.glossy = st.first_glossy.map(|a| (l_at_x1 + sun, a * beta));
             }
             match next {
                 Some(next) => ray = next,

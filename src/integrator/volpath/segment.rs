@@ -111,8 +111,9 @@ pub(super) struct FirstEvent {
     opacity: f32,
     /// Fog light on the first surface.
     pub surf_fog: SurfFog,
-    /// At a glossy first vertex: the path radiance before it was shaded
-    /// and β·`glossy_albedo` there (`DenoiseSample::l_direct`, `rho_direct`).
+    /// At a glossy first vertex: the path radiance before it was shaded,
+    /// plus its suns' next-event part, and β·`glossy_albedo` there
+    /// (`DenoiseSample::l_direct`, `rho_direct`).
     pub glossy: Option<(Vec3, Vec3)>,
     /// The split camera ray's surface part, traced apart after a collision.
     split: LiSample,
@@ -172,7 +173,8 @@ impl VolState {
                 l_surf: first.surf_fog.l_surf(st.l) + split.l_surf,
                 rho: first.surf_fog.rho + split.rho,
                 split_behind_delta: false,
-                // Direct light only at a glossy x1: all its light.
+                // Direct light only at a glossy x1: all its light but the
+                // suns' next-event estimate.
                 l_direct,
                 rho_direct,
                 glossy: first.glossy.is_some() || split.glossy,

@@ -447,19 +447,44 @@ fn local_light_roulette_keeps_the_mean_for_fewer_rays() {
 }
 
 #[test]
-fn glossy_first_vertex_hands_all_its_light_to_direct_light_in_fog() {
+fn glossy_first_vertex_hands_its_light_but_the_suns_to_direct_light_in_fog() {
     // Paint on the ground under the fog slab, seen through the split
     // camera segment: every sample meets the paint with throughput Tr of
     // the camera segment (passing, or as the split's surface part), so
     // rho_direct is exactly Tr·(base + 0.04), and all the light after the
-    // paint is l_direct: the sample is its fog part plus that.
+    // paint is l_direct but the sun's next-event estimate, kept as traced:
+    // the sample is its fog part, l_direct and that sun part, which is
+    // never negative and vanishes with the sun.
     let base = Vec3::new(0.5, 0.1, 0.1);
     let paint = SCENE.replace(
         "kind = \"diffuse\"\nalbedo = [0.3, 0.3, 0.3]",
         "kind = \"coated\"\nalbedo = [0.5, 0.1, 0.1]\ncoat_roughness = 0.3",
     );
     assert_ne!(paint, SCENE, "the ground's material was not replaced");
-    let (scene, accel) = built(&paint);
+    let (lit, sun_lit) = glossy_paint_split(&format!("{paint}{SKY}"), base);
+    assert!(lit.min_element() > 0.0, "{lit}");
+    assert!(sun_lit.min_element() > 0.0, "{sun_lit}");
+    let dark_src = format!("{}{SKY}", strip_sun(&paint));
+    let (sky_lit, no_sun) = glossy_paint_split(&dark_src, base);
+    assert!(sky_lit.min_element() > 0.0, "{sky_lit}");
+    assert!(
+        no_sun.abs().max_element() <= 1e-4 * sky_lit.max_element(),
+        "a sun part {no_sun} without a sun"
+    );
+}
+
+/// The scene without its sun.
+fn strip_sun(src: &str) -> String {
+    let start = src.find("[[light]]").expect("a sun");
+    let end = src.find("[medium]").expect("a medium");
+    format!("{}{}", &src[..start], &src[end..])
+}
+
+/// Camera samples of the paint in `src` (ground albedo `base` under a
+/// clear coat): checks each sample's split and returns the sums of the
+/// light handed to the direct filter and of the sun part left as traced.
+fn glossy_paint_split(src: &str, base: Vec3) -> (Vec3, Vec3) {
+    let (scene, accel) = built(src);
     let shading = Shading::new(&scene, &accel);
     let ctx = shading.context(4);
     let key = StreamKey {
@@ -476,7 +501,7 @@ fn glossy_first_vertex_hands_all_its_light_to_direct_light_in_fog() {
     // Homogeneous σ_t = 0.05/m over the 1.5 m drop to the ground (z = 0).
     let tr = (-0.05 * 1.5 / -d.z).exp();
     let rho_want = (base + Vec3::splat(0.04)) * tr;
-    let (mut rays, mut reflected) = (0, Vec3::ZERO);
+    let (mut rays, mut reflected, mut sun) = (0, Vec3::ZERO, Vec3::ZERO);
     for k in 0..2048 {
         let mut stream = SampleStream::new(key, 0, k / 256, k % 256);
         let ray = Ray::new(o, d);
@@ -498,16 +523,16 @@ fn glossy_first_vertex_hands_all_its_light_to_direct_light_in_fog() {
         assert_eq!((dn.l_surf, dn.rho), (Vec3::ZERO, Vec3::ZERO));
         let rest = s.l - dn.l_fog - dn.l_direct;
         assert!(
-            rest.abs().max_element() <= 1e-4 * (1.0 + s.l.max_element()),
-            "sample {k}: l {} = fog {} + direct {} + {rest}",
+            rest.min_element() >= -1e-4 * (1.0 + s.l.max_element()),
+            "sample {k}: l {} = fog {} + direct {} + sun {rest}",
             s.l,
             dn.l_fog,
             dn.l_direct
         );
         reflected += dn.l_direct;
+        sun += rest;
     }
-    // The paint reflects the sun and sky: the handed-over light is not nil.
-    assert!(reflected.min_element() > 0.0, "{reflected}");
+    (reflected, sun)
 }
 
 #[test]
