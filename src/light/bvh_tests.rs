@@ -3,6 +3,7 @@
 //! parallel build gives the serial tree.
 
 use super::*;
+use crate::sampler::rng::Rng;
 use std::hint::black_box;
 
 /// The cone union as written before its shortcut: three arc cosines.
@@ -48,13 +49,8 @@ fn acos_shortcuts_are_the_libm_bits() {
 
 #[test]
 fn cone_union_gives_the_bits_of_three_arc_cosines() {
-    let mut s = 0x9e37_79b9_7f4a_7c15u64;
-    let mut u = move || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        (s >> 40) as f32 / (1u64 << 24) as f32
-    };
+    let mut rng = Rng::new(&[0x9e37_79b9_7f4a_7c15]);
+    let mut u = move || rng.f32();
     let axes = [Vec3::Z, -Vec3::Z, Vec3::X, Vec3::new(0.6, 0.0, 0.8)];
     let (mut shortcut, mut general) = (0, 0);
     for k in 0..20_000 {
@@ -94,13 +90,8 @@ fn cone_union_gives_the_bits_of_three_arc_cosines() {
 
 #[test]
 fn a_tree_built_in_parallel_is_the_serial_tree() {
-    let mut s = 0x1234_5678_9abc_def1u64;
-    let mut u = move || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        (s >> 40) as f32 / (1u64 << 24) as f32
-    };
+    let mut rng = Rng::new(&[0x1234_5678_9abc_def1]);
+    let mut u = move || rng.f32();
     let bounds: Vec<LightBounds> = (0..3000)
         .map(|k| {
             let p = Vec3::new(u() * 300.0, u() * 200.0, u() * 12.0);
@@ -175,13 +166,8 @@ fn importance_plain(b: &LightBounds, p: Vec3) -> f32 {
 
 #[test]
 fn importance_set_up_per_node_gives_the_direct_formulas_bits() {
-    let mut s = 0x2545_f491_4f6c_dd1du64;
-    let mut u = move || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        (s >> 40) as f32 / (1u64 << 24) as f32
-    };
+    let mut rng = Rng::new(&[0x2545_f491_4f6c_dd1d]);
+    let mut u = move || rng.f32();
     let (mut lit, mut dark) = (0, 0);
     for k in 0..20_000 {
         let (phi, cos_o) = (0.1 + 100.0 * u(), 2.0 * u() - 1.0);
@@ -223,13 +209,8 @@ fn importance_set_up_per_node_gives_the_direct_formulas_bits() {
 
 #[test]
 fn walks_stepped_together_give_each_walks_own_choice() {
-    let mut s = 0x5851_f42d_4c95_7f2du64;
-    let mut u = move || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        (s >> 40) as f32 / (1u64 << 24) as f32
-    };
+    let mut rng = Rng::new(&[0x5851_f42d_4c95_7f2d]);
+    let mut u = move || rng.f32();
     // Street lamps, windows on facades and some spots.
     let bounds: Vec<LightBounds> = (0..500)
         .map(|k| {

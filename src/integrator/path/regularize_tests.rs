@@ -14,6 +14,7 @@ use crate::accel::{build_accel, Accel, Backend, Ray};
 use crate::camera::StereoRig;
 use crate::integrator::{RenderCamera, Shading};
 use crate::sampler::{SampleStream, StreamKey};
+use crate::scene::desc::SceneDesc;
 use crate::scene::{build_scene, parse_scene_str, Scene};
 
 const E_SUN: f32 = 1000.0;
@@ -91,9 +92,11 @@ fn floor_pixel(scene: &Scene, rig: &StereoRig, n: u32) -> (Vec3, Vec3) {
     (mean, (var / n as f32).powf(0.5))
 }
 
-fn built() -> (Scene, StereoRig) {
+/// The scene built as loaded, after `edit` of its description.
+fn built_with(edit: impl FnOnce(&mut SceneDesc)) -> (Scene, StereoRig) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/inline.toml");
-    let loaded = parse_scene_str(SCENE, &path).expect("scene parses");
+    let mut loaded = parse_scene_str(SCENE, &path).expect("scene parses");
+    edit(&mut loaded.desc);
     let rig = StereoRig::from_desc(&loaded.desc.camera);
     let scene = build_scene(&loaded, rig.left.center_world).expect("scene builds");
     (scene, rig)
@@ -101,7 +104,7 @@ fn built() -> (Scene, StereoRig) {
 
 #[test]
 fn a_mirrored_sun_on_a_diffuse_floor_is_found_by_next_event_estimation_when_regularised() {
-    let (mut scene, rig) = built();
+    let (mut scene, rig) = built_with(|_| {});
     assert!(scene.regularize, "the default render regularises");
     let Bsdf::Conductor { eta, k, .. } = scene.materials[1].bsdf else {
         panic!("the mirror is a conductor");
@@ -142,11 +145,7 @@ fn a_mirrored_sun_on_a_diffuse_floor_is_found_by_next_event_estimation_when_regu
 
 #[test]
 fn reference_renders_do_not_regularise() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/inline.toml");
-    let mut loaded = parse_scene_str(SCENE, &path).expect("scene parses");
     // What `render --reference` does (`render::recipe::reference_mode`).
-    loaded.desc.turn_image_filters_off();
-    let rig = StereoRig::from_desc(&loaded.desc.camera);
-    let scene = build_scene(&loaded, rig.left.center_world).expect("scene builds");
+    let (scene, _) = built_with(SceneDesc::turn_image_filters_off);
     assert!(!scene.regularize, "plain path tracing keeps every lobe");
 }

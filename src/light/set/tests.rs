@@ -9,6 +9,7 @@ use std::path::Path;
 use glam::{DVec3, Vec2, Vec3};
 
 use crate::light::LightSet;
+use crate::sampler::rng::Rng;
 use crate::scene::{build_scene, parse_scene_str};
 
 const BODY: &str = "[camera]\nposition = [0.0, 0.0, 1.5]\n[[material]]\nname = \"grey\"\nkind = \"diffuse\"\nalbedo = [0.5, 0.5, 0.5]\n[[object]]\nkind = \"quad\"\nsize = [10.0, 10.0]\nmaterial = \"grey\"\n";
@@ -241,13 +242,8 @@ fn candidates_chosen_together_get_each_ones_own_choice() {
     let five_suns: String = [(60.0, 50.0), (120.0, 50.0), (180.0, 50.0), (240.0, 0.5)]
         .map(sun)
         .concat();
-    let mut s = 0x2545_f491_4f6c_dd1du64;
-    let mut u = move || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        (s >> 40) as f32 / (1u64 << 24) as f32
-    };
+    let mut rng = Rng::new(&[0x2545_f491_4f6c_dd1d]);
+    let mut u = move || rng.f32();
     for extra in [
         format!("{GRADIENT}{}", points(1.0)),
         format!("{OVERCAST}{}", points(1e6)),
