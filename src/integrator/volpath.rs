@@ -287,7 +287,19 @@ impl<A: Accel> PathContext<'_, A> {
                 }
             };
             let u_keep = rr.u_shadow.get(k).copied();
-            let ls = self.lights.sample_distant_dir(scene, k, p, u);
+            // A sky-table row whose every direction the phase roulette
+            // would drop (by the bound of the phase over the row) ends the
+            // draw before the column search: the same numbers decide as
+            // `one` would, so the same result.
+            let sun = self.lights.distant_is_directional(k);
+            let row_kept = |z_lo, z_hi| {
+                !rr.sky_row_bound
+                    || u_keep.is_none_or(|uk| {
+                        let f_max = m.phase.max_in_z_band(wo, z_lo, z_hi);
+                        rr.shadow(f_max, uk, sun).is_some()
+                    })
+            };
+            let ls = self.lights.sample_distant_dir_if(scene, k, p, u, row_kept);
             let c = one(ls, Some(k), false, u_keep) * sky_scale;
             l += match lobe_w {
                 Some((k_sun, w)) if k_sun == k => c * w,

@@ -364,8 +364,22 @@ impl LightSet {
         p: Vec3,
         u: Vec2,
     ) -> Option<LightSample> {
+        self.sample_distant_dir_if(scene, k, p, u, |_, _| true)
+    }
+
+    /// [`LightSet::sample_distant_dir`], None where the fog-weighted sky
+    /// table's drawn row is declined by `row_kept` (its z range; other
+    /// distant lights ignore it): `SkyDistribution::sample_if_row`.
+    pub fn sample_distant_dir_if(
+        &self,
+        scene: &Scene,
+        k: usize,
+        p: Vec3,
+        u: Vec2,
+        row_kept: impl FnOnce(f32, f32) -> bool,
+    ) -> Option<LightSample> {
         let (wi, pdf) = match (&self.distant[k], &self.fog_sky) {
-            (Entry::Sky, Some(fs)) => fs.table_at(p).sample(u),
+            (Entry::Sky, Some(fs)) => fs.table_at(p).sample_if_row(u, row_kept)?,
             (Entry::Sky, None) => scene.sky.sample_dir(u),
             (Entry::Sun(sun), _) => {
                 let (wi, _, pdf) = sun.sample(u);

@@ -104,13 +104,31 @@ impl SkyDistribution {
 
     /// Draws a direction; returns (dir, pdf per solid angle).
     pub fn sample(&self, u: Vec2) -> (Vec3, f32) {
+        self.sample_if_row(u, |_, _| true)
+            .expect("every row is kept")
+    }
+
+    /// [`SkyDistribution::sample`], offering the z = cos θ range of the
+    /// drawn row to `row_kept` first and stopping (None) where it declines:
+    /// a caller whose roulette drops most directions by a bound over their
+    /// row skips the column search and the pdf. Kept draws are `sample`'s.
+    pub fn sample_if_row(
+        &self,
+        u: Vec2,
+        row_kept: impl FnOnce(f32, f32) -> bool,
+    ) -> Option<(Vec3, f32)> {
         let (nz, nphi) = GRID;
         let (j, vy) = invert(&self.marginal, u.y);
+        let z_lo = 2.0 * j as f32 / nz as f32 - 1.0;
+        let z_hi = 2.0 * (j + 1) as f32 / nz as f32 - 1.0;
+        if !row_kept(z_lo, z_hi) {
+            return None;
+        }
         let row = &self.conditional[j * nphi..(j + 1) * nphi];
         let (i, vx) = invert(row, u.x);
         let cell_u = Vec2::new((i as f32 + vx) / nphi as f32, (j as f32 + vy) / nz as f32);
         let dir = dir_of(cell_u);
-        (dir, self.pdf(dir))
+        Some((dir, self.pdf(dir)))
     }
 
     /// Pdf per solid angle of [`SkyDistribution::sample`] producing `dir`.
@@ -145,4 +163,47 @@ fn invert(cdf: &[f32], u: f32) -> (usize, f32) {
     let width = cdf[k] - lo;
     let t = if width > 0.0 { (u - lo) / width } else { 0.5 };
     (k, t.clamp(0.0, 1.0 - f32::EPSILON))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A sky bright toward +z and +x, so rows and columns differ.
+    fn table() -> SkyDistribution {
+        SkyDistribution::new(|d| Vec3::splat(1.0 + 4.0 * d.z.max(0.0) + (2.0 * d.x).exp()))
+    }
+
+    #[test]
+    fn a_row_filter_keeps_samples_bits_and_declines_only_its_rows() {
+        // Kept draws are `sample`'s to the bit; a draw is declined exactly
+        // when its row is, and the row offered holds the drawn direction.
+        let t = table();
+        let mut declined = 0;
+        for k in 0..4096u32 {
+            let u = Vec2::new((k as f32 * 0.618_034).fract(), (k as f32 + 0.5) / 4096.0);
+            let (dir, pdf) = t.sample(u);
+            let mut row = None;
+            let got = t.sample_if_row(u, |lo, hi| {
+                row = Some((lo, hi));
+                !(0.25..0.5).contains(&lo)
+            });
+            let (lo, hi) = row.expect("the row is offered");
+            assert!(
+                dir.z >= lo - 1e-6 && dir.z <= hi + 1e-6,
+                "{dir} outside [{lo}, {hi}]"
+            );
+            match got {
+                Some((d, p)) => {
+                    assert_eq!((d.to_array(), p.to_bits()), (dir.to_array(), pdf.to_bits()));
+                }
+                None => {
+                    assert!((0.25..0.5).contains(&lo), "row [{lo}, {hi}] declined");
+                    declined += 1;
+                }
+            }
+        }
+        // The table's own share of z ∈ [0.25, 0.5).
+        assert!(declined > 200 && declined < 2000, "{declined} declined");
+    }
 }

@@ -281,6 +281,7 @@ impl<A: Accel> PathContext<'_, A> {
             u_shadow: u.u_shadow,
             shadow_per_phase: s.shadow_per_phase,
             sun_opacity,
+            sky_row_bound: s.sky_row_bound,
         };
         // The in-scattering point's density per metre: σ_t·Tr / (1 − Tr)
         // drawn on every segment, σ_t·Tr as a collision.

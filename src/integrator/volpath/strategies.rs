@@ -100,6 +100,12 @@ pub(super) struct Strategies {
     /// (`f32::INFINITY`: always traced). The sun lobe (`sun_lobe_vertex`)
     /// is rouletted by the same rule on its phase value toward its direction.
     pub(super) shadow_per_phase: f32,
+    /// The sky's NEE from a medium point stops its table draw at the row
+    /// when the phase roulette (`shadow_per_phase`) would drop every
+    /// direction of that row (`HenyeyGreenstein::max_in_z_band`): the same
+    /// numbers decide, so the same bits, without the column search and pdf
+    /// of most dropped draws (off: the whole draw, for tests).
+    pub(super) sky_row_bound: bool,
     /// The camera ray's cone: textures seen through the medium are
     /// filtered by it as without one (`path::RayCone`).
     pub(super) cone: RayCone,
@@ -122,6 +128,7 @@ impl Default for Strategies {
             deep_max_boost: 2.0,
             split_per_tr: 8.0,
             shadow_per_phase: 4.0 * std::f32::consts::PI,
+            sky_row_bound: true,
             cone: RayCone::NONE,
         }
     }
@@ -153,6 +160,9 @@ pub(super) struct NeeRoulette {
     /// min(1, `Strategies::sun_per_opacity`·(1 − Tr)) at an every-segment
     /// point, 1 at a collision (which stands for itself, not for 1 − Tr).
     pub(super) sun_opacity: f32,
+    /// Whether the sky's table draw may stop at a row the shadow roulette
+    /// drops whole (`Strategies::sky_row_bound`).
+    pub(super) sky_row_bound: bool,
 }
 
 impl NeeRoulette {
