@@ -20,13 +20,13 @@
 //! MIS weights.
 
 use glam::{Vec2, Vec3};
-use shaders_cpu::sampling::{luminance, power_heuristic};
+use shaders_cpu::sampling::power_heuristic;
 
 use super::bvh::{LightBounds, LightBvh};
 pub use super::entry::LightSample;
 use super::entry::{cloud_transmittance, sample_entry, Entry};
 use super::fog_sky::FogSky;
-use super::{power, Light, SunCone, SunSampler};
+use super::Light;
 use crate::scene::Scene;
 
 /// How one local light is chosen per vertex.
@@ -87,115 +87,6 @@ fn triangle_geometry(scene: &Scene, geom: u32, prim: u32) -> (f32, Vec3, [Vec3; 
     let cross = (v[1] - v[0]).cross(v[2] - v[0]);
     let len = cross.length();
     (0.5 * len, cross / len, v)
-}
-
-/// A sun as escaping rays see it.
-#[derive(Clone, Copy, Debug)]
-struct SunDisk {
-    axis: Vec3,
-    cone: SunCone,
-    le: Vec3,
-    /// Probability NEE picks it (1 in the distant group).
-    pmf: f32,
-}
-
-/// The lights of a scene as `LightSet::build_with` gathers them, before
-/// the selection tables are made.
-#[derive(Default)]
-struct Collected {
-    /// Sampled at every vertex.
-    distant: Vec<Entry>,
-    /// Selected one per vertex, with their selection weights (power) and
-    /// light-BVH bounds.
-    entries: Vec<Entry>,
-    weights: Vec<f32>,
-    bounds: Vec<LightBounds>,
-    /// Every sun, with its index among `entries` when it is not distant.
-    suns: Vec<(SunDisk, Option<usize>)>,
-}
-
-impl Collected {
-    /// The scene's explicit lights: the first `room_for_suns` suns as
-    /// distant lights, every other light (further suns included) local.
-    /// `radius` is the scene's (`scene_radius`), for the suns' power.
-    fn add_explicit(&mut self, scene: &Scene, room_for_suns: usize, radius: f32) {
-        for light in &scene.lights {
-            if let Light::Sun {
-                dir_to_sun,
-                angular_radius_rad,
-                irradiance,
-            } = *light
-            {
-                let in_distant = self.suns.len() < room_for_suns;
-                self.suns.push((
-                    SunDisk {
-                        axis: dir_to_sun,
-                        cone: SunCone::new(angular_radius_rad),
-                        le: SunCone::new(angular_radius_rad).radiance(irradiance),
-                        pmf: 1.0,
-                    },
-                    (!in_distant).then_some(self.entries.len()),
-                ));
-                if in_distant {
-                    self.distant.push(Entry::Sun(SunSampler::new(
-                        dir_to_sun,
-                        angular_radius_rad,
-                        irradiance,
-                    )));
-                    continue;
-                }
-            }
-            self.weights.push(power(light, radius));
-            self.bounds.push(explicit_bounds(light));
-            self.entries.push(Entry::Explicit(*light));
-        }
-    }
-
-    /// Every emissive triangle of a non-zero area as a local light; returns
-    /// per mesh the entry index of each triangle (`u32::MAX`: none; empty
-    /// for meshes without emission).
-    fn add_emissive_triangles(&mut self, scene: &Scene) -> Vec<Vec<u32>> {
-        let mut tri_entry = vec![Vec::new(); scene.meshes.len()];
-        for (g, mesh) in scene.meshes.iter().enumerate() {
-            let emissive =
-                |t: usize| scene.materials[mesh.tri_material[t] as usize].le != Vec3::ZERO;
-            if !(0..mesh.triangles.len()).any(emissive) {
-                continue;
-            }
-            let mut slots = vec![u32::MAX; mesh.triangles.len()];
-            for (t, slot) in slots.iter_mut().enumerate() {
-                if !emissive(t) {
-                    continue;
-                }
-                let mat = &scene.materials[mesh.tri_material[t] as usize];
-                let sides = if mat.two_sided_emission { 2.0 } else { 1.0 };
-                let (area, n, v) = triangle_geometry(scene, g as u32, t as u32);
-                if area <= 0.0 || !n.is_finite() {
-                    continue;
-                }
-                *slot = self.entries.len() as u32;
-                self.weights
-                    .push(std::f32::consts::PI * sides * area * luminance(mat.le));
-                self.bounds.push(LightBounds {
-                    p_min: v[0].min(v[1]).min(v[2]),
-                    p_max: v[0].max(v[1]).max(v[2]),
-                    w: n,
-                    phi: area * luminance(mat.le),
-                    cos_theta_o: 1.0,
-                    cos_theta_e: 0.0,
-                    two_sided: mat.two_sided_emission,
-                });
-                self.entries.push(Entry::Triangle {
-                    v,
-                    area,
-                    le: mat.le,
-                    two_sided: mat.two_sided_emission,
-                });
-            }
-            tri_entry[g] = slots;
-        }
-        tri_entry
-    }
 }
 
 /// Where a BVH selection's number goes ([`LightSet::route`]).
@@ -637,12 +528,14 @@ impl LightSet {
     }
 }
 
+mod collect;
+use collect::{Collected, SunDisk};
 mod global;
 mod share;
 use share::LocalBudget;
 pub use share::LOCAL_CANDIDATES;
 mod weights;
-use weights::{distant_power, explicit_bounds, scene_radius, selection_pmf};
+use weights::{distant_power, scene_radius, selection_pmf};
 
 #[cfg(test)]
 mod tests;
