@@ -152,7 +152,7 @@ fn filter_pane(
 fn a_pane_keeps_the_stripes_it_mirrors_and_loses_the_sparkle() {
     // Vertical stripes two pixels wide, radiance 1 and 4, in the glass.
     let (w, h) = (48, 16);
-    let stripe = |i: usize, _: usize| if (i / 2) % 2 == 0 { 1.0 } else { 4.0 };
+    let stripe = |i: usize, _: usize| if (i / 2).is_multiple_of(2) { 1.0 } else { 4.0 };
     let (before, after, truth) = filter_pane((w, h), 16, stripe);
     let mse = |f: &Film| {
         f.rgb
