@@ -40,11 +40,19 @@ pub struct ViewInputs {
     /// Mean light along glass's reflection per pixel
     /// (`DenoiseSample::l_refl`, part of the film's radiance).
     pub l_refl: Vec<Vec3>,
-    /// Variance of `l_refl`'s luminance as a pixel mean.
+    /// Variance of `l_refl`'s luminance as a pixel mean given which
+    /// samples reflected: the variance of the radiance the reflected
+    /// samples saw (`DenoiseSum::refl_seen`) over their count, times
+    /// luminance(`rho_refl_hit`)².
     pub var_refl: Vec<f32>,
-    /// Mean throughput × Fresnel reflectance `l_refl` is filtered against
-    /// (`DenoiseSample::rho_refl`).
+    /// Mean throughput × Fresnel reflectance over every sample that met
+    /// the glass (`DenoiseSample::rho_refl`): the filtered reflected
+    /// radiance is modulated back by it.
     pub rho_refl: Vec<Vec3>,
+    /// Mean throughput after the reflection, on the reflected samples
+    /// (`DenoiseSample::rho_refl_hit`): what `l_refl` is filtered
+    /// against, so that the ratio is the radiance seen in the glass.
+    pub rho_refl_hit: Vec<Vec3>,
 }
 
 impl ViewInputs {
@@ -65,6 +73,7 @@ impl ViewInputs {
             l_refl: vec![Vec3::ZERO; width * height],
             var_refl: vec![0.0; width * height],
             rho_refl: vec![Vec3::ZERO; width * height],
+            rho_refl_hit: vec![Vec3::ZERO; width * height],
         }
     }
 
@@ -78,8 +87,11 @@ impl ViewInputs {
         self.rho_direct[k] = sum.rho_direct / n;
         self.glossy[k] = sum.glossy as f32 / n;
         self.l_refl[k] = sum.l_refl / n;
-        self.var_refl[k] = mean_variance(luminance(sum.l_refl), sum.refl_lum2, n);
         self.rho_refl[k] = sum.rho_refl / n;
+        self.rho_refl_hit[k] = sum.rho_refl_hit / n;
+        let hits = sum.refl_hits as f32;
+        self.var_refl[k] = mean_variance(sum.refl_seen, sum.refl_seen2, hits)
+            * luminance(self.rho_refl_hit[k]).powi(2);
     }
 
     /// Whether any pixel carries first-scatter radiance or opacity.
@@ -127,8 +139,11 @@ mod tests {
             rho_direct: Vec3::splat(2.0),
             glossy: 1,
             l_refl: Vec3::new(0.0, 8.0, 0.0),
-            refl_lum2: 0.7152f32.powi(2) * 20.0,
             rho_refl: Vec3::splat(0.2),
+            rho_refl_hit: Vec3::splat(2.0),
+            refl_hits: 2,
+            refl_seen: 6.0,
+            refl_seen2: 20.0,
         };
         v.set_mean(1, &sum, 4.0);
         assert_eq!(v.l_fog[1], Vec3::new(0.5, 1.0, 1.5));
@@ -141,9 +156,10 @@ mod tests {
         assert_eq!(v.glossy[1], 0.25);
         assert_eq!(v.l_refl[1], Vec3::new(0.0, 2.0, 0.0));
         assert_eq!(v.rho_refl[1], Vec3::splat(0.05));
-        // Luminance sum 8g, square sum 20g²: (20 − 4·2²)g²/12 = g²/3.
-        let g2 = 0.7152f32.powi(2);
-        assert!((v.var_refl[1] - g2 / 3.0).abs() < 1e-6, "{}", v.var_refl[1]);
+        assert_eq!(v.rho_refl_hit[1], Vec3::splat(0.5));
+        // Seen by 2 samples, 2 and 4 (sum 6, squares 20): variance 2 of
+        // one, 1 of their mean; times luminance(0.5 grey)² = 0.25.
+        assert!((v.var_refl[1] - 0.25).abs() < 1e-6, "{}", v.var_refl[1]);
         // Luminance sum 4y and square sum 10y² over 4 samples: variance of
         // the mean (Σx² − n·m²)/(n(n − 1)).
         let y = 0.2126f32;

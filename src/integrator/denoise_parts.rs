@@ -62,6 +62,12 @@ pub struct DenoiseSample {
     /// pixel's mean `rho_refl` times the reflected radiance, whatever share
     /// of the samples happened to reflect (a window's sparkle is that share).
     pub rho_refl: Vec3,
+    /// The reflected sample's own weight: throughput after the reflection
+    /// (Fresnel reflectance over the probability of taking it), on the
+    /// sample that took it (zero otherwise). `l_refl / rho_refl_hit` is
+    /// the radiance the sample saw in the glass, with none of the sparkle
+    /// of which samples reflected: the filter's ratio and its noise level.
+    pub rho_refl_hit: Vec3,
 }
 
 /// The albedo estimate a glossy (non-delta, non-Lambertian) split vertex's
@@ -113,10 +119,19 @@ pub struct DenoiseSum {
     pub glossy: u32,
     /// Σ `DenoiseSample::l_refl`.
     pub l_refl: Vec3,
-    /// Σ luminance(`l_refl`)².
-    pub refl_lum2: f32,
     /// Σ `DenoiseSample::rho_refl`.
     pub rho_refl: Vec3,
+    /// Σ `DenoiseSample::rho_refl_hit`.
+    pub rho_refl_hit: Vec3,
+    /// Samples that took glass's reflection (a `rho_refl_hit` of nonzero
+    /// luminance).
+    pub refl_hits: u32,
+    /// Σ over those samples of the radiance they saw in the glass,
+    /// luminance(`l_refl`) / luminance(`rho_refl_hit`).
+    pub refl_seen: f32,
+    /// Σ of its squares: with the sum, the per-pixel variance of the
+    /// reflected radiance that steers its filter.
+    pub refl_seen2: f32,
 }
 
 impl DenoiseSum {
@@ -132,8 +147,15 @@ impl DenoiseSum {
         self.rho_direct += d.rho_direct;
         self.glossy += d.glossy as u32;
         self.l_refl += d.l_refl;
-        self.refl_lum2 += luminance(d.l_refl).powi(2);
         self.rho_refl += d.rho_refl;
+        self.rho_refl_hit += d.rho_refl_hit;
+        let hit = luminance(d.rho_refl_hit);
+        if hit > 0.0 {
+            let seen = luminance(d.l_refl) / hit;
+            self.refl_hits += 1;
+            self.refl_seen += seen;
+            self.refl_seen2 += seen * seen;
+        }
     }
 }
 
@@ -165,18 +187,23 @@ pub(super) struct SplitVertex {
     /// The radiance gathered when the path took that glass's reflection
     /// (None: it did not): what it gathers after is `DenoiseSample::l_refl`.
     pub refl_from: Option<Vec3>,
+    /// The throughput after that reflection (else zero):
+    /// `DenoiseSample::rho_refl_hit`.
+    pub rho_refl_hit: Vec3,
 }
 
 impl SplitVertex {
     /// At a vertex reached from the camera through delta scatters only
     /// (`ahead`), whose BSDF in its shading frame is `bsdf`, seen from
-    /// `wo` and continued toward `wi` (both local), with throughput `beta`
-    /// and radiance `l` gathered so far: smooth glass adds its reflectance
-    /// (a pane's front face, and its back face for samples that refracted
-    /// at the front), and where `wi` is its reflection, records `l` (what
-    /// the path gathers from here on is `DenoiseSample::l_refl`; a
-    /// reflection ends `ahead`, so a path records at most one).
-    pub fn at_glass(&mut self, bsdf: &Bsdf, wo: Vec3, wi: Vec3, beta: Vec3, l: Vec3) {
+    /// `wo` and continued toward `wi` (both local) with the sampled weight
+    /// f·|cos θi|/pdf `weight`, with throughput `beta` and radiance `l`
+    /// gathered so far: smooth glass adds its reflectance (a pane's front
+    /// face, and its back face for samples that refracted at the front),
+    /// and where `wi` is its reflection, records `l` (what the path
+    /// gathers from here on is `DenoiseSample::l_refl`) and the throughput
+    /// after it, `beta · weight`; a reflection ends `ahead`, so a path
+    /// records at most one.
+    pub fn at_glass(&mut self, bsdf: &Bsdf, wo: Vec3, wi: Vec3, weight: Vec3, beta: Vec3, l: Vec3) {
         let Bsdf::Dielectric { eta, .. } = *bsdf else {
             return;
         };
@@ -189,6 +216,7 @@ impl SplitVertex {
         self.rho_refl += beta * fr_dielectric(wo.z, eta);
         if wi.z * wo.z > 0.0 {
             self.refl_from = Some(l);
+            self.rho_refl_hit = beta * weight;
         }
     }
 }
@@ -202,6 +230,7 @@ impl Default for SplitVertex {
             rho_gloss: Vec3::ZERO,
             rho_refl: Vec3::ZERO,
             refl_from: None,
+            rho_refl_hit: Vec3::ZERO,
         }
     }
 }
@@ -223,6 +252,7 @@ mod tests {
             glossy: true,
             l_refl: Vec3::new(0.0, 0.0, 4.0),
             rho_refl: Vec3::splat(0.125),
+            rho_refl_hit: Vec3::splat(0.5),
         };
         let b = DenoiseSample {
             l_fog: Vec3::splat(1.0),
@@ -246,8 +276,17 @@ mod tests {
         assert_eq!(sum.rho_direct, Vec3::splat(0.5));
         assert_eq!(sum.glossy, 2);
         assert_eq!(sum.l_refl, Vec3::new(0.0, 0.0, 8.0));
-        assert_eq!(sum.refl_lum2, 2.0 * (4.0f32 * 0.0722).powi(2));
         assert_eq!(sum.rho_refl, Vec3::splat(0.25));
+        assert_eq!(sum.rho_refl_hit, Vec3::splat(1.0));
+        // Seen in the glass: luminance 4·0.0722 over 0.5, on a's two samples.
+        let seen = 4.0f32 * 0.0722 / 0.5;
+        assert_eq!(sum.refl_hits, 2);
+        assert!(
+            (sum.refl_seen - 2.0 * seen).abs() < 1e-6,
+            "{}",
+            sum.refl_seen
+        );
+        assert!((sum.refl_seen2 - 2.0 * seen * seen).abs() < 1e-6);
     }
 
     #[test]
@@ -259,19 +298,26 @@ mod tests {
         };
         // Normal incidence: R = ((1.5 − 1)/(1.5 + 1))² = 0.04.
         let (wo, beta, l) = (Vec3::Z, Vec3::new(1.0, 0.5, 0.25), Vec3::splat(3.0));
+        // The sampled weights: R/q reflected (q = 0.25), T/(1 − q) refracted.
+        let (w_refl, w_refr) = (Vec3::splat(0.16), Vec3::splat(1.28));
         let mut reflected = SplitVertex::default();
-        reflected.at_glass(&glass, wo, Vec3::Z, beta, l);
+        reflected.at_glass(&glass, wo, Vec3::Z, w_refl, beta, l);
         assert!((reflected.rho_refl - beta * 0.04).abs().max_element() < 1e-6);
         assert_eq!(reflected.refl_from, Some(l));
+        assert_eq!(reflected.rho_refl_hit, beta * w_refl);
         let mut refracted = SplitVertex::default();
-        refracted.at_glass(&glass, wo, -Vec3::Z, beta, l);
+        refracted.at_glass(&glass, wo, -Vec3::Z, w_refr, beta, l);
         assert_eq!(refracted.rho_refl, reflected.rho_refl);
-        assert_eq!(refracted.refl_from, None);
+        assert_eq!(
+            (refracted.refl_from, refracted.rho_refl_hit),
+            (None, Vec3::ZERO)
+        );
         // The back face, from inside (wo.z < 0), adds its own reflectance.
-        refracted.at_glass(&glass, -Vec3::Z, Vec3::Z, beta, Vec3::ONE);
+        refracted.at_glass(&glass, -Vec3::Z, Vec3::Z, w_refr, beta, Vec3::ONE);
         assert!((refracted.rho_refl - beta * 0.08).abs().max_element() < 1e-6);
         assert_eq!(
-            refracted.refl_from, None,
+            (refracted.refl_from, refracted.rho_refl_hit),
+            (None, Vec3::ZERO),
             "leaving the pane is no reflection"
         );
         // Rough glass, walls and mirrors are not this component's.
@@ -287,8 +333,9 @@ mod tests {
         };
         for bsdf in [rough, mirror, Bsdf::Lambert { albedo: Vec3::ONE }] {
             let mut s = SplitVertex::default();
-            s.at_glass(&bsdf, wo, Vec3::Z, beta, l);
+            s.at_glass(&bsdf, wo, Vec3::Z, Vec3::ONE, beta, l);
             assert_eq!((s.rho_refl, s.refl_from), (Vec3::ZERO, None), "{bsdf:?}");
+            assert_eq!(s.rho_refl_hit, Vec3::ZERO, "{bsdf:?}");
         }
     }
 

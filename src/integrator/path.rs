@@ -177,6 +177,7 @@ fn direct_part(st: &PathState, l_direct: Vec3, d: DenoiseSample) -> DenoiseSampl
         split_behind_delta: st.split.behind_delta,
         l_refl: st.split.refl_from.map_or(Vec3::ZERO, |l0| st.l - l0),
         rho_refl: st.split.rho_refl,
+        rho_refl_hit: st.split.rho_refl_hit,
         ..d
     }
 }
@@ -543,8 +544,9 @@ impl<A: Accel> PathContext<'_, A> {
         }
         // In fog too: glass's reflection is filtered apart there as well.
         if st.split.ahead && (scene.filter_indirect || scene.filter_inscatter) {
+            let weight = bs.f * bs.wi.z.abs() / bs.pdf;
             st.split
-                .at_glass(&bsdf, vertex.wo_local, bs.wi, st.beta, st.l);
+                .at_glass(&bsdf, vertex.wo_local, bs.wi, weight, st.beta, st.l);
         }
         // Glass's reflection is not followed to a split vertex: its light
         // would be filtered with that of the refracted samples behind it

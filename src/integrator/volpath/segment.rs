@@ -165,6 +165,7 @@ impl VolState {
         // (`SplitVertex::at_glass`), from the path or its split surface part.
         let l_refl = st.split.refl_from.map_or(Vec3::ZERO, |l0| st.l - l0) + split.l_refl;
         let rho_refl = st.split.rho_refl + split.rho_refl;
+        let rho_refl_hit = st.split.rho_refl_hit + split.rho_refl_hit;
         LiSample {
             l: st.l + first.split.l,
             denoise: DenoiseSample {
@@ -180,6 +181,7 @@ impl VolState {
                 glossy: first.glossy.is_some() || split.glossy,
                 l_refl,
                 rho_refl,
+                rho_refl_hit,
             },
             aov: st.aov.aov,
         }
