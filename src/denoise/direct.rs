@@ -354,11 +354,15 @@ fn pass(
                 // Under "same light", e_c − e_q has variance var_c + var_q:
                 // a symmetric test, so a bright outlier and its dark
                 // neighbour see each other alike and light is moved, not lost.
-                let de = e_c - e_q;
-                let sigma2 = sigma_lum * sigma_lum * (var_c + sd[q] * sd[q])
-                    + (REL_FLOOR * e_c.max(e_q)).powi(2)
-                    + 1e-20;
-                let stop = if own { de * de / sigma2 } else { 0.0 };
+                let stop = if own {
+                    let de = e_c - e_q;
+                    let sigma2 = sigma_lum * sigma_lum * (var_c + sd[q] * sd[q])
+                        + (REL_FLOOR * e_c.max(e_q)).powi(2)
+                        + 1e-20;
+                    de * de / sigma2
+                } else {
+                    0.0
+                };
                 let wt = b3 * soft_gaussian(g + stop);
                 l += nb.l * wt;
                 rho += nb.rho * wt;

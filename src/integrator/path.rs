@@ -542,9 +542,10 @@ impl<A: Accel> PathContext<'_, A> {
         if bs.pdf <= 0.0 {
             return None;
         }
+        // The throughput's factor for this bounce, f·|cos θi|/pdf.
+        let weight = bs.f * bs.wi.z.abs() / bs.pdf;
         // In fog too: glass's reflection is filtered apart there as well.
         if st.split.ahead && (scene.filter_indirect || scene.filter_inscatter) {
-            let weight = bs.f * bs.wi.z.abs() / bs.pdf;
             st.split
                 .at_glass(&bsdf, vertex.wo_local, bs.wi, weight, st.beta, st.l);
         }
@@ -559,7 +560,7 @@ impl<A: Accel> PathContext<'_, A> {
         if is_two_sided(&bsdf) && wi.dot(si.n_geo) <= 0.0 {
             return None;
         }
-        st.beta *= bs.f * bs.wi.z.abs() / bs.pdf;
+        st.beta *= weight;
         if !st.beta.is_finite() || st.beta == Vec3::ZERO {
             return None;
         }
