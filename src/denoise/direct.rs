@@ -57,13 +57,17 @@ struct Est {
 /// light, what it is filtered against, the variance of the light's
 /// luminance as a pixel mean, and what the filtered ratio is modulated
 /// back by (nonzero: the pixel is filtered).
-struct Part<'a> {
-    l: &'a [Vec3],
-    rho: &'a [Vec3],
-    var: &'a [f32],
-    remod: &'a [Vec3],
+pub(super) struct Part<'a> {
+    pub(super) l: &'a [Vec3],
+    pub(super) rho: &'a [Vec3],
+    pub(super) var: &'a [f32],
+    pub(super) remod: &'a [Vec3],
+    /// The light the film holds for this part, replaced by the filtered
+    /// estimate: `l`, but where a pixel is left out of the sums (the
+    /// surface component's fireflies, `l` zero) its light as traced.
+    pub(super) traced: &'a [Vec3],
     /// Edge-stopping width in standard deviations.
-    sigma_lum: f32,
+    pub(super) sigma_lum: f32,
 }
 
 /// Replaces `l_direct` in `film` by its filtered estimate (as a ratio to
@@ -81,6 +85,7 @@ pub(super) fn filter_direct(
         rho: &inputs.rho_direct,
         var: &inputs.var_direct,
         remod: &inputs.rho_direct,
+        traced: &inputs.l_direct,
         sigma_lum: SIGMA_LUM,
     };
     filter_part(film, &part, inputs, guide, widths, levels);
@@ -107,13 +112,14 @@ pub(super) fn filter_reflection(
         rho: &inputs.rho_refl_hit,
         var: &inputs.var_refl,
         remod: &inputs.rho_refl,
+        traced: &inputs.l_refl,
         sigma_lum: SIGMA_LUM_REFL,
     };
     filter_part(film, &part, inputs, guide, widths, levels);
 }
 
 /// [`filter_direct`] for any [`Part`].
-fn filter_part(
+pub(super) fn filter_part(
     film: &mut Film,
     part: &Part<'_>,
     inputs: &ViewInputs,
@@ -124,7 +130,15 @@ fn filter_part(
     let (w, h) = (film.width, film.height);
     let n = w * h;
     assert!(
-        part.l.len() == n && part.rho.len() == n && part.var.len() == n && part.remod.len() == n,
+        [
+            part.l.len(),
+            part.rho.len(),
+            part.var.len(),
+            part.remod.len(),
+            part.traced.len()
+        ]
+        .iter()
+        .all(|&len| len == n),
         "filtered light's inputs' size does not match the film"
     );
     if part.remod.iter().all(|&r| r == Vec3::ZERO) {
@@ -194,7 +208,7 @@ fn filter_part(
         for c in 0..3 {
             // Below this the ratio is noise over nothing.
             if s.rho[c] > 1e-7 {
-                px[c] += remod[c] * (s.l[c] / s.rho[c]) - part.l[k][c];
+                px[c] += remod[c] * (s.l[c] / s.rho[c]) - part.traced[k][c];
             }
         }
     });

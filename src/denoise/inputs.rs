@@ -32,6 +32,8 @@ pub struct ViewInputs {
     /// Variance of `l_direct`'s luminance as a pixel mean (the samples'
     /// variance over their count; with one sample, its square).
     pub var_direct: Vec<f32>,
+    /// Variance of `l_surf`'s luminance as a pixel mean (as `var_direct`).
+    pub var_surf: Vec<f32>,
     /// Mean throughput × albedo estimate `l_direct` is filtered against
     /// (`DenoiseSample::rho_direct`).
     pub rho_direct: Vec<Vec3>,
@@ -68,6 +70,7 @@ impl ViewInputs {
             behind_delta: vec![0.0; width * height],
             l_direct: vec![Vec3::ZERO; width * height],
             var_direct: vec![0.0; width * height],
+            var_surf: vec![0.0; width * height],
             rho_direct: vec![Vec3::ZERO; width * height],
             glossy: vec![0.0; width * height],
             l_refl: vec![Vec3::ZERO; width * height],
@@ -85,6 +88,7 @@ impl ViewInputs {
         self.l_direct[k] = sum.l_direct / n;
         self.var_direct[k] = mean_variance(luminance(sum.l_direct), sum.direct_lum2, n);
         self.rho_direct[k] = sum.rho_direct / n;
+        self.var_surf[k] = mean_variance(luminance(sum.l_surf), sum.surf_lum2, n);
         self.glossy[k] = sum.glossy as f32 / n;
         self.l_refl[k] = sum.l_refl / n;
         self.rho_refl[k] = sum.rho_refl / n;
@@ -136,6 +140,7 @@ mod tests {
             behind_delta: 3,
             l_direct: Vec3::new(4.0, 0.0, 0.0),
             direct_lum2: 0.2126f32.powi(2) * 10.0,
+            surf_lum2: 40.0,
             rho_direct: Vec3::splat(2.0),
             glossy: 1,
             l_refl: Vec3::new(0.0, 8.0, 0.0),
@@ -165,6 +170,12 @@ mod tests {
         let y = 0.2126f32;
         let want = (10.0 * y * y - 4.0 * y * y) / 12.0;
         assert!((v.var_direct[1] - want).abs() < 1e-7, "{}", v.var_direct[1]);
+        // l_surf: luminance sum 8, square sum 40 over 4 samples.
+        assert!(
+            (v.var_surf[1] - (40.0 - 16.0) / 12.0).abs() < 1e-5,
+            "{}",
+            v.var_surf[1]
+        );
         // Pixel 0 untouched.
         assert!(v.l_fog[0] == Vec3::ZERO && v.behind_delta[0] == 0.0);
         assert!(v.has_first_scatter() && !v.is_empty());

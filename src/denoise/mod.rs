@@ -12,7 +12,8 @@
 //!   (L − l_fog) + opacity·S̃;
 //! - light on the first surface (`surface.rs`): fog light there, or in a
 //!   medium-free scene its sky and indirect light, filtered as a ratio to
-//!   the surface's albedo; in medium-free scenes the first-scatter cascade
+//!   the surface's albedo (indirect light with the direct light's
+//!   edge-stopping kernel); in medium-free scenes the first-scatter cascade
 //!   is skipped;
 //! - direct light on that surface (`direct.rs`): in medium-free scenes its
 //!   next-event estimates of sun, sky and lamps, and at a glossy surface

@@ -9,7 +9,9 @@
 //! component carries indirect light in medium-free scenes
 //! (`DenoiseSample::l_surf`), on x1 or on the surface x1's glass and mirrors
 //! show; pixels mix only with pixels whose share of the latter is alike
-//! (`ViewInputs::behind_delta`). Fireflies (`FIREFLY_RATIO`) are left out of
+//! (`ViewInputs::behind_delta`). That light is filtered with `direct.rs`'s
+//! kernel, which also stops at the light's own noise, so corners and
+//! recesses keep their shade. Fireflies (`FIREFLY_RATIO`) are left out of
 //! the sums and take their neighbours' estimate.
 
 use std::ops::{Add, Div, Mul};
@@ -18,6 +20,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::atrous::{atrous_levels, atrous_pass, ln_depth, soft_gaussian, Axis};
+use super::direct::{filter_part, Part, DIRECT_LEVELS};
 use super::{DepthGuide, ViewInputs, Widths};
 use crate::film::Film;
 
@@ -64,6 +67,10 @@ pub(super) fn filter_surface(
         .map(|k| SurfKey::new(guide.depth_z[k], normal(k), fog.behind_delta[k]))
         .collect();
     let firefly = fireflies(&fog.l_surf, &fog.rho, (w, h));
+    if let Some(sigma_lum) = filter.surface_sigma_lum {
+        edge_stopped(film, fog, &firefly, guide, filter, sigma_lum);
+        return;
+    }
     // A firefly's pair is zero: it adds to neither sum of a neighbour's
     // ratio (the weights cancel in the ratio).
     let mut cur: Vec<Pair> = fog
@@ -94,6 +101,35 @@ pub(super) fn filter_surface(
             }
         }
     });
+}
+
+/// [`filter_surface`] with `direct.rs`'s kernel: edge-stopping on the
+/// light's own noise (`ViewInputs::var_surf`) at `sigma_lum` standard
+/// deviations. A firefly is left out of the sums as on geometry alone.
+fn edge_stopped(
+    film: &mut Film,
+    inputs: &ViewInputs,
+    firefly: &[bool],
+    guide: &DepthGuide<'_>,
+    widths: &Widths,
+    sigma_lum: f32,
+) {
+    let kept = |v: &[Vec3]| -> Vec<Vec3> {
+        v.par_iter()
+            .zip(firefly)
+            .map(|(&x, &f)| if f { Vec3::ZERO } else { x })
+            .collect()
+    };
+    let (l, rho) = (kept(&inputs.l_surf), kept(&inputs.rho));
+    let part = Part {
+        l: &l,
+        rho: &rho,
+        var: &inputs.var_surf,
+        remod: &inputs.rho,
+        traced: &inputs.l_surf,
+        sigma_lum,
+    };
+    filter_part(film, &part, inputs, guide, widths, DIRECT_LEVELS);
 }
 
 /// Per pixel (row-major), whether its light per unit albedo, summed over

@@ -13,6 +13,12 @@ pub struct Widths {
     /// à-trous levels of the direct-light component (`direct.rs`); 0 leaves
     /// direct light as traced.
     pub direct_levels: u32,
+    /// Edge-stopping width, in standard deviations of its own noise, of the
+    /// light on the first surface (`surface.rs`), filtered with
+    /// `direct.rs`'s kernel at [`DIRECT_LEVELS`](super::direct::DIRECT_LEVELS);
+    /// `None` filters it on geometry alone at `sigma_px` (fog light:
+    /// smooth at the medium's scale, and no per-pixel variance of it).
+    pub surface_sigma_lum: Option<f32>,
 }
 
 impl Widths {
@@ -25,18 +31,17 @@ impl Widths {
             sigma_opacity: 0.1,
             sigma_depth_rel: 0.3,
             direct_levels: super::direct::DIRECT_LEVELS,
+            surface_sigma_lum: None,
         }
     }
 
-    /// [`Widths::for_width`] with the spatial σ for indirect light on
-    /// the first surface of a medium-free scene (`INDIRECT_SIGMA_PX`, at
-    /// most the fog's; only the surface component has anything to filter
-    /// there).
+    /// [`Widths::for_width`] for a medium-free scene: indirect light on
+    /// the first surface is filtered with edge-stopping on its own noise
+    /// ([`INDIRECT_SIGMA_LUM`]).
     pub fn indirect_for_width(width: usize) -> Widths {
-        let fog = Widths::for_width(width);
         Widths {
-            sigma_px: INDIRECT_SIGMA_PX.min(fog.sigma_px),
-            ..fog
+            surface_sigma_lum: Some(INDIRECT_SIGMA_LUM),
+            ..Widths::for_width(width)
         }
     }
 }
@@ -46,11 +51,8 @@ impl Widths {
 /// the rest of the error is the surfaces' own noise.
 const SIGMA_PX_AT_160: f32 = 2.0;
 
-/// Spatial σ in pixels for indirect light on the first surface of a
-/// medium-free scene, at every resolution: the per-pixel noise it removes
-/// depends on the pixels it averages, not on their angle, while its bias and
-/// cost grow with its width. In the clear street at 16 spp (400×225,
-/// against 1024 spp) the median relative error of the darkest 30 % of
-/// pixels falls from 0.26 to 0.098 at σ ≈ 2.5 px and to 0.097 at twice
-/// that, which leaks 0.6 % more light into those shadows.
-const INDIRECT_SIGMA_PX: f32 = 2.5;
+/// Edge-stopping width of indirect light on the first surface of a
+/// medium-free scene: its light varies from pixel to pixel (corners,
+/// recesses, the shade under balconies) at about its noise level, so a
+/// test narrower than the direct light's keeps that variation.
+const INDIRECT_SIGMA_LUM: f32 = 1.5;

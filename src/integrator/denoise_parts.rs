@@ -113,6 +113,9 @@ pub struct DenoiseSum {
     /// Σ luminance(`l_direct`)²: with the sum, the per-pixel variance of
     /// the direct light that steers its filter.
     pub direct_lum2: f32,
+    /// Σ luminance(`l_surf`)²: the variance that steers indirect light's
+    /// filter.
+    pub surf_lum2: f32,
     /// Σ `DenoiseSample::rho_direct`.
     pub rho_direct: Vec3,
     /// Samples split at a glossy vertex (`DenoiseSample::glossy`).
@@ -144,6 +147,7 @@ impl DenoiseSum {
         self.behind_delta += d.split_behind_delta as u32;
         self.l_direct += d.l_direct;
         self.direct_lum2 += luminance(d.l_direct).powi(2);
+        self.surf_lum2 += luminance(d.l_surf).powi(2);
         self.rho_direct += d.rho_direct;
         self.glossy += d.glossy as u32;
         self.l_refl += d.l_refl;
@@ -273,6 +277,7 @@ mod tests {
         assert_eq!(sum.behind_delta, 2);
         assert_eq!(sum.l_direct, Vec3::new(0.0, 4.0, 0.0));
         assert_eq!(sum.direct_lum2, 2.0 * (2.0f32 * 0.7152).powi(2));
+        assert!((sum.surf_lum2 - (2.0 * 0.25 + 0.0625)).abs() < 1e-6);
         assert_eq!(sum.rho_direct, Vec3::splat(0.5));
         assert_eq!(sum.glossy, 2);
         assert_eq!(sum.l_refl, Vec3::new(0.0, 0.0, 8.0));

@@ -377,6 +377,7 @@ fn filter_flat_surface(layer: &ViewInputs) -> (Film, Film) {
         sigma_opacity: 0.1,
         sigma_depth_rel: 0.3,
         direct_levels: 0,
+        surface_sigma_lum: None,
     };
     denoise_guided(&mut film, layer, &guide, &widths);
     (before, film)

@@ -11,3 +11,4 @@ mod fog;
 mod glass;
 mod highlight;
 mod indirect;
+mod shade;

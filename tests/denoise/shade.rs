@@ -1,0 +1,105 @@
+//! Indirect light on one flat wall that steps from lit to shade (the shade
+//! under a balcony, a recess): depth and normal cannot see the step, so the
+//! filter of a medium-free scene also stops at the light's own noise
+//! (`Widths::surface_sigma_lum`, `denoise/surface.rs`). The step stays
+//! where it is and the noise on either side still goes.
+
+use glam::Vec3;
+use parallax::denoise::{denoise_guided, DepthGuide, ViewInputs, Widths};
+use parallax::film::Film;
+use parallax::integrator::luminance;
+use parallax::sampler::rng::Rng;
+
+const W: usize = 40;
+const H: usize = 16;
+/// Samples per pixel.
+const N: usize = 16;
+/// Light per unit albedo left of the step and in the shade right of it.
+const LIT: f32 = 1.0;
+const SHADE: f32 = 0.2;
+
+fn truth(i: usize) -> f32 {
+    if i < W / 2 {
+        LIT
+    } else {
+        SHADE
+    }
+}
+
+/// The wall's inputs: per pixel the mean of `N` samples, each the truth
+/// times a uniform factor of mean 1 and standard deviation 0.5, and the
+/// variance of that mean from the samples' moments.
+fn noisy_wall() -> ViewInputs {
+    let mut inputs = ViewInputs::new(W, H);
+    let rho = Vec3::splat(0.5);
+    let mut rng = Rng::new(&[23, 29]);
+    for k in 0..W * H {
+        let e: Vec<f32> = (0..N)
+            .map(|_| truth(k % W) * (1.0 + 0.5 * 3f32.sqrt() * (2.0 * rng.f32() - 1.0)))
+            .collect();
+        let mean = e.iter().sum::<f32>() / N as f32;
+        let var = e.iter().map(|x| (x - mean).powi(2)).sum::<f32>() / (N * (N - 1)) as f32;
+        inputs.rho[k] = rho;
+        inputs.l_surf[k] = rho * mean;
+        inputs.var_surf[k] = var * luminance(rho).powi(2);
+    }
+    inputs
+}
+
+/// The wall's light per unit albedo after filtering with `widths` (the
+/// film holds the surface light only).
+fn filtered(inputs: &ViewInputs, widths: &Widths) -> Vec<f32> {
+    let mut film = Film::new(W, H);
+    film.rgb.copy_from_slice(&inputs.l_surf);
+    let (depth, opacity, normal) = (vec![10.0; W * H], vec![0.0; W * H], vec![Vec3::Z; W * H]);
+    let guide = DepthGuide {
+        depth_z: &depth,
+        opacity: &opacity,
+        normal: &normal,
+    };
+    denoise_guided(&mut film, inputs, &guide, widths);
+    film.rgb.iter().map(|px| px.y / 0.5).collect()
+}
+
+/// Mean over the rows of column `i`'s relative error.
+fn column_bias(e: &[f32], i: usize) -> f32 {
+    (0..H).map(|j| e[j * W + i] / truth(i) - 1.0).sum::<f32>() / H as f32
+}
+
+/// RMS relative error over the columns at least `margin` from the step and
+/// the image's sides.
+fn rms_away_from_step(e: &[f32], margin: usize) -> f32 {
+    let cols: Vec<usize> = (margin..W - margin)
+        .filter(|&i| i.abs_diff(W / 2) >= margin && (i + 1).abs_diff(W / 2) >= margin)
+        .collect();
+    let sum: f32 = (0..H)
+        .flat_map(|j| cols.iter().map(move |&i| (i, j)))
+        .map(|(i, j)| (e[j * W + i] / truth(i) - 1.0).powi(2))
+        .sum();
+    (sum / (cols.len() * H) as f32).sqrt()
+}
+
+#[test]
+fn a_shade_step_on_one_wall_stays_and_its_noise_goes() {
+    let inputs = noisy_wall();
+    let raw: Vec<f32> = inputs.l_surf.iter().map(|l| l.y / 0.5).collect();
+    let widths = Widths::indirect_for_width(W);
+    assert!(widths.surface_sigma_lum.is_some());
+    let kept = filtered(&inputs, &widths);
+    let geometry_only = filtered(
+        &inputs,
+        &Widths {
+            surface_sigma_lum: None,
+            sigma_px: 2.5,
+            ..widths
+        },
+    );
+    for i in W / 2 - 2..W / 2 + 2 {
+        let (b, g) = (column_bias(&kept, i), column_bias(&geometry_only, i));
+        println!("column {i}: bias {b:+.3} (geometry alone {g:+.3})");
+        assert!(b.abs() < 0.1, "column {i}: bias {b:+.3}");
+    }
+    let (r0, r1) = (rms_away_from_step(&raw, 3), rms_away_from_step(&kept, 3));
+    println!("rms relative error {r0:.3} -> {r1:.3}");
+    assert!(r1 < r0 / 3.0, "noise {r0:.3} -> {r1:.3}");
+}
