@@ -134,7 +134,8 @@ fn edge_stopped(
 
 /// Per pixel (row-major), whether its light per unit albedo, summed over
 /// channels, exceeds `FIREFLY_RATIO` times the median of that ratio over
-/// the pixels within `FIREFLY_RADIUS` that have a rho (itself included).
+/// the pixels within `FIREFLY_RADIUS` that have a rho (itself included),
+/// and at least that multiple of the median over those of them with light.
 fn fireflies(l: &[Vec3], rho: &[Vec3], (w, h): (usize, usize)) -> Vec<bool> {
     let ratio: Vec<Option<f32>> = l
         .par_iter()
@@ -152,16 +153,25 @@ fn fireflies(l: &[Vec3], rho: &[Vec3], (w, h): (usize, usize)) -> Vec<bool> {
             // in order) exactly when more than `mid` of its values v have
             // FIREFLY_RATIO · v < e (v ↦ FIREFLY_RATIO · v is monotone):
             // a count, no sort.
-            let (mut len, mut below) = (0usize, 0usize);
+            // Also against the median of the lit others alone: where most
+            // neighbours saw none of a sparse light (a dark room behind a
+            // window) the median is zero, and the lit ones are its level.
+            let (mut len, mut below, mut lit, mut lit_below) = (0usize, 0usize, 0usize, 0usize);
             for jj in j.saturating_sub(FIREFLY_RADIUS)..(j + FIREFLY_RADIUS + 1).min(h) {
                 let row = &ratio[jj * w..(jj + 1) * w];
                 let cols = i.saturating_sub(FIREFLY_RADIUS)..(i + FIREFLY_RADIUS + 1).min(w);
                 for v in row[cols].iter().flatten() {
                     len += 1;
-                    below += (FIREFLY_RATIO * v < e) as usize;
+                    let dim = FIREFLY_RATIO * v < e;
+                    below += dim as usize;
+                    if *v > 0.0 {
+                        lit += 1;
+                        lit_below += dim as usize;
+                    }
                 }
             }
-            below > len / 2
+            // `lit` counts the pixel itself, never below itself.
+            below > len / 2 && lit_below >= lit / 2
         })
         .collect()
 }

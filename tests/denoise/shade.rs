@@ -2,7 +2,9 @@
 //! under a balcony, a recess): depth and normal cannot see the step, so the
 //! filter of a medium-free scene also stops at the light's own noise
 //! (`Widths::surface_sigma_lum`, `denoise/surface.rs`). The step stays
-//! where it is and the noise on either side still goes.
+//! where it is and the noise on either side still goes. A dark room lit
+//! sparsely (a few of its pixels catch the rare path that reaches it) keeps
+//! its light: those pixels are its level, not fireflies.
 
 use glam::Vec3;
 use parallax::denoise::{denoise_guided, DepthGuide, ViewInputs, Widths};
@@ -102,4 +104,30 @@ fn a_shade_step_on_one_wall_stays_and_its_noise_goes() {
     let (r0, r1) = (rms_away_from_step(&raw, 3), rms_away_from_step(&kept, 3));
     println!("rms relative error {r0:.3} -> {r1:.3}");
     assert!(r1 < r0 / 3.0, "noise {r0:.3} -> {r1:.3}");
+}
+
+#[test]
+fn sparse_light_in_a_dark_room_is_spread_not_dropped() {
+    // One pixel in five caught the room's light (per unit albedo 5, so the
+    // room's level is 1); the rest saw none. The firefly rule compares a
+    // pixel with its neighbourhood's median, zero here: with that alone
+    // every lit pixel was a firefly and the room went black.
+    let mut inputs = ViewInputs::new(W, H);
+    let rho = Vec3::splat(0.5);
+    let mut rng = Rng::new(&[31, 37]);
+    for k in 0..W * H {
+        let lit = rng.f32() < 0.2;
+        inputs.rho[k] = rho;
+        inputs.l_surf[k] = rho * if lit { 5.0 } else { 0.0 };
+        inputs.var_surf[k] = if lit {
+            25.0 / N as f32 * luminance(rho).powi(2)
+        } else {
+            0.0
+        };
+    }
+    let traced: f32 = inputs.l_surf.iter().map(|l| l.y / 0.5).sum::<f32>() / (W * H) as f32;
+    let e = filtered(&inputs, &Widths::indirect_for_width(W));
+    let mean = e.iter().sum::<f32>() / e.len() as f32;
+    println!("room level traced {traced:.3}, filtered {mean:.3}");
+    assert!((mean / traced - 1.0).abs() < 0.1, "{mean} against {traced}");
 }
