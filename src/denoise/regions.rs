@@ -125,21 +125,25 @@ mod tests {
 
     #[test]
     fn another_surface_and_pixels_without_a_ratio_do_not_count() {
-        // 5 × 1: pixels 0..3 at 10 m (0.2), pixel 3 without a ratio,
-        // pixel 4 at 40 m (9.0).
-        let (w, h) = (5, 1);
-        let samples = vec![
-            Some((0.2, 0.0, 0.0)),
-            Some((0.2, 0.0, 0.0)),
-            Some((0.2, 0.0, 0.0)),
-            None,
-            Some((9.0, 0.0, 0.0)),
-        ];
-        let mut keys = flat(w);
-        keys[4] = SurfKey::new(40.0, Vec3::Z, 0.0);
+        // 7 × 1: pixels 0..=3 at 10 m (0.2, variances 0.01), pixel 1
+        // without a ratio, pixels 4..=6 at 40 m (9.0, variances 1).
+        let (w, h) = (7, 1);
+        let samples: Vec<Sample> = (0..w)
+            .map(|k| match k {
+                1 => None,
+                k if k < 4 => Some((0.2, 0.01, 0.01)),
+                _ => Some((9.0, 1.0, 1.0)),
+            })
+            .collect();
+        let keys: Vec<SurfKey> = (0..w)
+            .map(|k| SurfKey::new(if k < 4 { 10.0 } else { 40.0 }, Vec3::Z, 0.0))
+            .collect();
         let r = regions(&samples, &keys, (1.0 / 0.09, 1.0), (w, h));
-        assert_eq!(r[2].level, 0.2);
-        assert_eq!(r[3], Region::default());
+        // Pixel 3's window holds pixels 1..=5: only 2 and 3 count.
+        assert_eq!(r[3].level, 0.2);
+        assert_eq!(r[3].pixel_var, 0.01);
+        assert!((r[3].var - std::f32::consts::FRAC_PI_2 * 0.01 / 2.0).abs() < 1e-9);
+        assert_eq!(r[1], Region::default());
         assert_eq!(r[4].level, 9.0);
     }
 }
