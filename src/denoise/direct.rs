@@ -6,8 +6,11 @@
 //! a neighbour counts only when its demodulated luminance lies within a
 //! few standard deviations of the pixel's own noise (per-pixel variance from
 //! the sample moments, prefiltered over 3 × 3 and carried through every pass
-//! with the squared weights; the test is symmetric, on the variance of the
-//! difference). A sun shadow's edge, a step far above the
+//! with the squared weights). Within a region the test is symmetric, on the
+//! variance of the difference, so fireflies are spread; between regions
+//! (robust 5 × 5 medians that disagree, `regions.rs`) it stops at the
+//! quieter side's noise, so a lamp-lit surface's noisy light does not
+//! bleed into the dark beside it. A sun shadow's edge, a step far above the
 //! noise on either side, stays; the grain of sky and lamp sampling within a
 //! lit or shaded region goes (at night every lit surface's grain). Glossy
 //! first surfaces (paint, rough metal) hand over all their light the same
@@ -18,6 +21,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::atrous::soft_gaussian;
+use super::regions::{regions, Region, Sample};
 use super::surface::{SurfKey, SIGMA_NORMAL};
 use super::{DepthGuide, ViewInputs, Widths};
 use crate::film::Film;
@@ -166,6 +170,15 @@ pub(super) fn filter_part(
         })
         .collect();
     let mut sd = prefiltered_sd(&cur, &keys, &geo, (w, h));
+    let samples: Vec<Sample> = cur
+        .par_iter()
+        .zip(&sd)
+        .map(|(est, &s)| {
+            let lum = Lum::of(est);
+            (lum.r != 0.0).then_some((lum.e, est.var, s * s))
+        })
+        .collect();
+    let regions = regions(&samples, &keys, (geo.inv_rel2, geo.inv_n2), (w, h));
     // Rows with a pixel to filter (a pixel without one keeps it zero and is
     // copied through every pass): glass reflections cover few rows.
     let rows: Vec<bool> = part
@@ -189,6 +202,7 @@ pub(super) fn filter_part(
         gather: &gather,
         keys: &keys,
         geo: &geo,
+        regions: &regions,
         sigma_lum: part.sigma_lum,
     };
     for level in 0..levels {
@@ -255,6 +269,30 @@ fn prefiltered_sd(cur: &[Est], keys: &[SurfKey], geo: &Geo, (w, h): (usize, usiz
         .collect()
 }
 
+/// The variance the luminance test of two pixels allows for (of their
+/// values' difference, before the width `sigma_lum`), from their variances
+/// and regions. Within one region (their medians agree within the smaller
+/// of the medians' noise) it is the sum of the two: under "same light"
+/// e_c − e_q has that variance, and a test symmetric in the pair lets a
+/// bright outlier and its dark neighbour see each other alike, so a
+/// firefly's light is moved, not lost. Between regions it is twice the
+/// smallest of the two variances and the two regions' pixel variances: a
+/// dark region's pixel stops at its own region's noise, however noisy its
+/// bright neighbour (a lamp-lit surface's edge does not bleed), even on the
+/// edge, where its prefiltered variance took in the bright side's.
+/// Between the two, blended by the medians' agreement.
+#[inline]
+fn pair_var(var_c: f32, var_q: f32, rc: Region, rq: Region) -> f32 {
+    let dm = rc.level - rq.level;
+    let apart = dm * dm
+        / (SIGMA_LUM * SIGMA_LUM * 2.0 * rc.var.min(rq.var)
+            + (REL_FLOOR * rc.level.max(rq.level)).powi(2)
+            + 1e-20);
+    let same = soft_gaussian(apart);
+    let least = var_c.min(var_q).min(rc.pixel_var).min(rq.pixel_var);
+    same * (var_c + var_q) + (1.0 - same) * 2.0 * least
+}
+
 /// The B3-spline taps at offsets −2..=2 (see `atrous.rs`).
 const B3: [f32; 5] = [1.0 / 16.0, 0.25, 0.375, 0.25, 1.0 / 16.0];
 
@@ -296,6 +334,8 @@ struct Grid<'a> {
     gather: &'a [bool],
     keys: &'a [SurfKey],
     geo: &'a Geo,
+    /// Each pixel's region (`regions.rs`), from the unfiltered estimates.
+    regions: &'a [Region],
     /// `Part::sigma_lum`.
     sigma_lum: f32,
 }
@@ -319,6 +359,7 @@ fn pass(
         gather,
         keys,
         geo,
+        regions,
         sigma_lum,
     } = *grid;
     // Zero (no ratio) outside the active rows, whose pixels have no rho.
@@ -365,12 +406,11 @@ fn pass(
                     continue;
                 };
                 let nb = &data[q];
-                // Under "same light", e_c − e_q has variance var_c + var_q:
-                // a symmetric test, so a bright outlier and its dark
-                // neighbour see each other alike and light is moved, not lost.
                 let stop = if own {
                     let de = e_c - e_q;
-                    let sigma2 = sigma_lum * sigma_lum * (var_c + sd[q] * sd[q])
+                    let sigma2 = sigma_lum
+                        * sigma_lum
+                        * pair_var(var_c, sd[q] * sd[q], regions[c], regions[q])
                         + (REL_FLOOR * e_c.max(e_q)).powi(2)
                         + 1e-20;
                     de * de / sigma2

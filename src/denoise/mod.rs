@@ -43,6 +43,7 @@ mod features;
 mod first_scatter;
 mod guide;
 mod inputs;
+mod regions;
 mod surface;
 mod widths;
 

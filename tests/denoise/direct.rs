@@ -3,7 +3,10 @@
 //! as a ratio to its albedo with an edge-stopping weight on its own noise.
 //! Unit cases on a flat surface: a sun shadow's edge stays sharp while the
 //! grain of the shade goes, and neither a depth step nor the seam between
-//! glossy and Lambertian pixels leaks whatever the noise.
+//! glossy and Lambertian pixels leaks whatever the noise; lamp light
+//! sampled as a next-event estimate does (16 samples, a hit or nothing):
+//! a bright noisy surface does not bleed into a dark one beside it, and
+//! sparse speckles on a uniform surface are still spread.
 //! Through the renderer, a checker street lit by six lamps behind a wall:
 //! less error against a converged plain render, the image mean kept
 //! (nothing lost as fireflies), and the filtered noise of the left and
@@ -145,6 +148,110 @@ fn glossy_and_lambertian_pixels_stay_apart() {
         let (a, b) = (before.rgb[k].y, after.rgb[k].y);
         assert!((a - b).abs() <= 1e-6 * a, "pixel {k}: {a} -> {b}");
     }
+}
+
+/// A deterministic uniform draw in [0, 1) from (k, s).
+fn draw(k: usize, s: usize) -> f32 {
+    (wiggle(k * 97 + s * 7919 + 13) + 1.0) / 2.0
+}
+
+/// A pixel's 16 samples of lamp light as a next-event estimate sees it:
+/// `hit` with probability `p` each, else nothing; (mean, variance of the
+/// mean from the sample moments), as the path tracer hands them over.
+fn lamp_pixel(k: usize, p: f32, hit: f32) -> (f32, f32) {
+    const N: usize = 16;
+    let hits = (0..N).filter(|&s| draw(k, s) < p).count() as f32;
+    let mean = hits * hit / N as f32;
+    let second = hits * hit * hit / N as f32;
+    (mean, (second - mean * mean).max(0.0) / (N as f32 - 1.0))
+}
+
+/// A flat surface (albedo 0.5, 10 m) whose light per unit albedo at pixel
+/// k is `light(k)` = (mean, variance of the mean).
+fn lit_plane(w: usize, h: usize, light: impl Fn(usize) -> (f32, f32)) -> ViewInputs {
+    let mut layer = ViewInputs::new(w, h);
+    let rho = Vec3::splat(0.5);
+    layer.rho.fill(rho);
+    layer.rho_direct.fill(rho);
+    for k in 0..w * h {
+        let (e, var) = light(k);
+        layer.l_direct[k] = rho * e;
+        layer.var_direct[k] = 0.25 * var;
+    }
+    layer
+}
+
+#[test]
+fn a_noisy_bright_surface_does_not_bleed_into_a_dark_one() {
+    // Top half dark (0.002 per unit albedo, ±10 % grain its variance
+    // says), bottom half lit by a lamp that 16 samples hit 4 times on
+    // average (0.25 × 10: mean 2.5, each pixel's mean ±50 %): a dark band
+    // under a lamp-lit car boot. The dark half must keep its light, the
+    // row at the edge included, while the lit half loses its grain.
+    let (w, h) = (48, 24);
+    let dark = |k: usize| k / w < h / 2;
+    let layer = lit_plane(w, h, |k| {
+        if dark(k) {
+            (
+                0.002 * (1.0 + 0.1 * wiggle(k)),
+                (0.0002f32 / 3f32.sqrt()).powi(2),
+            )
+        } else {
+            lamp_pixel(k, 0.25, 10.0)
+        }
+    });
+    let (before, after) = filter_direct_only(&layer, &vec![10.0; w * h]);
+    let e = |f: &Film, k: usize| f.rgb[k].y / 0.5;
+    let mean = |f: &Film, ks: &[usize]| ks.iter().map(|&k| e(f, k)).sum::<f32>() / ks.len() as f32;
+    let dark_px: Vec<usize> = (0..w * h).filter(|&k| dark(k)).collect();
+    let edge_row: Vec<usize> = (0..w).map(|i| (h / 2 - 1) * w + i).collect();
+    let lit_px: Vec<usize> = (0..w * h).filter(|&k| !dark(k)).collect();
+    let (d0, d1) = (mean(&before, &dark_px), mean(&after, &dark_px));
+    let edge = mean(&after, &edge_row);
+    let grain = |f: &Film| spread(&lit_px.iter().map(|&k| e(f, k)).collect::<Vec<_>>());
+    eprintln!(
+        "dark half {d0:.5} -> {d1:.5}, edge row {edge:.5}; lit mean {:.3} -> {:.3}, grain {:.3} -> {:.3}",
+        mean(&before, &lit_px),
+        mean(&after, &lit_px),
+        grain(&before),
+        grain(&after)
+    );
+    // The symmetric test alone: 0.0547 and 0.497 (×27, ×250).
+    assert!((d1 / d0 - 1.0).abs() < 0.5, "dark half {d0} -> {d1}");
+    assert!(edge < 0.002 * 10.0, "edge row {edge}");
+    assert!(grain(&after) * 2.0 < grain(&before));
+    let (l0, l1) = (mean(&before, &lit_px), mean(&after, &lit_px));
+    assert!((l1 / l0 - 1.0).abs() < 0.02, "lit half {l0} -> {l1}");
+}
+
+#[test]
+fn sparse_lamp_light_on_a_uniform_surface_is_still_spread() {
+    // A façade that 16 samples hit once on average (p 1/16, 1.6 each:
+    // mean 0.1): a third of its pixels black, the rest speckles. Each
+    // pixel's variance, alone, says a black pixel is noise-free; the
+    // filter must still spread the speckles over it (error down ≥ 8×),
+    // keeping the mean (no light lost as unspread fireflies; the
+    // normalised weights move 1 % here, as with the symmetric test alone)
+    // and leaving no black pixel.
+    let (w, h) = (48, 24);
+    let layer = lit_plane(w, h, |k| lamp_pixel(k, 1.0 / 16.0, 1.6));
+    let (before, after) = filter_direct_only(&layer, &vec![10.0; w * h]);
+    let e: Vec<(f32, f32)> = (0..w * h)
+        .map(|k| (before.rgb[k].y / 0.5, after.rgb[k].y / 0.5))
+        .collect();
+    let black = e.iter().filter(|v| v.0 == 0.0).count();
+    assert!(black > w * h / 5, "{black} black pixels");
+    let mean = |f: fn(&(f32, f32)) -> f32| e.iter().map(f).sum::<f32>() / e.len() as f32;
+    let (m0, m1) = (mean(|v| v.0), mean(|v| v.1));
+    let err = |f: fn(&(f32, f32)) -> f32| {
+        (e.iter().map(|v| (f(v) - 0.1).powi(2)).sum::<f32>() / e.len() as f32).sqrt()
+    };
+    let (r0, r1) = (err(|v| v.0), err(|v| v.1));
+    let darkest = e.iter().map(|v| v.1).fold(f32::INFINITY, f32::min);
+    eprintln!("mean {m0:.4} -> {m1:.4}, rms error {r0:.4} -> {r1:.4}, darkest {darkest:.4}");
+    assert!((m1 / m0 - 1.0).abs() < 0.02, "mean {m0} -> {m1}");
+    assert!(r1 * 8.0 < r0, "rms error {r0} -> {r1}");
+    assert!(darkest > 0.03, "a pixel left at {darkest}");
 }
 
 const W: u32 = 64;
