@@ -151,9 +151,9 @@ impl<A: Accel> PathContext<'_, A> {
                 Some(hit) => hit,
                 None => self.accel.intersect(&ray),
             };
-            let u = SegmentSamples::draw(stream, vs.st.bounces);
             let skip_medium = first_segment && surface_beta.is_some();
             if let Some(m) = medium.filter(|_| !skip_medium) {
+                let u = SegmentSamples::draw(stream, vs.st.bounces);
                 let seg = (&ray, hit, &u);
                 match self.medium_segment(m, seg, &mut vs, stream, rays) {
                     SegmentEnd::Passed => {}
@@ -219,8 +219,7 @@ impl<A: Accel> PathContext<'_, A> {
         pdf_in: f32,
         p: Vec3,
         wo: Vec3,
-        u_sel: f32,
-        u_l: Vec2,
+        (u_sel, u_l): (f32, Option<Vec2>),
         u_distant: &[Vec2; 4],
         lobe_w: Option<(usize, f32)>,
         (rr, bounce): (NeeRoulette, u32),
@@ -306,7 +305,8 @@ impl<A: Accel> PathContext<'_, A> {
                 _ => c,
             };
         }
-        if let Some(scale) = rr.local() {
+        // `u_l` is drawn exactly when the local lights' roulette keeps them.
+        if let (Some(scale), Some(u_l)) = (rr.local(), u_l) {
             let ls = self.lights.sample(scene, p, u_sel, u_l, bounce);
             let equi = ls.is_some_and(|s| s.delta && s.dist.is_finite());
             l += one(ls, None, equi, None) * scale;

@@ -16,6 +16,7 @@ use crate::integrator::Shading;
 use crate::sampler::{SampleStream, StreamKey};
 use crate::scene::{build_scene, parse_scene_str, Scene};
 
+mod samples;
 mod shadow;
 mod sky_rows;
 mod spot;
