@@ -332,6 +332,7 @@ impl<A: Accel> PathContext<'_, A> {
             keep_local,
             u_shadow: ui.u_shadow,
             shadow_per_phase: s.shadow_per_phase,
+            shadow_per_tr: s.shadow_per_tr,
             sun_opacity,
             sky_row_bound: s.sky_row_bound,
         };
