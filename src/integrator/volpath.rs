@@ -26,7 +26,10 @@
 //! lights' in-scattering (NEE and equiangular) is rouletted too where they
 //! bring little (`Strategies::local_per_opacity`, `local_nee_deep`), and in
 //! thin haze the camera segment's sun shadow rays by its opacity
-//! (`Strategies::sun_per_opacity`). A deep roulette
+//! (`Strategies::sun_per_opacity`). The first two distant lights' shadow rays are
+//! rouletted by their phase value and then by their transmittance
+//! (`Strategies::shadow_per_phase`, `Strategies::shadow_per_tr`), before
+//! the ray. A deep roulette
 //! with a bounded boost (`Strategies::deep_survival`,
 //! `Strategies::deep_max_boost`) is off by default.
 //!
@@ -151,9 +154,9 @@ impl<A: Accel> PathContext<'_, A> {
                 Some(hit) => hit,
                 None => self.accel.intersect(&ray),
             };
-            let u = SegmentSamples::draw(stream, vs.st.bounces);
             let skip_medium = first_segment && surface_beta.is_some();
             if let Some(m) = medium.filter(|_| !skip_medium) {
+                let u = SegmentSamples::draw(stream, vs.st.bounces);
                 let seg = (&ray, hit, &u);
                 match self.medium_segment(m, seg, &mut vs, stream, rays) {
                     SegmentEnd::Passed => {}
@@ -219,8 +222,7 @@ impl<A: Accel> PathContext<'_, A> {
         pdf_in: f32,
         p: Vec3,
         wo: Vec3,
-        u_sel: f32,
-        u_l: Vec2,
+        (u_sel, u_l): (f32, Option<Vec2>),
         u_distant: &[Vec2; 4],
         lobe_w: Option<(usize, f32)>,
         (rr, bounce): (NeeRoulette, u32),
@@ -247,6 +249,19 @@ impl<A: Accel> PathContext<'_, A> {
                 let sun = distant.is_some_and(|k| self.lights.distant_is_directional(k));
                 let keep = u_keep.map_or(Some(1.0), |u| rr.shadow(f, u, sun));
                 let Some(keep) = keep else { return Vec3::ZERO };
+                // A kept one is rouletted again by its transmittance, by
+                // the same number (`NeeRoulette::shadow_tr`), before its
+                // radiance and its ray.
+                let (keep, tr) = match u_keep {
+                    Some(u) => {
+                        let tr = m.tr(p, ls.wi, ls.dist);
+                        let Some(keep) = rr.shadow_tr(keep, tr, u) else {
+                            return Vec3::ZERO;
+                        };
+                        (keep, Some(tr))
+                    }
+                    None => (keep, None),
+                };
                 if let Some(k) = distant {
                     ls.li = self.lights.distant_li(scene, k, p, ls.wi);
                     if ls.li == Vec3::ZERO {
@@ -268,7 +283,8 @@ impl<A: Accel> PathContext<'_, A> {
                 } else {
                     power_heuristic(1.0, ls.pdf, 1.0, m.phase.pdf(wo, ls.wi))
                 };
-                ls.li * m.tr(p, ls.wi, ls.dist) * (f * w / (ls.pdf * keep))
+                let tr = tr.unwrap_or_else(|| m.tr(p, ls.wi, ls.dist));
+                ls.li * tr * (f * w / (ls.pdf * keep))
             };
         for (k, &u) in u_distant
             .iter()
@@ -306,7 +322,8 @@ impl<A: Accel> PathContext<'_, A> {
                 _ => c,
             };
         }
-        if let Some(scale) = rr.local() {
+        // `u_l` is drawn exactly when the local lights' roulette keeps them.
+        if let (Some(scale), Some(u_l)) = (rr.local(), u_l) {
             let ls = self.lights.sample(scene, p, u_sel, u_l, bounce);
             let equi = ls.is_some_and(|s| s.delta && s.dist.is_finite());
             l += one(ls, None, equi, None) * scale;

@@ -157,8 +157,14 @@ fn dir_of(u: Vec2) -> Vec3 {
 }
 
 /// Index of the cdf interval containing `u` and the position within it.
+/// The interval is the number of entries ≤ `u` (a cdf never decreases, so
+/// it is the binary search's answer): counted over the whole row, whose
+/// loads do not wait on each other as a binary search's do. Most draws
+/// come from fog tables far larger than the caches, where each step of a
+/// search waited for its cache line.
 fn invert(cdf: &[f32], u: f32) -> (usize, f32) {
-    let k = cdf.partition_point(|&c| c <= u).min(cdf.len() - 1);
+    let below = cdf.iter().fold(0usize, |n, &c| n + (c <= u) as usize);
+    let k = below.min(cdf.len() - 1);
     let lo = if k == 0 { 0.0 } else { cdf[k - 1] };
     let width = cdf[k] - lo;
     let t = if width > 0.0 { (u - lo) / width } else { 0.5 };
@@ -168,6 +174,36 @@ fn invert(cdf: &[f32], u: f32) -> (usize, f32) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn invert_finds_the_binary_searchs_interval() {
+        // Ties, flat runs (zero-weight cells), u on an entry, below the
+        // first and at the last.
+        let cdf = [0.0, 0.0, 0.125, 0.25, 0.25, 0.25, 0.5, 0.875, 1.0, 1.0];
+        let mut us: Vec<f32> = cdf.to_vec();
+        us.extend([0.1, 0.3, 0.6, 0.9, 0.999_999, f32::MIN_POSITIVE]);
+        us.extend(
+            cdf.iter()
+                .map(|&c| f32::from_bits(c.to_bits().saturating_sub(1))),
+        );
+        for u in us {
+            let k = cdf.partition_point(|&c| c <= u).min(cdf.len() - 1);
+            let (got, t) = invert(&cdf, u);
+            assert_eq!(got, k, "u = {u}");
+            let lo = if k == 0 { 0.0 } else { cdf[k - 1] };
+            let width = cdf[k] - lo;
+            let want = if width > 0.0 { (u - lo) / width } else { 0.5 };
+            assert_eq!(t.to_bits(), want.clamp(0.0, 1.0 - f32::EPSILON).to_bits());
+        }
+        // The tables' own rows: every cell's interior maps back to it.
+        let t = table();
+        for (j, w) in t.marginal.windows(2).enumerate() {
+            let u = 0.5 * (w[0] + w[1]);
+            if w[1] > w[0] {
+                assert_eq!(invert(&t.marginal, u).0, j + 1);
+            }
+        }
+    }
 
     /// A sky bright toward +z and +x, so rows and columns differ.
     fn table() -> SkyDistribution {

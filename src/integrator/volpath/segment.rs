@@ -25,67 +25,117 @@ const SPLIT_SET: u32 = 5;
 /// roulette (`NeeRoulette`).
 const LOCAL_SET: u32 = 6;
 
-/// A segment's samples, drawn at its bounce's fixed dimensions.
+/// A segment's samples, each 4D set drawn at its bounce's fixed
+/// dimension only where the segment uses it (a number depends on its
+/// dimension alone, so the same numbers as drawing them all): free flight,
+/// phase direction and roulette at once; the in-scattering estimate's
+/// roulettes, the local lights' numbers and the distant lights' samples
+/// when it reaches them (the local lights' and the third and fourth
+/// distant lights' seldom by day).
 pub(super) struct SegmentSamples {
+    /// The segment's first dimension.
+    base: u32,
     /// Free flight (and the in-scattering point).
-    u_ff: f32,
+    pub u_ff: f32,
     /// Phase-function direction.
-    u_phase: Vec2,
+    pub u_phase: Vec2,
     /// Roulette at a collision.
-    u_rr: f32,
-    /// Equiangular distance.
-    u_eq: f32,
-    /// Light choice for equiangular sampling, and its 2D sample.
-    u_eq_sel: f32,
-    u_eq_light: Vec2,
-    /// Local light choice for the in-scattering NEE, and its 2D sample.
-    u_sel: f32,
-    u_light: Vec2,
-    /// One 2D sample per distant light.
-    u_distant: [Vec2; 4],
+    pub u_rr: f32,
+}
+
+/// The segment's 4D set of the equiangular distance and light choice and
+/// the in-scattering NEE's local light sample.
+const LOCAL_LIGHT_SET: u32 = 1;
+/// The segment's 4D set of the in-scattering NEE's local light choice, the
+/// equiangular light sample and the sky roulette.
+const CHOICE_SET: u32 = 2;
+/// The segment's first 4D set of the distant lights' samples (two each).
+const DISTANT_SET: u32 = 3;
+
+/// The numbers of a segment's in-scattering roulettes, and the local light
+/// choice of its NEE (drawn in one set with the sky's roulette).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct InScatterSamples {
     /// Roulette of the sky's NEE (`NeeRoulette`).
-    u_sky: f32,
+    pub u_sky: f32,
     /// Roulette of the local lights' NEE (`NeeRoulette`).
-    u_local: f32,
+    pub u_local: f32,
     /// Roulettes of the first two distant lights' shadow rays (`NeeRoulette`).
-    u_shadow: [f32; 2],
+    pub u_shadow: [f32; 2],
+    /// Local light choice for the in-scattering NEE.
+    pub u_sel: f32,
+    /// Equiangular sampling's 2D light sample.
+    pub u_eq_light: Vec2,
+}
+
+/// The local lights' numbers of a segment.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct LocalSamples {
+    /// Equiangular distance.
+    pub u_eq: f32,
+    /// Light choice for equiangular sampling.
+    pub u_eq_sel: f32,
+    /// The in-scattering NEE's 2D local light sample.
+    pub u_light: Vec2,
 }
 
 impl SegmentSamples {
     /// The samples of the segment after `bounces` scattering events.
     pub fn draw(stream: &mut SampleStream, bounces: u32) -> Self {
-        stream.set_dimension(VOL_DIMS + bounces * VOL_DIMS_PER_BOUNCE);
+        let base = VOL_DIMS + bounces * VOL_DIMS_PER_BOUNCE;
+        stream.set_dimension(base);
         // Distance and continuation direction share one 4D set, so they
         // are stratified jointly across a pixel's samples: together they
         // decide where the path goes (its escape to the sky is most of
         // the foggy street's error); in separate padded sets they were
         // paired at random (about 1.5 % lower RMSE at 16 spp).
         let [u_ff, u_ph0, u_ph1, u_rr] = stream.next_4d();
-        let [u_eq, u_eq_sel, u_lx, u_ly] = stream.next_4d();
-        let [u_sel, u_ex, u_ey, u_sky] = stream.next_4d();
-        let [a0, a1, a2, a3] = stream.next_4d();
-        let [b0, b1, b2, b3] = stream.next_4d();
-        stream.set_dimension(VOL_DIMS + bounces * VOL_DIMS_PER_BOUNCE + LOCAL_SET);
-        let [u_local, u_sh0, u_sh1, _] = stream.next_4d();
         SegmentSamples {
+            base,
             u_ff,
             u_phase: Vec2::new(u_ph0, u_ph1),
             u_rr,
-            u_eq,
-            u_eq_sel,
-            u_eq_light: Vec2::new(u_ex, u_ey),
-            u_sel,
-            u_light: Vec2::new(u_lx, u_ly),
-            u_distant: [
-                Vec2::new(a0, a1),
-                Vec2::new(a2, a3),
-                Vec2::new(b0, b1),
-                Vec2::new(b2, b3),
-            ],
+        }
+    }
+
+    /// The segment's 4D set `set`.
+    fn set(&self, stream: &mut SampleStream, set: u32) -> [f32; 4] {
+        stream.set_dimension(self.base + set);
+        stream.next_4d()
+    }
+
+    /// The in-scattering estimate's roulettes and local light choice.
+    pub fn in_scatter(&self, stream: &mut SampleStream) -> InScatterSamples {
+        let [u_sel, u_ex, u_ey, u_sky] = self.set(stream, CHOICE_SET);
+        let [u_local, u_sh0, u_sh1, _] = self.set(stream, LOCAL_SET);
+        InScatterSamples {
             u_sky,
             u_local,
             u_shadow: [u_sh0, u_sh1],
+            u_sel,
+            u_eq_light: Vec2::new(u_ex, u_ey),
         }
+    }
+
+    /// The local lights' numbers (equiangular and NEE).
+    pub fn local(&self, stream: &mut SampleStream) -> LocalSamples {
+        let [u_eq, u_eq_sel, u_lx, u_ly] = self.set(stream, LOCAL_LIGHT_SET);
+        LocalSamples {
+            u_eq,
+            u_eq_sel,
+            u_light: Vec2::new(u_lx, u_ly),
+        }
+    }
+
+    /// One 2D sample for each of the first `n` (≤ 4) distant lights (the
+    /// rest zero).
+    pub fn distant(&self, stream: &mut SampleStream, n: usize) -> [Vec2; 4] {
+        let mut u = [Vec2::ZERO; 4];
+        for (k, pair) in u.chunks_mut(2).enumerate().take(n.div_ceil(2)) {
+            let [a0, a1, a2, a3] = self.set(stream, DISTANT_SET + k as u32);
+            pair.copy_from_slice(&[Vec2::new(a0, a1), Vec2::new(a2, a3)]);
+        }
+        u
     }
 }
 
@@ -220,7 +270,7 @@ impl<A: Accel> PathContext<'_, A> {
         // Equiangular sampling runs on every segment either way.
         let every = vs.st.bounces < strategies.every_segment_bounces;
         if vs.st.bounces < self.max_depth {
-            self.in_scatter(m, ray, t_end, &seg, every, u, vs, rays);
+            self.in_scatter(m, (ray, t_end), &seg, every, (u, stream), vs, rays);
         }
         let split = first_segment && strategies.split_first;
         if split && seg.collided {
@@ -251,15 +301,15 @@ impl<A: Accel> PathContext<'_, A> {
     fn in_scatter(
         &self,
         m: &Medium,
-        ray: &Ray,
-        t_end: f32,
+        (ray, t_end): (&Ray, f32),
         seg: &InScatter,
         every: bool,
-        u: &SegmentSamples,
+        (u, stream): (&SegmentSamples, &mut SampleStream),
         vs: &mut VolState,
         rays: &mut u64,
     ) {
         let (p, wo) = (ray.at(seg.t), -ray.d);
+        let ui = u.in_scatter(stream);
         // The roulettes of the sky's and the local lights' terms: on every
         // segment by its opacity (`inscatter_per_opacity`,
         // `local_per_opacity`), at collisions `sky_nee_deep` and
@@ -276,12 +326,13 @@ impl<A: Accel> PathContext<'_, A> {
             (s.sky_nee_deep, s.local_nee_deep, 1.0)
         };
         let rr = NeeRoulette {
-            u_sky: u.u_sky,
+            u_sky: ui.u_sky,
             keep_sky,
-            u_local: u.u_local,
+            u_local: ui.u_local,
             keep_local,
-            u_shadow: u.u_shadow,
+            u_shadow: ui.u_shadow,
             shadow_per_phase: s.shadow_per_phase,
+            shadow_per_tr: s.shadow_per_tr,
             sun_opacity,
             sky_row_bound: s.sky_row_bound,
         };
@@ -290,15 +341,16 @@ impl<A: Accel> PathContext<'_, A> {
         let p_point = if every { 1.0 - seg.tr_seg } else { 1.0 };
         // Equiangular sampling toward the local lights shares their
         // roulette (on every segment, collided or not).
-        if let Some(scale) = rr.local() {
+        let local = rr.local().map(|scale| (scale, u.local(stream)));
+        if let Some((scale, ul)) = local {
             let c = self.equiangular(
                 m,
                 ray,
                 t_end,
                 p_point,
-                u.u_eq_sel,
-                u.u_eq,
-                u.u_eq_light,
+                ul.u_eq_sel,
+                ul.u_eq,
+                ui.u_eq_light,
                 rays,
             );
             vs.st.l += vs.st.beta * c * scale;
@@ -325,9 +377,8 @@ impl<A: Accel> PathContext<'_, A> {
             },
             p,
             wo,
-            u.u_sel,
-            u.u_light,
-            &u.u_distant,
+            (ui.u_sel, local.map(|(_, ul)| ul.u_light)),
+            &u.distant(stream, self.lights.distant_count()),
             lobe_w,
             (rr, st.bounces),
             rays,

@@ -100,6 +100,15 @@ pub(super) struct Strategies {
     /// (`f32::INFINITY`: always traced). The sun lobe (`sun_lobe_vertex`)
     /// is rouletted by the same rule on its phase value toward its direction.
     pub(super) shadow_per_phase: f32,
+    /// A shadow ray the phase roulette keeps (`shadow_per_phase`) is kept
+    /// again with probability min(1, `shadow_per_tr`·Tr), Tr the medium's
+    /// transmittance along it (closed form, known before the ray), and
+    /// divided by it (`NeeRoulette::shadow_tr`): deep in fog most shadow
+    /// rays carry a few per cent of their light, and a kept one weighs at
+    /// most 1/this of what it would without the medium. At 4: about 5 %
+    /// fewer rays in the foggy street (town05 frame 40) at its PSNR
+    /// (`f32::INFINITY`: the phase roulette alone).
+    pub(super) shadow_per_tr: f32,
     /// The sky's NEE from a medium point stops its table draw at the row
     /// when the phase roulette (`shadow_per_phase`) would drop every
     /// direction of that row (`HenyeyGreenstein::max_in_z_band`): the same
@@ -128,6 +137,7 @@ impl Default for Strategies {
             deep_max_boost: 2.0,
             split_per_tr: 8.0,
             shadow_per_phase: 4.0 * std::f32::consts::PI,
+            shadow_per_tr: 4.0,
             sky_row_bound: true,
             cone: RayCone::NONE,
         }
@@ -156,6 +166,9 @@ pub(super) struct NeeRoulette {
     /// Survival per unit phase value of a distant light's shadow ray
     /// (`Strategies::shadow_per_phase`).
     pub(super) shadow_per_phase: f32,
+    /// Survival per unit transmittance of a shadow ray the phase roulette
+    /// kept (`Strategies::shadow_per_tr`).
+    pub(super) shadow_per_tr: f32,
     /// The suns' factor on that survival, in (0, 1]: the segment's
     /// min(1, `Strategies::sun_per_opacity`·(1 − Tr)) at an every-segment
     /// point, 1 at a collision (which stands for itself, not for 1 − Tr).
@@ -183,6 +196,16 @@ impl NeeRoulette {
     pub(super) fn shadow(&self, f: f32, u: f32, sun: bool) -> Option<f32> {
         let scale = if sun { self.sun_opacity } else { 1.0 };
         let keep = (self.shadow_per_phase * f * scale).min(1.0);
+        (u < keep).then_some(keep)
+    }
+
+    /// The survival probability of a shadow ray that [`NeeRoulette::shadow`]
+    /// kept with probability `keep` by the number `u`, once its
+    /// transmittance `tr` is known: kept by the same `u` (uniform below
+    /// `keep` once kept) with probability `keep`·min(1, `shadow_per_tr`·`tr`);
+    /// None when dropped.
+    pub(super) fn shadow_tr(&self, keep: f32, tr: f32, u: f32) -> Option<f32> {
+        let keep = keep * (self.shadow_per_tr * tr).min(1.0);
         (u < keep).then_some(keep)
     }
 }

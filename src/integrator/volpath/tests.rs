@@ -16,6 +16,7 @@ use crate::integrator::Shading;
 use crate::sampler::{SampleStream, StreamKey};
 use crate::scene::{build_scene, parse_scene_str, Scene};
 
+mod samples;
 mod shadow;
 mod sky_rows;
 mod spot;
@@ -360,11 +361,12 @@ fn inscatter_roulette_keeps_the_mean_in_thin_haze() {
     // about 30 % of the time at 4 per unit opacity); level rays see an
     // opaque column, always estimated.
     let thin = format!("{SCENE}{SKY}").replace("sigma_t = 0.05", "sigma_t = 0.0005");
-    // The phase roulette of the shadow rays off in both: it drops most of
-    // the same rays (`shadow::phase_shadow_roulette_keeps_the_mean_for_fewer_rays`).
+    // The shadow rays' roulettes (phase value, transmittance) off in both:
+    // they drop many of the same rays (`shadow.rs`).
     let n = 16384;
     let base = Strategies {
         shadow_per_phase: f32::INFINITY,
+        shadow_per_tr: f32::INFINITY,
         ..Strategies::default()
     };
     let (rr, rays_rr) = samples_in(&thin, base, &DIRS, n);

@@ -119,3 +119,41 @@ fn phase_shadow_roulette_keeps_the_mean_for_fewer_rays() {
         "{rays_rr} vs {rays_all}"
     );
 }
+
+#[test]
+fn transmittance_roulette_keeps_the_closed_form_and_the_mean_for_fewer_rays() {
+    // The slab's sun at 15°: from most points its shadow ray crosses tens
+    // of metres of fog (Tr of a few per cent), so at one per unit Tr the
+    // roulette drops most of them. Single scattering against its closed
+    // form, then several bounces under sun and sky against every kept ray
+    // traced.
+    let strict = Strategies {
+        shadow_per_tr: 1.0,
+        ..Strategies::default()
+    };
+    let d: [f64; 3] = [0.0, 1.0, 0.2];
+    let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+    let d = [d[0] / n, d[1] / n, d[2] / n];
+    let dv = Vec3::new(d[0] as f32, d[1] as f32, d[2] as f32);
+    let (l, _) = radiance(SCENE, strict, dv, 1, 16384);
+    let (mean, var) = mean_var(&l);
+    let se = (var / l.len() as f64).sqrt();
+    let want = single_scatter(SIGMA_T, d);
+    assert!(
+        (mean - want).abs() <= 4.0 * se + 2e-3 * want,
+        "{mean} vs {want} ± {se}"
+    );
+    let scene = format!("{SCENE}{SKY}");
+    let every = Strategies {
+        shadow_per_tr: f32::INFINITY,
+        ..Strategies::default()
+    };
+    let (all, rays_all) = samples_in(&scene, every, &DIRS, 16384);
+    let (rr, rays_rr) = samples_in(&scene, strict, &DIRS, 16384);
+    assert_same_means(&DIRS, ("every", &all), ("by Tr", &rr));
+    eprintln!("rays: every {rays_all}, by Tr {rays_rr}");
+    assert!(
+        (rays_rr as f64) < 0.95 * rays_all as f64,
+        "{rays_rr} vs {rays_all}"
+    );
+}
