@@ -72,6 +72,11 @@ pub(super) struct Part<'a> {
     pub(super) traced: &'a [Vec3],
     /// Edge-stopping width in standard deviations.
     pub(super) sigma_lum: f32,
+    /// Whether the luminance test stops at the quieter side's noise
+    /// between regions ([`pair_var`]); otherwise it is symmetric
+    /// everywhere (light whose noise is not heavy-tailed, as indirect
+    /// light on the first surface).
+    pub(super) between_regions: bool,
 }
 
 /// Replaces `l_direct` in `film` by its filtered estimate (as a ratio to
@@ -91,6 +96,7 @@ pub(super) fn filter_direct(
         remod: &inputs.rho_direct,
         traced: &inputs.l_direct,
         sigma_lum: SIGMA_LUM,
+        between_regions: true,
     };
     filter_part(film, &part, inputs, guide, widths, levels);
 }
@@ -118,6 +124,7 @@ pub(super) fn filter_reflection(
         remod: &inputs.rho_refl,
         traced: &inputs.l_refl,
         sigma_lum: SIGMA_LUM_REFL,
+        between_regions: true,
     };
     filter_part(film, &part, inputs, guide, widths, levels);
 }
@@ -170,15 +177,17 @@ pub(super) fn filter_part(
         })
         .collect();
     let mut sd = prefiltered_sd(&cur, &keys, &geo, (w, h));
-    let samples: Vec<Sample> = cur
-        .par_iter()
-        .zip(&sd)
-        .map(|(est, &s)| {
-            let lum = Lum::of(est);
-            (lum.r != 0.0).then_some((lum.e, est.var, s * s))
-        })
-        .collect();
-    let regions = regions(&samples, &keys, (geo.inv_rel2, geo.inv_n2), (w, h));
+    let regions = part.between_regions.then(|| {
+        let samples: Vec<Sample> = cur
+            .par_iter()
+            .zip(&sd)
+            .map(|(est, &s)| {
+                let lum = Lum::of(est);
+                (lum.r != 0.0).then_some((lum.e, est.var, s * s))
+            })
+            .collect();
+        regions(&samples, &keys, (geo.inv_rel2, geo.inv_n2), (w, h))
+    });
     // Rows with a pixel to filter (a pixel without one keeps it zero and is
     // copied through every pass): glass reflections cover few rows.
     let rows: Vec<bool> = part
@@ -202,7 +211,7 @@ pub(super) fn filter_part(
         gather: &gather,
         keys: &keys,
         geo: &geo,
-        regions: &regions,
+        regions: regions.as_deref(),
         sigma_lum: part.sigma_lum,
     };
     for level in 0..levels {
@@ -334,8 +343,9 @@ struct Grid<'a> {
     gather: &'a [bool],
     keys: &'a [SurfKey],
     geo: &'a Geo,
-    /// Each pixel's region (`regions.rs`), from the unfiltered estimates.
-    regions: &'a [Region],
+    /// Each pixel's region (`regions.rs`), from the unfiltered estimates;
+    /// `None`: the test is symmetric everywhere.
+    regions: Option<&'a [Region]>,
     /// `Part::sigma_lum`.
     sigma_lum: f32,
 }
@@ -410,7 +420,10 @@ fn pass(
                     let de = e_c - e_q;
                     let sigma2 = sigma_lum
                         * sigma_lum
-                        * pair_var(var_c, sd[q] * sd[q], regions[c], regions[q])
+                        * match regions {
+                            Some(r) => pair_var(var_c, sd[q] * sd[q], r[c], r[q]),
+                            None => var_c + sd[q] * sd[q],
+                        }
                         + (REL_FLOOR * e_c.max(e_q)).powi(2)
                         + 1e-20;
                     de * de / sigma2

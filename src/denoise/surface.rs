@@ -128,6 +128,7 @@ fn edge_stopped(
         remod: &inputs.rho,
         traced: &inputs.l_surf,
         sigma_lum,
+        between_regions: false,
     };
     filter_part(film, &part, inputs, guide, widths, DIRECT_LEVELS);
 }
