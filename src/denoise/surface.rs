@@ -61,16 +61,16 @@ pub(super) fn filter_surface(
     if fog.rho.iter().all(|&r| r == Vec3::ZERO) {
         return;
     }
-    let normal = |k: usize| guide.normal.get(k).copied().unwrap_or(Vec3::ZERO);
-    let keys: Vec<SurfKey> = (0..n)
-        .into_par_iter()
-        .map(|k| SurfKey::new(guide.depth_z[k], normal(k), fog.behind_delta[k]))
-        .collect();
     let firefly = fireflies(&fog.l_surf, &fog.rho, (w, h));
     if let Some(sigma_lum) = filter.surface_sigma_lum {
         edge_stopped(film, fog, &firefly, guide, filter, sigma_lum);
         return;
     }
+    let normal = |k: usize| guide.normal.get(k).copied().unwrap_or(Vec3::ZERO);
+    let keys: Vec<SurfKey> = (0..n)
+        .into_par_iter()
+        .map(|k| SurfKey::new(guide.depth_z[k], normal(k), fog.behind_delta[k]))
+        .collect();
     // A firefly's pair is zero: it adds to neither sum of a neighbour's
     // ratio (the weights cancel in the ratio).
     let mut cur: Vec<Pair> = fog
