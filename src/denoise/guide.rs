@@ -57,8 +57,8 @@ pub fn centre_opacity(scene: &Scene, cam: &RenderCamera, depth_z: &[f32]) -> Vec
 /// [`denoise_guided`]: fog in-scattering, and the light on the first
 /// surface that `DenoiseSample::l_surf` holds), guided by the view's exact
 /// pixel-centre `depth_z`, the opacity along those rays and the normals the
-/// depth implies. Widths: the fog defaults for the view's size, or the
-/// narrower indirect-light ones in a scene without a medium.
+/// depth implies. Widths: [`Widths::indirect_for_width`] for the view's
+/// size, with or without a medium.
 pub fn denoise_view(
     scene: &Scene,
     cam: &RenderCamera,
@@ -73,10 +73,7 @@ pub fn denoise_view(
         opacity: &opacity,
         normal: &normal,
     };
-    let mut widths = match scene.medium {
-        Some(_) => Widths::for_width(film.width),
-        None => Widths::indirect_for_width(film.width),
-    };
+    let mut widths = Widths::indirect_for_width(film.width);
     if !super::Features::for_scene(scene).direct {
         widths.direct_levels = 0;
     }

@@ -10,17 +10,16 @@
 //!   mean radiance scattered toward the camera along the ray: smooth,
 //!   textureless. Per pixel S̃ = Σw·l_fog / Σw·opacity, and pixel =
 //!   (L − l_fog) + opacity·S̃;
-//! - light on the first surface (`surface.rs`): fog light there, or in a
-//!   medium-free scene its sky and indirect light, filtered as a ratio to
-//!   the surface's albedo (indirect light with the direct light's
-//!   edge-stopping kernel); in medium-free scenes the first-scatter cascade
-//!   is skipped;
-//! - direct light on that surface (`direct.rs`): in medium-free scenes its
-//!   next-event estimates of sun, sky and lamps, and at a glossy surface
-//!   (paint) all its light, which is all a medium's scenes hand over;
-//!   also as a ratio to the albedo, with edge-stopping on the per-pixel
-//!   noise level (variance from the sample moments) so that shadow edges
-//!   stay;
+//! - light on the first surface (`surface.rs`): all it reflects beyond its
+//!   own next-event estimates (sky and indirect light, with a medium fog
+//!   light too), filtered as a ratio to the surface's albedo with the
+//!   direct light's edge-stopping kernel; in medium-free scenes the
+//!   first-scatter cascade is skipped;
+//! - direct light on that surface (`direct.rs`): its next-event estimates
+//!   of sky and lamps (the sun's stays as traced), and at a glossy surface
+//!   (paint) all its light; also as a ratio to the albedo, with
+//!   edge-stopping on the per-pixel noise level (variance from the sample
+//!   moments) so that shadow edges stay;
 //! - light along smooth glass's reflection (`direct.rs`, medium-free
 //!   scenes): what a window mirrors, as a ratio to the Fresnel reflectance
 //!   that every sample meeting the glass records (reflected or not), with

@@ -1,17 +1,17 @@
-//! The second denoiser component: light on the first surface
-//! (`ViewInputs::l_surf`; with a medium, fog light: paths camera →
-//! Lambertian x1 → medium scatter).
+//! The second denoiser component: indirect light on the first surface
+//! (`ViewInputs::l_surf`: all a Lambertian x1 reflects beyond its own
+//! next-event estimates; with a medium, fog light included).
 //! Its mean is rho·E with rho = throughput × albedo at x1 (texture included)
-//! and E the fog-scattered irradiance / π, smooth over a surface; per pixel
+//! and E the indirect irradiance / π, smooth over a surface; per pixel
 //! Ẽ = Σw·l_surf / Σw·rho per channel and pixel = L − l_surf + rho·Ẽ,
 //! so texture and the first segment's Tr stay exact per pixel. Range
-//! weights: relative depth_z, the pixel-centre normal, never sky. The same
-//! component carries indirect light in medium-free scenes
-//! (`DenoiseSample::l_surf`), on x1 or on the surface x1's glass and mirrors
+//! weights: relative depth_z, the pixel-centre normal, never sky. In
+//! medium-free scenes x1 may also be the surface x1's glass and mirrors
 //! show; pixels mix only with pixels whose share of the latter is alike
-//! (`ViewInputs::behind_delta`). That light is filtered with `direct.rs`'s
+//! (`ViewInputs::behind_delta`). Renders filter it with `direct.rs`'s
 //! kernel, which also stops at the light's own noise, so corners and
-//! recesses keep their shade. Fireflies (`FIREFLY_RATIO`) are left out of
+//! recesses keep their shade (`Widths::surface_sigma_lum`; `None`: on
+//! geometry alone). Fireflies (`FIREFLY_RATIO`) are left out of
 //! the sums and take their neighbours' estimate.
 
 use std::ops::{Add, Div, Mul};

@@ -16,8 +16,8 @@ pub struct Widths {
     /// Edge-stopping width, in standard deviations of its own noise, of the
     /// light on the first surface (`surface.rs`), filtered with
     /// `direct.rs`'s kernel at [`DIRECT_LEVELS`](super::direct::DIRECT_LEVELS);
-    /// `None` filters it on geometry alone at `sigma_px` (fog light:
-    /// smooth at the medium's scale, and no per-pixel variance of it).
+    /// `None` filters it on geometry alone at `sigma_px` (renders use
+    /// `Some`: [`Widths::indirect_for_width`]).
     pub surface_sigma_lum: Option<f32>,
 }
 
@@ -35,9 +35,9 @@ impl Widths {
         }
     }
 
-    /// [`Widths::for_width`] for a medium-free scene: indirect light on
-    /// the first surface is filtered with edge-stopping on its own noise
-    /// ([`INDIRECT_SIGMA_LUM`]).
+    /// [`Widths::for_width`] with indirect light on the first surface
+    /// (fog light included) filtered with edge-stopping on its own noise
+    /// ([`INDIRECT_SIGMA_LUM`]): every rendered view's widths.
     pub fn indirect_for_width(width: usize) -> Widths {
         Widths {
             surface_sigma_lum: Some(INDIRECT_SIGMA_LUM),
@@ -51,8 +51,7 @@ impl Widths {
 /// the rest of the error is the surfaces' own noise.
 const SIGMA_PX_AT_160: f32 = 2.0;
 
-/// Edge-stopping width of indirect light on the first surface of a
-/// medium-free scene: its light varies from pixel to pixel (corners,
+/// Edge-stopping width of indirect light on the first surface: its light varies from pixel to pixel (corners,
 /// recesses, the shade under balconies) at about its noise level, so a
 /// test narrower than the direct light's keeps that variation.
 const INDIRECT_SIGMA_LUM: f32 = 1.5;

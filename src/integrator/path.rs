@@ -420,8 +420,9 @@ impl<A: Accel> PathContext<'_, A> {
     }
 
     /// One surface vertex: emission (MIS-weighted), NEE, BSDF sampling and
-    /// roulette. Returns the continuation ray (None when the path ends) and
-    /// the suns' next-event part of the light it added.
+    /// roulette. Returns the continuation ray (None when the path ends),
+    /// the suns' next-event part of the light it added, and the radiance
+    /// before its next-event estimates (its emission in).
     pub(super) fn surface_vertex(
         &self,
         ray: &Ray,
@@ -429,7 +430,7 @@ impl<A: Accel> PathContext<'_, A> {
         st: &mut PathState,
         stream: &mut SampleStream,
         rays: &mut u64,
-    ) -> (Option<Ray>, Vec3) {
+    ) -> (Option<Ray>, Vec3, Vec3) {
         let mut pending = PendingShadows::new();
         let u = if st.bounces < self.max_depth {
             BounceSamples::draw(stream, st.bounces, self.lights)
@@ -437,8 +438,9 @@ impl<A: Accel> PathContext<'_, A> {
             BounceSamples::default()
         };
         let next = self.surface_vertex_deferred(ray, hit, st, &u, rays, &mut pending);
+        let before = st.l;
         let sun = pending.resolve(self.accel, &mut st.l);
-        (next, sun)
+        (next, sun, before)
     }
 
     /// [`PathContext::surface_vertex`] with the NEE shadow rays left in

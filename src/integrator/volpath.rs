@@ -40,11 +40,13 @@
 //! The result is split by the camera ray's first event (`DenoiseSample`):
 //! what the first segment's in-scattering and a collision on it bring is
 //! `l_fog`, denoised in image space (`crate::denoise`); renders that filter
-//! also split that first segment (`Strategies::split_first`) and mark the
-//! fog light on the first surface: what the segment after a Lambertian
-//! first vertex x1 brings by in-scattering or a collision (`surf_fog.rs`);
-//! at a glossy x1 (paint, rough metal) all the light the path gathers from
-//! x1 on, handed over as direct light as in medium-free scenes.
+//! also split that first segment (`Strategies::split_first`) and split the
+//! light of a first surface vertex x1 as medium-free scenes do: at a
+//! Lambertian x1 its next-event estimates of sky and lamps (direct light)
+//! and all that follows them (indirect light: fog light and light by way
+//! of other surfaces, `surface_split.rs`); at a glossy x1 (paint, rough
+//! metal) all the light the path gathers from x1 on, handed over as direct
+//! light. The suns' next-event estimates stay as traced.
 //! One segment's medium events are `segment.rs`.
 
 use glam::{Vec2, Vec3};
@@ -56,6 +58,7 @@ use super::PathContext;
 use crate::accel::{Accel, Hit, Ray};
 use crate::light::LightSample;
 use crate::sampler::SampleStream;
+use surface_split::SurfaceSplit;
 
 /// First 4D set of the volume dimensions (far above every surface dimension).
 const VOL_DIMS: u32 = 1 << 20;
@@ -64,7 +67,7 @@ const VOL_DIMS_PER_BOUNCE: u32 = 16;
 
 mod segment;
 mod strategies;
-mod surf_fog;
+mod surface_split;
 #[cfg(test)]
 mod tests;
 
@@ -148,7 +151,6 @@ impl<A: Accel> PathContext<'_, A> {
         }
         loop {
             let first_segment = vs.st.bounces == 0;
-            let after_x1 = vs.first.surf_fog.segment_start(vs.st.l);
             *rays += 1;
             let hit = match known_hit.take() {
                 Some(hit) => hit,
@@ -173,9 +175,6 @@ impl<A: Accel> PathContext<'_, A> {
             if first_segment {
                 vs.first.l_fog_passed = Some(vs.st.l);
             }
-            if after_x1 {
-                vs.first.surf_fog.segment_passed(vs.st.l);
-            }
             let st = &mut vs.st;
             let Some(hit) = hit else {
                 st.l += st.beta
@@ -190,10 +189,12 @@ impl<A: Accel> PathContext<'_, A> {
             let first = (st.bounces == 0 && strategies.split_first && st.bounces < self.max_depth)
                 .then_some(st.beta);
             let l_at_x1 = st.l;
-            let (next, sun) = self.surface_vertex(&ray, &hit, st, stream, rays);
+            let (next, sun, before) = self.surface_vertex(&ray, &hit, st, stream, rays);
             if let Some(beta) = first {
-                let rho = st.first_albedo.map(|a| a * beta);
-                vs.first.surf_fog.at_first_vertex(rho);
+                if let Some(albedo) = st.first_albedo {
+                    vs.first.surface =
+                        SurfaceSplit::at_first_vertex(albedo * beta, before, sun, st.l);
+                }
                 // A glossy x1 (paint): everything it reflects, fog light
                 // included, is filtered as direct light (`l_direct`), but
                 // the suns' next-event estimate, left as traced as in a

@@ -15,7 +15,7 @@ use crate::integrator::path::{LiSample, PathState};
 use crate::integrator::{DenoiseSample, PathContext};
 use crate::sampler::SampleStream;
 
-use super::surf_fog::SurfFog;
+use super::surface_split::SurfaceSplit;
 
 /// The camera segment's 4D set (after `SegmentSamples`' five) whose first
 /// number decides the split's roulette (`Strategies::split_per_tr`).
@@ -159,8 +159,8 @@ pub(super) struct FirstEvent {
     pub l_fog_passed: Option<Vec3>,
     /// Opacity of the first segment.
     opacity: f32,
-    /// Fog light on the first surface.
-    pub surf_fog: SurfFog,
+    /// A Lambertian first surface's direct and indirect light.
+    pub surface: SurfaceSplit,
     /// At a glossy first vertex: the path radiance before it was shaded,
     /// plus its suns' next-event part, and β·`glossy_albedo` there
     /// (`DenoiseSample::l_direct`, `rho_direct`).
@@ -206,11 +206,11 @@ impl VolState {
         let VolState { st, first, .. } = self;
         let split = first.split.denoise;
         // Only one of the path and its split surface part reaches x1.
-        let (l_direct, rho_direct) = first
-            .glossy
-            .map_or((split.l_direct, split.rho_direct), |(l_at_x1, rho)| {
-                (st.l - l_at_x1, rho)
-            });
+        let (l_direct, rho_direct) = match first.glossy {
+            Some((l_at_x1, rho)) => (st.l - l_at_x1, rho),
+            None if first.surface.is_split() => (first.surface.direct, first.surface.rho),
+            None => (split.l_direct, split.rho_direct),
+        };
         // Light along the reflection of glass seen from the camera
         // (`SplitVertex::at_glass`), from the path or its split surface part.
         let l_refl = st.split.refl_from.map_or(Vec3::ZERO, |l0| st.l - l0) + split.l_refl;
@@ -221,11 +221,12 @@ impl VolState {
             denoise: DenoiseSample {
                 l_fog: first.l_fog_passed.unwrap_or(st.l),
                 opacity: first.opacity,
-                l_surf: first.surf_fog.l_surf(st.l) + split.l_surf,
-                rho: first.surf_fog.rho + split.rho,
+                l_surf: first.surface.l_surf(st.l) + split.l_surf,
+                rho: first.surface.rho + split.rho,
                 split_behind_delta: false,
-                // Direct light only at a glossy x1: all its light but the
-                // suns' next-event estimate.
+                // Direct light at x1: at a glossy one all its light, at a
+                // Lambertian one its next-event estimates; the suns' left
+                // out of both.
                 l_direct,
                 rho_direct,
                 glossy: first.glossy.is_some() || split.glossy,
