@@ -414,7 +414,9 @@ impl InScatter {
     /// colliding range, so `t` is always ∝ σ_t·Tr and collides exactly when
     /// free flight does. None when the segment has no extinction.
     fn sample(m: &Medium, ray: &Ray, t_end: f32, u: f32) -> Option<InScatter> {
-        let tr_seg = m.tr(ray.o, ray.d, t_end);
+        // The segment's clip and optical depth serve both Tr and the draw.
+        let span = m.span(ray.o, ray.d, t_end);
+        let tr_seg = span.tr();
         let p_collide = 1.0 - tr_seg;
         if p_collide.is_nan() || p_collide <= 0.0 {
             return None;
@@ -425,7 +427,7 @@ impl InScatter {
         } else {
             ((u - p_collide) / tr_seg) * p_collide
         };
-        let ds = m.sample_distance(ray.o, ray.d, t_end, u_in.min(p_collide * (1.0 - 1e-7)));
+        let ds = m.sample_distance_on(&span, u_in.min(p_collide * (1.0 - 1e-7)));
         if !ds.scattered || ds.pdf.is_nan() || ds.pdf <= 0.0 {
             return None;
         }

@@ -80,6 +80,36 @@ pub struct DistanceSample {
     pub sigma_t: f32,
 }
 
+/// A ray's stretch o + t·d, t ∈ [0, t_max], of a medium: its part inside
+/// the slab and its optical depth, worked out once for both its
+/// transmittance and free-flight sampling on it (the same bits as
+/// `Medium::tr` and `Medium::sample_distance` each give alone; a segment
+/// of a volumetric path wants both, and each costs two or three `exp`).
+#[derive(Clone, Copy, Debug)]
+pub struct Span {
+    o: DVec3,
+    d: DVec3,
+    t_max: f32,
+    /// The part inside the slab, [t_a, t_b] (None: none).
+    clip: Option<(f64, f64)>,
+    /// Extinction at t_a (exponential height fog; unused otherwise).
+    sigma_a: f64,
+    /// Optical depth over [0, t_max].
+    tau: f64,
+}
+
+impl Span {
+    /// Optical depth over the stretch.
+    pub fn optical_depth(&self) -> f64 {
+        self.tau
+    }
+
+    /// Transmittance exp(−τ) over the stretch.
+    pub fn tr(&self) -> f32 {
+        (-self.tau).exp() as f32
+    }
+}
+
 /// (1 − e^{−x})/x, stable near 0.
 fn phi(x: f64) -> f64 {
     if x.abs() < 1e-8 {
@@ -129,46 +159,63 @@ impl Medium {
     }
 
     /// Optical depth τ over [t_a, t_b] of a ray inside the slab:
-    /// heights exponential ⇒ τ = σ(z_a)·L·(1 − e^{−x})/x with x = d_z·L/H.
-    fn tau_clipped(&self, o: DVec3, d: DVec3, t_a: f64, t_b: f64) -> f64 {
+    /// heights exponential ⇒ τ = σ(z_a)·L·(1 − e^{−x})/x with x = d_z·L/H;
+    /// with the extinction at t_a (exponential height fog; σ_t otherwise).
+    fn tau_clipped(&self, o: DVec3, d: DVec3, t_a: f64, t_b: f64) -> (f64, f64) {
         let len = t_b - t_a;
         match self.density {
             Density::Homogeneous { sigma_t } => {
                 if sigma_t == 0.0 {
-                    0.0
+                    (0.0, sigma_t)
                 } else {
-                    sigma_t * len
+                    (sigma_t * len, sigma_t)
                 }
             }
             Density::HeightExp { height_scale, .. } => {
                 let s_a = self.sigma_at_z(o.z + d.z * t_a);
                 if s_a == 0.0 {
-                    return 0.0;
+                    return (0.0, s_a);
                 }
                 if len.is_infinite() {
                     // Upward rays see a finite column, level and downward ones do not.
-                    return if d.z > 0.0 {
+                    let tau = if d.z > 0.0 {
                         s_a * height_scale / d.z
                     } else {
                         f64::INFINITY
                     };
+                    return (tau, s_a);
                 }
-                s_a * len * phi(d.z * len / height_scale)
+                (s_a * len * phi(d.z * len / height_scale), s_a)
             }
+        }
+    }
+
+    /// The stretch o + t·d, t ∈ [0, t_max] (t_max may be +∞), of the medium.
+    pub fn span(&self, o: Vec3, d: Vec3, t_max: f32) -> Span {
+        let (o64, d64) = (o.as_dvec3(), d.as_dvec3());
+        let clip = self.clip(o, d, t_max);
+        let (tau, sigma_a) = match clip {
+            Some((a, b)) => self.tau_clipped(o64, d64, a, b),
+            None => (0.0, 0.0),
+        };
+        Span {
+            o: o64,
+            d: d64,
+            t_max,
+            clip,
+            sigma_a,
+            tau,
         }
     }
 
     /// Optical depth along o + t·d, t ∈ [0, t_max] (t_max may be +∞).
     pub fn optical_depth(&self, o: Vec3, d: Vec3, t_max: f32) -> f64 {
-        match self.clip(o, d, t_max) {
-            Some((a, b)) => self.tau_clipped(o.as_dvec3(), d.as_dvec3(), a, b),
-            None => 0.0,
-        }
+        self.span(o, d, t_max).optical_depth()
     }
 
     /// Transmittance exp(−τ) along o + t·d, t ∈ [0, t_max].
     pub fn tr(&self, o: Vec3, d: Vec3, t_max: f32) -> f32 {
-        (-self.optical_depth(o, d, t_max)).exp() as f32
+        self.span(o, d, t_max).tr()
     }
 
     /// Whether the medium scatters at all (any albedo channel > 0).
@@ -179,18 +226,23 @@ impl Medium {
     /// Free-flight sampling on [0, t_max]: a collision at τ(t) = −ln(1 − u),
     /// by inverting the optical depth in closed form.
     pub fn sample_distance(&self, o: Vec3, d: Vec3, t_max: f32, u: f32) -> DistanceSample {
+        self.sample_distance_on(&self.span(o, d, t_max), u)
+    }
+
+    /// [`Medium::sample_distance`] on the stretch `span` of this medium.
+    pub fn sample_distance_on(&self, span: &Span, u: f32) -> DistanceSample {
         let pass = |tau: f64| DistanceSample {
-            t: t_max,
+            t: span.t_max,
             scattered: false,
             pdf: (-tau).exp() as f32,
             sigma_t: 0.0,
         };
-        let Some((a, b)) = self.clip(o, d, t_max) else {
+        let Some((a, b)) = span.clip else {
             return pass(0.0);
         };
-        let (o64, d64) = (o.as_dvec3(), d.as_dvec3());
+        let (o64, d64) = (span.o, span.d);
         let target = -(-(u as f64)).ln_1p();
-        let total = self.tau_clipped(o64, d64, a, b);
+        let total = span.tau;
         if target >= total {
             return pass(total);
         }
@@ -198,7 +250,7 @@ impl Medium {
             Density::Homogeneous { sigma_t } => target / sigma_t,
             Density::HeightExp { height_scale, .. } => {
                 // τ(s) = σ_a·(H/d_z)(1 − e^{−d_z s/H})  ⇒  s = −(H/d_z)·ln(1 − τ d_z/(σ_a H)).
-                let s_a = self.sigma_at_z(o64.z + d64.z * a);
+                let s_a = span.sigma_a;
                 let x = target * d64.z / (s_a * height_scale);
                 if x.abs() < 1e-9 {
                     target / s_a * (1.0 + 0.5 * x)
@@ -255,6 +307,49 @@ mod tests {
         let d = Vec3::new(0.6, 0.0, 0.8);
         let tau = m.optical_depth(Vec3::new(0.0, 0.0, 1.0), d, f32::INFINITY);
         assert!((tau - 0.05 * 20.0 / 0.8).abs() < 1e-6, "{tau}");
+    }
+
+    #[test]
+    fn a_span_gives_the_closed_form_tr_and_draws_that_invert_it() {
+        // Height fog from z = 1 (σ = 0.05) up a 10 m stretch at d_z = 0.8:
+        // τ = 0.05·(H/d_z)·(1 − e^{−d_z·L/H}). A draw on the span with u
+        // collides where the optical depth from the origin is −ln(1 − u),
+        // with density σ_t(t)·(1 − u); past τ it passes with pdf Tr.
+        let m = fog();
+        let (o, d, len) = (Vec3::new(0.0, 0.0, 1.0), Vec3::new(0.6, 0.0, 0.8), 10.0);
+        let span = m.span(o, d, len);
+        let tau = 0.05 * (20.0 / 0.8) * (1.0 - (-0.8f64 * 10.0 / 20.0).exp());
+        assert!(
+            (span.optical_depth() - tau).abs() < 1e-6 * tau,
+            "{}",
+            span.optical_depth()
+        );
+        assert_eq!(span.tr().to_bits(), m.tr(o, d, len).to_bits());
+        assert!((span.tr() as f64 - (-tau).exp()).abs() < 1e-6);
+        let mut collided = 0;
+        for k in 0..64 {
+            let u = (k as f32 + 0.5) / 64.0;
+            let ds = m.sample_distance_on(&span, u);
+            let target = -(1.0 - u as f64).ln();
+            if target >= tau {
+                assert!(!ds.scattered && ds.t == len, "u {u}: {ds:?}");
+                assert!((ds.pdf - span.tr()).abs() < 1e-6, "u {u}: {ds:?}");
+                continue;
+            }
+            collided += 1;
+            assert!(ds.scattered, "u {u}");
+            let reached = m.optical_depth(o, d, ds.t);
+            assert!(
+                (reached - target).abs() < 1e-5,
+                "u {u}: τ {reached} vs {target}"
+            );
+            let want = m.sigma_t(o + d * ds.t) * (1.0 - u as f64);
+            assert!(
+                (ds.pdf as f64 - want).abs() < 1e-5 * want,
+                "u {u}: {ds:?} vs {want}"
+            );
+        }
+        assert!(collided > 10 && collided < 64, "{collided}");
     }
 
     #[test]

@@ -104,10 +104,11 @@ pub(super) struct Strategies {
     /// again with probability min(1, `shadow_per_tr`·Tr), Tr the medium's
     /// transmittance along it (closed form, known before the ray), and
     /// divided by it (`NeeRoulette::shadow_tr`): deep in fog most shadow
-    /// rays carry a few per cent of their light, and a kept one weighs at
-    /// most 1/this of what it would without the medium. At 4: about 5 %
-    /// fewer rays in the foggy street (town05 frame 40) at its PSNR
-    /// (`f32::INFINITY`: the phase roulette alone).
+    /// rays carry a few per cent of their light. A kept one brings
+    /// 1/this of its light without the medium, the least that a ray with
+    /// Tr ≥ 1/this (always traced) brings, so the roulette adds no term
+    /// brighter than those already there: no new fireflies for the fog
+    /// filter (`f32::INFINITY`: the phase roulette alone).
     pub(super) shadow_per_tr: f32,
     /// The sky's NEE from a medium point stops its table draw at the row
     /// when the phase roulette (`shadow_per_phase`) would drop every

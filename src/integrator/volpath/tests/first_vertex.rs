@@ -1,0 +1,188 @@
+//! The camera sample's split at a first surface vertex seen through fog:
+//! a glossy one hands all its light but the suns' next-event part to the
+//! direct filter, a glass one its reflection to the reflection filter,
+//! each with its exact albedo weight.
+
+use glam::Vec3;
+
+use super::{built, mean_var, SCENE, SKY};
+use crate::accel::{Accel, Ray};
+use crate::integrator::volpath::Strategies;
+use crate::integrator::Shading;
+use crate::sampler::{SampleStream, StreamKey};
+
+#[test]
+fn glossy_first_vertex_hands_its_light_but_the_suns_to_direct_light_in_fog() {
+    // Paint on the ground under the fog slab, seen through the split
+    // camera segment: every sample meets the paint with throughput Tr of
+    // the camera segment (passing, or as the split's surface part), so
+    // rho_direct is exactly Tr·(base + 0.04), and all the light after the
+    // paint is l_direct but the sun's next-event estimate, kept as traced:
+    // the sample is its fog part, l_direct and that sun part, which is
+    // never negative and vanishes with the sun.
+    let base = Vec3::new(0.5, 0.1, 0.1);
+    let paint = SCENE.replace(
+        "kind = \"diffuse\"\nalbedo = [0.3, 0.3, 0.3]",
+        "kind = \"coated\"\nalbedo = [0.5, 0.1, 0.1]\ncoat_roughness = 0.3",
+    );
+    assert_ne!(paint, SCENE, "the ground's material was not replaced");
+    let (lit, sun_lit) = glossy_paint_split(&format!("{paint}{SKY}"), base);
+    assert!(lit.min_element() > 0.0, "{lit}");
+    assert!(sun_lit.min_element() > 0.0, "{sun_lit}");
+    let dark_src = format!("{}{SKY}", strip_sun(&paint));
+    let (sky_lit, no_sun) = glossy_paint_split(&dark_src, base);
+    assert!(sky_lit.min_element() > 0.0, "{sky_lit}");
+    assert!(
+        no_sun.abs().max_element() <= 1e-4 * sky_lit.max_element(),
+        "a sun part {no_sun} without a sun"
+    );
+}
+
+/// The scene without its sun.
+fn strip_sun(src: &str) -> String {
+    let start = src.find("[[light]]").expect("a sun");
+    let end = src.find("[medium]").expect("a medium");
+    format!("{}{}", &src[..start], &src[end..])
+}
+
+/// Camera samples of the paint in `src` (ground albedo `base` under a
+/// clear coat): checks each sample's split and returns the sums of the
+/// light handed to the direct filter and of the sun part left as traced.
+fn glossy_paint_split(src: &str, base: Vec3) -> (Vec3, Vec3) {
+    let (scene, accel) = built(src);
+    let shading = Shading::new(&scene, &accel);
+    let ctx = shading.context(4);
+    let key = StreamKey {
+        seed: 3,
+        frame: 0,
+        view: 0,
+    };
+    let split = Strategies {
+        split_first: true,
+        ..Strategies::default()
+    };
+    let o = Vec3::new(0.0, 0.0, 1.5);
+    let d = Vec3::new(1.0, 0.2, -0.4).normalize();
+    // Homogeneous σ_t = 0.05/m over the 1.5 m drop to the ground (z = 0).
+    let tr = (-0.05 * 1.5 / -d.z).exp();
+    let rho_want = (base + Vec3::splat(0.04)) * tr;
+    let (mut rays, mut reflected, mut sun) = (0, Vec3::ZERO, Vec3::ZERO);
+    for k in 0..2048 {
+        let mut stream = SampleStream::new(key, 0, k / 256, k % 256);
+        let ray = Ray::new(o, d);
+        let s = ctx.trace(
+            ray,
+            accel.intersect(&ray),
+            &mut stream,
+            &mut rays,
+            split,
+            None,
+        );
+        let dn = s.denoise;
+        assert!(dn.glossy, "sample {k}: not split at the paint");
+        assert!(
+            (dn.rho_direct - rho_want).abs().max_element() <= 1e-5,
+            "sample {k}: rho_direct {} vs {rho_want}",
+            dn.rho_direct
+        );
+        assert_eq!((dn.l_surf, dn.rho), (Vec3::ZERO, Vec3::ZERO));
+        let rest = s.l - dn.l_fog - dn.l_direct;
+        assert!(
+            rest.min_element() >= -1e-4 * (1.0 + s.l.max_element()),
+            "sample {k}: l {} = fog {} + direct {} + sun {rest}",
+            s.l,
+            dn.l_fog,
+            dn.l_direct
+        );
+        reflected += dn.l_direct;
+        sun += rest;
+    }
+    (reflected, sun)
+}
+
+#[test]
+fn glass_first_vertex_hands_its_reflection_to_the_reflection_filter_in_fog() {
+    // A smooth glass floor under the fog slab, seen through the split camera
+    // segment: every sample meets the glass with throughput Tr, so rho_refl
+    // is exactly Tr·R(cos θ); the reflected samples' light after the glass
+    // is l_refl, whose mean over rho_refl's must be the radiance along the
+    // mirrored ray, estimated independently by tracing that ray itself.
+    let glass = SCENE.replace(
+        "kind = \"diffuse\"\nalbedo = [0.3, 0.3, 0.3]",
+        "kind = \"dielectric\"\nior = 1.5\nroughness = 0.0\ntint = [1.0, 1.0, 1.0]",
+    );
+    assert_ne!(glass, SCENE, "the ground's material was not replaced");
+    let (scene, accel) = built(&glass);
+    let shading = Shading::new(&scene, &accel);
+    let ctx = shading.context(4);
+    let key = |seed| StreamKey {
+        seed,
+        frame: 0,
+        view: 0,
+    };
+    let split = Strategies {
+        split_first: true,
+        ..Strategies::default()
+    };
+    let o = Vec3::new(0.0, 0.0, 1.5);
+    let d = Vec3::new(1.0, 0.2, -0.4).normalize();
+    let t_hit = 1.5 / -d.z;
+    let tr = (-0.05 * t_hit).exp();
+    let r = shaders_cpu::bsdf::fresnel::fr_dielectric(-d.z, 1.5);
+    let n = 16384;
+    let mut rays = 0;
+    let mut refl = Vec::new();
+    for k in 0..n {
+        let mut stream = SampleStream::new(key(3), 0, k / 256, k % 256);
+        let ray = Ray::new(o, d);
+        let hit = accel.intersect(&ray);
+        let s = ctx.trace(ray, hit, &mut stream, &mut rays, split, None);
+        let dn = s.denoise;
+        assert!(
+            (dn.rho_refl - Vec3::splat(tr * r)).abs().max_element() <= 1e-5,
+            "sample {k}: rho_refl {} vs Tr·R {}",
+            dn.rho_refl,
+            tr * r
+        );
+        // The rest is what refracted: never negative.
+        let rest = s.l - dn.l_fog - dn.l_refl;
+        assert!(
+            rest.min_element() >= -1e-4 * (1.0 + s.l.max_element()),
+            "sample {k}: l {} = fog {} + reflection {} + {rest}",
+            s.l,
+            dn.l_fog,
+            dn.l_refl
+        );
+        refl.push(dn.l_refl.y as f64 / (tr * r) as f64);
+    }
+    // The mirrored ray from the glass, traced plainly with the scattering
+    // events the reflected samples have left (the glass took one).
+    let ctx_after = shading.context(3);
+    let p = o + d * t_hit + Vec3::Z * 1e-3;
+    let d_mirror = Vec3::new(d.x, d.y, -d.z);
+    let mirrored: Vec<f64> = (0..n)
+        .map(|k| {
+            let mut stream = SampleStream::new(key(5), 0, k / 256, k % 256);
+            let ray = Ray::new(p, d_mirror);
+            let hit = accel.intersect(&ray);
+            let s = ctx_after.trace(
+                ray,
+                hit,
+                &mut stream,
+                &mut rays,
+                Strategies::default(),
+                None,
+            );
+            s.l.y as f64
+        })
+        .collect();
+    let (m_refl, v_refl) = mean_var(&refl);
+    let (m_mirror, v_mirror) = mean_var(&mirrored);
+    let se = ((v_refl + v_mirror) / n as f64).sqrt();
+    eprintln!("l_refl / rho_refl {m_refl:.4} vs mirrored ray {m_mirror:.4} ± {se:.4}");
+    assert!(m_mirror > 0.0);
+    assert!(
+        (m_refl - m_mirror).abs() < 4.0 * se,
+        "{m_refl} vs {m_mirror} ± {se}"
+    );
+}
