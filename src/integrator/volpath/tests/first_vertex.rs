@@ -1,7 +1,9 @@
 //! The camera sample's split at a first surface vertex seen through fog:
 //! a glossy one hands all its light but the suns' next-event part to the
 //! direct filter, a glass one its reflection to the reflection filter,
-//! each with its exact albedo weight.
+//! each with its exact albedo weight; a Lambertian one its sky
+//! next-event estimate to the direct filter and all that follows to the
+//! indirect one.
 
 use glam::Vec3;
 
@@ -185,4 +187,87 @@ fn glass_first_vertex_hands_its_reflection_to_the_reflection_filter_in_fog() {
         (m_refl - m_mirror).abs() < 4.0 * se,
         "{m_refl} vs {m_mirror} ± {se}"
     );
+}
+
+#[test]
+fn lambertian_first_vertex_splits_its_light_as_without_fog() {
+    // The diffuse ground under the fog slab, with a wall beside it, seen
+    // through the split camera segment: rho = rho_direct = Tr·albedo
+    // exactly; the sample is its fog part, x1's sky next-event estimate
+    // (l_direct), all that follows (l_surf: fog light, the sky reached by
+    // the bounce, the wall's light) and the sun's next-event part, which
+    // is never negative and vanishes with the sun.
+    let wall = "[[object]]\nkind = \"box\"\nsize = [10.0, 0.2, 4.0]\nmaterial = \"ground\"\n\
+                transform = { translate = [3.6, -3.0, 2.0] }\n";
+    let src = format!("{SCENE}{wall}{SKY}");
+    let (direct, surf, sun_lit) = lambertian_split(&src);
+    assert!(direct.min_element() > 0.0 && surf.min_element() > 0.0);
+    let (_, surf_no_wall, _) = lambertian_split(&format!("{SCENE}{SKY}"));
+    assert!(
+        (surf - surf_no_wall).abs().max_element() > 0.01 * surf.max_element(),
+        "the wall (its light, the sky it hides) is in the indirect light: {surf} vs {surf_no_wall} without it"
+    );
+    assert!(sun_lit.min_element() > 0.0, "{sun_lit}");
+    let (sky_direct, sky_surf, no_sun) = lambertian_split(&strip_sun(&src));
+    assert!(sky_direct.min_element() > 0.0 && sky_surf.min_element() > 0.0);
+    assert!(
+        no_sun.abs().max_element() <= 1e-4 * (sky_direct + sky_surf).max_element(),
+        "light {no_sun} left out of the split without a sun"
+    );
+}
+
+/// Camera samples of the diffuse ground in `src`: checks each sample's
+/// split and returns the sums of its direct light, its indirect light and
+/// the sun part left as traced.
+fn lambertian_split(src: &str) -> (Vec3, Vec3, Vec3) {
+    let (scene, accel) = built(src);
+    let shading = Shading::new(&scene, &accel);
+    let ctx = shading.context(4);
+    let key = StreamKey {
+        seed: 5,
+        frame: 0,
+        view: 0,
+    };
+    let split = Strategies {
+        split_first: true,
+        ..Strategies::default()
+    };
+    let o = Vec3::new(0.0, 0.0, 1.5);
+    let d = Vec3::new(1.0, 0.2, -0.4).normalize();
+    let tr = (-0.05 * 1.5 / -d.z).exp();
+    let rho_want = Vec3::splat(0.3) * tr;
+    let (mut rays, mut direct, mut surf, mut sun) = (0, Vec3::ZERO, Vec3::ZERO, Vec3::ZERO);
+    for k in 0..2048 {
+        let mut stream = SampleStream::new(key, 0, k / 256, k % 256);
+        let ray = Ray::new(o, d);
+        let s = ctx.trace(
+            ray,
+            accel.intersect(&ray),
+            &mut stream,
+            &mut rays,
+            split,
+            None,
+        );
+        let dn = s.denoise;
+        assert!(!dn.glossy, "sample {k}: split as glossy");
+        for rho in [dn.rho, dn.rho_direct] {
+            assert!(
+                (rho - rho_want).abs().max_element() <= 1e-5,
+                "sample {k}: rho {rho} vs {rho_want}"
+            );
+        }
+        let rest = s.l - dn.l_fog - dn.l_direct - dn.l_surf;
+        assert!(
+            rest.min_element() >= -1e-4 * (1.0 + s.l.max_element()),
+            "sample {k}: l {} = fog {} + direct {} + indirect {} + sun {rest}",
+            s.l,
+            dn.l_fog,
+            dn.l_direct,
+            dn.l_surf
+        );
+        direct += dn.l_direct;
+        surf += dn.l_surf;
+        sun += rest;
+    }
+    (direct, surf, sun)
 }
