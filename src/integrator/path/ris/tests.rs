@@ -234,12 +234,23 @@ fn ring_scene(n: usize) -> crate::scene::Scene {
 fn stratified_candidates_see_every_lamp_the_tree_weighs_alike() {
     // Under the centre of a ring of M equal lamps the tree gives each a
     // pmf of 1/M: the M stratified candidates are the M lamps, one each,
-    // so every draw's estimate is the closed form (independent candidates
-    // would repeat a lamp and miss another in most draws).
+    // so every draw's estimate is the closed form Σ f·I/d², here with a
+    // BSDF that favours +x (the tree, given no normal, cannot see it).
+    // Independent candidates repeat a lamp and miss another in most draws.
+    let f = |wi: Vec3| Vec3::splat(RHO / std::f32::consts::PI * wi.z.max(0.0) * (1.0 + wi.x));
     for m in [2, 4] {
         let scene = ring_scene(m);
         let lights = LightSet::build(&scene);
-        let e = exact(&scene, Vec3::ZERO);
+        let e: f64 = scene
+            .lights
+            .iter()
+            .map(|l| match *l {
+                Light::Point { p: q, intensity } => {
+                    (f(q.normalize()).y * intensity.y / q.length_squared()) as f64
+                }
+                _ => unreachable!("points only"),
+            })
+            .sum();
         let mut rng = Rng(5);
         for draw in 0..2000 {
             let mut u = [[0.0; 4]; CANDIDATES];
@@ -247,7 +258,7 @@ fn stratified_candidates_see_every_lamp_the_tree_weighs_alike() {
                 *c = [rng.f(), rng.f(), rng.f(), rng.f()];
             }
             let u = RisSamples { u, m, bounce: 0 };
-            let r = resample(&lights, &scene, (Vec3::ZERO, Vec3::ZERO), &u, f_cos)
+            let r = resample(&lights, &scene, (Vec3::ZERO, Vec3::ZERO), &u, f)
                 .expect("every lamp lights the origin");
             let x = (r.f * r.ls.li * r.inv_pdf.expect("resampled")).y as f64;
             assert!(
