@@ -6,7 +6,7 @@
 
 /// Local lights are resampled from this many candidates at a path's first
 /// vertex where they matter (`LightSet::local_candidates`): town03 and
-/// town10 night gained 0.4–0.6 dB over 2 candidates at equal CPU (the
+/// town10 night gained about 0.5 and 0.25 dB over 2 candidates at equal CPU (the
 /// extra tree walks spent on samples instead).
 pub const LOCAL_CANDIDATES: usize = 8;
 /// Candidates at the vertices after a path's first where the local lights
