@@ -127,7 +127,8 @@ impl BounceSamples {
         if !lights.is_empty() {
             stream.set_dimension(dim + LOCAL_SET);
             let first = stream.next_4d();
-            u.u_local = RisSamples::draw(stream, bounces, first, lights.local_candidates());
+            u.u_local =
+                RisSamples::draw(stream, bounces, first, lights.local_candidates_at(bounces));
         }
         u
     }

@@ -203,11 +203,22 @@ impl LightSet {
         self.delta_local
     }
 
-    /// Candidates NEE resamples the local light from (≤
-    /// [`LOCAL_CANDIDATES`]): all of them where the local lights bring at
-    /// least `LOCAL_SHARE_FOR_RIS` of the emitted power, else one.
+    /// Candidates NEE resamples the local light from at a path's first
+    /// vertex (≤ [`LOCAL_CANDIDATES`]): all of them where the local lights
+    /// bring at least `LOCAL_SHARE_FOR_RIS` of the emitted power, else one.
     pub fn local_candidates(&self) -> usize {
         self.budget.candidates
+    }
+
+    /// Candidates at a vertex after `bounce` scattering events: the first
+    /// vertex's [`LightSet::local_candidates`], fewer at later ones
+    /// (`share::LOCAL_CANDIDATES_DEEP`).
+    pub fn local_candidates_at(&self, bounce: u32) -> usize {
+        if bounce == 0 {
+            self.budget.candidates
+        } else {
+            self.budget.candidates_deep
+        }
     }
 
     /// Number of local lights one is selected from.

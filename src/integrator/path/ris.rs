@@ -11,6 +11,15 @@
 //! surface's horizon): candidates the BSDF or the profile zero out never
 //! cost a shadow ray, and the kept one is nearly proportional to its light.
 //!
+//! The candidates' selection numbers are stratified: candidate k's lies in
+//! [k/M, (k+1)/M), so a light the tree gives a pmf of at least 1/M is
+//! always among them and the M candidates spread over the lamps as the
+//! tree weighs them instead of crowding by chance onto a few. The
+//! estimate stays unbiased: the candidates' marginal densities sum to M·p
+//! (each slice of the selection's number is covered once), so with the
+//! balance heuristic over the slices each candidate's resampling weight is
+//! still p̂/(M·p).
+//!
 //! MIS with BSDF sampling stays the one-sample partition: the kept sample's
 //! integrand carries w = p²/(p² + p_bsdf²) with the one-candidate pdf p,
 //! the weight a BSDF ray that hits the emitter gets against it
@@ -92,7 +101,14 @@ pub(super) fn resample(
     // rescaled after each decision so it stays uniform.
     let mut u_pick = u.u[0][3];
     // Every candidate's light chosen first, in one walk of the light tree.
-    let u_select: [Option<f32>; CANDIDATES] = std::array::from_fn(|k| (k < u.m).then(|| u.u[k][0]));
+    // Stratified: candidate k's number lies in the k-th of m equal slices
+    // of [0, 1) (module docs).
+    let u_select: [Option<f32>; CANDIDATES] = std::array::from_fn(|k| {
+        (k < u.m).then(|| match u.m {
+            1 => u.u[0][0],
+            m => ((k as f32 + u.u[k][0]) / m as f32).min(1.0 - f32::EPSILON),
+        })
+    });
     let chosen = lights.select_many((p, n), u_select, u.bounce);
     for (c, chosen) in u.u[..u.m].iter().zip(chosen) {
         let Some(ls) =

@@ -128,20 +128,21 @@ fn points(i: f32) -> String {
 #[test]
 fn local_lights_share_sets_candidates_and_the_probability_a_vertex_samples_them() {
     // Faint lamps under a 900 W/m² sun: sampled at a vertex with
-    // probability 0.1, one candidate; alone (no sun): always, resampled.
+    // probability 0.1, one candidate; alone (no sun): always, resampled
+    // from more candidates at a path's first vertex than at later ones.
     let p = Vec3::new(0.3, 0.2, 0.0);
     for (extra, candidates, p_local) in [
-        (format!("{GRADIENT}{}", points(1.0)), 1, 0.1f32),
-        (
-            format!("{OVERCAST}{}", points(1e6)),
-            crate::light::LOCAL_CANDIDATES,
-            1.0,
-        ),
+        (format!("{GRADIENT}{}", points(1.0)), [1, 1], 0.1f32),
+        (format!("{OVERCAST}{}", points(1e6)), [8, 2], 1.0),
     ] {
         let scene = scene_with(&extra);
         let lights = LightSet::build(&scene);
         assert_eq!(lights.len(), 3, "{extra}");
-        assert_eq!(lights.local_candidates(), candidates, "{extra}");
+        assert_eq!(lights.local_candidates(), candidates[0], "{extra}");
+        assert_eq!(lights.local_candidates_at(0), candidates[0], "{extra}");
+        for bounce in [1, 3] {
+            assert_eq!(lights.local_candidates_at(bounce), candidates[1], "{extra}");
+        }
         let total: f32 = (0..3).map(|i| lights.pmf_at(p, Vec3::ZERO, i, 0)).sum();
         assert!((total - p_local).abs() < 1e-5, "Σ pmf {total} for\n{extra}");
         // select_at returns the pmf pmf_at recomputes, and declines for
