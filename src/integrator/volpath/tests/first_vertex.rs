@@ -9,6 +9,7 @@ use glam::Vec3;
 
 use super::{built, mean_var, SCENE, SKY};
 use crate::accel::{Accel, Ray};
+use crate::integrator::path::LiSample;
 use crate::integrator::volpath::Strategies;
 use crate::integrator::Shading;
 use crate::sampler::{SampleStream, StreamKey};
@@ -51,35 +52,9 @@ fn strip_sun(src: &str) -> String {
 /// clear coat): checks each sample's split and returns the sums of the
 /// light handed to the direct filter and of the sun part left as traced.
 fn glossy_paint_split(src: &str, base: Vec3) -> (Vec3, Vec3) {
-    let (scene, accel) = built(src);
-    let shading = Shading::new(&scene, &accel);
-    let ctx = shading.context(4);
-    let key = StreamKey {
-        seed: 3,
-        frame: 0,
-        view: 0,
-    };
-    let split = Strategies {
-        split_first: true,
-        ..Strategies::default()
-    };
-    let o = Vec3::new(0.0, 0.0, 1.5);
-    let d = Vec3::new(1.0, 0.2, -0.4).normalize();
-    // Homogeneous σ_t = 0.05/m over the 1.5 m drop to the ground (z = 0).
-    let tr = (-0.05 * 1.5 / -d.z).exp();
-    let rho_want = (base + Vec3::splat(0.04)) * tr;
-    let (mut rays, mut reflected, mut sun) = (0, Vec3::ZERO, Vec3::ZERO);
-    for k in 0..2048 {
-        let mut stream = SampleStream::new(key, 0, k / 256, k % 256);
-        let ray = Ray::new(o, d);
-        let s = ctx.trace(
-            ray,
-            accel.intersect(&ray),
-            &mut stream,
-            &mut rays,
-            split,
-            None,
-        );
+    let rho_want = (base + Vec3::splat(0.04)) * ground_tr();
+    let (mut reflected, mut sun) = (Vec3::ZERO, Vec3::ZERO);
+    ground_samples(src, 3, |k, s| {
         let dn = s.denoise;
         assert!(dn.glossy, "sample {k}: not split at the paint");
         assert!(
@@ -98,8 +73,54 @@ fn glossy_paint_split(src: &str, base: Vec3) -> (Vec3, Vec3) {
         );
         reflected += dn.l_direct;
         sun += rest;
-    }
+    });
     (reflected, sun)
+}
+
+/// The camera ray of [`ground_samples`]: from 1.5 m up, down to the ground.
+const GROUND_O: Vec3 = Vec3::new(0.0, 0.0, 1.5);
+
+/// The direction of [`ground_samples`]' camera ray.
+fn ground_d() -> Vec3 {
+    Vec3::new(1.0, 0.2, -0.4).normalize()
+}
+
+/// Tr of the homogeneous σ_t = 0.05/m over [`ground_samples`]' ray's drop
+/// to the ground (z = 0).
+fn ground_tr() -> f32 {
+    (-0.05 * GROUND_O.z / -ground_d().z).exp()
+}
+
+/// Calls `f` with each of 2048 camera samples (stream seed `seed`) along
+/// one ray to the ground of `src`, the camera segment split.
+fn ground_samples(src: &str, seed: u64, mut f: impl FnMut(u32, &LiSample)) {
+    let (scene, accel) = built(src);
+    let shading = Shading::new(&scene, &accel);
+    let ctx = shading.context(4);
+    let key = StreamKey {
+        seed,
+        frame: 0,
+        view: 0,
+    };
+    let split = Strategies {
+        split_first: true,
+        ..Strategies::default()
+    };
+    let d = ground_d();
+    let mut rays = 0;
+    for k in 0..2048 {
+        let mut stream = SampleStream::new(key, 0, k / 256, k % 256);
+        let ray = Ray::new(GROUND_O, d);
+        let s = ctx.trace(
+            ray,
+            accel.intersect(&ray),
+            &mut stream,
+            &mut rays,
+            split,
+            None,
+        );
+        f(k, &s);
+    }
 }
 
 #[test]
@@ -220,34 +241,9 @@ fn lambertian_first_vertex_splits_its_light_as_without_fog() {
 /// split and returns the sums of its direct light, its indirect light and
 /// the sun part left as traced.
 fn lambertian_split(src: &str) -> (Vec3, Vec3, Vec3) {
-    let (scene, accel) = built(src);
-    let shading = Shading::new(&scene, &accel);
-    let ctx = shading.context(4);
-    let key = StreamKey {
-        seed: 5,
-        frame: 0,
-        view: 0,
-    };
-    let split = Strategies {
-        split_first: true,
-        ..Strategies::default()
-    };
-    let o = Vec3::new(0.0, 0.0, 1.5);
-    let d = Vec3::new(1.0, 0.2, -0.4).normalize();
-    let tr = (-0.05 * 1.5 / -d.z).exp();
-    let rho_want = Vec3::splat(0.3) * tr;
-    let (mut rays, mut direct, mut surf, mut sun) = (0, Vec3::ZERO, Vec3::ZERO, Vec3::ZERO);
-    for k in 0..2048 {
-        let mut stream = SampleStream::new(key, 0, k / 256, k % 256);
-        let ray = Ray::new(o, d);
-        let s = ctx.trace(
-            ray,
-            accel.intersect(&ray),
-            &mut stream,
-            &mut rays,
-            split,
-            None,
-        );
+    let rho_want = Vec3::splat(0.3) * ground_tr();
+    let (mut direct, mut surf, mut sun) = (Vec3::ZERO, Vec3::ZERO, Vec3::ZERO);
+    ground_samples(src, 5, |k, s| {
         let dn = s.denoise;
         assert!(!dn.glossy, "sample {k}: split as glossy");
         for rho in [dn.rho, dn.rho_direct] {
@@ -268,6 +264,6 @@ fn lambertian_split(src: &str) -> (Vec3, Vec3, Vec3) {
         direct += dn.l_direct;
         surf += dn.l_surf;
         sun += rest;
-    }
+    });
     (direct, surf, sun)
 }
