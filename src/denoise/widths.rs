@@ -51,7 +51,8 @@ impl Widths {
 /// the rest of the error is the surfaces' own noise.
 const SIGMA_PX_AT_160: f32 = 2.0;
 
-/// Edge-stopping width of indirect light on the first surface: its light varies from pixel to pixel (corners,
-/// recesses, the shade under balconies) at about its noise level, so a
-/// test narrower than the direct light's keeps that variation.
+/// Edge-stopping width of indirect light on the first surface: its light
+/// varies from pixel to pixel (corners, recesses, the shade under
+/// balconies) at about its noise level, so a test narrower than the direct
+/// light's keeps that variation.
 const INDIRECT_SIGMA_LUM: f32 = 1.5;

@@ -63,14 +63,7 @@ fn glossy_paint_split(src: &str, base: Vec3) -> (Vec3, Vec3) {
             dn.rho_direct
         );
         assert_eq!((dn.l_surf, dn.rho), (Vec3::ZERO, Vec3::ZERO));
-        let rest = s.l - dn.l_fog - dn.l_direct;
-        assert!(
-            rest.min_element() >= -1e-4 * (1.0 + s.l.max_element()),
-            "sample {k}: l {} = fog {} + direct {} + sun {rest}",
-            s.l,
-            dn.l_fog,
-            dn.l_direct
-        );
+        let rest = rest_after(k, s, dn.l_fog + dn.l_direct);
         reflected += dn.l_direct;
         sun += rest;
     });
@@ -79,6 +72,18 @@ fn glossy_paint_split(src: &str, base: Vec3) -> (Vec3, Vec3) {
 
 /// The camera ray of [`ground_samples`]: from 1.5 m up, down to the ground.
 const GROUND_O: Vec3 = Vec3::new(0.0, 0.0, 1.5);
+
+/// Sample `k`'s light `s.l` less the parts handed to the filters
+/// (`handed`): what stays as traced, never negative (to rounding).
+fn rest_after(k: u32, s: &LiSample, handed: Vec3) -> Vec3 {
+    let rest = s.l - handed;
+    assert!(
+        rest.min_element() >= -1e-4 * (1.0 + s.l.max_element()),
+        "sample {k}: l {} = handed over {handed} + as traced {rest}",
+        s.l
+    );
+    rest
+}
 
 /// The direction of [`ground_samples`]' camera ray.
 fn ground_d() -> Vec3 {
@@ -168,14 +173,7 @@ fn glass_first_vertex_hands_its_reflection_to_the_reflection_filter_in_fog() {
             tr * r
         );
         // The rest is what refracted: never negative.
-        let rest = s.l - dn.l_fog - dn.l_refl;
-        assert!(
-            rest.min_element() >= -1e-4 * (1.0 + s.l.max_element()),
-            "sample {k}: l {} = fog {} + reflection {} + {rest}",
-            s.l,
-            dn.l_fog,
-            dn.l_refl
-        );
+        rest_after(k, &s, dn.l_fog + dn.l_refl);
         refl.push(dn.l_refl.y as f64 / (tr * r) as f64);
     }
     // The mirrored ray from the glass, traced plainly with the scattering
@@ -252,15 +250,7 @@ fn lambertian_split(src: &str) -> (Vec3, Vec3, Vec3) {
                 "sample {k}: rho {rho} vs {rho_want}"
             );
         }
-        let rest = s.l - dn.l_fog - dn.l_direct - dn.l_surf;
-        assert!(
-            rest.min_element() >= -1e-4 * (1.0 + s.l.max_element()),
-            "sample {k}: l {} = fog {} + direct {} + indirect {} + sun {rest}",
-            s.l,
-            dn.l_fog,
-            dn.l_direct,
-            dn.l_surf
-        );
+        let rest = rest_after(k, s, dn.l_fog + dn.l_direct + dn.l_surf);
         direct += dn.l_direct;
         surf += dn.l_surf;
         sun += rest;
