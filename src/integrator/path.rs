@@ -496,10 +496,6 @@ impl<A: Accel> PathContext<'_, A> {
         if scene.regularize && st.rough_bounce {
             bsdf = bsdf.regularized(REGULARIZE_ALPHA);
         }
-        if st.bounces == 0 {
-            st.first_albedo = bsdf.diffuse_albedo();
-            st.first_glossy = glossy_albedo(&bsdf).filter(|_| mat.le == Vec3::ZERO);
-        }
         if is_two_sided(&bsdf) && !front {
             si.n_geo = -si.n_geo;
             si.n_shading = -si.n_shading;
@@ -508,6 +504,8 @@ impl<A: Accel> PathContext<'_, A> {
             .at_vertex(st.prev_delta, st.beta, &bsdf, si.n_shading);
         if st.split.ahead && !bsdf.is_delta() {
             st.split.ahead = false;
+            st.split_albedo = bsdf.diffuse_albedo();
+            st.split_glossy = glossy_albedo(&bsdf).filter(|_| mat.le == Vec3::ZERO);
             if let (true, Some(albedo)) = (scene.filter_indirect, bsdf.diffuse_albedo()) {
                 st.split.rho = st.beta * albedo;
                 st.split.behind_delta = st.bounces > 0;

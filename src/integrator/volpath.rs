@@ -184,22 +184,28 @@ impl<A: Accel> PathContext<'_, A> {
                 break;
             };
             vs.lobe_wo = None;
-            // The first vertex's albedo as its shading finds it (the
-            // record is read and textured once).
-            let first = (st.bounces == 0 && strategies.split_first && st.bounces < self.max_depth)
-                .then_some(st.beta);
+            // The split vertex: x1, or behind x1's glass and mirrors (a
+            // room through a window) while no medium scatter or glass
+            // reflection came between; its albedo as its shading finds
+            // it (the record is read and textured once).
+            let split = (st.split.ahead && strategies.split_first && st.bounces < self.max_depth)
+                .then_some((st.beta, st.bounces > 0));
             let l_at_x1 = st.l;
             let (next, sun, before) = self.surface_vertex(&ray, &hit, st, stream, rays);
-            if let Some(beta) = first {
-                if let Some(albedo) = st.first_albedo {
+            // Shaded, it is no longer ahead (a glass reflection ends the
+            // search too, with no albedo).
+            if let Some((beta, behind_delta)) = split.filter(|_| !st.split.ahead) {
+                vs.first.behind_delta =
+                    behind_delta && (st.split_albedo.is_some() || st.split_glossy.is_some());
+                if let Some(albedo) = st.split_albedo {
                     vs.first.surface =
                         SurfaceSplit::at_first_vertex(albedo * beta, before, sun, st.l);
                 }
-                // A glossy x1 (paint): everything it reflects, fog light
-                // included, is filtered as direct light (`l_direct`), but
-                // the suns' next-event estimate, left as traced as in a
-                // clear scene (`path::split_direct`).
-                vs.first.glossy = st.first_glossy.map(|a| (l_at_x1 + sun, a * beta));
+                // A glossy split vertex (paint): everything it reflects,
+                // fog light included, is filtered as direct light
+                // (`l_direct`), but the suns' next-event estimate, left as
+                // traced as in a clear scene (`path::split_direct`).
+                vs.first.glossy = st.split_glossy.map(|a| (l_at_x1 + sun, a * beta));
             }
             match next {
                 Some(next) => ray = next,

@@ -29,13 +29,15 @@ pub(in crate::integrator) struct PathState {
     pub bounces: u32,
     /// Where the denoised part of a surface path splits off.
     pub split: SplitVertex,
-    /// The first surface vertex's Lambertian albedo (None: not Lambertian,
-    /// or not shaded), recorded as it is shaded for the fog's split.
-    pub first_albedo: Option<Vec3>,
-    /// The first surface vertex's `glossy_albedo` when it is glossy and
-    /// emits nothing (None otherwise), recorded as it is shaded for the
-    /// fog's split: all its light is then filtered as direct light.
-    pub first_glossy: Option<Vec3>,
+    /// The split vertex's Lambertian albedo (None: not Lambertian, or not
+    /// yet shaded), recorded as it is shaded for the fog's split. The split
+    /// vertex is the first that is not a delta scatter, reached from the
+    /// camera through delta scatters only (x1, or a room behind a window).
+    pub split_albedo: Option<Vec3>,
+    /// The split vertex's `glossy_albedo` when it is glossy and emits
+    /// nothing (None otherwise), recorded as it is shaded for the fog's
+    /// split: all its light is then filtered as direct light.
+    pub split_glossy: Option<Vec3>,
     /// Whether the path has scattered off a non-delta lobe (its glossy
     /// lobes are regularised from then on when the scene asks).
     pub rough_bounce: bool,
@@ -58,8 +60,8 @@ impl PathState {
             prev_n: Vec3::ZERO,
             bounces: 0,
             split: SplitVertex::default(),
-            first_albedo: None,
-            first_glossy: None,
+            split_albedo: None,
+            split_glossy: None,
             rough_bounce: false,
             cone: RayCone::NONE,
             aov: AovState::default(),

@@ -167,6 +167,9 @@ pub(super) struct FirstEvent {
     pub glossy: Option<(Vec3, Vec3)>,
     /// The split camera ray's surface part, traced apart after a collision.
     split: LiSample,
+    /// Whether the split vertex lies behind delta scatters
+    /// (`DenoiseSample::split_behind_delta`).
+    pub behind_delta: bool,
 }
 
 /// The running state of one volumetric path.
@@ -223,7 +226,7 @@ impl VolState {
                 opacity: first.opacity,
                 l_surf: first.surface.l_surf(st.l) + split.l_surf,
                 rho: first.surface.rho + split.rho,
-                split_behind_delta: false,
+                split_behind_delta: first.behind_delta || split.split_behind_delta,
                 // Direct light at x1: at a glossy one all its light, at a
                 // Lambertian one its next-event estimates; the suns' left
                 // out of both.

@@ -3,9 +3,10 @@
 //! direct filter, a glass one its reflection to the reflection filter,
 //! each with its exact albedo weight; a Lambertian one its sky
 //! next-event estimate to the direct filter and all that follows to the
-//! indirect one.
+//! indirect one, also where it is seen through a pane of glass.
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
+use shaders_cpu::bsdf::Bsdf;
 
 use super::{built, mean_var, SCENE, SKY};
 use crate::accel::{Accel, Ray};
@@ -256,4 +257,93 @@ fn lambertian_split(src: &str) -> (Vec3, Vec3, Vec3) {
         sun += rest;
     });
     (direct, surf, sun)
+}
+
+#[test]
+fn lambertian_ground_seen_through_glass_is_split_behind_it_in_fog() {
+    // A 2 cm pane of smooth glass 0.75 m over the diffuse ground, under the
+    // fog slab: a sample that refracts through both faces and crosses the
+    // fog below without a scatter splits at the ground, marked as behind
+    // delta scatters, with rho = rho_direct = Tr(camera segment) × the two
+    // refractions' weights × albedo, exactly. A sample the pane reflects
+    // hands that light to the reflection filter and splits nowhere.
+    let glass = "[[material]]\nname = \"glass\"\nkind = \"dielectric\"\nior = 1.5\n\
+                 roughness = 0.0\ntint = [1.0, 1.0, 1.0]\n";
+    let pane = "[[object]]\nkind = \"box\"\nsize = [6.0, 6.0, 0.02]\nmaterial = \"glass\"\n\
+                transform = { translate = [2.0, 0.4, 0.75] }\n";
+    let src = format!("{SCENE}{glass}{pane}{SKY}");
+    let (behind, handed, sun_lit) = through_pane(&src);
+    // About (1 − 0.25)² of the samples refract twice (the pane reflects
+    // with probability max(R, 0.25)); a few scatter in the fog below it.
+    assert!(
+        behind > 900,
+        "{behind} of 2048 samples split behind the pane"
+    );
+    assert!(handed.min_element() > 0.0 && sun_lit.min_element() > 0.0);
+    let (_, sky_handed, no_sun) = through_pane(&strip_sun(&src));
+    assert!(
+        no_sun.abs().max_element() <= 1e-4 * sky_handed.max_element(),
+        "light {no_sun} of samples split behind the pane left out of the split without a sun"
+    );
+}
+
+/// Camera samples of the ground in `src` through the pane of
+/// [`lambertian_ground_seen_through_glass_is_split_behind_it_in_fog`]:
+/// checks each sample's split and returns how many split behind the pane,
+/// and over those, the sums of the light handed to the direct and indirect
+/// filters and of the sun part left as traced.
+fn through_pane(src: &str) -> (u32, Vec3, Vec3) {
+    let d = ground_d();
+    // The pane's top face, hit first: the camera segment's Tr.
+    let tr_top = (-0.05 * (GROUND_O.z - 0.76) / -d.z).exp();
+    // The two refractions' weights f·|cos|/pdf, from the BSDF: into the
+    // glass at the top face (local z up), out of it at the bottom face
+    // (local z down: the ray meets it from inside).
+    let pane = Bsdf::Dielectric {
+        eta: 1.5,
+        alpha: 0.0,
+        tint: Vec3::ONE,
+    };
+    let refract = |wo: Vec3| {
+        let t = pane.sample(wo, 0.999, Vec2::ZERO).expect("a refraction");
+        assert!(t.wi.z * wo.z < 0.0, "the sample refracted");
+        (t.wi, t.f.x * t.wi.z.abs() / t.pdf)
+    };
+    let (wi, w_in) = refract(-d);
+    let (_, w_out) = refract(Vec3::new(-wi.x, -wi.y, wi.z));
+    let rho_want = Vec3::splat(0.3 * tr_top * w_in * w_out);
+    let (mut behind, mut reflected) = (0, 0);
+    let (mut handed, mut sun) = (Vec3::ZERO, Vec3::ZERO);
+    ground_samples(src, 7, |k, s| {
+        let dn = s.denoise;
+        if dn.rho_refl_hit != Vec3::ZERO {
+            reflected += 1;
+            assert!(
+                !dn.split_behind_delta && dn.rho == Vec3::ZERO,
+                "sample {k}: reflected and split"
+            );
+        } else if dn.rho != Vec3::ZERO {
+            behind += 1;
+            assert!(
+                dn.split_behind_delta,
+                "sample {k}: split behind glass, not marked so"
+            );
+            for rho in [dn.rho, dn.rho_direct] {
+                assert!(
+                    (rho - rho_want).abs().max_element() <= 1e-5,
+                    "sample {k}: rho {rho} vs {rho_want}"
+                );
+            }
+        }
+        let rest = rest_after(k, s, dn.l_fog + dn.l_direct + dn.l_surf + dn.l_refl);
+        if dn.rho != Vec3::ZERO {
+            sun += rest;
+            handed += dn.l_direct + dn.l_surf;
+        }
+    });
+    assert!(
+        reflected > 300,
+        "{reflected} of 2048 samples took the pane's reflection"
+    );
+    (behind, handed, sun)
 }
