@@ -419,9 +419,26 @@ impl LightBvh {
         if lanes.is_empty() {
             return;
         }
+        // The fewest lanes that hold them: one walk (a day frame's, a
+        // later vertex's) weighs two children, not a full pass.
+        match lanes.len() {
+            ..=2 => self.weigh_lanes::<2>(lanes, weights, p, n),
+            3..=8 => self.weigh_lanes::<8>(lanes, weights, p, n),
+            _ => self.weigh_lanes::<LANES>(lanes, weights, p, n),
+        }
+    }
+
+    /// [`LightBvh::weigh`] for at most `L` children.
+    fn weigh_lanes<const L: usize>(
+        &self,
+        lanes: &[(usize, usize, usize)],
+        weights: &mut [[(f32, Side); 2]],
+        p: Vec3,
+        n: Vec3,
+    ) {
         // Spare lanes repeat the first node (their values are dropped).
         let nodes = std::array::from_fn(|l| &self.nodes[lanes.get(l).unwrap_or(&lanes[0]).2]);
-        let at = node::at_unculled_many::<LANES>(&nodes, p, n);
+        let at = node::at_unculled_many::<L>(&nodes, p, n);
         for (&(i, c, _), at) in lanes.iter().zip(at) {
             weights[i][c].0 = at;
         }
