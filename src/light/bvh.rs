@@ -24,6 +24,10 @@ use build::{Subtree, PARALLEL_GRAIN};
 use node::{angle_sub_clamped, safe_sqrt};
 use node::{Packed, Side, MAX_INDEX};
 
+/// Child importances computed together in a walk's level
+/// (`node::at_unculled_many`): two AVX registers of lanes.
+const LANES: usize = 16;
+
 /// Bounds of one light or of a cluster of lights.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LightBounds {
@@ -199,7 +203,7 @@ impl LightBvh {
 
     /// Weights of both children of inner node `k` (whose subtree ends
     /// before node `end`), first child first, with where each box lies
-    /// against the receiver's plane; see [`LightBvh::weight`].
+    /// against the receiver's plane; see [`LightBvh::reach`].
     fn child_weights(
         &self,
         k: usize,
@@ -208,8 +212,23 @@ impl LightBvh {
         n: Vec3,
         walk: &mut Walk,
     ) -> [(f32, Side); 2] {
+        let (children, reach) = self.children_reach(k, end, p, n, walk);
+        let at = node::at_unculled_many(&children.map(|c| &self.nodes[c]), p, n);
+        [0, 1].map(|i| (if reach[i].0 { at[i] } else { 0.0 }, reach[i].1))
+    }
+
+    /// The children of inner node `k` (whose subtree ends before node
+    /// `end`) and whether each is weighed ([`LightBvh::reach`]); the next
+    /// level's nodes start loading meanwhile.
+    fn children_reach(
+        &self,
+        k: usize,
+        end: usize,
+        p: Vec3,
+        n: Vec3,
+        walk: &mut Walk,
+    ) -> ([usize; 2], [(bool, Side); 2]) {
         let second = self.nodes[k].index() as usize;
-        // The next level's nodes start loading while these are weighed.
         for child in [k + 1, second] {
             let c = &self.nodes[child];
             if !c.is_leaf() {
@@ -217,48 +236,49 @@ impl LightBvh {
                 node::prefetch(&self.nodes[c.index() as usize]);
             }
         }
-        [
-            self.weight(k + 1..second, p, n, walk),
-            self.weight(second..end, p, n, walk),
-        ]
+        (
+            [k + 1, second],
+            [
+                self.reach(k + 1..second, p, n, walk),
+                self.reach(second..end, p, n, walk),
+            ],
+        )
     }
 
-    /// The importance of the subtree in `nodes` (its root first), zero
-    /// unless one of its lights reaches the receiver's side of its plane. A
-    /// node's box is the union of its children's, so it can cross the plane
-    /// while both children lie wholly behind it: weighed by its box alone, a
-    /// walk ended there with no light. Weighed so, a kept node always has a
-    /// kept child. The value depends on the node, `p` and `n` only; `walk`
-    /// only spares repeating a search. The side is `Front` inside a walk
-    /// already wholly in front (every box under it is).
+    /// Whether the subtree in `nodes` (its root first) is weighed by its
+    /// root's importance, or weighs zero: it is unless one of its lights
+    /// reaches the receiver's side of its plane. A node's box is the union
+    /// of its children's, so it can cross the plane while both children
+    /// lie wholly behind it: weighed by its box alone, a walk ended there
+    /// with no light. Weighed so, a kept node always has a kept child. The
+    /// answer depends on the node, `p` and `n` only; `walk` only spares
+    /// repeating a search. The side is `Front` inside a walk already wholly
+    /// in front (every box under it is).
     #[inline]
-    fn weight(
+    fn reach(
         &self,
         nodes: std::ops::Range<usize>,
         p: Vec3,
         n: Vec3,
         walk: &mut Walk,
-    ) -> (f32, Side) {
-        let (k, b) = (nodes.start, &self.nodes[nodes.start]);
-        let mut side = Side::Front;
-        if !walk.in_front {
-            side = b.side(p, n);
-            let reaches = match side {
-                Side::Behind => false,
-                Side::Front => true,
-                Side::Crossing => {
-                    walk.witness.iter().any(|w| nodes.contains(w))
-                        || self.node_in_front(k, p, n).is_some_and(|w| {
-                            walk.witness = [w, walk.witness[0]];
-                            true
-                        })
-                }
-            };
-            if !reaches {
-                return (0.0, side);
-            }
+    ) -> (bool, Side) {
+        if walk.in_front {
+            return (true, Side::Front);
         }
-        (b.at_unculled(p, n), side)
+        let k = nodes.start;
+        let side = self.nodes[k].side(p, n);
+        let reaches = match side {
+            Side::Behind => false,
+            Side::Front => true,
+            Side::Crossing => {
+                walk.witness.iter().any(|w| nodes.contains(w))
+                    || self.node_in_front(k, p, n).is_some_and(|w| {
+                        walk.witness = [w, walk.witness[0]];
+                        true
+                    })
+            }
+        };
+        (reaches, side)
     }
 
     /// A leaf or node under node `k` whose box lies at least partly (a
@@ -326,10 +346,19 @@ impl LightBvh {
                 walk: Walk::new(n),
             })
         });
+        // Per level: the walks that stand on an inner node get its
+        // children's weights, the importances of the children weighed at
+        // this level computed together (`node::at_unculled_many`).
+        let mut weights = [[(0.0f32, Side::Behind); 2]; M];
         while walks.iter().any(Option::is_some) {
-            // This level's child weights: (node, weights) of the last node weighed.
-            let mut weighed: Option<(usize, [(f32, Side); 2])> = None;
-            for (slot, out) in walks.iter_mut().zip(out.iter_mut()) {
+            // Children to weigh, (walk, which child, node) per lane.
+            let mut lanes = [(0usize, 0usize, 0usize); LANES];
+            let mut used = 0;
+            // Per walk, the walk whose weights it takes (itself or one on
+            // the same node before it).
+            let mut from: [usize; M] = std::array::from_fn(|i| i);
+            let mut last: Option<(usize, usize)> = None;
+            for (i, (slot, out)) in walks.iter_mut().zip(out.iter_mut()).enumerate() {
                 let Some(w) = slot else {
                     continue;
                 };
@@ -342,17 +371,77 @@ impl LightBvh {
                     *slot = None;
                     continue;
                 }
-                let weights = match weighed {
-                    Some((k, weights)) if k == w.k => weights,
-                    _ => self.child_weights(w.k, w.end, p, n, &mut w.walk),
+                // Walks on one node are adjacent when their numbers are
+                // sorted: the first weighs its children for the rest.
+                if let Some((k, j)) = last {
+                    if k == w.k {
+                        from[i] = j;
+                        continue;
+                    }
+                }
+                last = Some((w.k, i));
+                let (children, reach) = self.children_reach(w.k, w.end, p, n, &mut w.walk);
+                for c in 0..2 {
+                    weights[i][c] = (0.0, reach[c].1);
+                    if reach[c].0 {
+                        if used == LANES {
+                            self.weigh(&lanes, &mut weights, p, n);
+                            used = 0;
+                        }
+                        lanes[used] = (i, c, children[c]);
+                        used += 1;
+                    }
+                }
+            }
+            self.weigh(&lanes[..used], &mut weights, p, n);
+            for (i, slot) in walks.iter_mut().enumerate() {
+                let Some(w) = slot else {
+                    continue;
                 };
-                weighed = Some((w.k, weights));
-                if !w.step(weights, node.index() as usize) {
+                let second = self.nodes[w.k].index() as usize;
+                if !w.step(weights[from[i]], second) {
                     *slot = None;
                 }
             }
         }
         out
+    }
+
+    /// Sets the weight of each child in `lanes` (walk, which child, node)
+    /// to the node's importance, [`LANES`] nodes at a time.
+    fn weigh(
+        &self,
+        lanes: &[(usize, usize, usize)],
+        weights: &mut [[(f32, Side); 2]],
+        p: Vec3,
+        n: Vec3,
+    ) {
+        if lanes.is_empty() {
+            return;
+        }
+        // The fewest lanes that hold them: one walk (a day frame's, a
+        // later vertex's) weighs two children, not a full pass.
+        match lanes.len() {
+            ..=2 => self.weigh_lanes::<2>(lanes, weights, p, n),
+            3..=8 => self.weigh_lanes::<8>(lanes, weights, p, n),
+            _ => self.weigh_lanes::<LANES>(lanes, weights, p, n),
+        }
+    }
+
+    /// [`LightBvh::weigh`] for at most `L` children.
+    fn weigh_lanes<const L: usize>(
+        &self,
+        lanes: &[(usize, usize, usize)],
+        weights: &mut [[(f32, Side); 2]],
+        p: Vec3,
+        n: Vec3,
+    ) {
+        // Spare lanes repeat the first node (their values are dropped).
+        let nodes = std::array::from_fn(|l| &self.nodes[lanes.get(l).unwrap_or(&lanes[0]).2]);
+        let at = node::at_unculled_many::<L>(&nodes, p, n);
+        for (&(i, c, _), at) in lanes.iter().zip(at) {
+            weights[i][c].0 = at;
+        }
     }
 
     /// The probability that [`LightBvh::sample`] at `p` returns `light`

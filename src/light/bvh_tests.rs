@@ -4,6 +4,7 @@
 
 use super::*;
 use crate::sampler::rng::Rng;
+use node::Packed;
 use std::hint::black_box;
 
 /// The cone union as written before its shortcut: three arc cosines.
@@ -211,22 +212,7 @@ fn importance_set_up_per_node_gives_the_direct_formulas_bits() {
 fn walks_stepped_together_give_each_walks_own_choice() {
     let mut rng = Rng::new(&[0x5851_f42d_4c95_7f2d]);
     let mut u = move || rng.f32();
-    // Street lamps, windows on facades and some spots.
-    let bounds: Vec<LightBounds> = (0..500)
-        .map(|k| {
-            let p = Vec3::new(u() * 120.0, u() * 80.0, u() * 10.0);
-            let w = [Vec3::Z, -Vec3::Z, Vec3::X, -Vec3::Y][k % 4];
-            LightBounds {
-                p_min: p,
-                p_max: p + Vec3::new(u(), u(), 0.1) * (k % 3) as f32,
-                w,
-                phi: 0.1 + u() * 50.0,
-                cos_theta_o: [1.0, -1.0, 0.9][k % 3],
-                cos_theta_e: [0.0, 0.0, 0.8][k % 3],
-                two_sided: k % 5 == 0,
-            }
-        })
-        .collect();
+    let bounds = town_like_bounds(&mut u, 500);
     let tree = LightBvh::build(&bounds);
     let (mut shared, mut apart, mut none) = (0, 0, 0);
     for k in 0..4000 {
@@ -263,4 +249,79 @@ fn walks_stepped_together_give_each_walks_own_choice() {
         shared > 500 && apart > 500 && none > 50,
         "{shared} {apart} {none}"
     );
+}
+
+/// Street lamps, windows on facades and some spots.
+fn town_like_bounds(u: &mut impl FnMut() -> f32, count: usize) -> Vec<LightBounds> {
+    (0..count)
+        .map(|k| {
+            let p = Vec3::new(u() * 120.0, u() * 80.0, u() * 10.0);
+            LightBounds {
+                p_min: p,
+                p_max: p + Vec3::new(u(), u(), 0.1) * (k % 3) as f32,
+                w: [Vec3::Z, -Vec3::Z, Vec3::X, -Vec3::Y][k % 4],
+                phi: 0.1 + u() * 50.0,
+                cos_theta_o: [1.0, -1.0, 0.9][k % 3],
+                cos_theta_e: [0.0, 0.0, 0.8][k % 3],
+                two_sided: k % 5 == 0,
+            }
+        })
+        .collect()
+}
+
+#[test]
+fn nodes_weighed_together_give_each_nodes_own_importance() {
+    let mut rng = Rng::new(&[0x94d0_49bb_1331_11eb]);
+    let mut u = move || rng.f32();
+    let nodes: Vec<Packed> = town_like_bounds(&mut u, 700)
+        .iter()
+        .enumerate()
+        .map(|(k, b)| Packed::new(b, 0, k % 2 == 0))
+        .collect();
+    let mut lit = 0;
+    for (k, group) in nodes.chunks_exact(7).enumerate() {
+        let p = Vec3::new(u() * 140.0 - 10.0, u() * 100.0 - 10.0, u() * 12.0);
+        let n = match k % 3 {
+            0 => Vec3::ZERO,
+            1 => Vec3::Z,
+            _ => Vec3::new(u() - 0.5, u() - 0.5, u() - 0.5).normalize(),
+        };
+        let group: [&Packed; 7] = std::array::from_fn(|i| &group[i]);
+        let together = node::at_unculled_many(&group, p, n);
+        for (b, at) in group.iter().zip(together) {
+            assert_eq!(
+                at.to_bits(),
+                b.at_unculled(p, n).to_bits(),
+                "{b:?} at {p}, n {n}"
+            );
+            lit += (at > 0.0) as usize;
+        }
+    }
+    assert!(lit > 100, "{lit} lit");
+}
+
+#[test]
+fn more_walks_than_a_levels_lanes_give_each_walks_own_choice() {
+    let mut rng = Rng::new(&[0x2f3c_1a5e_77d1_0b43]);
+    let mut u = move || rng.f32();
+    let tree = LightBvh::build(&town_like_bounds(&mut u, 3000));
+    let mut distinct = 0;
+    for k in 0..1500 {
+        let p = Vec3::new(u() * 140.0 - 10.0, u() * 100.0 - 10.0, u() * 12.0);
+        let n = if k % 2 == 0 { Vec3::ZERO } else { Vec3::Z };
+        // Eleven walks: 22 children a level once they part, more than
+        // `LANES`; stratified as RIS draws them, one missing.
+        let us: [Option<f32>; 11] =
+            std::array::from_fn(|i| (i != 4).then(|| (i as f32 + u()) / 11.0));
+        let together = tree.sample_facing_many(p, n, us);
+        let alone = us.map(|u| u.and_then(|u| tree.sample_facing(p, n, u)));
+        let bits = |r: [Option<(u32, f32)>; 11]| r.map(|c| c.map(|(l, pmf)| (l, pmf.to_bits())));
+        assert_eq!(bits(together), bits(alone), "p {p}, n {n}, u {us:?}");
+        let mut lights: Vec<u32> = together.iter().flatten().map(|c| c.0).collect();
+        lights.sort_unstable();
+        lights.dedup();
+        distinct += lights.len();
+    }
+    // The walks part: most levels weigh more children than one pass holds.
+    assert!(distinct > 1500 * 7, "{distinct} lights");
 }

@@ -5,7 +5,8 @@
 //! chain of dependent loads, one level after another; with a node's
 //! links in a separate array each level waited for two cache misses (the
 //! node, then its second child's importance), and at night the tree's
-//! nodes do not fit the caches.
+//! nodes do not fit the caches. The importance of several nodes is
+//! computed lane by lane (`at_unculled_many`), the same bits as one alone.
 
 use glam::Vec3;
 
@@ -110,54 +111,93 @@ impl Packed {
     /// receiver's plane.
     #[inline]
     pub(super) fn at_unculled(&self, p: Vec3, n: Vec3) -> f32 {
-        let v = p - self.pc;
-        let d2_centre = v.length_squared();
-        // Clamp the distance so points inside a large cluster do not blow up.
-        let d2 = d2_centre.max(self.d2_min);
-        let wi = v.normalize_or_zero();
-        let mut cos_w = self.w.dot(wi);
-        if self.link & TWO_SIDED != 0 {
-            cos_w = cos_w.abs();
+        at_unculled_many(&[self], p, n)[0]
+    }
+}
+
+/// [`Packed::at_unculled`] of each of `nodes`, the same bits: the nodes'
+/// fields are laid side by side and the arithmetic runs lane by lane
+/// without branches, so the compiler computes several nodes per
+/// instruction (a walk's square roots and divisions, the most of a night
+/// frame's tree walks, then overlap instead of queueing one node after
+/// another). Each lane's operations are those of the one-node call, and
+/// vector square roots and divisions round as scalar ones, so a walk and
+/// `LightBvh::pmf_facing`'s replay agree bitwise.
+#[inline]
+pub(super) fn at_unculled_many<const L: usize>(nodes: &[&Packed; L], p: Vec3, n: Vec3) -> [f32; L] {
+    let mut lane = [[0.0f32; L]; 12];
+    for (i, b) in nodes.iter().enumerate() {
+        let fields = [
+            b.pc.x,
+            b.pc.y,
+            b.pc.z,
+            b.w.x,
+            b.w.y,
+            b.w.z,
+            b.phi,
+            b.cos_theta_o,
+            b.sin_theta_o,
+            b.cos_theta_e,
+            b.d2_min,
+            b.r2,
+        ];
+        for (l, f) in lane.iter_mut().zip(fields) {
+            l[i] = f;
         }
+    }
+    let two_sided: [bool; L] = std::array::from_fn(|i| nodes[i].link & TWO_SIDED != 0);
+    let [pcx, pcy, pcz, wx, wy, wz, phi, cos_o, sin_o, cos_e, d2_min, r2] = lane;
+    let no_receiver = n == Vec3::ZERO;
+    let mut out = [0.0f32; L];
+    for i in 0..L {
+        let (vx, vy, vz) = (p.x - pcx[i], p.y - pcy[i], p.z - pcz[i]);
+        let d2_centre = vx * vx + vy * vy + vz * vz;
+        // Clamp the distance so points inside a large cluster do not blow up.
+        let d2 = d2_centre.max(d2_min[i]);
+        // The unit direction from the centre to p (zero at the centre),
+        // as `Vec3::normalize_or_zero` rounds it.
+        let rcp = 1.0 / d2_centre.sqrt();
+        let unit = rcp.is_finite() && rcp > 0.0;
+        let (ux, uy, uz) = if unit {
+            (vx * rcp, vy * rcp, vz * rcp)
+        } else {
+            (0.0, 0.0, 0.0)
+        };
+        let cos_w = wx[i] * ux + wy[i] * uy + wz[i] * uz;
+        let cos_w = if two_sided[i] { cos_w.abs() } else { cos_w };
         let sin_w = safe_sqrt(1.0 - cos_w * cos_w);
         // Half-angle θ_b of the cone from the centre that holds the whole
         // box as seen from p (the box's bounding sphere; −1 inside it).
-        let cos_b = if d2_centre < self.r2 || d2_centre == 0.0 {
-            -1.0
-        } else {
-            safe_sqrt(1.0 - self.r2 / d2_centre)
-        };
+        let inside = d2_centre < r2[i] || d2_centre == 0.0;
+        let s2 = r2[i] / d2_centre;
+        let cos_b = if inside { -1.0 } else { safe_sqrt(1.0 - s2) };
         let sin_b = safe_sqrt(1.0 - cos_b * cos_b);
         // θ' = max(0, θ_w − θ_o − θ_b): the smallest angle between a normal
         // of the cone and a direction from the box towards p.
-        let (cos_x, sin_x) = angle_sub_clamped(sin_w, cos_w, self.sin_theta_o, self.cos_theta_o);
+        let (cos_x, sin_x) = angle_sub_clamped(sin_w, cos_w, sin_o[i], cos_o[i]);
         let (cos_p, _) = angle_sub_clamped(sin_x, cos_x, sin_b, cos_b);
-        if cos_p <= self.cos_theta_e {
-            return 0.0;
-        }
-        let importance = (self.phi * cos_p / d2).max(0.0);
-        if n == Vec3::ZERO {
-            return importance;
-        }
+        let importance = (phi[i] * cos_p / d2).max(0.0);
         // θ_i' = max(0, θ_i − θ_b): the smallest angle between n and a
         // direction from p into the box (−wi points at its centre).
         // sin θ_b from r/d: through cos θ_b it rounds to 0 for a box a few
         // thousand radii away, and a box that crosses the plane at a
         // grazing angle would weigh 0 (a walk's last kept node with no
         // kept child).
-        let sin_b = if cos_b == -1.0 {
-            sin_b
-        } else {
-            safe_sqrt(self.r2 / d2_centre)
-        };
-        let cos_i = -n.dot(wi);
+        let sin_b = if inside { sin_b } else { safe_sqrt(s2) };
+        let cos_i = -(n.x * ux + n.y * uy + n.z * uz);
         let sin_i = safe_sqrt(1.0 - cos_i * cos_i);
         let (cos_pi, _) = angle_sub_clamped(sin_i, cos_i, sin_b, cos_b);
-        if cos_pi <= 0.0 {
-            return 0.0;
-        }
-        importance * cos_pi
+        out[i] = if cos_p <= cos_e[i] {
+            0.0
+        } else if no_receiver {
+            importance
+        } else if cos_pi <= 0.0 {
+            0.0
+        } else {
+            importance * cos_pi
+        };
     }
+    out
 }
 
 /// Asks the CPU to start loading `node` (one cache line); a hint only.
@@ -174,11 +214,13 @@ pub(super) fn prefetch(node: &Packed) {
     let _ = node;
 }
 
+#[inline(always)]
 pub(super) fn safe_sqrt(x: f32) -> f32 {
     x.max(0.0).sqrt()
 }
 
 /// cos and sin of max(0, a − b) for angles given by their sines and cosines.
+#[inline(always)]
 pub(super) fn angle_sub_clamped(sin_a: f32, cos_a: f32, sin_b: f32, cos_b: f32) -> (f32, f32) {
     if cos_a > cos_b {
         (1.0, 0.0)
