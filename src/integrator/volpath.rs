@@ -531,7 +531,8 @@ impl<A: Accel> PathContext<'_, A> {
     /// p(wo, d)/pdf_lobe(d) and the power heuristic against phase sampling.
     /// Throughput after `p` not included. Its rays are rouletted by the
     /// phase value toward d times w (`Strategies::shadow_per_phase`, by
-    /// `u1[3]`): the term is about the sun's NEE at that phase value.
+    /// `u1[3]`): the term is about the sun's NEE at that phase value; a
+    /// kept shadow ray again by its transmittance (`Strategies::shadow_per_tr`).
     #[allow(clippy::too_many_arguments)]
     fn sun_lobe_vertex(
         &self,
@@ -540,7 +541,7 @@ impl<A: Accel> PathContext<'_, A> {
         p: Vec3,
         wo: Vec3,
         (u0, u1): ([f32; 4], [f32; 4]),
-        shadow_per_phase: f32,
+        (shadow_per_phase, shadow_per_tr): (f32, f32),
         rays: &mut u64,
     ) -> Vec3 {
         let s = m.phase.sample(-sl.axis, Vec2::new(u0[0], u0[1]));
@@ -571,6 +572,14 @@ impl<A: Accel> PathContext<'_, A> {
         if ls.pdf <= 0.0 || ls.li == Vec3::ZERO || f == 0.0 {
             return Vec3::ZERO;
         }
+        // Kept by the phase roulette (`u1[3]` uniform below `keep`), the
+        // shadow ray is kept again by its transmittance, known before the
+        // ray, as `medium_nee`'s (`NeeRoulette::shadow_tr`).
+        let tr = m.tr(x, ls.wi, ls.dist);
+        let keep = keep * (shadow_per_tr * tr).min(1.0);
+        if u1[3] >= keep {
+            return Vec3::ZERO;
+        }
         *rays += 1;
         if self.accel.occluded(&shadow_ray(x, &ls)) {
             return Vec3::ZERO;
@@ -579,6 +588,6 @@ impl<A: Accel> PathContext<'_, A> {
         let w_sun = power_heuristic(1.0, ls.pdf, 1.0, m.phase.pdf(-d, ls.wi));
         let seg_w = m.albedo * (1.0 - seg.tr_seg);
         let weight = pdf_phase / s.pdf * w * f * w_sun / (ls.pdf * keep);
-        seg_w * ls.li * m.tr(x, ls.wi, ls.dist) * weight
+        seg_w * ls.li * tr * weight
     }
 }

@@ -425,8 +425,8 @@ impl<A: Accel> PathContext<'_, A> {
                 1.0
             };
             if u1[2] < keep {
-                let per_phase = vs.strategies.shadow_per_phase;
-                let c = self.sun_lobe_vertex(m, sl, p, wo, (u0, u1), per_phase, rays);
+                let per = (vs.strategies.shadow_per_phase, vs.strategies.shadow_per_tr);
+                let c = self.sun_lobe_vertex(m, sl, p, wo, (u0, u1), per, rays);
                 st.l += st.beta * c / keep;
             }
             vs.lobe_wo = Some(wo);

@@ -108,7 +108,8 @@ pub(super) struct Strategies {
     /// 1/this of its light without the medium, the least that a ray with
     /// Tr ≥ 1/this (always traced) brings, so the roulette adds no term
     /// brighter than those already there: no new fireflies for the fog
-    /// filter (`f32::INFINITY`: the phase roulette alone).
+    /// filter (`f32::INFINITY`: the phase roulette alone). The sun lobe's
+    /// shadow ray (`sun_lobe_vertex`) is rouletted by the same rule.
     pub(super) shadow_per_tr: f32,
     /// The sky's NEE from a medium point stops its table draw at the row
     /// when the phase roulette (`shadow_per_phase`) would drop every

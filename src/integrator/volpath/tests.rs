@@ -17,6 +17,7 @@ use crate::sampler::{SampleStream, StreamKey};
 use crate::scene::{build_scene, parse_scene_str, Scene};
 
 mod first_vertex;
+mod lobe;
 mod samples;
 mod shadow;
 mod sky_rows;
