@@ -55,7 +55,7 @@ fn strip_sun(src: &str) -> String {
 fn glossy_paint_split(src: &str, base: Vec3) -> (Vec3, Vec3) {
     let rho_want = (base + Vec3::splat(0.04)) * ground_tr();
     let (mut reflected, mut sun) = (Vec3::ZERO, Vec3::ZERO);
-    ground_samples(src, 3, |k, s| {
+    ground_samples(src, 3, 2048, |k, s| {
         let dn = s.denoise;
         assert!(dn.glossy, "sample {k}: not split at the paint");
         assert!(
@@ -97,26 +97,29 @@ fn ground_tr() -> f32 {
     (-0.05 * GROUND_O.z / -ground_d().z).exp()
 }
 
-/// Calls `f` with each of 2048 camera samples (stream seed `seed`) along
-/// one ray to the ground of `src`, the camera segment split.
-fn ground_samples(src: &str, seed: u64, mut f: impl FnMut(u32, &LiSample)) {
-    let (scene, accel) = built(src);
-    let shading = Shading::new(&scene, &accel);
-    let ctx = shading.context(4);
-    let key = StreamKey {
+/// The stream key of the tests' samples of seed `seed`.
+fn stream_key(seed: u64) -> StreamKey {
+    StreamKey {
         seed,
         frame: 0,
         view: 0,
-    };
+    }
+}
+
+/// Calls `f` with each of `n` camera samples (stream seed `seed`) along
+/// one ray to the ground of `src`, the camera segment split.
+fn ground_samples(src: &str, seed: u64, n: u32, mut f: impl FnMut(u32, &LiSample)) {
+    let (scene, accel) = built(src);
+    let shading = Shading::new(&scene, &accel);
+    let ctx = shading.context(4);
     let split = Strategies {
         split_first: true,
         ..Strategies::default()
     };
-    let d = ground_d();
     let mut rays = 0;
-    for k in 0..2048 {
-        let mut stream = SampleStream::new(key, 0, k / 256, k % 256);
-        let ray = Ray::new(GROUND_O, d);
+    for k in 0..n {
+        let mut stream = SampleStream::new(stream_key(seed), 0, k / 256, k % 256);
+        let ray = Ray::new(GROUND_O, ground_d());
         let s = ctx.trace(
             ray,
             accel.intersect(&ray),
@@ -141,31 +144,13 @@ fn glass_first_vertex_hands_its_reflection_to_the_reflection_filter_in_fog() {
         "kind = \"dielectric\"\nior = 1.5\nroughness = 0.0\ntint = [1.0, 1.0, 1.0]",
     );
     assert_ne!(glass, SCENE, "the ground's material was not replaced");
-    let (scene, accel) = built(&glass);
-    let shading = Shading::new(&scene, &accel);
-    let ctx = shading.context(4);
-    let key = |seed| StreamKey {
-        seed,
-        frame: 0,
-        view: 0,
-    };
-    let split = Strategies {
-        split_first: true,
-        ..Strategies::default()
-    };
-    let o = Vec3::new(0.0, 0.0, 1.5);
-    let d = Vec3::new(1.0, 0.2, -0.4).normalize();
-    let t_hit = 1.5 / -d.z;
+    let d = ground_d();
+    let t_hit = GROUND_O.z / -d.z;
     let tr = (-0.05 * t_hit).exp();
     let r = shaders_cpu::bsdf::fresnel::fr_dielectric(-d.z, 1.5);
     let n = 16384;
-    let mut rays = 0;
     let mut refl = Vec::new();
-    for k in 0..n {
-        let mut stream = SampleStream::new(key(3), 0, k / 256, k % 256);
-        let ray = Ray::new(o, d);
-        let hit = accel.intersect(&ray);
-        let s = ctx.trace(ray, hit, &mut stream, &mut rays, split, None);
+    ground_samples(&glass, 3, n, |k, s| {
         let dn = s.denoise;
         assert!(
             (dn.rho_refl - Vec3::splat(tr * r)).abs().max_element() <= 1e-5,
@@ -174,17 +159,20 @@ fn glass_first_vertex_hands_its_reflection_to_the_reflection_filter_in_fog() {
             tr * r
         );
         // The rest is what refracted: never negative.
-        rest_after(k, &s, dn.l_fog + dn.l_refl);
+        rest_after(k, s, dn.l_fog + dn.l_refl);
         refl.push(dn.l_refl.y as f64 / (tr * r) as f64);
-    }
+    });
     // The mirrored ray from the glass, traced plainly with the scattering
     // events the reflected samples have left (the glass took one).
+    let (scene, accel) = built(&glass);
+    let shading = Shading::new(&scene, &accel);
     let ctx_after = shading.context(3);
-    let p = o + d * t_hit + Vec3::Z * 1e-3;
+    let mut rays = 0;
+    let p = GROUND_O + d * t_hit + Vec3::Z * 1e-3;
     let d_mirror = Vec3::new(d.x, d.y, -d.z);
     let mirrored: Vec<f64> = (0..n)
         .map(|k| {
-            let mut stream = SampleStream::new(key(5), 0, k / 256, k % 256);
+            let mut stream = SampleStream::new(stream_key(5), 0, k / 256, k % 256);
             let ray = Ray::new(p, d_mirror);
             let hit = accel.intersect(&ray);
             let s = ctx_after.trace(
@@ -242,7 +230,7 @@ fn lambertian_first_vertex_splits_its_light_as_without_fog() {
 fn lambertian_split(src: &str) -> (Vec3, Vec3, Vec3) {
     let rho_want = Vec3::splat(0.3) * ground_tr();
     let (mut direct, mut surf, mut sun) = (Vec3::ZERO, Vec3::ZERO, Vec3::ZERO);
-    ground_samples(src, 5, |k, s| {
+    ground_samples(src, 5, 2048, |k, s| {
         let dn = s.denoise;
         assert!(!dn.glossy, "sample {k}: split as glossy");
         for rho in [dn.rho, dn.rho_direct] {
@@ -314,7 +302,7 @@ fn through_pane(src: &str) -> (u32, Vec3, Vec3) {
     let rho_want = Vec3::splat(0.3 * tr_top * w_in * w_out);
     let (mut behind, mut reflected) = (0, 0);
     let (mut handed, mut sun) = (Vec3::ZERO, Vec3::ZERO);
-    ground_samples(src, 7, |k, s| {
+    ground_samples(src, 7, 2048, |k, s| {
         let dn = s.denoise;
         if dn.rho_refl_hit != Vec3::ZERO {
             reflected += 1;
