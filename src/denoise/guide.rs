@@ -57,7 +57,7 @@ pub fn centre_opacity(scene: &Scene, cam: &RenderCamera, depth_z: &[f32]) -> Vec
 /// [`denoise_guided`]: fog in-scattering, and the light on the first
 /// surface that `DenoiseSample::l_surf` holds), guided by the view's exact
 /// pixel-centre `depth_z`, the opacity along those rays and the normals the
-/// depth implies. Widths: [`Widths::indirect_for_width`] for the view's
+/// depth implies. Widths: [`Widths::for_width`] for the view's
 /// size, with or without a medium.
 pub fn denoise_view(
     scene: &Scene,
@@ -73,7 +73,7 @@ pub fn denoise_view(
         opacity: &opacity,
         normal: &normal,
     };
-    let mut widths = Widths::indirect_for_width(film.width);
+    let mut widths = Widths::for_width(film.width);
     if !super::Features::for_scene(scene).direct {
         widths.direct_levels = 0;
     }

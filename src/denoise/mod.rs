@@ -33,11 +33,13 @@
 //! dilated B3 rows then columns) with range weights from the guide only
 //! ([`DepthGuide`]: pixel-centre opacity, relative depth_z, normals, sky vs
 //! surface: a joint bilateral, Petschnigg et al. 2004), so both sums are
-//! filtered alike. Row-major pixels (`Film`); fixed-order sums: same bytes
-//! on any thread count.
+//! filtered alike; the direct, reflection and first-surface components add
+//! an edge-stopping weight on their own noise (`edge_stop.rs`). Row-major
+//! pixels (`Film`); fixed-order sums: same bytes on any thread count.
 
 mod atrous;
 mod direct;
+mod edge_stop;
 mod features;
 mod first_scatter;
 mod guide;

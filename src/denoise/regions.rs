@@ -4,7 +4,7 @@
 //! the median alone, while a region lit or dark as a whole sets it, so two
 //! pixels whose medians differ beyond that noise sit in different regions
 //! even when one of them is so noisy (a lamp's light sampled by a few of
-//! its samples) that its own value proves nothing (`direct.rs`).
+//! its samples) that its own value proves nothing (`edge_stop.rs`).
 
 use rayon::prelude::*;
 

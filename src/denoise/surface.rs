@@ -8,7 +8,7 @@
 //! weights: relative depth_z, the pixel-centre normal, never sky. In
 //! medium-free scenes x1 may also be the surface x1's glass and mirrors
 //! show; pixels mix only with pixels whose share of the latter is alike
-//! (`ViewInputs::behind_delta`). Renders filter it with `direct.rs`'s
+//! (`ViewInputs::behind_delta`). Renders filter it with `edge_stop.rs`'s
 //! kernel, which also stops at the light's own noise, so corners and
 //! recesses keep their shade (`Widths::surface_sigma_lum`; `None`: on
 //! geometry alone). Fireflies (`FIREFLY_RATIO`) are left out of
@@ -20,7 +20,8 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::atrous::{atrous_levels, atrous_pass, ln_depth, soft_gaussian, Axis};
-use super::direct::{filter_part, Part, DIRECT_LEVELS};
+use super::direct::DIRECT_LEVELS;
+use super::edge_stop::{filter_part, Part};
 use super::{DepthGuide, ViewInputs, Widths};
 use crate::film::Film;
 
@@ -103,7 +104,7 @@ pub(super) fn filter_surface(
     });
 }
 
-/// [`filter_surface`] with `direct.rs`'s kernel: edge-stopping on the
+/// [`filter_surface`] with `edge_stop.rs`'s kernel: edge-stopping on the
 /// light's own noise (`ViewInputs::var_surf`) at `sigma_lum` standard
 /// deviations. A firefly is left out of the sums as on geometry alone.
 fn edge_stopped(

@@ -15,33 +15,25 @@ pub struct Widths {
     pub direct_levels: u32,
     /// Edge-stopping width, in standard deviations of its own noise, of the
     /// light on the first surface (`surface.rs`), filtered with
-    /// `direct.rs`'s kernel at [`DIRECT_LEVELS`](super::direct::DIRECT_LEVELS);
+    /// the edge-stopping kernel at [`DIRECT_LEVELS`](super::direct::DIRECT_LEVELS);
     /// `None` filters it on geometry alone at `sigma_px` (renders use
-    /// `Some`: [`Widths::indirect_for_width`]).
+    /// `Some`: [`Widths::for_width`]).
     pub surface_sigma_lum: Option<f32>,
 }
 
 impl Widths {
-    /// The default widths for a view `width` pixels wide: the spatial σ
-    /// scales with resolution (a fixed angular footprint) and is at least
-    /// one pixel, so tiny test images still filter.
+    /// Every rendered view's widths, for a view `width` pixels wide: the
+    /// spatial σ scales with resolution (a fixed angular footprint) and is
+    /// at least one pixel, so tiny test images still filter; indirect light
+    /// on the first surface (fog light included) is filtered with
+    /// edge-stopping on its own noise ([`INDIRECT_SIGMA_LUM`]).
     pub fn for_width(width: usize) -> Widths {
         Widths {
             sigma_px: (width as f32 / 160.0 * SIGMA_PX_AT_160).max(1.0),
             sigma_opacity: 0.1,
             sigma_depth_rel: 0.3,
             direct_levels: super::direct::DIRECT_LEVELS,
-            surface_sigma_lum: None,
-        }
-    }
-
-    /// [`Widths::for_width`] with indirect light on the first surface
-    /// (fog light included) filtered with edge-stopping on its own noise
-    /// ([`INDIRECT_SIGMA_LUM`]): every rendered view's widths.
-    pub fn indirect_for_width(width: usize) -> Widths {
-        Widths {
             surface_sigma_lum: Some(INDIRECT_SIGMA_LUM),
-            ..Widths::for_width(width)
         }
     }
 }

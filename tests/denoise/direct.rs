@@ -45,7 +45,7 @@ fn filter_direct_only(layer: &ViewInputs, depth: &[f32]) -> (Film, Film) {
         opacity: &opacity,
         normal: &normal,
     };
-    denoise_guided(&mut film, layer, &guide, &Widths::indirect_for_width(w));
+    denoise_guided(&mut film, layer, &guide, &Widths::for_width(w));
     (before, film)
 }
 

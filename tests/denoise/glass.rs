@@ -144,7 +144,7 @@ fn filter_pane(
         opacity: &opacity,
         normal: &[],
     };
-    denoise_guided(&mut film, &inputs, &guide, &Widths::indirect_for_width(w));
+    denoise_guided(&mut film, &inputs, &guide, &Widths::for_width(w));
     (before, film, truth)
 }
 

@@ -85,7 +85,7 @@ fn rms_away_from_step(e: &[f32], margin: usize) -> f32 {
 fn a_shade_step_on_one_wall_stays_and_its_noise_goes() {
     let inputs = noisy_wall();
     let raw: Vec<f32> = inputs.l_surf.iter().map(|l| l.y / 0.5).collect();
-    let widths = Widths::indirect_for_width(W);
+    let widths = Widths::for_width(W);
     assert!(widths.surface_sigma_lum.is_some());
     let kept = filtered(&inputs, &widths);
     let geometry_only = filtered(
@@ -126,7 +126,7 @@ fn sparse_light_in_a_dark_room_is_spread_not_dropped() {
         };
     }
     let traced: f32 = inputs.l_surf.iter().map(|l| l.y / 0.5).sum::<f32>() / (W * H) as f32;
-    let e = filtered(&inputs, &Widths::indirect_for_width(W));
+    let e = filtered(&inputs, &Widths::for_width(W));
     let mean = e.iter().sum::<f32>() / e.len() as f32;
     println!("room level traced {traced:.3}, filtered {mean:.3}");
     assert!((mean / traced - 1.0).abs() < 0.1, "{mean} against {traced}");
