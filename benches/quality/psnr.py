@@ -66,8 +66,9 @@ def exposure_scale(out, frame):
         return json.load(f)["exposure_scale"]
 
 
-def main():
-    p = argparse.ArgumentParser()
+def parser(description=None):
+    """The frame, reference and binary arguments every quality script shares."""
+    p = argparse.ArgumentParser(description=description)
     p.add_argument("--town", default="town03")
     p.add_argument("--frame", type=int, default=40)
     p.add_argument("--weather", default="clear")
@@ -81,45 +82,42 @@ def main():
     p.add_argument("--cache", default="/work/refs")
     p.add_argument("--extra", default="", help="extra render arguments for the test image")
     p.add_argument("--out", default=None, help="keep the test render here")
-    a = p.parse_args()
+    return p
+
+
+def frame_args(a):
+    """The render arguments of the frame both images show."""
     w, h = a.size.split("x")
-    common = ["--town", a.town, "--frame", str(a.frame), "--weather", a.weather,
-              "--seed", str(a.seed), "--weather-seed", str(a.seed), "--width", w, "--height", h,
-              "--baselines", "10", "--sensor-noise", "0"]
+    return ["--town", a.town, "--frame", str(a.frame), "--weather", a.weather,
+            "--seed", str(a.seed), "--weather-seed", str(a.seed), "--width", w, "--height", h,
+            "--baselines", "10", "--sensor-noise", "0"]
+
+
+def references(a):
+    """The reference images (one, or a pair with different sample seeds),
+    rendered into the cache on first use, and the first one's directory."""
     key = f"{a.town}_f{a.frame}_{a.weather}_s{a.seed}_{a.size}_r{a.ref_spp}"
     refs = []
     for k, sample_seed in enumerate([1000 + a.seed, 2000 + a.seed][: 2 if a.ref_pair else 1]):
         d = os.path.join(a.cache, f"{key}_{k}")
         if not os.path.exists(left_png(d, a.frame)):
-            render(a.ref_bin or a.bin, d + ".tmp", common + ["--spp", str(a.ref_spp), "--no-filter",
-                                               "--sample-seed", str(sample_seed)])
+            render(a.ref_bin or a.bin, d + ".tmp", frame_args(a) + ["--spp", str(a.ref_spp), "--no-filter",
+                                                 "--sample-seed", str(sample_seed)])
             os.rename(d + ".tmp", d)
         refs.append(load(left_png(d, a.frame)))
-    out = a.out or f"/tmp/psnr_{os.getpid()}"
-    extra = shlex.split(a.extra)
-    # Reference mode turns sensor noise off itself and refuses the flag.
-    test_common = common[:-2] if "--reference" in extra else common
-    args = test_common + (["--spp", str(a.spp)] if a.spp else []) + extra
-    secs = render(a.bin, out, args)
-    img = load(left_png(out, a.frame))
+    return refs, os.path.join(a.cache, f"{key}_0")
+
+
+def scores(img, refs):
+    """PSNR and bias of `img` against the references' mean; with a pair,
+    also against the converged image."""
     ref = refs[0] if len(refs) == 1 else (refs[0] + refs[1]) / 2
-    exposure = (exposure_scale(out, a.frame)
-                / exposure_scale(os.path.join(a.cache, f"{key}_0"), a.frame))
-    res = {"town": a.town, "frame": a.frame, "weather": a.weather, "size": a.size,
-           "spp": a.spp, "extra": a.extra, "psnr_db": round(psnr(img, ref), 2),
+    res = {"psnr_db": round(psnr(img, ref), 2),
            "mean_abs_levels": round(float(np.mean(np.abs(img - ref))), 2),
            "bias_levels": round(float(np.mean(img - ref)), 3),
            # Light gained (+) or lost (-, e.g. fireflies dropped) as a share
            # of the reference's mean, in linear display light.
-           "mean_light_bias": round(float(np.mean(linear(img)) / np.mean(linear(ref)) - 1.0), 4),
-           # Auto exposure of the test image over the reference's: a noisy
-           # image exposed differently is off everywhere, not only noisy.
-           "exposure_ratio": round(exposure, 4),
-           # The scene light's bias: the display light's with each image's
-           # exposure divided out (exact where no pixel clips to white).
-           "scene_light_bias": round(float(np.mean(linear(img)) / np.mean(linear(ref))
-                                           / exposure - 1.0), 4),
-           "seconds": round(secs, 2), "ref_spp": a.ref_spp * len(refs)}
+           "mean_light_bias": round(float(np.mean(linear(img)) / np.mean(linear(ref)) - 1.0), 4)}
     if len(refs) == 2:
         res["ref_pair_psnr_db"] = round(psnr(refs[0], refs[1]), 2)
         # The reference's own noise sets a floor under every clean image's
@@ -130,6 +128,33 @@ def main():
         mse_truth = max(np.mean((img - ref) ** 2) - ref_var, 1e-9)
         res["psnr_truth_db"] = round(10.0 * np.log10(255.0**2 / mse_truth), 2)
         res["ref_psnr_truth_db"] = round(10.0 * np.log10(255.0**2 / ref_var), 2)
+    return res
+
+
+def main():
+    a = parser().parse_args()
+    refs, ref_dir = references(a)
+    out = a.out or f"/tmp/psnr_{os.getpid()}"
+    extra = shlex.split(a.extra)
+    common = frame_args(a)
+    # Reference mode turns sensor noise off itself and refuses the flag.
+    test_common = common[:-2] if "--reference" in extra else common
+    args = test_common + (["--spp", str(a.spp)] if a.spp else []) + extra
+    secs = render(a.bin, out, args)
+    img = load(left_png(out, a.frame))
+    exposure = exposure_scale(out, a.frame) / exposure_scale(ref_dir, a.frame)
+    res = {"town": a.town, "frame": a.frame, "weather": a.weather, "size": a.size,
+           "spp": a.spp, "extra": a.extra}
+    res.update(scores(img, refs))
+    ref = refs[0] if len(refs) == 1 else (refs[0] + refs[1]) / 2
+    # Auto exposure of the test image over the reference's: a noisy image
+    # exposed differently is off everywhere, not only noisy. The scene
+    # light's bias: the display light's with each image's exposure divided
+    # out (exact where no pixel clips to white).
+    res.update({"exposure_ratio": round(exposure, 4),
+                "scene_light_bias": round(float(np.mean(linear(img)) / np.mean(linear(ref))
+                                                / exposure - 1.0), 4),
+                "seconds": round(secs, 2), "ref_spp": a.ref_spp * len(refs)})
     if not a.out:
         subprocess.run(["rm", "-rf", out])
     print(json.dumps(res))
