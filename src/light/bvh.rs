@@ -213,8 +213,15 @@ impl LightBvh {
         walk: &mut Walk,
     ) -> [(f32, Side); 2] {
         let (children, reach) = self.children_reach(k, end, p, n, walk);
-        let at = node::at_unculled_many(&children.map(|c| &self.nodes[c]), p, n);
-        [0, 1].map(|i| (if reach[i].0 { at[i] } else { 0.0 }, reach[i].1))
+        [0, 1].map(|i| {
+            let (weighed, side) = reach[i];
+            let at = if weighed {
+                self.nodes[children[i]].at_unculled(p, n)
+            } else {
+                0.0
+            };
+            (at, side)
+        })
     }
 
     /// The children of inner node `k` (whose subtree ends before node
@@ -350,7 +357,17 @@ impl LightBvh {
         // children's weights, the importances of the children weighed at
         // this level computed together (`node::at_unculled_many`).
         let mut weights = [[(0.0f32, Side::Behind); 2]; M];
-        while walks.iter().any(Option::is_some) {
+        let mut active = walks.iter().flatten().count();
+        while active > 0 {
+            // A lone walk (a later vertex's one candidate, the last of a
+            // first vertex's) goes on by itself: a level's bookkeeping
+            // for M walks costs more than its two children's weights.
+            if active == 1 {
+                if let Some(i) = walks.iter().position(Option::is_some) {
+                    out[i] = walks[i].take().and_then(|w| self.finish(p, n, w));
+                }
+                break;
+            }
             // Children to weigh, (walk, which child, node) per lane.
             let mut lanes = [(0usize, 0usize, 0usize); LANES];
             let mut used = 0;
@@ -369,6 +386,7 @@ impl LightBvh {
                         *out = Some((node.index(), w.pmf));
                     }
                     *slot = None;
+                    active -= 1;
                     continue;
                 }
                 // Walks on one node are adjacent when their numbers are
@@ -401,10 +419,27 @@ impl LightBvh {
                 let second = self.nodes[w.k].index() as usize;
                 if !w.step(weights[from[i]], second) {
                     *slot = None;
+                    active -= 1;
                 }
             }
         }
         out
+    }
+
+    /// Walk `w` from its node down to a leaf alone: what
+    /// [`LightBvh::sample_facing_many`] gives it, one level at a time.
+    fn finish(&self, p: Vec3, n: Vec3, mut w: Walker) -> Option<(u32, f32)> {
+        loop {
+            let node = &self.nodes[w.k];
+            if node.is_leaf() {
+                // A lone root was never weighed against a sibling.
+                return (w.k > 0 || node.at(p, n) > 0.0).then(|| (node.index(), w.pmf));
+            }
+            let weights = self.child_weights(w.k, w.end, p, n, &mut w.walk);
+            if !w.step(weights, node.index() as usize) {
+                return None;
+            }
+        }
     }
 
     /// Sets the weight of each child in `lanes` (walk, which child, node)
@@ -419,10 +454,15 @@ impl LightBvh {
         if lanes.is_empty() {
             return;
         }
-        // The fewest lanes that hold them: one walk (a day frame's, a
-        // later vertex's) weighs two children, not a full pass.
+        // The fewest lanes that hold them. One walk (a day frame's, a
+        // later vertex's) weighs its two children one by one: alone, a
+        // node stops at its first zero, and the lanes compute everything.
         match lanes.len() {
-            ..=2 => self.weigh_lanes::<2>(lanes, weights, p, n),
+            ..=2 => {
+                for &(i, c, k) in lanes {
+                    weights[i][c].0 = self.nodes[k].at_unculled(p, n);
+                }
+            }
             3..=8 => self.weigh_lanes::<8>(lanes, weights, p, n),
             _ => self.weigh_lanes::<LANES>(lanes, weights, p, n),
         }
