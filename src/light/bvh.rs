@@ -17,8 +17,13 @@
 
 use glam::Vec3;
 
+mod bounds;
 mod build;
 mod node;
+pub(super) use bounds::acos_clamped;
+#[cfg(test)]
+use bounds::cone_union;
+pub use bounds::LightBounds;
 use build::{Subtree, PARALLEL_GRAIN};
 #[cfg(test)]
 use node::{angle_sub_clamped, safe_sqrt};
@@ -27,119 +32,6 @@ use node::{Packed, Side, MAX_INDEX};
 /// Child importances computed together in a walk's level
 /// (`node::at_unculled_many`): two AVX registers of lanes.
 const LANES: usize = 16;
-
-/// Bounds of one light or of a cluster of lights.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LightBounds {
-    /// Minimum corner of the positions' box (render space, m).
-    pub p_min: Vec3,
-    /// Maximum corner of the positions' box.
-    pub p_max: Vec3,
-    /// Unit axis of the cone of emission normals.
-    pub w: Vec3,
-    /// Intensity bound (luminance, W·sr⁻¹): phi·cosθ/d² bounds the irradiance.
-    pub phi: f32,
-    /// Cosine of the normal cone's half-angle θ_o (−1: every direction).
-    pub cos_theta_o: f32,
-    /// Cosine of the emission spread θ_e about a normal (0 for a Lambert emitter).
-    pub cos_theta_e: f32,
-    /// Emission on both sides of each normal.
-    pub two_sided: bool,
-}
-
-impl LightBounds {
-    fn centroid(&self) -> Vec3 {
-        0.5 * (self.p_min + self.p_max)
-    }
-
-    /// Bound of the light's contribution at `p` (0: it cannot light `p`).
-    pub fn importance(&self, p: Vec3) -> f32 {
-        Packed::new(self, 0, true).at(p, Vec3::ZERO)
-    }
-
-    /// [`LightBounds::importance`] at a receiver that reflects only, whose
-    /// unit normal `n` faces the side it reflects on (zero: no receiver
-    /// bound): also times the largest cosine between `n` and a direction
-    /// into the bounds.
-    pub fn importance_facing(&self, p: Vec3, n: Vec3) -> f32 {
-        Packed::new(self, 0, true).at(p, n)
-    }
-
-    /// The bounds of both `self` and `o`.
-    pub fn union(&self, o: &LightBounds) -> LightBounds {
-        if self.phi == 0.0 {
-            return *o;
-        }
-        if o.phi == 0.0 {
-            return *self;
-        }
-        let (w, cos_theta_o) = cone_union(self.w, self.cos_theta_o, o.w, o.cos_theta_o);
-        LightBounds {
-            p_min: self.p_min.min(o.p_min),
-            p_max: self.p_max.max(o.p_max),
-            w,
-            phi: self.phi + o.phi,
-            cos_theta_o,
-            cos_theta_e: self.cos_theta_e.min(o.cos_theta_e),
-            two_sided: self.two_sided || o.two_sided,
-        }
-    }
-}
-
-/// The smallest cone holding two cones (axis, cosine of half-angle).
-fn cone_union(wa: Vec3, cos_a: f32, wb: Vec3, cos_b: f32) -> (Vec3, f32) {
-    if cos_a == -1.0 || cos_b == -1.0 {
-        return (wa, -1.0);
-    }
-    let cos_d = wa.dot(wb).clamp(-1.0, 1.0);
-    // Parallel axes and cone b no wider than a: the general path below
-    // returns (wa, cos_a) too (θ_d = 0, θ_b ≤ θ_a), without its arc cosines.
-    // Most unions in a town's light tree are of this kind (lamp and window
-    // faces share their normals), and the build is a large part of a
-    // frame's set-up.
-    if cos_d == 1.0 && (cos_b == 1.0 || cos_b == cos_a) {
-        return (wa, cos_a);
-    }
-    let theta_a = acos_clamped(cos_a);
-    let theta_b = acos_clamped(cos_b);
-    let theta_d = acos_clamped(cos_d);
-    // One cone inside the other.
-    if (theta_d + theta_b).min(std::f32::consts::PI) <= theta_a {
-        return (wa, cos_a);
-    }
-    if (theta_d + theta_a).min(std::f32::consts::PI) <= theta_b {
-        return (wb, cos_b);
-    }
-    let theta_o = 0.5 * (theta_a + theta_d + theta_b);
-    if theta_o >= std::f32::consts::PI {
-        return (wa, -1.0);
-    }
-    // Rotate wa towards wb by θ_o − θ_a about their common normal.
-    let theta_r = theta_o - theta_a;
-    let axis = wa.cross(wb);
-    if axis.length_squared() < 1e-12 {
-        // (Nearly) parallel axes: keep wa and widen it to cover cone b.
-        let theta = (theta_d + theta_b).max(theta_a).min(std::f32::consts::PI);
-        return (wa, theta.cos());
-    }
-    let w = glam::Quat::from_axis_angle(axis.normalize(), theta_r) * wa;
-    (w.normalize(), theta_o.cos())
-}
-
-/// acos of `c` clamped to [−1, 1]; the cosines of single emitters (1 for a
-/// face's normal cone, 0 for a Lambert spread) skip the libm call with the
-/// bits it returns for them (acos 1 = +0, acos 0 = π/2 correctly rounded;
-/// `tests::acos_shortcuts_are_the_libm_bits`).
-#[inline]
-pub(super) fn acos_clamped(c: f32) -> f32 {
-    if c == 1.0 {
-        0.0
-    } else if c == 0.0 {
-        std::f32::consts::FRAC_PI_2
-    } else {
-        c.clamp(-1.0, 1.0).acos()
-    }
-}
 
 /// One node as the build makes it: a leaf holds one light; an inner
 /// node's first child follows it.
@@ -213,8 +105,15 @@ impl LightBvh {
         walk: &mut Walk,
     ) -> [(f32, Side); 2] {
         let (children, reach) = self.children_reach(k, end, p, n, walk);
-        let at = node::at_unculled_many(&children.map(|c| &self.nodes[c]), p, n);
-        [0, 1].map(|i| (if reach[i].0 { at[i] } else { 0.0 }, reach[i].1))
+        [0, 1].map(|i| {
+            let (weighed, side) = reach[i];
+            let at = if weighed {
+                self.nodes[children[i]].at_unculled(p, n)
+            } else {
+                0.0
+            };
+            (at, side)
+        })
     }
 
     /// The children of inner node `k` (whose subtree ends before node
@@ -350,7 +249,17 @@ impl LightBvh {
         // children's weights, the importances of the children weighed at
         // this level computed together (`node::at_unculled_many`).
         let mut weights = [[(0.0f32, Side::Behind); 2]; M];
-        while walks.iter().any(Option::is_some) {
+        let mut active = walks.iter().flatten().count();
+        while active > 0 {
+            // A lone walk (a later vertex's one candidate, the last of a
+            // first vertex's) goes on by itself: a level's bookkeeping
+            // for M walks costs more than its two children's weights.
+            if active == 1 {
+                if let Some(i) = walks.iter().position(Option::is_some) {
+                    out[i] = walks[i].take().and_then(|w| self.finish(p, n, w));
+                }
+                break;
+            }
             // Children to weigh, (walk, which child, node) per lane.
             let mut lanes = [(0usize, 0usize, 0usize); LANES];
             let mut used = 0;
@@ -369,6 +278,7 @@ impl LightBvh {
                         *out = Some((node.index(), w.pmf));
                     }
                     *slot = None;
+                    active -= 1;
                     continue;
                 }
                 // Walks on one node are adjacent when their numbers are
@@ -401,10 +311,27 @@ impl LightBvh {
                 let second = self.nodes[w.k].index() as usize;
                 if !w.step(weights[from[i]], second) {
                     *slot = None;
+                    active -= 1;
                 }
             }
         }
         out
+    }
+
+    /// Walk `w` from its node down to a leaf alone: what
+    /// [`LightBvh::sample_facing_many`] gives it, one level at a time.
+    fn finish(&self, p: Vec3, n: Vec3, mut w: Walker) -> Option<(u32, f32)> {
+        loop {
+            let node = &self.nodes[w.k];
+            if node.is_leaf() {
+                // A lone root was never weighed against a sibling.
+                return (w.k > 0 || node.at(p, n) > 0.0).then(|| (node.index(), w.pmf));
+            }
+            let weights = self.child_weights(w.k, w.end, p, n, &mut w.walk);
+            if !w.step(weights, node.index() as usize) {
+                return None;
+            }
+        }
     }
 
     /// Sets the weight of each child in `lanes` (walk, which child, node)
@@ -419,10 +346,15 @@ impl LightBvh {
         if lanes.is_empty() {
             return;
         }
-        // The fewest lanes that hold them: one walk (a day frame's, a
-        // later vertex's) weighs two children, not a full pass.
+        // The fewest lanes that hold them. One walk (a day frame's, a
+        // later vertex's) weighs its two children one by one: alone, a
+        // node stops at its first zero, and the lanes compute everything.
         match lanes.len() {
-            ..=2 => self.weigh_lanes::<2>(lanes, weights, p, n),
+            ..=2 => {
+                for &(i, c, k) in lanes {
+                    weights[i][c].0 = self.nodes[k].at_unculled(p, n);
+                }
+            }
             3..=8 => self.weigh_lanes::<8>(lanes, weights, p, n),
             _ => self.weigh_lanes::<LANES>(lanes, weights, p, n),
         }

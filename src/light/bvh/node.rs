@@ -108,10 +108,57 @@ impl Packed {
     }
 
     /// [`Packed::at`] for a box known not to lie wholly behind the
-    /// receiver's plane.
+    /// receiver's plane. One node alone (a lone walk's level, a pmf's
+    /// replay) returns as soon as its value is known: most such nodes at
+    /// a later vertex are facing away or out of their spread, and their
+    /// zero is the one `at_unculled_many` computes for them.
     #[inline]
     pub(super) fn at_unculled(&self, p: Vec3, n: Vec3) -> f32 {
-        at_unculled_many(&[self], p, n)[0]
+        let v = p - self.pc;
+        let d2_centre = v.length_squared();
+        // Clamp the distance so points inside a large cluster do not blow up.
+        let d2 = d2_centre.max(self.d2_min);
+        let wi = v.normalize_or_zero();
+        let mut cos_w = self.w.dot(wi);
+        if self.link & TWO_SIDED != 0 {
+            cos_w = cos_w.abs();
+        }
+        let sin_w = safe_sqrt(1.0 - cos_w * cos_w);
+        // Half-angle θ_b of the cone from the centre that holds the whole
+        // box as seen from p (the box's bounding sphere; −1 inside it).
+        let inside = d2_centre < self.r2 || d2_centre == 0.0;
+        let cos_b = if inside {
+            -1.0
+        } else {
+            safe_sqrt(1.0 - self.r2 / d2_centre)
+        };
+        let sin_b = safe_sqrt(1.0 - cos_b * cos_b);
+        // θ' = max(0, θ_w − θ_o − θ_b): the smallest angle between a normal
+        // of the cone and a direction from the box towards p.
+        let (cos_x, sin_x) = angle_sub_clamped(sin_w, cos_w, self.sin_theta_o, self.cos_theta_o);
+        let (cos_p, _) = angle_sub_clamped(sin_x, cos_x, sin_b, cos_b);
+        if cos_p <= self.cos_theta_e {
+            return 0.0;
+        }
+        let importance = (self.phi * cos_p / d2).max(0.0);
+        if n == Vec3::ZERO {
+            return importance;
+        }
+        // θ_i' = max(0, θ_i − θ_b): the smallest angle between n and a
+        // direction from p into the box (−wi points at its centre); sin θ_b
+        // from r/d, as `at_unculled_many` says why.
+        let sin_b = if inside {
+            sin_b
+        } else {
+            safe_sqrt(self.r2 / d2_centre)
+        };
+        let cos_i = -n.dot(wi);
+        let sin_i = safe_sqrt(1.0 - cos_i * cos_i);
+        let (cos_pi, _) = angle_sub_clamped(sin_i, cos_i, sin_b, cos_b);
+        if cos_pi <= 0.0 {
+            return 0.0;
+        }
+        importance * cos_pi
     }
 }
 
@@ -120,8 +167,9 @@ impl Packed {
 /// without branches, so the compiler computes several nodes per
 /// instruction (a walk's square roots and divisions, the most of a night
 /// frame's tree walks, then overlap instead of queueing one node after
-/// another). Each lane's operations are those of the one-node call, and
-/// vector square roots and divisions round as scalar ones, so a walk and
+/// another). Each lane's operations are those of [`Packed::at_unculled`]
+/// (which only stops early where its value is known), and vector square
+/// roots and divisions round as scalar ones, so a walk and
 /// `LightBvh::pmf_facing`'s replay agree bitwise.
 #[inline]
 pub(super) fn at_unculled_many<const L: usize>(nodes: &[&Packed; L], p: Vec3, n: Vec3) -> [f32; L] {
