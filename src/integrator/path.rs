@@ -31,6 +31,7 @@ mod ris;
 mod shadows;
 mod state;
 pub use cone::RayCone;
+pub(super) use nee::ShadowTrRoulette;
 use ris::RisSamples;
 use shadows::PendingShadows;
 pub(super) use state::PathState;
@@ -100,6 +101,9 @@ pub(super) struct BounceSamples {
     u_distant: [glam::Vec2; crate::light::MAX_DISTANT],
     /// The local light's candidates (`ris.rs`).
     u_local: RisSamples,
+    /// In a medium, the distant lights' shadow-ray roulette by
+    /// transmittance (None: every shadow ray traced; always so without one).
+    tr_roulette: Option<ShadowTrRoulette>,
 }
 
 impl BounceSamples {
@@ -421,7 +425,8 @@ impl<A: Accel> PathContext<'_, A> {
     }
 
     /// One surface vertex: emission (MIS-weighted), NEE, BSDF sampling and
-    /// roulette. Returns the continuation ray (None when the path ends),
+    /// roulette, its distant lights' shadow rays under `tr_roulette` when
+    /// given. Returns the continuation ray (None when the path ends),
     /// the suns' next-event part of the light it added, and the radiance
     /// before its next-event estimates (its emission in).
     pub(super) fn surface_vertex(
@@ -431,13 +436,15 @@ impl<A: Accel> PathContext<'_, A> {
         st: &mut PathState,
         stream: &mut SampleStream,
         rays: &mut u64,
+        tr_roulette: Option<ShadowTrRoulette>,
     ) -> (Option<Ray>, Vec3, Vec3) {
         let mut pending = PendingShadows::new();
-        let u = if st.bounces < self.max_depth {
+        let mut u = if st.bounces < self.max_depth {
             BounceSamples::draw(stream, st.bounces, self.lights)
         } else {
             BounceSamples::default()
         };
+        u.tr_roulette = tr_roulette;
         let next = self.surface_vertex_deferred(ray, hit, st, &u, rays, &mut pending);
         let before = st.l;
         let sun = pending.resolve(self.accel, &mut st.l);
@@ -533,7 +540,7 @@ impl<A: Accel> PathContext<'_, A> {
             for (k, &u_light) in u.u_distant.iter().enumerate().take(lights.distant_count()) {
                 // The radiance (sky, cloud deck) only for samples kept.
                 let ls = lights.sample_distant_dir(scene, k, si.p, u_light);
-                self.direct(&vertex, k, ls, st.beta, pending, rays);
+                self.direct(&vertex, (k, u.tr_roulette), ls, st.beta, pending, rays);
             }
             if !lights.is_empty() {
                 self.direct_local(&vertex, &u.u_local, st.beta, pending, rays);

@@ -53,7 +53,7 @@ use glam::{Vec2, Vec3};
 use shaders_cpu::medium::{Equiangular, Medium};
 use shaders_cpu::sampling::power_heuristic;
 
-use super::path::{LiSample, PathState, RayCone};
+use super::path::{LiSample, PathState, RayCone, ShadowTrRoulette};
 use super::PathContext;
 use crate::accel::{Accel, Hit, Ray};
 use crate::light::LightSample;
@@ -64,6 +64,10 @@ use surface_split::SurfaceSplit;
 const VOL_DIMS: u32 = 1 << 20;
 /// 4D sets per segment (five used; the spacing keeps the streams as they were).
 const VOL_DIMS_PER_BOUNCE: u32 = 16;
+/// The 4D set, among a bounce's volume sets, of the surface vertex's
+/// shadow-ray roulette by transmittance (`Strategies::surface_per_tr`);
+/// no segment draws it.
+const SURFACE_TR_SET: u32 = 7;
 
 mod segment;
 mod strategies;
@@ -71,7 +75,7 @@ mod surface_split;
 #[cfg(test)]
 mod tests;
 
-use segment::{SegmentEnd, SegmentSamples, VolState};
+use segment::{SegmentEnd, SegmentSamples, VolState, SPLIT_SET};
 use strategies::{NeeRoulette, Strategies};
 
 /// Collisions up to this many scattering events always draw the sun lobe
@@ -191,7 +195,18 @@ impl<A: Accel> PathContext<'_, A> {
             let split = (st.split.ahead && strategies.split_first && st.bounces < self.max_depth)
                 .then_some((st.beta, st.bounces > 0));
             let l_at_x1 = st.l;
-            let (next, sun, before) = self.surface_vertex(&ray, &hit, st, stream, rays);
+            let tr_roulette =
+                (strategies.surface_per_tr.is_finite() && st.bounces < self.max_depth).then(|| {
+                    stream.set_dimension(
+                        VOL_DIMS + st.bounces * VOL_DIMS_PER_BOUNCE + SURFACE_TR_SET,
+                    );
+                    ShadowTrRoulette {
+                        u: stream.next_4d(),
+                        per_tr: strategies.surface_per_tr,
+                    }
+                });
+            let (next, sun, before) =
+                self.surface_vertex(&ray, &hit, st, stream, rays, tr_roulette);
             // Shaded, it is no longer ahead (a glass reflection ends the
             // search too, with no albedo).
             if let Some((beta, behind_delta)) = split.filter(|_| !st.split.ahead) {
@@ -206,6 +221,16 @@ impl<A: Accel> PathContext<'_, A> {
                 // (`l_direct`), but the suns' next-event estimate, left as
                 // traced as in a clear scene (`path::split_direct`).
                 vs.first.glossy = st.split_glossy.map(|a| (l_at_x1 + sun, a * beta));
+                // A Lambertian x1's indirect light under its roulette
+                // (`Strategies::x1_indirect_keep`): dropped, it is zero.
+                let q = strategies.x1_indirect_keep(beta);
+                if st.split_albedo.is_some() && next.is_some() && q < 1.0 {
+                    stream.set_dimension(VOL_DIMS + SPLIT_SET);
+                    if stream.next_4d()[1] >= q {
+                        break;
+                    }
+                    st.beta /= q;
+                }
             }
             match next {
                 Some(next) => ray = next,

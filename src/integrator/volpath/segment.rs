@@ -18,8 +18,10 @@ use crate::sampler::SampleStream;
 use super::surface_split::SurfaceSplit;
 
 /// The camera segment's 4D set (after `SegmentSamples`' five) whose first
-/// number decides the split's roulette (`Strategies::split_per_tr`).
-const SPLIT_SET: u32 = 5;
+/// number decides the split's roulette (`Strategies::split_per_tr`) and
+/// second the roulette of x1's indirect light
+/// (`Strategies::x1_indirect_per_beta`).
+pub(super) const SPLIT_SET: u32 = 5;
 
 /// The segment's 4D set whose first number decides the local lights' NEE
 /// roulette (`NeeRoulette`).

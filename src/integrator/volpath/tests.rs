@@ -22,6 +22,7 @@ mod samples;
 mod shadow;
 mod sky_rows;
 mod spot;
+mod surface;
 mod thin_sun;
 
 const SCENE: &str = r#"
