@@ -1,7 +1,8 @@
 //! The roulettes at surface vertices in a medium: the distant lights'
 //! shadow rays by their transmittance (`Strategies::surface_per_tr`) and a
 //! Lambertian split vertex's indirect light by the throughput reaching it
-//! (`Strategies::x1_indirect_per_beta`) keep the mean for fewer rays.
+//! (`Strategies::x1_indirect_per_beta`, off by default) keep the mean for
+//! fewer rays.
 
 use super::{assert_same_means, samples_in, Strategies, DIRS, SCENE, SKY};
 
@@ -40,6 +41,7 @@ fn x1_indirect_roulette_keeps_the_mean_for_fewer_rays() {
     let scene = format!("{dense}{SKY}");
     let split = Strategies {
         split_first: true,
+        x1_indirect_per_beta: 2.0,
         ..Strategies::default()
     };
     let always = Strategies {
