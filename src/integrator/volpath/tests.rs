@@ -25,6 +25,17 @@ mod spot;
 mod surface;
 mod thin_sun;
 
+/// Sample `k` of the tests' stream of seed `seed` (frame 0, view 0; 256
+/// samples per pixel of row 0).
+pub(super) fn sample_stream(seed: u64, k: u32) -> SampleStream {
+    let key = StreamKey {
+        seed,
+        frame: 0,
+        view: 0,
+    };
+    SampleStream::new(key, 0, k / 256, k % 256)
+}
+
 const SCENE: &str = r#"
 [camera]
 width = 4

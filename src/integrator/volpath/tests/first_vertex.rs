@@ -8,12 +8,11 @@
 use glam::{Vec2, Vec3};
 use shaders_cpu::bsdf::Bsdf;
 
-use super::{built, mean_var, SCENE, SKY};
+use super::{built, mean_var, sample_stream, SCENE, SKY};
 use crate::accel::{Accel, Ray};
 use crate::integrator::path::LiSample;
 use crate::integrator::volpath::Strategies;
 use crate::integrator::Shading;
-use crate::sampler::{SampleStream, StreamKey};
 
 #[test]
 fn glossy_first_vertex_hands_its_light_but_the_suns_to_direct_light_in_fog() {
@@ -97,15 +96,6 @@ fn ground_tr() -> f32 {
     (-0.05 * GROUND_O.z / -ground_d().z).exp()
 }
 
-/// The stream key of the tests' samples of seed `seed`.
-fn stream_key(seed: u64) -> StreamKey {
-    StreamKey {
-        seed,
-        frame: 0,
-        view: 0,
-    }
-}
-
 /// Calls `f` with each of `n` camera samples (stream seed `seed`) along
 /// one ray to the ground of `src`, the camera segment split.
 fn ground_samples(src: &str, seed: u64, n: u32, mut f: impl FnMut(u32, &LiSample)) {
@@ -118,7 +108,7 @@ fn ground_samples(src: &str, seed: u64, n: u32, mut f: impl FnMut(u32, &LiSample
     };
     let mut rays = 0;
     for k in 0..n {
-        let mut stream = SampleStream::new(stream_key(seed), 0, k / 256, k % 256);
+        let mut stream = sample_stream(seed, k);
         let ray = Ray::new(GROUND_O, ground_d());
         let s = ctx.trace(
             ray,
@@ -172,7 +162,7 @@ fn glass_first_vertex_hands_its_reflection_to_the_reflection_filter_in_fog() {
     let d_mirror = Vec3::new(d.x, d.y, -d.z);
     let mirrored: Vec<f64> = (0..n)
         .map(|k| {
-            let mut stream = SampleStream::new(stream_key(5), 0, k / 256, k % 256);
+            let mut stream = sample_stream(5, k);
             let ray = Ray::new(p, d_mirror);
             let hit = accel.intersect(&ray);
             let s = ctx_after.trace(

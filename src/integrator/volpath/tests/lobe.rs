@@ -4,9 +4,8 @@
 
 use glam::Vec3;
 
-use super::{built, mean_var, paired_se, SCENE};
+use super::{built, mean_var, paired_se, sample_stream, SCENE};
 use crate::integrator::Shading;
-use crate::sampler::{SampleStream, StreamKey};
 
 /// Green `sun_lobe_vertex` estimates at `n` sample streams from a point
 /// high in `SCENE`'s slab, the phase roulette off, with transmittance
@@ -20,15 +19,10 @@ fn lobe_estimates(per_tr: f32, n: u32) -> (Vec<f64>, u64) {
     // 28 m up, 12 m under the slab's top: toward the 15° sun, Tr ≈ 0.1.
     let p = Vec3::new(0.0, 0.0, 28.0);
     let wo = -Vec3::new(1.0, 0.2, 0.1).normalize();
-    let key = StreamKey {
-        seed: 3,
-        frame: 0,
-        view: 0,
-    };
     let mut rays = 0;
     let l = (0..n)
         .map(|k| {
-            let mut stream = SampleStream::new(key, 0, k / 256, k % 256);
+            let mut stream = sample_stream(3, k);
             let u = (stream.next_4d(), stream.next_4d());
             let per = (f32::INFINITY, per_tr);
             ctx.sun_lobe_vertex(m, sl, p, wo, u, per, &mut rays).y as f64

@@ -5,11 +5,10 @@
 
 use glam::Vec3;
 
-use super::{assert_same_means, built, mean_var, samples_in, DIRS, SCENE, SKY};
+use super::{assert_same_means, built, mean_var, sample_stream, samples_in, DIRS, SCENE, SKY};
 use crate::accel::{Accel, Ray};
 use crate::integrator::volpath::Strategies;
 use crate::integrator::Shading;
-use crate::sampler::{SampleStream, StreamKey};
 
 /// `SCENE`'s slab and sun (no sky: black).
 const SIGMA_T: f64 = 0.05;
@@ -57,15 +56,10 @@ pub(super) fn radiance(
     let (scene, accel) = built(src);
     let shading = Shading::new(&scene, &accel);
     let ctx = shading.context(max_depth);
-    let key = StreamKey {
-        seed: 11,
-        frame: 0,
-        view: 0,
-    };
     let mut rays = 0;
     let l = (0..n)
         .map(|k| {
-            let mut stream = SampleStream::new(key, 0, k / 256, k % 256);
+            let mut stream = sample_stream(11, k);
             let ray = Ray::new(Vec3::new(0.0, 0.0, CAMERA_Z as f32), d);
             let hit = accel.intersect(&ray);
             let l = ctx
