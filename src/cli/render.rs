@@ -116,6 +116,12 @@ pub struct RenderArgs {
     /// `filter_inscatter` turned off, a weather preset's included).
     #[arg(long)]
     pub no_filter: bool,
+    /// Denoiser of the surfaces: parallax (its own filters) or oidn (Intel
+    /// Open Image Denoise, found at run time: `pip install pyoidn`, or
+    /// PARALLAX_OIDN=path); fog light keeps parallax's filter. Default: the
+    /// scene's `[render] denoiser`, else parallax.
+    #[arg(long, value_name = "NAME", conflicts_with_all = ["no_filter", "reference"])]
+    pub denoiser: Option<crate::denoise::Denoiser>,
     /// Reference mode: plain, unbiased path tracing, as a reference renderer
     /// (no image filter, no clamp, no sensor noise, no adaptive sampling;
     /// the samples are --spp's). Compare with Mitsuba 3: docs/reference.md.
@@ -149,6 +155,7 @@ impl RenderArgs {
             }),
             sensor_noise_iso: self.sensor_noise,
             filter: !self.no_filter,
+            denoiser: self.denoiser,
             reference: self.reference,
             adaptive: self.adaptive,
             backend: self.backend,
@@ -165,6 +172,7 @@ pub(super) fn recipe_error(e: RecipeError) -> CliError {
         RecipeError::SensorNoise(e) => CliError::input(format!("--sensor-noise: {e}")),
         RecipeError::Scene(e) => CliError::input(e.to_string()),
         RecipeError::Accel(e) => CliError::failure(e.to_string()),
+        RecipeError::Denoiser(e) => CliError::input(format!("denoiser oidn: {e}")),
     }
 }
 
@@ -252,12 +260,13 @@ fn summary(dir: &Path, s: &crate::render::RenderStats, seconds: f64, build_s: f6
     let rays = s.gt_rays + s.path_rays;
     let traced_s = (s.gt_seconds + s.path_seconds).max(1e-9);
     println!(
-        "rendered {}: {:.2} s total (build {:.2} s, gt {:.2} s, path {:.2} s), {} samples, {} rays, {:.2} Mrays/s, backend {}",
+        "rendered {}: {:.2} s total (build {:.2} s, gt {:.2} s, path {:.2} s of which denoise {:.2} s), {} samples, {} rays, {:.2} Mrays/s, backend {}",
         show(dir),
         seconds,
         build_s,
         s.gt_seconds,
         s.path_seconds,
+        s.denoise_seconds,
         s.samples,
         rays,
         rays as f64 / traced_s / 1e6,

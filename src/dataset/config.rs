@@ -10,6 +10,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+use crate::denoise::Denoiser;
 use crate::output::layouts::LayoutKind;
 use crate::town::CameraConfig;
 use crate::weather::Weather;
@@ -70,6 +71,11 @@ pub struct DatasetConfig {
     /// `dataset.json`, so the record says which images a dataset holds.
     #[serde(default = "crate::scene::desc::default_true")]
     pub filter: bool,
+    /// The denoiser of the surfaces where `filter` is on: "parallax"
+    /// (default) or "oidn" (Intel Open Image Denoise, found at run time:
+    /// `pip install pyoidn`); fog light keeps parallax's filter.
+    #[serde(default, skip_serializing_if = "Denoiser::is_default")]
+    pub denoiser: Denoiser,
 }
 
 fn all_configs() -> Vec<String> {

@@ -164,6 +164,7 @@ pub fn render_job(
         }),
         sensor_noise_iso: None,
         filter: config.filter,
+        denoiser: Some(config.denoiser),
         reference: false,
         adaptive: false,
         backend,

@@ -3,6 +3,7 @@
 //! frames: computable and shardable, not meant for one machine).
 
 use super::config::DatasetConfig;
+use crate::denoise::Denoiser;
 use crate::output::layouts::LayoutKind;
 
 /// Names accepted by `--preset`.
@@ -40,6 +41,7 @@ pub fn demo() -> DatasetConfig {
         layouts: vec![LayoutKind::Native],
         hdr: false,
         filter: true,
+        denoiser: Denoiser::default(),
     }
 }
 
@@ -69,6 +71,7 @@ pub fn stereocarla() -> DatasetConfig {
         layouts: vec![LayoutKind::Native],
         hdr: false,
         filter: true,
+        denoiser: Denoiser::default(),
     }
 }
 

@@ -78,6 +78,7 @@ fn camera_record(rig: &StereoRig) -> CameraFile {
         spp: 1,
         max_depth: 1,
         image_filter: false,
+        denoiser: None,
         semantic_classes: Vec::new(),
         conventions: crate::output::frame::CONVENTIONS,
         seeds: FrameSeeds::default(),

@@ -65,6 +65,7 @@ pub fn denoise_view(
     depth_z: &[f32],
     film: &mut Film,
     inputs: &ViewInputs,
+    aov: &crate::render::AovImages,
 ) {
     let opacity = centre_opacity(scene, cam, depth_z);
     let normal = centre_normals(cam, depth_z);
@@ -77,7 +78,11 @@ pub fn denoise_view(
     if !super::Features::for_scene(scene).direct {
         widths.direct_levels = 0;
     }
-    denoise_guided(film, inputs, &guide, &widths);
+    match scene.denoiser {
+        super::Denoiser::Parallax => denoise_guided(film, inputs, &guide, &widths),
+        super::Denoiser::Oidn => super::oidn::denoise_view(film, inputs, &guide, &widths, aov)
+            .unwrap_or_else(|e| panic!("{e}")),
+    }
 }
 
 /// Unit camera-space normals of the pixel-centre surfaces from `depth_z`

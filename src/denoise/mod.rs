@@ -44,11 +44,12 @@ mod features;
 mod first_scatter;
 mod guide;
 mod inputs;
+pub mod oidn;
 mod regions;
 mod surface;
 mod widths;
 
-pub use features::Features;
+pub use features::{Denoiser, Features};
 pub use guide::{denoise_view, DepthGuide};
 pub use inputs::ViewInputs;
 pub use widths::Widths;

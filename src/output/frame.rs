@@ -77,6 +77,9 @@ pub struct CameraFile {
     /// and indirect light on diffuse surfaces (`[render] filter_indirect`)
     /// or fog light (`[medium] filter_inscatter`). Ground truth never is.
     pub image_filter: bool,
+    /// The denoiser of the surfaces where `image_filter` is true: "parallax"
+    /// or "oidn" (Intel Open Image Denoise); null when it is false.
+    pub denoiser: Option<crate::denoise::Denoiser>,
     /// Semantic class table: (name, id).
     pub semantic_classes: Vec<(String, u8)>,
     /// Conventions, spelled out for readers of the file.
@@ -227,6 +230,7 @@ pub fn camera_file(
         spp: settings.spp,
         max_depth: settings.max_depth,
         image_filter: scene.filter_indirect || scene.filter_inscatter,
+        denoiser: (scene.filter_indirect || scene.filter_inscatter).then_some(scene.denoiser),
         semantic_classes: crate::scene::semantic::CLASSES
             .iter()
             .map(|c| (c.name.to_string(), c.id))

@@ -112,8 +112,10 @@ pub struct RenderStats {
     pub non_finite_samples: u64,
     /// Seconds in the ground-truth pass.
     pub gt_seconds: f64,
-    /// Seconds in the path pass.
+    /// Seconds in the path pass (the denoiser's included).
     pub path_seconds: f64,
+    /// Seconds of the path pass spent denoising the views.
+    pub denoise_seconds: f64,
 }
 
 impl RenderStats {
@@ -279,7 +281,9 @@ fn path_pass(
                 }
                 v => &gt.baselines[v - 1].depth_right,
             };
-            crate::denoise::denoise_view(scene, cam, depth_z, &mut film, &inputs);
+            let t = Instant::now();
+            crate::denoise::denoise_view(scene, cam, depth_z, &mut film, &inputs, &view_aov);
+            stats.denoise_seconds += t.elapsed().as_secs_f64();
         }
         stats.path_rays += rays;
         stats.non_finite_samples += non_finite;

@@ -55,6 +55,7 @@ pub fn build_scene_with(
         filter_inscatter: filters_inscatter(desc),
         filter_indirect: desc.render.filter_indirect && desc.medium.is_none(),
         regularize: desc.render.filter_indirect,
+        denoiser: desc.render.denoiser,
         rain: desc.rain.as_ref().map(|r| build_rain(r, origin_world)),
         wetness: desc.wetness.as_ref().map(|w| Wetness::new(w, origin_world)),
     })

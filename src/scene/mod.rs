@@ -209,6 +209,8 @@ pub struct Scene {
     /// (`Bsdf::regularized`): on with `RenderDesc::filter_indirect`, also
     /// in fog; off in plain path tracing.
     pub regularize: bool,
+    /// The denoiser of the views' surfaces (`RenderDesc::denoiser`).
+    pub denoiser: crate::denoise::Denoiser,
     /// Rain field centred on the rig; its `seed` is set per frame by the
     /// renderer (`Rain { seed, ..rain }`). None: no rain.
     pub rain: Option<shaders_cpu::medium::Rain>,

@@ -439,7 +439,7 @@ pub fn town_scene_with(
             spp: 16,
             max_depth: 5,
             seed: Some(seed),
-            filter_indirect: true,
+            ..RenderDesc::default()
         },
         sky: Some(materials::town_sky(desc)),
         medium: None,

@@ -9,6 +9,7 @@ mod any_directory;
 mod bad_input;
 mod bench;
 mod closed_pipe;
+mod denoiser;
 mod embree_build;
 mod filter;
 mod preview;

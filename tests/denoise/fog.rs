@@ -186,7 +186,15 @@ fn filter_off_and_on_are_functions_of_the_samples() {
         "the fog lights the walls"
     );
     let cam = RenderCamera::new(&on.rig.left, on.scene.origin_world);
-    denoise_view(&on.scene, &cam, &on.out.left.depth_z_f32(), &mut film, &fog);
+    let aov = on.out.aov.clone().expect("a path-traced frame has AOVs");
+    denoise_view(
+        &on.scene,
+        &cam,
+        &on.out.left.depth_z_f32(),
+        &mut film,
+        &fog,
+        &aov,
+    );
     assert_eq!(on.out.images[0], film, "filter on is the filtered estimate");
     assert_ne!(on.out.images[0], off.out.images[0]);
 }
@@ -252,8 +260,9 @@ fn fog_only_and_both(r: &Rendered, spp: u32, seed: u64) -> (Film, Film, ViewInpu
     let mut fog_only = fog.clone();
     fog_only.rho.fill(Vec3::ZERO);
     let (mut a, mut b) = (film.clone(), film);
-    denoise_view(&r.scene, &cam, &depth, &mut a, &fog_only);
-    denoise_view(&r.scene, &cam, &depth, &mut b, &fog);
+    let aov = r.out.aov.clone().expect("a path-traced frame has AOVs");
+    denoise_view(&r.scene, &cam, &depth, &mut a, &fog_only, &aov);
+    denoise_view(&r.scene, &cam, &depth, &mut b, &fog, &aov);
     (a, b, fog)
 }
 

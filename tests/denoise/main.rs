@@ -11,4 +11,5 @@ mod fog;
 mod glass;
 mod highlight;
 mod indirect;
+mod oidn;
 mod shade;

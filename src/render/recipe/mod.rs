@@ -17,6 +17,7 @@ pub use built::BuiltScene;
 use super::{render_frame, FrameOutput, RenderSettings};
 use crate::accel::{AccelCache, AccelError, Backend};
 use crate::camera::StereoRig;
+use crate::denoise::Denoiser;
 use crate::film::apply_sensor_noise;
 use crate::output::frame::{camera_file, CameraFile, FrameSeeds, TownFrameRecord};
 use crate::scene::desc::SensorNoiseDesc;
@@ -38,6 +39,8 @@ pub enum RecipeError {
     Scene(SceneError),
     /// The accelerator does not build (not the input's fault).
     Accel(AccelError),
+    /// The chosen denoiser cannot run here (Open Image Denoise missing).
+    Denoiser(String),
 }
 
 impl std::fmt::Display for RecipeError {
@@ -47,6 +50,7 @@ impl std::fmt::Display for RecipeError {
             RecipeError::Rig(e) | RecipeError::Scene(e) => write!(f, "{e}"),
             RecipeError::SensorNoise(e) => write!(f, "{e}"),
             RecipeError::Accel(e) => write!(f, "{e}"),
+            RecipeError::Denoiser(e) => write!(f, "{e}"),
         }
     }
 }
@@ -201,6 +205,8 @@ pub struct FrameSpec {
     pub sensor_noise_iso: Option<f64>,
     /// The description's image-space filters (off: plain path-traced images).
     pub filter: bool,
+    /// The denoiser where the filters are on; None keeps the description's.
+    pub denoiser: Option<Denoiser>,
     /// Reference mode: plain, unbiased path tracing ([`reference_mode`]).
     pub reference: bool,
     /// Adaptive sampling (`RenderSettings::adaptive`; off by default, and
@@ -218,6 +224,7 @@ impl Default for FrameSpec {
             weather: None,
             sensor_noise_iso: None,
             filter: true,
+            denoiser: None,
             reference: false,
             adaptive: false,
             backend: Backend::default_backend(),
@@ -270,12 +277,18 @@ impl FrameRecipe {
                 crate::town::people::umbrella::add_umbrellas(&mut loaded.desc);
             }
         }
+        if let Some(d) = spec.denoiser {
+            loaded.desc.render.denoiser = d;
+        }
         if !spec.filter {
             loaded.desc.turn_image_filters_off();
         }
         let mut adaptive = spec.adaptive;
         let noise_iso = reference_mode(spec.reference, &mut loaded, &mut adaptive)
             .unwrap_or(spec.sensor_noise_iso);
+        if loaded.desc.render.denoiser == Denoiser::Oidn && loaded.desc.image_filters_on() {
+            crate::denoise::oidn::check().map_err(RecipeError::Denoiser)?;
+        }
         let noise = sensor_noise(noise_iso, weather.as_mut())?;
         origin.seeds.samples = Some(seed);
         let settings = RenderSettings {

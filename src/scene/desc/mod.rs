@@ -34,6 +34,8 @@ pub use wetness::WetnessDesc;
 
 use serde::{Deserialize, Serialize};
 
+use crate::denoise::Denoiser;
+
 /// A whole scene file: `[camera]`, `[render]`, `[sky]`, `[[light]]`,
 /// `[[material]]`, `[[object]]` and `[[prefab]]`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -85,6 +87,12 @@ impl SceneDesc {
         if let Some(m) = self.medium.as_mut() {
             m.filter_inscatter = false;
         }
+    }
+
+    /// Whether any image-space filter is on (`[render] filter_indirect`,
+    /// or a medium's `filter_inscatter`), and with it the denoiser.
+    pub fn image_filters_on(&self) -> bool {
+        self.render.filter_indirect || self.medium.as_ref().is_some_and(|m| m.filter_inscatter)
     }
 
     /// Checks the `[medium]`, `[rain]` and `[wetness]` sections (their
@@ -171,6 +179,12 @@ pub struct RenderDesc {
     /// far fewer fireflies).
     #[serde(default = "default_true", skip_serializing_if = "is_true")]
     pub filter_indirect: bool,
+    /// The denoiser of the rendered views' surfaces where the filters are
+    /// on: "parallax" (default, its own filters) or "oidn" (Intel Open
+    /// Image Denoise, found at run time: `pip install pyoidn`). Fog light
+    /// keeps parallax's filter either way.
+    #[serde(default, skip_serializing_if = "Denoiser::is_default")]
+    pub denoiser: Denoiser,
 }
 
 impl Default for RenderDesc {
@@ -180,6 +194,7 @@ impl Default for RenderDesc {
             max_depth: default_max_depth(),
             seed: None,
             filter_indirect: true,
+            denoiser: Denoiser::default(),
         }
     }
 }
