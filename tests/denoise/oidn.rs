@@ -19,7 +19,7 @@ const W: usize = 64;
 const H: usize = 48;
 
 /// Whether OIDN runs here; panics when it must and does not.
-fn available() -> bool {
+pub(crate) fn available() -> bool {
     match oidn::check() {
         Ok(()) => true,
         Err(e) if std::env::var_os("PARALLAX_REQUIRE_OIDN").is_some() => {
