@@ -127,8 +127,16 @@ impl SkyDistribution {
         let row = &self.conditional[j * nphi..(j + 1) * nphi];
         let (i, vx) = invert(row, u.x);
         let cell_u = Vec2::new((i as f32 + vx) / nphi as f32, (j as f32 + vy) / nz as f32);
-        let dir = dir_of(cell_u);
-        Some((dir, self.pdf(dir)))
+        // The drawn cell's own density: `pdf(dir)` would find the cell
+        // again from the direction (an atan2), the same one but where
+        // rounding puts `dir` on a cell border.
+        Some((dir_of(cell_u), self.cell_pdf(j, i)))
+    }
+
+    /// Pdf per solid angle of every direction in cell (row `j`, column `i`).
+    fn cell_pdf(&self, j: usize, i: usize) -> f32 {
+        let (nz, nphi) = GRID;
+        self.pmf[j * nphi + i] * (nz * nphi) as f32 / (4.0 * PI)
     }
 
     /// Pdf per solid angle of [`SkyDistribution::sample`] producing `dir`.
@@ -138,7 +146,7 @@ impl SkyDistribution {
         let j = (((z + 1.0) * 0.5 * nz as f32) as usize).min(nz - 1);
         let phi = dir.y.atan2(dir.x);
         let i = (((phi + PI) / (2.0 * PI) * nphi as f32) as usize).min(nphi - 1);
-        self.pmf[j * nphi + i] * (nz * nphi) as f32 / (4.0 * PI)
+        self.cell_pdf(j, i)
     }
 
     /// Mean radiance over the sphere, (1/4π)∫ le dω, from the tabulation points.
