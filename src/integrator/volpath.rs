@@ -264,7 +264,8 @@ impl<A: Accel> PathContext<'_, A> {
         let mut l = Vec3::ZERO;
         // `distant`: the sample of that distant light, drawn without its
         // radiance (`LightSet::sample_distant_dir`), which is looked up only
-        // for a shadow ray the roulette keeps (the sky's is dear).
+        // for a shadow ray the roulette keeps and nothing stops (the sky's
+        // is dear).
         let mut one =
             |ls: Option<LightSample>, distant: Option<usize>, equi: bool, u_keep: Option<f32>| {
                 let Some(mut ls) = ls else { return Vec3::ZERO };
@@ -294,15 +295,18 @@ impl<A: Accel> PathContext<'_, A> {
                     }
                     None => (keep, None),
                 };
+                *rays += 1;
+                if self.accel.occluded(&shadow_ray(p, &ls)) {
+                    return Vec3::ZERO;
+                }
+                // After the ray: most of a distant light's cost is its
+                // radiance (the sky's table and cloud deck, the sun's deck),
+                // wasted on the rays the street's walls stop.
                 if let Some(k) = distant {
                     ls.li = self.lights.distant_li(scene, k, p, ls.wi);
                     if ls.li == Vec3::ZERO {
                         return Vec3::ZERO;
                     }
-                }
-                *rays += 1;
-                if self.accel.occluded(&shadow_ray(p, &ls)) {
-                    return Vec3::ZERO;
                 }
                 let w = if ls.delta {
                     if equi {
@@ -587,14 +591,15 @@ impl<A: Accel> PathContext<'_, A> {
             return Vec3::ZERO;
         };
         let x = ray.at(seg.t);
-        let Some(ls) = self
-            .lights
-            .sample_distant(self.scene, sl.k, x, Vec2::new(u1[0], u1[1]))
+        // The sun's radiance (its cloud deck) only once the ray is clear.
+        let Some(mut ls) =
+            self.lights
+                .sample_distant_dir(self.scene, sl.k, x, Vec2::new(u1[0], u1[1]))
         else {
             return Vec3::ZERO;
         };
         let f = m.phase.eval(-d, ls.wi);
-        if ls.pdf <= 0.0 || ls.li == Vec3::ZERO || f == 0.0 {
+        if ls.pdf <= 0.0 || f == 0.0 {
             return Vec3::ZERO;
         }
         // Kept by the phase roulette (`u1[3]` uniform below `keep`), the
@@ -607,6 +612,10 @@ impl<A: Accel> PathContext<'_, A> {
         }
         *rays += 1;
         if self.accel.occluded(&shadow_ray(x, &ls)) {
+            return Vec3::ZERO;
+        }
+        ls.li = self.lights.distant_li(self.scene, sl.k, x, ls.wi);
+        if ls.li == Vec3::ZERO {
             return Vec3::ZERO;
         }
         // The same weight as the NEE of `medium_nee` against phase sampling.
