@@ -103,7 +103,7 @@ impl Emitters {
     /// One triangle: vertices, area, plane and entry.
     fn push_one(&mut self, v: [Vec3; 3], area: f32, plane: [f32; 4], entry: u32) {
         let t = self.v.len();
-        if t % LANES == 0 {
+        if t.is_multiple_of(LANES) {
             self.planes.push(Planes::default());
         }
         let (c, l) = (&mut self.planes[t / LANES], t % LANES);
@@ -115,7 +115,7 @@ impl Emitters {
 
     /// Fills up the last lanes with triangles of no weight.
     fn pad(&mut self) {
-        while self.v.len() % LANES != 0 {
+        while !self.v.len().is_multiple_of(LANES) {
             self.push_one([Vec3::ZERO; 3], 0.0, [0.0; 4], u32::MAX);
         }
     }
