@@ -1,12 +1,12 @@
 //! One light the set can pick (`Entry`) and its sampling as seen from a
 //! shading point (`LightSample`): explicit lights, the distant group's suns,
-//! the sky and emissive triangles. Render-space directions (z up); pdfs per
+//! the sky and emitters (groups of emissive triangles, `emitter.rs`). Render-space directions (z up); pdfs per
 //! solid angle times the selection pmf the caller passes, so they enter MIS
 //! weights directly. Suns are dimmed by the sky's cloud deck at the point.
 
 use glam::{Vec2, Vec3};
-use shaders_cpu::sampling::sample_uniform_triangle;
 
+use super::emitter::{point_on, Emitters};
 use super::{sample_explicit, Light, SunSampler};
 use crate::scene::Scene;
 
@@ -17,13 +17,14 @@ pub(super) enum Entry {
     /// A sun of the distant group, prepared for sampling.
     Sun(SunSampler),
     Sky,
-    /// An emissive triangle with what sampling it reads (not its mesh's
-    /// records: at night a sample's chain of cache misses through the
-    /// mesh, its indices, vertices and material cost as much as its draw).
-    Triangle {
-        /// Its vertices (render space), as the mesh stores them.
-        v: [Vec3; 3],
-        area: f32,
+    /// Emissive triangles of one mesh and material close together, with
+    /// what sampling them reads (not their mesh's records: at night a
+    /// sample's chain of cache misses through the mesh, its indices,
+    /// vertices and material cost as much as its draw).
+    Emitter {
+        /// Its triangles' indices in the set's `Emitters`, `first..end`.
+        first: u32,
+        end: u32,
         /// Its material's emitted radiance.
         le: Vec3,
         two_sided: bool,
@@ -45,9 +46,11 @@ pub struct LightSample {
     pub delta: bool,
 }
 
-/// Samples one entry with selection probability `pmf`.
+/// Samples one entry with selection probability `pmf` (an emitter's
+/// triangles in `emitters`).
 pub(super) fn sample_entry(
     scene: &Scene,
+    emitters: &Emitters,
     entry: &Entry,
     pmf: f32,
     p: Vec3,
@@ -87,19 +90,21 @@ pub(super) fn sample_entry(
                 delta: false,
             })
         }
-        Entry::Triangle {
-            v: [a, b, c],
-            area,
+        Entry::Emitter {
+            first,
+            end,
             le,
             two_sided,
         } => {
-            let bary = sample_uniform_triangle(u);
-            let q = a * bary[0] + b * bary[1] + c * bary[2];
+            let drawn = emitters.draw(first..end, two_sided, p, u.x)?;
+            let q = point_on(&drawn, u);
             let d = q - p;
             let dist2 = d.length_squared();
+            let area = drawn.area;
             if dist2 == 0.0 || area == 0.0 {
                 return None;
             }
+            let [a, b, c] = drawn.v;
             let n = (b - a).cross(c - a).normalize();
             let dist = dist2.sqrt();
             let wi = d / dist;
@@ -110,7 +115,7 @@ pub(super) fn sample_entry(
             Some(LightSample {
                 wi,
                 li: le,
-                pdf: pmf * dist2 / (cos_l.abs() * area),
+                pdf: pmf * drawn.pmf * dist2 / (cos_l.abs() * area),
                 dist,
                 delta: false,
             })

@@ -13,6 +13,7 @@
 use glam::Vec3;
 
 pub mod bvh;
+mod emitter;
 mod entry;
 mod fog_sky;
 mod set;

@@ -23,6 +23,7 @@ use glam::{Vec2, Vec3};
 use shaders_cpu::sampling::power_heuristic;
 
 use super::bvh::{LightBounds, LightBvh};
+use super::emitter::Emitters;
 pub use super::entry::LightSample;
 use super::entry::{cloud_transmittance, sample_entry, Entry};
 use super::fog_sky::FogSky;
@@ -69,8 +70,11 @@ pub struct LightSet {
     fog_sky: Option<FogSky>,
     /// Every sun, for rays that escape into one.
     suns: Vec<SunDisk>,
-    /// Per mesh, the entry index of each triangle (empty for non-emissive meshes).
-    tri_entry: Vec<Vec<u32>>,
+    /// Per mesh, the index in `emitters` of each triangle (`u32::MAX`:
+    /// none; empty for non-emissive meshes).
+    tri_index: Vec<Vec<u32>>,
+    /// The emitters' triangles.
+    emitters: Emitters,
     /// Whether a local light is a point or spot light (equiangular
     /// sampling's lights).
     delta_local: bool,
@@ -117,13 +121,14 @@ impl LightSet {
         if sky_sampled {
             c.distant.push(Entry::Sky);
         }
-        let tri_entry = c.add_emissive_triangles(scene);
+        let tri_index = c.add_emissive_triangles(scene);
         let Collected {
             distant,
             entries,
             weights,
             bounds,
             suns,
+            emitters,
         } = c;
         let pmf = if selection == LightSelection::Uniform {
             vec![1.0 / weights.len().max(1) as f32; weights.len()]
@@ -183,7 +188,8 @@ impl LightSet {
                 .filter(|_| sky_sampled)
                 .map(|m| FogSky::new(m, |d| scene.sky.le(d))),
             suns,
-            tri_entry,
+            tri_index,
+            emitters,
         }
     }
 
@@ -251,7 +257,7 @@ impl LightSet {
                     delta: false,
                 })
             }
-            (entry, _) => sample_entry(scene, entry, 1.0, p, u),
+            (entry, _) => sample_entry(scene, &self.emitters, entry, 1.0, p, u),
         }
     }
 
@@ -415,7 +421,7 @@ impl LightSet {
         p: Vec3,
         u: Vec2,
     ) -> Option<LightSample> {
-        sample_entry(scene, &self.entries[idx], pmf, p, u)
+        sample_entry(scene, &self.emitters, &self.entries[idx], pmf, p, u)
     }
 
     /// Probability that a vertex after `bounce` scattering events samples
@@ -465,7 +471,7 @@ impl LightSet {
         bounce: u32,
     ) -> Option<LightSample> {
         let (idx, pmf) = self.select_at(p, n, u_select, bounce)?;
-        sample_entry(scene, &self.entries[idx], pmf, p, u)
+        sample_entry(scene, &self.emitters, &self.entries[idx], pmf, p, u)
     }
 
     /// Radiance of the sky and sun disks for a ray leaving render-space point
@@ -516,26 +522,35 @@ impl LightSet {
         q: Vec3,
         n_light: Vec3,
     ) -> f32 {
-        let Some(&idx) = self
-            .tri_entry
+        let Some(&t) = self
+            .tri_index
             .get(geom as usize)
             .and_then(|v| v.get(prim as usize))
         else {
             return 0.0;
         };
-        if idx == u32::MAX {
+        if t == u32::MAX {
             return 0.0;
         }
-        let Entry::Triangle { area, .. } = self.entries[idx as usize] else {
+        let idx = self.emitters.entry_of(t) as usize;
+        let Entry::Emitter {
+            first,
+            end,
+            two_sided,
+            ..
+        } = self.entries[idx]
+        else {
             return 0.0;
         };
+        let area = self.emitters.area(t);
         let d = q - p;
         let dist2 = d.length_squared();
         let cos_l = n_light.dot(d).abs() / dist2.sqrt();
         if cos_l == 0.0 || area == 0.0 {
             return 0.0;
         }
-        self.pmf_at(p, n, idx as usize, bounce) * dist2 / (cos_l * area)
+        let pmf = self.pmf_at(p, n, idx, bounce) * self.emitters.pmf(first..end, two_sided, p, t);
+        pmf * dist2 / (cos_l * area)
     }
 }
 

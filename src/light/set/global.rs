@@ -49,6 +49,13 @@ impl LightSet {
         p: Vec3,
         u: Vec2,
     ) -> Option<LightSample> {
-        sample_entry(scene, &self.entries[light.idx], light.pmf, p, u)
+        sample_entry(
+            scene,
+            &self.emitters,
+            &self.entries[light.idx],
+            light.pmf,
+            p,
+            u,
+        )
     }
 }
