@@ -65,7 +65,7 @@ pub fn denoise_view(
     depth_z: &[f32],
     film: &mut Film,
     inputs: &ViewInputs,
-    aov: &crate::render::AovImages,
+    aux: super::SurfaceAux<'_>,
 ) {
     let opacity = centre_opacity(scene, cam, depth_z);
     let normal = centre_normals(cam, depth_z);
@@ -80,7 +80,7 @@ pub fn denoise_view(
     }
     match scene.denoiser {
         super::Denoiser::Parallax => denoise_guided(film, inputs, &guide, &widths),
-        super::Denoiser::Oidn => super::oidn::denoise_view(film, inputs, &guide, &widths, aov)
+        super::Denoiser::Oidn => super::oidn::denoise_view(film, inputs, &guide, &widths, aux)
             .unwrap_or_else(|e| panic!("{e}")),
     }
 }

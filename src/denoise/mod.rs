@@ -49,12 +49,25 @@ mod regions;
 mod surface;
 mod widths;
 
-pub use features::{Denoiser, Features};
+pub use crate::scene::desc::Denoiser;
+pub use features::Features;
 pub use guide::{denoise_view, DepthGuide};
 pub use inputs::ViewInputs;
 pub use widths::Widths;
 
+use glam::Vec3;
+
 use crate::film::Film;
+
+/// A view's first visible surfaces, averaged over each pixel's samples
+/// (row-major): what Open Image Denoise is guided by.
+#[derive(Clone, Copy, Debug)]
+pub struct SurfaceAux<'a> {
+    /// Throughput × albedo.
+    pub albedo: &'a [Vec3],
+    /// Unit shading normal (zero where none).
+    pub normal: &'a [Vec3],
+}
 
 /// Replaces the first-scatter part of every pixel of `film` by its
 /// filtered estimate: `film = film − inputs.l_fog + inputs.opacity · S̃`.
@@ -99,7 +112,6 @@ pub fn denoise_guided(
 
 #[cfg(test)]
 mod tests {
-    use glam::Vec3;
 
     use super::*;
 

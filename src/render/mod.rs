@@ -282,7 +282,11 @@ fn path_pass(
                 v => &gt.baselines[v - 1].depth_right,
             };
             let t = Instant::now();
-            crate::denoise::denoise_view(scene, cam, depth_z, &mut film, &inputs, &view_aov);
+            let aux = crate::denoise::SurfaceAux {
+                albedo: &view_aov.albedo,
+                normal: &view_aov.normal,
+            };
+            crate::denoise::denoise_view(scene, cam, depth_z, &mut film, &inputs, aux);
             stats.denoise_seconds += t.elapsed().as_secs_f64();
         }
         stats.path_rays += rays;

@@ -210,7 +210,7 @@ pub struct Scene {
     /// in fog; off in plain path tracing.
     pub regularize: bool,
     /// The denoiser of the views' surfaces (`RenderDesc::denoiser`).
-    pub denoiser: crate::denoise::Denoiser,
+    pub denoiser: desc::Denoiser,
     /// Rain field centred on the rig; its `seed` is set per frame by the
     /// renderer (`Rain { seed, ..rain }`). None: no rain.
     pub rain: Option<shaders_cpu::medium::Rain>,

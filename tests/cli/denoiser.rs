@@ -22,27 +22,7 @@ fn nowhere(dir: &Path) -> PathBuf {
 /// seed 4, plus `extra`, into `out`, with `PARALLAX_OIDN` set to `lib`
 /// when given.
 fn render_street(out: &Path, extra: &[&str], lib: Option<&Path>) -> Output {
-    let scene = format!("{}/scenes/street.toml", env!("CARGO_MANIFEST_DIR"));
-    let mut args = vec![
-        "render",
-        &scene,
-        "--width",
-        "48",
-        "--height",
-        "27",
-        "--spp",
-        "2",
-        "--baselines",
-        "54",
-        "--seed",
-        "4",
-        "--threads",
-        "2",
-        "-o",
-        out.to_str().unwrap(),
-    ];
-    args.extend_from_slice(extra);
-    let mut c = parallax(&args);
+    let mut c = crate::common::cli::render_street(out, (48, 27), 4, extra);
     if let Some(lib) = lib {
         c.env("PARALLAX_OIDN", lib);
     }

@@ -8,32 +8,14 @@ use crate::common::dataset;
 
 use std::path::Path;
 
-use dataset::{dataset, ok, parallax, tiny_config, write_config};
+use dataset::{dataset, ok, tiny_config, write_config};
 
 /// `parallax render scenes/street.toml` at 64×36, 2 spp, one baseline,
 /// seed 4, plus `extra`, into `out`.
 fn render_street(out: &Path, extra: &[&str]) {
-    let scene = format!("{}/scenes/street.toml", env!("CARGO_MANIFEST_DIR"));
-    let mut args = vec![
-        "render",
-        scene.as_str(),
-        "--width",
-        "64",
-        "--height",
-        "36",
-        "--spp",
-        "2",
-        "--baselines",
-        "54",
-        "--seed",
-        "4",
-        "--threads",
-        "2",
-        "-o",
-        out.to_str().unwrap(),
-    ];
-    args.extend_from_slice(extra);
-    ok(&parallax(&args).output().unwrap());
+    ok(&crate::common::cli::render_street(out, (64, 36), 4, extra)
+        .output()
+        .unwrap());
 }
 
 /// The camera file's `image_filter` of frame `name` under `dir`.

@@ -7,34 +7,16 @@ use crate::common::dataset;
 
 use std::path::Path;
 
-use dataset::{ok, parallax};
+use dataset::ok;
 
 /// `parallax render scenes/street.toml --weather storm` at 48×27, 2 spp,
 /// one baseline, seed 9, plus `extra`, into `out`.
 fn render_storm(out: &Path, extra: &[&str]) -> std::process::Output {
-    let scene = format!("{}/scenes/street.toml", env!("CARGO_MANIFEST_DIR"));
-    let mut args = vec![
-        "render",
-        scene.as_str(),
-        "--weather",
-        "storm",
-        "--width",
-        "48",
-        "--height",
-        "27",
-        "--spp",
-        "2",
-        "--baselines",
-        "54",
-        "--seed",
-        "9",
-        "--threads",
-        "2",
-        "-o",
-        out.to_str().unwrap(),
-    ];
+    let mut args = vec!["--weather", "storm"];
     args.extend_from_slice(extra);
-    parallax(&args).output().unwrap()
+    crate::common::cli::render_street(out, (48, 27), 9, &args)
+        .output()
+        .unwrap()
 }
 
 fn read(p: &Path) -> Vec<u8> {

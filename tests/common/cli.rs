@@ -20,6 +20,33 @@ pub fn repo() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
 
+/// `parallax render scenes/street.toml` at `w`×`h`, 2 spp, one 54 cm
+/// baseline, 2 threads, sample seed `seed`, into `out`, then `extra`.
+pub fn render_street(out: &Path, (w, h): (u32, u32), seed: u64, extra: &[&str]) -> Command {
+    let scene = repo().join("scenes").join("street.toml");
+    let (w, h, seed) = (w.to_string(), h.to_string(), seed.to_string());
+    let mut args = vec![
+        "render",
+        scene.to_str().unwrap(),
+        "--width",
+        &w,
+        "--height",
+        &h,
+        "--spp",
+        "2",
+        "--baselines",
+        "54",
+        "--seed",
+        &seed,
+        "--threads",
+        "2",
+        "-o",
+        out.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    parallax(&args)
+}
+
 /// Runs the binary with `args` in the working directory `cwd`.
 pub fn parallax_in(cwd: &Path, args: &[&str]) -> Output {
     parallax(args).current_dir(cwd).output().unwrap()

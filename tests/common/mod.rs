@@ -243,3 +243,11 @@ name = "grey"
 kind = "diffuse"
 albedo = [0.5, 0.5, 0.5]
 "#;
+
+/// A rendered view's first-surface images as the denoiser takes them.
+pub fn aux(aov: &parallax::render::AovImages) -> parallax::denoise::SurfaceAux<'_> {
+    parallax::denoise::SurfaceAux {
+        albedo: &aov.albedo,
+        normal: &aov.normal,
+    }
+}

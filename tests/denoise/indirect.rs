@@ -12,7 +12,7 @@
 use crate::common;
 
 use common::{
-    checker_ground, ground_tile_pixels, mean_stderr, rebuild_left, render_inline, Rendered,
+    aux, checker_ground, ground_tile_pixels, mean_stderr, rebuild_left, render_inline, Rendered,
 };
 use glam::Vec3;
 use parallax::accel::Backend;
@@ -296,7 +296,7 @@ fn filter_off_and_on_are_functions_of_the_samples() {
         &on.out.left.depth_z_f32(),
         &mut film,
         &layer,
-        &on.out.aov.clone().expect("a path-traced frame has AOVs"),
+        aux(on.out.aov.as_ref().expect("a path-traced frame has AOVs")),
     );
     assert_eq!(on.out.images[0], film, "filter on is the filtered estimate");
     assert_ne!(on.out.images[0], off.out.images[0]);

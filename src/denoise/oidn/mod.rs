@@ -12,9 +12,8 @@ use std::ffi::CString;
 
 use glam::Vec3;
 
-use super::{DepthGuide, ViewInputs, Widths};
+use super::{DepthGuide, SurfaceAux, ViewInputs, Widths};
 use crate::film::Film;
-use crate::render::AovImages;
 
 pub use library::ENV;
 use library::{device_error, Api, Device, Filter, DEVICE_CPU, FORMAT_FLOAT3};
@@ -25,20 +24,20 @@ const QUALITY_HIGH: i32 = 6;
 /// A rendered view denoised the OIDN way: its fog light (the first-scatter
 /// part, where the scene has a medium) by parallax's own filter, which
 /// knows the medium's opacity along each pixel, then the whole radiance
-/// by OIDN, guided by the view's first-surface `aov`. Err: OIDN failed.
+/// by OIDN, guided by the view's first surfaces (`aux`). Err: OIDN failed.
 pub(super) fn denoise_view(
     film: &mut Film,
     inputs: &ViewInputs,
     guide: &DepthGuide<'_>,
     widths: &Widths,
-    aov: &AovImages,
+    aux: SurfaceAux<'_>,
 ) -> Result<(), String> {
     if inputs.has_first_scatter() {
         super::first_scatter::filter_first_scatter(film, inputs, guide, widths);
     }
     let (w, h) = (film.width, film.height);
     let threads = rayon::current_num_threads();
-    denoise(&mut film.rgb, &aov.albedo, &aov.normal, w, h, threads)
+    denoise(&mut film.rgb, aux.albedo, aux.normal, w, h, threads)
 }
 
 /// Checks that the library opens and its CPU device runs on this machine

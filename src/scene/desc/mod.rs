@@ -11,6 +11,7 @@
 //! sensor-noise parameters (`SensorNoise`), media and rain (`medium`) — and
 //! `num`, the compact numbers of their messages.
 
+mod denoiser;
 mod light;
 mod material;
 mod medium;
@@ -21,6 +22,7 @@ pub mod semantic;
 mod sensor;
 mod wetness;
 
+pub use denoiser::Denoiser;
 pub use light::{LightDesc, SkyDesc};
 pub use material::{
     conductor_eta_k, ConductorPreset, MaskFlag, MaterialDesc, MaterialKindDesc, TextureDesc,
@@ -33,8 +35,6 @@ pub use sensor::{SensorNoise, SensorNoiseDesc};
 pub use wetness::WetnessDesc;
 
 use serde::{Deserialize, Serialize};
-
-use crate::denoise::Denoiser;
 
 /// A whole scene file: `[camera]`, `[render]`, `[sky]`, `[[light]]`,
 /// `[[material]]`, `[[object]]` and `[[prefab]]`.
