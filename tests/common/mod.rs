@@ -251,3 +251,18 @@ pub fn aux(aov: &parallax::render::AovImages) -> parallax::denoise::SurfaceAux<'
         normal: &aov.normal,
     }
 }
+
+/// Pixels of a `w` × `h` view (row-major) whose 3 × 3 neighbourhood lies
+/// inside the image and where `same(centre, neighbour)` holds for all nine.
+pub fn interior(w: usize, h: usize, same: impl Fn(usize, usize) -> bool) -> Vec<usize> {
+    (0..w * h)
+        .filter(|&k| {
+            let (i, j) = (k % w, k / w);
+            i > 0
+                && j > 0
+                && i + 1 < w
+                && j + 1 < h
+                && (j - 1..=j + 1).all(|jj| (i - 1..=i + 1).all(|ii| same(k, jj * w + ii)))
+        })
+        .collect()
+}

@@ -44,17 +44,7 @@ fn render(body: &str) -> (Rendered, AovImages) {
 
 /// Pixels whose 3 × 3 neighbourhood all pass `f` (inside the image).
 fn interior(f: impl Fn(usize) -> bool) -> Vec<usize> {
-    let (w, h) = (W as usize, H as usize);
-    (0..w * h)
-        .filter(|&k| {
-            let (i, j) = (k % w, k / w);
-            i > 0
-                && j > 0
-                && i + 1 < w
-                && j + 1 < h
-                && (j - 1..=j + 1).all(|jj| (i - 1..=i + 1).all(|ii| f(jj * w + ii)))
-        })
-        .collect()
+    common::interior(W as usize, H as usize, |_, n| f(n))
 }
 
 #[test]

@@ -154,17 +154,7 @@ const WALL: &str = "[sky]\nkind = \"gradient\"\nzenith = [0.4, 0.5, 0.7]\nhorizo
 /// sets the error of any denoiser.
 fn interior(depth: &[f32], w: usize, h: usize) -> Vec<usize> {
     let same = |a: f32, b: f32| (a.is_infinite() && b.is_infinite()) || (a - b).abs() < 0.02 * a;
-    (0..w * h)
-        .filter(|&k| {
-            let (i, j) = (k % w, k / w);
-            i > 0
-                && j > 0
-                && i + 1 < w
-                && j + 1 < h
-                && (j - 1..=j + 1)
-                    .all(|jj| (i - 1..=i + 1).all(|ii| same(depth[k], depth[jj * w + ii])))
-        })
-        .collect()
+    common::interior(w, h, |k, n| same(depth[k], depth[n]))
 }
 
 #[test]

@@ -53,8 +53,6 @@ pub struct Api {
     pub commit_filter: unsafe extern "C" fn(Filter),
     pub execute_filter: unsafe extern "C" fn(Filter),
     pub release_filter: unsafe extern "C" fn(Filter),
-    /// Where the library was found (for messages and the camera file).
-    pub path: PathBuf,
     // Keeps the entry points valid; dropped last.
     _lib: Library,
 }
@@ -71,7 +69,7 @@ fn open() -> Result<Api, String> {
     for candidate in candidates() {
         // SAFETY: OIDN's initialisers only register its device modules.
         match unsafe { Library::new(&candidate) } {
-            Ok(lib) => return bind(lib, candidate),
+            Ok(lib) => return bind(lib, &candidate),
             Err(e) => tried.push(format!("{}: {e}", candidate.display())),
         }
     }
@@ -107,7 +105,7 @@ fn pyoidn_dir() -> Option<PathBuf> {
     (out.status.success() && !dir.as_os_str().is_empty()).then(|| dir.to_path_buf())
 }
 
-fn bind(lib: Library, path: PathBuf) -> Result<Api, String> {
+fn bind(lib: Library, path: &Path) -> Result<Api, String> {
     // SAFETY: the signatures are OIDN 2.x's (`oidn.h`); the SONAME's major
     // version pins that API.
     unsafe {
@@ -131,7 +129,6 @@ fn bind(lib: Library, path: PathBuf) -> Result<Api, String> {
             commit_filter: sym!(b"oidnCommitFilter\0"),
             execute_filter: sym!(b"oidnExecuteFilter\0"),
             release_filter: sym!(b"oidnReleaseFilter\0"),
-            path,
             _lib: lib,
         })
     }

@@ -9,6 +9,7 @@
 mod library;
 
 use std::ffi::CString;
+use std::sync::OnceLock;
 
 use glam::Vec3;
 
@@ -42,16 +43,12 @@ pub(super) fn denoise_view(
 
 /// Checks that the library opens and its CPU device runs on this machine
 /// (before any work is done); Err says what is missing and how to install it.
+/// Tried once per process: a dataset asks before every frame.
 pub fn check() -> Result<(), String> {
-    let api = library::api()?;
-    let device = OwnedDevice::new(api, 1)?;
-    drop(device);
-    Ok(())
-}
-
-/// Where the library was found.
-pub fn library_path() -> Result<std::path::PathBuf, String> {
-    library::api().map(|a| a.path.clone())
+    static CHECKED: OnceLock<Result<(), String>> = OnceLock::new();
+    CHECKED
+        .get_or_init(|| OwnedDevice::new(library::api()?, 1).map(drop))
+        .clone()
 }
 
 /// Denoises `rgb` (linear radiance, `width × height` row-major) in place,
