@@ -73,8 +73,10 @@ pub struct DatasetConfig {
     pub filter: bool,
     /// The denoiser of the surfaces where `filter` is on: "parallax"
     /// (default) or "oidn" (Intel Open Image Denoise, found at run time:
-    /// `pip install pyoidn`); fog light keeps parallax's filter.
-    #[serde(default, skip_serializing_if = "Denoiser::is_default")]
+    /// `pip install pyoidn`); fog light keeps parallax's filter. Always
+    /// written to `dataset.json`; a record without it (older versions)
+    /// reads as "parallax", so such a dataset resumes as it is.
+    #[serde(default)]
     pub denoiser: Denoiser,
 }
 

@@ -11,7 +11,7 @@ use crate::common::dataset;
 use std::path::{Path, PathBuf};
 use std::process::Output;
 
-use dataset::{ok, parallax, tiny_config, write_config};
+use dataset::{mtimes, ok, parallax, tiny_config, write_config};
 
 /// A library path that does not exist, so no Open Image Denoise is found.
 fn nowhere(dir: &Path) -> PathBuf {
@@ -112,6 +112,27 @@ fn a_missing_open_image_denoise_is_refused_before_any_output() {
         "{err}"
     );
     assert!(!root.join("left").exists(), "no frame written");
+}
+
+#[test]
+fn dataset_json_records_the_default_denoiser_and_an_older_record_resumes() {
+    let dir = tempfile::tempdir().unwrap();
+    let config = write_config(dir.path(), "d.toml", &tiny_config(&["normal"], 1));
+    let root = dir.path().join("ds");
+    ok(&dataset::dataset(&config, &root, &[]));
+    let record = root.join("dataset.json");
+    let text = std::fs::read_to_string(&record).unwrap();
+    let meta: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(meta["config"]["denoiser"], "parallax", "{text}");
+    // A record written before the key existed resumes as it is: no frame
+    // is rendered again and the record is not rewritten.
+    let older = text.replace(",\n    \"denoiser\": \"parallax\"", "");
+    assert_ne!(older, text, "the key is written as expected");
+    std::fs::write(&record, &older).unwrap();
+    let before = mtimes(&root);
+    ok(&dataset::dataset(&config, &root, &[]));
+    assert_eq!(mtimes(&root), before);
+    assert_eq!(std::fs::read_to_string(&record).unwrap(), older);
 }
 
 #[test]
