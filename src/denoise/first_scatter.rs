@@ -2,7 +2,8 @@
 //! camera sample whose first event is a medium scatter), filtered as a
 //! ratio to the first segment's opacity: per pixel S̃ = Σw·l_fog /
 //! Σw·opacity and pixel = (L − l_fog) + opacity·S̃. Range weights:
-//! pixel-centre opacity, relative depth_z, sky vs surface.
+//! pixel-centre opacity, relative depth_z, and between sky and surface
+//! how much of the surface the fog leaves visible.
 
 use glam::Vec4;
 
@@ -83,17 +84,23 @@ impl RangeWeight {
         }
     }
 
-    /// Weight of neighbour `b` for centre `a`, in [0, 1]: zero between sky
-    /// and surface, Gaussian in opacity and (surfaces) relative depth.
+    /// Weight of neighbour `b` for centre `a`, in [0, 1]: Gaussian in
+    /// opacity and, between surfaces, in relative depth. Between sky and a
+    /// surface also in the surface's transparency 1 − opacity: the sky
+    /// ray's ratio differs from the surface ray's only through the fog
+    /// beyond the surface, whose share of the sky ray's opacity that is, so
+    /// a surface the fog hides takes the sky's light (the thin leaves and
+    /// wires against a foggy sky would else keep their few samples' noise)
+    /// and a visible one none.
     #[inline]
     fn weight(&self, a: Key, b: Key) -> f32 {
-        let sky_a = a.ln_z.is_infinite();
-        if sky_a != b.ln_z.is_infinite() {
-            return 0.0;
-        }
+        let (sky_a, sky_b) = (a.ln_z.is_infinite(), b.ln_z.is_infinite());
         let d_o = a.opacity - b.opacity;
         let mut e = d_o * d_o * self.inv_opacity2;
-        if !sky_a {
+        if sky_a != sky_b {
+            let seen = 1.0 - if sky_a { b.opacity } else { a.opacity };
+            e += seen * seen * self.inv_opacity2;
+        } else if !sky_a {
             let rel = a.ln_z - b.ln_z;
             e += rel * rel * self.inv_rel2;
         }

@@ -188,7 +188,7 @@ mod tests {
     }
 
     #[test]
-    fn sky_and_surface_never_mix() {
+    fn sky_and_a_visible_surface_never_mix() {
         let (w, h) = (8, 4);
         for varying_sky in [true, false] {
             let film = sky_wall_split(varying_sky);
@@ -223,5 +223,63 @@ mod tests {
                 "varying sky {varying_sky}: spread {lo}..{hi}"
             );
         }
+    }
+
+    /// Scattered leaves in a foggy sky (every third pixel of every third
+    /// row, each at its own depth, a factor 3 apart, so no two are alike),
+    /// hidden by the fog to `leaf_opacity` under a sky of opacity 1; their
+    /// fog light is noise (×1.8 / ×0.2 in turn) around the sky's ratio 1.
+    /// Returns the leaves' RMS error from that ratio × opacity, after and
+    /// before the filter.
+    fn scattered_leaves(leaf_opacity: f32) -> (f32, f32) {
+        let (w, h) = (24, 24);
+        let mut fog = ViewInputs::new(w, h);
+        let mut z = vec![f32::INFINITY; w * h];
+        let mut o = vec![1.0f32; w * h];
+        let mut leaves = Vec::new();
+        for j in (1..h).step_by(3) {
+            for i in (1..w).step_by(3) {
+                let k = j * w + i;
+                z[k] = 10.0 * 3f32.powi(leaves.len() as i32 % 12);
+                o[k] = leaf_opacity;
+                leaves.push(k);
+            }
+        }
+        for k in 0..w * h {
+            fog.opacity[k] = o[k];
+            let noise = if leaves.binary_search(&k).unwrap_or(1) % 2 == 0 {
+                1.8
+            } else {
+                0.2
+            };
+            let leaf = z[k].is_finite();
+            fog.l_fog[k] = Vec3::splat(o[k] * if leaf { noise } else { 1.0 });
+        }
+        let mut film = Film {
+            width: w,
+            height: h,
+            rgb: fog.l_fog.clone(),
+        };
+        let guide = DepthGuide {
+            depth_z: &z,
+            opacity: &o,
+            normal: &[],
+        };
+        denoise_guided(&mut film, &fog, &guide, &Widths::for_width(w));
+        let rms = |img: &[Vec3]| {
+            let sum: f32 = leaves.iter().map(|&k| (img[k].x - o[k]).powi(2)).sum();
+            (sum / leaves.len() as f32).sqrt()
+        };
+        (rms(&film.rgb), rms(&fog.l_fog))
+    }
+
+    #[test]
+    fn leaves_the_fog_hides_take_the_sky_s_fog_light() {
+        // Hidden (opacity 0.95): their noise mostly goes.
+        let (after, before) = scattered_leaves(0.95);
+        assert!(after < 0.3 * before, "hidden leaves: {after} vs {before}");
+        // Seen through thinner fog (0.6): the sky's light stays out.
+        let (after, before) = scattered_leaves(0.6);
+        assert!(after > 0.99 * before, "visible leaves: {after} vs {before}");
     }
 }
