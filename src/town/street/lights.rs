@@ -1,7 +1,8 @@
 //! Street lights and traffic lights. Three lamp-post styles (a modern
 //! cobra head, a heritage lantern, a twin-arm highway mast), each lit by
 //! the always-on `lamp_emit` emitter as the old street light was: a panel
-//! under the head, or the lantern's core. Traffic lights: signal heads
+//! under the head (open at the top, which faces the housing), or the
+//! lantern's core. Traffic lights: signal heads
 //! (back plate, housing, three lenses with visors) on a corner pole with a
 //! short arm, or on a mast arm with one head over each of two lanes.
 //!
@@ -12,9 +13,10 @@
 //! `props::LENS_SLOTS`, so `signals` can light one per frame; the lenses of
 //! one head share their local y.
 
-use glam::{DQuat, DVec3};
+use glam::{DAffine3, DQuat, DVec3};
 
 use crate::scene::desc::{ObjectDesc, PrefabDesc};
+use crate::scene::mesh::{cuboid, LocalMesh};
 use crate::town::parts::{class, cylinder};
 use crate::town::props::LENS_SLOTS;
 
@@ -37,6 +39,19 @@ pub const LENS_SEGMENTS: u32 = 12;
 /// Vertical spacing of a head's lenses, metres.
 const LENS_STEP_M: f64 = 0.33;
 
+/// A box of `size` without its top face: a lamp panel's top would shine
+/// into the gap under its housing, lighting nothing, and its upward
+/// normal would keep the light tree from culling the lamp for points
+/// above it.
+fn open_top(size: [f64; 3]) -> LocalMesh {
+    let mut m = cuboid(size);
+    m.triangles.retain(|t| {
+        let [a, b, c] = t.map(|i| m.positions[i as usize]);
+        (b - a).cross(c - a).z <= 0.0
+    });
+    m
+}
+
 /// A cobra head at the end of an arm `reach` m along −y at height `z`:
 /// housing over a 1 mm gap over the emitting panel.
 fn cobra_head(kit: &mut Kit, y: f64, z: f64) {
@@ -49,7 +64,8 @@ fn cobra_head(kit: &mut Kit, y: f64, z: f64) {
         housing,
     );
     let panel_z = z - 0.08 - 0.03 - 0.011;
-    kit.block("lamp_emit", POLE, [0.3, 0.5, 0.02], [0.0, y, panel_z]);
+    let at = DAffine3::from_translation(DVec3::new(0.0, y, panel_z));
+    kit.add("lamp_emit", POLE, open_top([0.3, 0.5, 0.02]), at);
     kit.block(
         "street_paint_grey",
         POLE,

@@ -177,3 +177,42 @@ fn speed_signs_print_their_number_centred() {
         assert!((hi.y - lo.y - cap).abs() < 1e-9, "{kmh}");
     }
 }
+
+#[test]
+fn cobra_lamp_panels_face_down_and_sideways_never_up() {
+    // The panel's top would shine into the gap under its housing.
+    for name in [super::lights::LAMP_COBRA, super::lights::LAMP_HIGHWAY] {
+        let prefabs = furniture_prefabs();
+        let p = prefabs.iter().find(|p| p.name == name).unwrap();
+        let mut down_m2 = 0.0;
+        for o in p
+            .objects
+            .iter()
+            .filter(|o| o.material.as_deref() == Some("lamp_emit"))
+        {
+            let ShapeDesc::Mesh {
+                positions,
+                triangles,
+                ..
+            } = &o.shape
+            else {
+                panic!("a mesh panel");
+            };
+            for t in triangles {
+                let [a, b, c] = t.map(|i| DVec3::from(positions[i as usize]));
+                let n = (b - a).cross(c - a);
+                assert!(n.z <= 0.0, "{name}: a lit face up, {n:?}");
+                if n.z < 0.0 {
+                    down_m2 += n.length() / 2.0;
+                }
+            }
+        }
+        // 0.3 m × 0.5 m per head: one on the cobra, two on the mast.
+        let heads = if name == super::lights::LAMP_COBRA {
+            1.0
+        } else {
+            2.0
+        };
+        assert!((down_m2 - 0.15 * heads).abs() < 1e-9, "{name}: {down_m2}");
+    }
+}

@@ -3,11 +3,13 @@
 //! indicator lenses front and rear and a high-mounted brake lens, each
 //! set into the body's surface where `Spec::end_x` finds it. The brake
 //! lens and each side's indicators have their own material slots, which a
-//! frame maps to an emitter while lit (`town::dynamic_objects`).
+//! frame maps to an emitter while lit (`town::dynamic_objects`). Lenses
+//! are the outer half of an ellipsoid (`dome`): the inner half would sit in
+//! the body, emit into it and give light sampling twice the triangles.
 
 use glam::{DAffine3, DVec3};
 
-use crate::scene::mesh::ellipsoid;
+use crate::scene::mesh::{ellipsoid, LocalMesh};
 use crate::town::street::kit::Kit;
 
 use super::spec::Spec;
@@ -42,6 +44,33 @@ fn indicator(y: f64) -> &'static str {
     INDICATOR_SLOTS[usize::from(y < 0.0)]
 }
 
+/// The half of an ellipsoid (`radii`, `segments` around z, `rings` pole to
+/// pole) on the side `outward` (±1) along x, its rim in the yz plane.
+/// `segments` is a multiple of 4, so the rim runs along vertex columns
+/// and every kept triangle is whole.
+pub fn dome(radii: [f64; 3], segments: u32, rings: u32, outward: f64) -> LocalMesh {
+    assert!(segments.is_multiple_of(4), "{segments} segments");
+    let full = ellipsoid(radii, segments, rings);
+    let kept: Vec<[u32; 3]> = full
+        .triangles
+        .iter()
+        .copied()
+        .filter(|t| t.iter().map(|&i| full.positions[i as usize].x).sum::<f64>() * outward > 0.0)
+        .collect();
+    // Only the vertices the kept triangles use, in their first order.
+    let mut index = vec![u32::MAX; full.positions.len()];
+    let mut m = LocalMesh::default();
+    for &i in kept.iter().flatten() {
+        if index[i as usize] == u32::MAX {
+            index[i as usize] = m.positions.len() as u32;
+            m.positions.push(full.positions[i as usize]);
+            m.normals.push(full.normals[i as usize]);
+        }
+    }
+    m.triangles = kept.iter().map(|t| t.map(|i| index[i as usize])).collect();
+    m
+}
+
 fn at(p: [f64; 3]) -> DAffine3 {
     DAffine3::from_translation(DVec3::from(p))
 }
@@ -52,7 +81,7 @@ pub fn lamps(s: &Spec, class: &'static str, parts: &mut Kit) {
         parts.add(
             "headlight_emit",
             class,
-            ellipsoid([0.05, 0.15, 0.055], 8, 4),
+            dome([0.05, 0.15, 0.055], 8, 4, 1.0),
             at(p),
         );
         parts.add(
@@ -67,7 +96,7 @@ pub fn lamps(s: &Spec, class: &'static str, parts: &mut Kit) {
         parts.add(
             indicator(y),
             class,
-            ellipsoid([0.03, 0.045, 0.03], 12, 6),
+            dome([0.03, 0.045, 0.03], 12, 6, 1.0),
             at([x, y, p[2]]),
         );
     }
@@ -75,7 +104,7 @@ pub fn lamps(s: &Spec, class: &'static str, parts: &mut Kit) {
         parts.add(
             "taillight_emit",
             class,
-            ellipsoid([0.04, 0.14, 0.05], 8, 4),
+            dome([0.04, 0.14, 0.05], 8, 4, -1.0),
             at(p),
         );
         parts.add(
@@ -89,7 +118,7 @@ pub fn lamps(s: &Spec, class: &'static str, parts: &mut Kit) {
         parts.add(
             indicator(y),
             class,
-            ellipsoid([0.03, 0.06, 0.03], 12, 6),
+            dome([0.03, 0.06, 0.03], 12, 6, -1.0),
             at([x, y, p[2]]),
         );
     }
@@ -99,7 +128,7 @@ pub fn lamps(s: &Spec, class: &'static str, parts: &mut Kit) {
     parts.add(
         "lamp_red",
         class,
-        ellipsoid([0.02, 0.12, 0.018], 12, 6),
+        dome([0.02, 0.12, 0.018], 12, 6, -1.0),
         at([x, 0.0, z]),
     );
 }

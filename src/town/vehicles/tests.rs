@@ -190,3 +190,59 @@ fn paints_are_drawn_like_real_traffic() {
     assert!(share("paint_blue") + share("paint_red") > 0.1);
     assert!(PAINTS.iter().all(|p| share(p) > 0.005), "{count:?}");
 }
+
+#[test]
+fn a_dome_is_the_outward_half_of_its_ellipsoid() {
+    use crate::scene::mesh::{ellipsoid, ellipsoid_triangles};
+    for outward in [1.0, -1.0] {
+        let d = lamps::dome([0.05, 0.15, 0.055], 8, 4, outward);
+        let full = ellipsoid([0.05, 0.15, 0.055], 8, 4);
+        assert_eq!(d.triangles.len() as u64 * 2, ellipsoid_triangles(8, 4));
+        assert_eq!(d.positions.len(), d.normals.len());
+        // Every vertex on the outward side or on the rim, and the pole
+        // kept; every triangle faces outward on the whole.
+        assert!(d.positions.iter().all(|p| p.x * outward > -1e-12));
+        let pole = full
+            .positions
+            .iter()
+            .map(|p| p.x * outward)
+            .fold(0.0, f64::max);
+        assert!(d.positions.iter().any(|p| p.x * outward == pole));
+        let facing: f64 = d
+            .triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| d.positions[i as usize]);
+                (b - a).cross(c - a).x * outward
+            })
+            .sum();
+        assert!(facing > 0.0, "{facing}");
+    }
+}
+
+#[test]
+fn car_lamp_lenses_face_out_of_the_body_only() {
+    // A lens's inner half would sit in the body, emitting into it.
+    for kind in BODIES {
+        if spec::spec_of(kind).is_none() {
+            continue;
+        }
+        let prefabs = vehicle_prefabs();
+        let p = prefabs
+            .iter()
+            .find(|p| p.name == kind.lamps_prefab())
+            .unwrap();
+        for (mat, pos, tris) in meshes(&p.objects) {
+            let outward = match mat {
+                "headlight_emit" => 1.0,
+                "taillight_emit" | "lamp_red" => -1.0,
+                _ => continue,
+            };
+            for t in tris {
+                let [a, b, c] = t.map(|i| glam::DVec3::from(pos[i as usize]));
+                let n = (b - a).cross(c - a);
+                assert!(n.x * outward > 0.0, "{kind:?} {mat}: {n:?}");
+            }
+        }
+    }
+}

@@ -119,7 +119,8 @@ pub fn motorcycle(class: &'static str, paint: &mut Kit, parts: &mut Kit) {
     parts.add(
         "headlight_emit",
         class,
-        ellipsoid([0.05, 0.085, 0.085], 8, 4),
+        // Its back half would sit inside the reflector.
+        super::lamps::dome([0.05, 0.085, 0.085], 8, 4, 1.0),
         at(MOTO_LAMP[0], 0.0, MOTO_LAMP[2]),
     );
     parts.add(
