@@ -226,34 +226,31 @@ mod tests {
     }
 
     /// Scattered leaves in a foggy sky (every third pixel of every third
-    /// row, each at its own depth, a factor 3 apart, so no two are alike),
-    /// hidden by the fog to `leaf_opacity` under a sky of opacity 1; their
-    /// fog light is noise (×1.8 / ×0.2 in turn) around the sky's ratio 1.
-    /// Returns the leaves' RMS error from that ratio × opacity, after and
-    /// before the filter.
+    /// row, their depths a factor 3 apart in turn over 12 steps, so no two
+    /// leaves within the filter's taps of each other are alike), hidden by
+    /// the fog to `leaf_opacity` under a sky of opacity 1; their fog light
+    /// is noise (×1.8 / ×0.2 in turn) around the sky's ratio 1. Returns
+    /// the leaves' RMS error from that ratio × opacity, after and before
+    /// the filter.
     fn scattered_leaves(leaf_opacity: f32) -> (f32, f32) {
         let (w, h) = (24, 24);
         let mut fog = ViewInputs::new(w, h);
         let mut z = vec![f32::INFINITY; w * h];
         let mut o = vec![1.0f32; w * h];
+        fog.opacity.fill(1.0);
+        fog.l_fog.fill(Vec3::ONE);
         let mut leaves = Vec::new();
         for j in (1..h).step_by(3) {
             for i in (1..w).step_by(3) {
                 let k = j * w + i;
-                z[k] = 10.0 * 3f32.powi(leaves.len() as i32 % 12);
+                let n = leaves.len();
+                z[k] = 10.0 * 3f32.powi(n as i32 % 12);
                 o[k] = leaf_opacity;
+                fog.opacity[k] = leaf_opacity;
+                let noise = if n % 2 == 0 { 1.8 } else { 0.2 };
+                fog.l_fog[k] = Vec3::splat(leaf_opacity * noise);
                 leaves.push(k);
             }
-        }
-        for k in 0..w * h {
-            fog.opacity[k] = o[k];
-            let noise = if leaves.binary_search(&k).unwrap_or(1) % 2 == 0 {
-                1.8
-            } else {
-                0.2
-            };
-            let leaf = z[k].is_finite();
-            fog.l_fog[k] = Vec3::splat(o[k] * if leaf { noise } else { 1.0 });
         }
         let mut film = Film {
             width: w,
