@@ -19,6 +19,12 @@ between the two is about 3 dB below each one's PSNR against the truth), and
 with the pair, psnr_truth_db: the PSNR against the converged image, the
 pair's noise subtracted from the squared error, and ref_psnr_truth_db, the
 pair's mean's own.
+
+With --light-lost, both the test image and a plain render of the same frame
+at 4x its spp are also written as HDR, and light_lost is 1 - (the test's mean
+scene radiance) / (the plain render's): the light the filters drop, free of
+the exposure and the tone curve (a noisy reference's display mean sits below
+its scene light, so the display-light bias above overstates a clean image's).
 """
 import argparse
 import json
@@ -82,6 +88,8 @@ def parser(description=None):
     p.add_argument("--cache", default="/work/refs")
     p.add_argument("--extra", default="", help="extra render arguments for the test image")
     p.add_argument("--out", default=None, help="keep the test render here")
+    p.add_argument("--light-lost", action="store_true",
+                   help="also measure the scene light lost against a plain HDR render")
     return p
 
 
@@ -131,6 +139,27 @@ def scores(img, refs):
     return res
 
 
+def hdr_mean(out, frame):
+    """Mean Rec.709 luminance of a render's left HDR image (scene units)."""
+    import OpenEXR
+    import Imath
+    f = OpenEXR.InputFile(os.path.join(out, "left", "rgb_hdr", f"{frame:06d}.exr"))
+    px = Imath.PixelType(Imath.PixelType.FLOAT)
+    r, g, b = (np.frombuffer(f.channel(c, px), np.float32).astype(np.float64) for c in "RGB")
+    return float(np.mean(0.2126 * r + 0.7152 * g + 0.0722 * b))
+
+
+def light_lost(a, args, test_out):
+    """1 - the test image's mean scene light over a plain render's at 4x its spp."""
+    spp = a.spp or 16
+    plain = test_out + "_plain"
+    render(a.bin, plain, frame_args(a) + ["--hdr", "--no-filter", "--spp", str(4 * spp),
+                                          "--sample-seed", str(3000 + a.seed)])
+    lost = 1.0 - hdr_mean(test_out, a.frame) / hdr_mean(plain, a.frame)
+    subprocess.run(["rm", "-rf", plain])
+    return round(lost, 4)
+
+
 def main():
     a = parser().parse_args()
     refs, ref_dir = references(a)
@@ -140,6 +169,8 @@ def main():
     # Reference mode turns sensor noise off itself and refuses the flag.
     test_common = common[:-2] if "--reference" in extra else common
     args = test_common + (["--spp", str(a.spp)] if a.spp else []) + extra
+    if a.light_lost:
+        args.append("--hdr")
     secs = render(a.bin, out, args)
     img = load(left_png(out, a.frame))
     exposure = exposure_scale(out, a.frame) / exposure_scale(ref_dir, a.frame)
@@ -155,6 +186,8 @@ def main():
                 "scene_light_bias": round(float(np.mean(linear(img)) / np.mean(linear(ref))
                                                 / exposure - 1.0), 4),
                 "seconds": round(secs, 2), "ref_spp": a.ref_spp * len(refs)})
+    if a.light_lost:
+        res["light_lost"] = light_lost(a, args, out)
     if not a.out:
         subprocess.run(["rm", "-rf", out])
     print(json.dumps(res))

@@ -38,6 +38,7 @@
 //! pixels (`Film`); fixed-order sums: same bytes on any thread count.
 
 mod atrous;
+mod conserve;
 mod direct;
 mod edge_stop;
 mod features;

@@ -20,6 +20,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::atrous::{atrous_levels, atrous_pass, ln_depth, soft_gaussian, Axis};
+use super::conserve;
 use super::direct::DIRECT_LEVELS;
 use super::edge_stop::{filter_part, Part};
 use super::{DepthGuide, ViewInputs, Widths};
@@ -45,16 +46,16 @@ const FIREFLY_RATIO: f32 = 6.0;
 const FIREFLY_RADIUS: usize = 2;
 
 /// Replaces `l_surf` in `film` by its filtered estimate (for a firefly,
-/// its neighbours'); pixels with no rho in their neighbourhood (per channel)
-/// keep their radiance.
+/// its neighbours'), then gives back over wide windows the light the
+/// filter dropped (`conserve.rs`); pixels with no rho in their
+/// neighbourhood (per channel) keep their radiance.
 pub(super) fn filter_surface(
     film: &mut Film,
     fog: &ViewInputs,
     guide: &DepthGuide<'_>,
     filter: &Widths,
 ) {
-    let (w, h) = (film.width, film.height);
-    let n = w * h;
+    let n = film.width * film.height;
     assert!(
         fog.l_surf.len() == n && fog.rho.len() == n,
         "surface inputs' size does not match the film"
@@ -62,6 +63,25 @@ pub(super) fn filter_surface(
     if fog.rho.iter().all(|&r| r == Vec3::ZERO) {
         return;
     }
+    let before = film.rgb.clone();
+    filter_surface_light(film, fog, guide, filter);
+    // What the film now holds of the light on the surface.
+    let filtered: Vec<Vec3> = (film.rgb.par_iter().zip(&before).zip(&fog.l_surf))
+        .map(|((&after, &before), &traced)| after - before + traced)
+        .collect();
+    let radius = conserve::window_radius(film.width);
+    conserve::restore(&mut film.rgb, &filtered, &fog.l_surf, film.width, radius);
+}
+
+/// [`filter_surface`]'s filter alone.
+fn filter_surface_light(
+    film: &mut Film,
+    fog: &ViewInputs,
+    guide: &DepthGuide<'_>,
+    filter: &Widths,
+) {
+    let (w, h) = (film.width, film.height);
+    let n = w * h;
     let firefly = fireflies(&fog.l_surf, &fog.rho, (w, h));
     if let Some(sigma_lum) = filter.surface_sigma_lum {
         edge_stopped(film, fog, &firefly, guide, filter, sigma_lum);
