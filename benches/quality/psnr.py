@@ -149,9 +149,10 @@ def hdr_mean(out, frame):
     return float(np.mean(0.2126 * r + 0.7152 * g + 0.0722 * b))
 
 
-def light_lost(a, args, test_out):
+def light_lost(a, test_out):
     """1 - the test image's mean scene light over a plain render's at 4x its spp."""
-    spp = a.spp or 16
+    with open(os.path.join(test_out, "cameras", f"{a.frame:06d}.json")) as f:
+        spp = json.load(f)["spp"]
     plain = test_out + "_plain"
     render(a.bin, plain, frame_args(a) + ["--hdr", "--no-filter", "--spp", str(4 * spp),
                                           "--sample-seed", str(3000 + a.seed)])
@@ -187,7 +188,7 @@ def main():
                                                 / exposure - 1.0), 4),
                 "seconds": round(secs, 2), "ref_spp": a.ref_spp * len(refs)})
     if a.light_lost:
-        res["light_lost"] = light_lost(a, args, out)
+        res["light_lost"] = light_lost(a, out)
     if not a.out:
         subprocess.run(["rm", "-rf", out])
     print(json.dumps(res))

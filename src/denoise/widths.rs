@@ -39,10 +39,9 @@ impl Widths {
 }
 
 /// Spatial σ at 160 pixels across (8 px at 320): the fog light is smooth
-/// and textureless, and where the fog hides a close façade its few samples
-/// leave blotches a narrower kernel does not reach (frame 40 at 320 × 180
-/// against 2 × 256-spp references, σ 4 against 2: town10 foggy 36.1 dB
-/// against 33.6, town03 35.7 → 36.3 dB, town05 37.9 → 39.6 dB).
+/// and textureless, so it takes a wide kernel; where the fog hides a close
+/// façade its few samples leave blotches several pixels across, which a
+/// narrower one leaves in (measured in docs/reference.md, session 35).
 const SIGMA_PX_AT_160: f32 = 4.0;
 
 /// Edge-stopping width of indirect light on the first surface: its light
