@@ -10,6 +10,7 @@ use super::{show, thread_pool, CliError};
 use crate::accel::Backend;
 use crate::dataset::frame::Towns;
 use crate::dataset::{self as ds, DatasetConfig, RunOptions, Shard, StopGuard};
+use crate::weather::Weather;
 
 /// Arguments of `parallax dataset`.
 #[derive(Args, Debug)]
@@ -155,12 +156,12 @@ fn dry_run(config: &DatasetConfig, a: &DatasetArgs, shard: Shard) -> Result<(), 
         frames,
     );
     println!(
-        "      {} RGB images ({} views per frame), {}×{} px, {} spp, baselines {:?} cm, layouts {}",
+        "      {} RGB images ({} views per frame), {}×{} px, {}, baselines {:?} cm, layouts {}",
         frames * (1 + config.baselines_cm.len() as u64),
         1 + config.baselines_cm.len(),
         config.width,
         config.height,
-        config.spp,
+        spp_text(config),
         config.baselines_cm,
         config
             .layouts
@@ -218,6 +219,18 @@ fn dry_run(config: &DatasetConfig, a: &DatasetArgs, shard: Shard) -> Result<(), 
 }
 
 /// Core-hours with the precision their size deserves.
+/// The plan's samples per pixel, with the foggy frames' where they differ.
+fn spp_text(config: &DatasetConfig) -> String {
+    let spp = config.spp();
+    let fog = config.frame_spp(Weather::Foggy, spp);
+    let has_fog = config.weathers.iter().any(|w| w == Weather::Foggy.name());
+    if has_fog && fog != spp {
+        format!("{spp} spp ({fog} in fog)")
+    } else {
+        format!("{spp} spp")
+    }
+}
+
 fn hours(h: f64) -> String {
     match h {
         h if h >= 100.0 => format!("{h:.0}"),

@@ -64,7 +64,7 @@ pub fn calibration_quality(config: &DatasetConfig, classes: usize) -> Quality {
     Quality {
         width,
         height,
-        spp: config.spp.min(MAX_SPP),
+        spp: config.spp().min(MAX_SPP),
     }
 }
 

@@ -52,9 +52,11 @@ pub struct DatasetConfig {
     /// Horizontal field of view, degrees, in (0, 180) (default 60).
     #[serde(default = "default_hfov")]
     pub hfov_deg: f64,
-    /// Samples per pixel per view, ≥ 1 (default 64).
-    #[serde(default = "default_spp")]
-    pub spp: u32,
+    /// Samples per pixel per view, ≥ 1. Absent: 64, and 48 in fog where
+    /// the image filters are on (the fog light's filter makes up for them);
+    /// a count given is used in every weather.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spp: Option<u32>,
     /// Maximum path depth, ≥ 1 (default 5).
     #[serde(default = "default_max_depth")]
     pub max_depth: u32,
@@ -106,9 +108,6 @@ fn default_height() -> u32 {
 }
 fn default_hfov() -> f64 {
     60.0
-}
-fn default_spp() -> u32 {
-    64
 }
 fn default_max_depth() -> u32 {
     5
@@ -190,7 +189,27 @@ fn fail(key: impl Into<String>, message: impl Into<String>) -> Check {
     Err((key.into(), message.into()))
 }
 
+/// Samples per pixel per view where the configuration gives none.
+pub const DEFAULT_SPP: u32 = 64;
+
 impl DatasetConfig {
+    /// Samples per pixel per view: the configuration's, else [`DEFAULT_SPP`].
+    pub fn spp(&self) -> u32 {
+        self.spp.unwrap_or(DEFAULT_SPP)
+    }
+
+    /// Samples per pixel of a frame of `weather` rendered at `spp` (the
+    /// configuration's [`DatasetConfig::spp`], or a calibration's): `spp`
+    /// where the configuration gives a count or the filters are off, else
+    /// the weather's share of it ([`Weather::default_spp`]).
+    pub fn frame_spp(&self, weather: Weather, spp: u32) -> u32 {
+        if self.spp.is_some() || !self.filter {
+            spp
+        } else {
+            weather.default_spp(spp)
+        }
+    }
+
     /// Checks every value; the error names `file` and the key.
     pub fn validate(&self, file: &str) -> Result<(), ConfigError> {
         self.check_lists_nonempty()
@@ -268,14 +287,14 @@ impl DatasetConfig {
             ("stride", self.stride),
             ("width", self.width),
             ("height", self.height),
-            ("spp", self.spp),
+            ("spp", self.spp()),
             ("max_depth", self.max_depth),
         ] {
             if v == 0 {
                 return fail(key, "must be at least 1");
             }
         }
-        if self.spp > crate::sampler::MAX_SPP {
+        if self.spp() > crate::sampler::MAX_SPP {
             return fail(
                 "spp",
                 format!("must be at most {}", crate::sampler::MAX_SPP),
@@ -347,6 +366,28 @@ mod tests {
             (1600, 900, 1, 10)
         );
         assert_eq!(c.layouts, vec![LayoutKind::Native]);
+    }
+
+    #[test]
+    fn fog_takes_fewer_samples_only_where_the_count_is_the_default() {
+        let c = parse_config(MINIMAL, "c.toml").unwrap();
+        assert_eq!((c.spp, c.spp()), (None, DEFAULT_SPP));
+        assert_eq!(c.frame_spp(Weather::Foggy, 64), 48);
+        assert_eq!(c.frame_spp(Weather::Night, 64), 64);
+        // A calibration's count is shared the same way.
+        assert_eq!(c.frame_spp(Weather::Foggy, 8), 6);
+        let given = parse_config(&format!("{MINIMAL}spp = 64\n"), "c.toml").unwrap();
+        assert_eq!(given.frame_spp(Weather::Foggy, 64), 64);
+        let plain = parse_config(&format!("{MINIMAL}filter = false\n"), "c.toml").unwrap();
+        assert_eq!(plain.frame_spp(Weather::Foggy, 64), 64);
+        // dataset.json keeps an absent count absent, so a resumed dataset
+        // renders its fog as before; a given one stays given.
+        for config in [c, given] {
+            let json = serde_json::to_string(&config).unwrap();
+            assert_eq!(json.contains("\"spp\""), config.spp.is_some(), "{json}");
+            let back: DatasetConfig = serde_json::from_str(&json).unwrap();
+            assert_eq!(back, config);
+        }
     }
 
     #[test]

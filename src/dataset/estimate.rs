@@ -49,7 +49,7 @@ impl ClassCost {
     /// Estimated seconds per frame of `config`'s size and spp on `threads` threads.
     pub fn frame_seconds(&self, config: &DatasetConfig, threads: usize) -> f64 {
         let p = config.width as f64 * config.height as f64;
-        let parallel = self.per_pixel * p + self.per_sample * p * config.spp as f64;
+        let parallel = self.per_pixel * p + self.per_sample * p * config.spp() as f64;
         self.fixed + self.write_per_pixel * p + self.write_wait + parallel / threads.max(1) as f64
     }
 
@@ -57,7 +57,7 @@ impl ClassCost {
     pub fn frame_cpu_seconds(&self, config: &DatasetConfig) -> f64 {
         let p = config.width as f64 * config.height as f64;
         self.fixed
-            + (self.per_pixel + self.per_sample * config.spp as f64 + self.write_per_pixel) * p
+            + (self.per_pixel + self.per_sample * config.spp() as f64 + self.write_per_pixel) * p
     }
 }
 

@@ -118,7 +118,7 @@ impl Quality {
         Quality {
             width: config.width,
             height: config.height,
-            spp: config.spp,
+            spp: config.spp(),
         }
     }
 }
@@ -144,7 +144,7 @@ pub fn render_job(
     drop(stat);
     let spec = FrameSpec {
         overrides: Overrides {
-            spp: Some(quality.spp),
+            spp: Some(config.frame_spp(job.weather, quality.spp)),
             max_depth: Some(config.max_depth),
             width: Some(quality.width),
             height: Some(quality.height),
@@ -227,7 +227,7 @@ pub fn write_job(
         seeds: Some(r.meta.seeds),
         files,
         render: RenderRecord {
-            spp: config.spp,
+            spp: r.meta.spp,
             rays: s.gt_rays + s.path_rays,
             seconds,
         },

@@ -130,7 +130,7 @@ fn calibration_covers_every_class_and_configuration_at_a_bounded_size() {
 
     // Never larger than the configuration, never more spp than it asks for.
     let mut tiny = small_plan();
-    (tiny.width, tiny.height, tiny.spp) = (48, 27, 1);
+    (tiny.width, tiny.height, tiny.spp) = (48, 27, Some(1));
     let q = calibration_quality(&tiny, 1);
     assert_eq!((q.width, q.height, q.spp), (48, 27, 1));
 }

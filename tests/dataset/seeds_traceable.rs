@@ -235,3 +235,39 @@ fn town_draws_its_seed_and_records_it_like_render_town() {
         std::fs::read(path_c).unwrap()
     );
 }
+
+#[test]
+fn a_dataset_without_a_sample_count_renders_fog_at_three_quarters_and_records_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let config = "seed = 5\ntowns = [\"town01\"]\nconfigs = [\"normal\"]\n\
+weathers = [\"clear\", \"foggy\"]\nbaselines_cm = [10.0]\nframes_per_sequence = 1\n\
+width = 16\nheight = 9\nmax_depth = 2\n";
+    std::fs::write(dir.path().join("c.toml"), config).unwrap();
+    parallax_ok(
+        dir.path(),
+        &["dataset", "c.toml", "-o", "ds", "--threads", "2"],
+    );
+    let root = dir.path().join("ds");
+    let text = std::fs::read_to_string(root.join("manifest/shard-1-of-1.jsonl")).unwrap();
+    let mut seen = Vec::new();
+    for line in text
+        .lines()
+        .map(|l| serde_json::from_str::<Value>(l).unwrap())
+    {
+        let weather = line["weather"].as_str().unwrap().to_string();
+        let cam = json(&root.join(format!("town01/normal_{weather}/0000/cameras/000000.json")));
+        let want = if weather == "foggy" { 48 } else { 64 };
+        assert_eq!(
+            line["render"]["spp"].as_u64(),
+            Some(want),
+            "{weather}: {line}"
+        );
+        assert_eq!(cam["spp"].as_u64(), Some(want), "{weather}");
+        seen.push(weather);
+    }
+    seen.sort();
+    assert_eq!(seen, ["clear", "foggy"]);
+    // dataset.json keeps the count absent, as the configuration gave it.
+    let meta = json(&root.join("dataset.json"));
+    assert!(meta["config"].get("spp").is_none(), "{}", meta["config"]);
+}

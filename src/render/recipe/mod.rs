@@ -286,6 +286,14 @@ impl FrameRecipe {
         let mut adaptive = spec.adaptive;
         let noise_iso = reference_mode(spec.reference, &mut loaded, &mut adaptive)
             .unwrap_or(spec.sensor_noise_iso);
+        // A town frame's sample count is the town's default unless given:
+        // its weather's then (fewer in fog, where the fog light's filter
+        // makes up for them).
+        if let Some(p) = weather.as_ref().filter(|_| {
+            spec.overrides.spp.is_none() && origin.town.is_some() && loaded.desc.image_filters_on()
+        }) {
+            loaded.desc.render.spp = p.preset.default_spp(loaded.desc.render.spp);
+        }
         if loaded.desc.render.denoiser == Denoiser::Oidn && loaded.desc.image_filters_on() {
             crate::denoise::oidn::check().map_err(RecipeError::Denoiser)?;
         }

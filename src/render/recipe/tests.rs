@@ -314,3 +314,49 @@ fn pedestrians_carry_umbrellas_in_rain_only() {
         assert!(prefabs.contains(w), "{w} is not defined");
     }
 }
+
+#[test]
+fn a_town_frame_in_fog_takes_fewer_samples_only_when_none_are_given() {
+    let town = crate::town::load_named_town("town01", None).unwrap();
+    let spp = |w: Weather, spp: Option<u32>, filter: bool, reference: bool| {
+        let spec = FrameSpec {
+            overrides: Overrides {
+                spp,
+                ..seeded(3).overrides
+            },
+            weather: Some(WeatherChoice {
+                preset: w,
+                seed: Some(1),
+            }),
+            filter,
+            reference,
+            ..FrameSpec::default()
+        };
+        let s = FrameSource::town(&town, 3, (0, 0), CameraConfig::Normal).unwrap();
+        let r = FrameRecipe::new(s, &spec).unwrap();
+        assert_eq!(r.loaded.desc.render.spp, r.settings.spp);
+        r.settings.spp
+    };
+    // The town's default, 16: three quarters of it in fog.
+    assert_eq!(spp(Weather::Foggy, None, true, false), 12);
+    for w in Weather::ALL.into_iter().filter(|&w| w != Weather::Foggy) {
+        assert_eq!(spp(w, None, true, false), 16, "{w}");
+    }
+    // A given count, plain images and reference mode keep every sample.
+    assert_eq!(spp(Weather::Foggy, Some(16), true, false), 16);
+    assert_eq!(spp(Weather::Foggy, Some(7), true, false), 7);
+    assert_eq!(spp(Weather::Foggy, None, false, false), 16);
+    assert_eq!(spp(Weather::Foggy, None, true, true), 16);
+}
+
+#[test]
+fn a_scene_files_own_sample_count_stays_in_fog() {
+    let spec = FrameSpec {
+        weather: Some(WeatherChoice {
+            preset: Weather::Foggy,
+            seed: Some(1),
+        }),
+        ..seeded(3)
+    };
+    assert_eq!(recipe(&spec).unwrap().settings.spp, 2);
+}
