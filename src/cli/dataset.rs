@@ -218,7 +218,6 @@ fn dry_run(config: &DatasetConfig, a: &DatasetArgs, shard: Shard) -> Result<(), 
     Ok(())
 }
 
-/// Core-hours with the precision their size deserves.
 /// The plan's samples per pixel, with the foggy frames' where they differ.
 fn spp_text(config: &DatasetConfig) -> String {
     let spp = config.spp();
@@ -231,10 +230,28 @@ fn spp_text(config: &DatasetConfig) -> String {
     }
 }
 
+/// Core-hours with the precision their size deserves.
 fn hours(h: f64) -> String {
     match h {
         h if h >= 100.0 => format!("{h:.0}"),
         h if h >= 1.0 => format!("{h:.1}"),
         h => format!("{h:.3}"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_plan_shows_the_foggy_frames_sample_count_where_it_differs() {
+        let config = |extra: &str| {
+            let text = format!("seed = 1\ntowns = [\"town01\"]\nframes_per_sequence = 1\n{extra}");
+            ds::parse_config(&text, "c.toml").unwrap()
+        };
+        let fog = "weathers = [\"clear\", \"foggy\"]\n";
+        assert_eq!(spp_text(&config(fog)), "64 spp (48 in fog)");
+        assert_eq!(spp_text(&config(&format!("{fog}spp = 64\n"))), "64 spp");
+        assert_eq!(spp_text(&config("weathers = [\"clear\"]\n")), "64 spp");
     }
 }
