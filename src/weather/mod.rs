@@ -77,15 +77,14 @@ impl Weather {
 }
 
 /// Share of a default sample count that a filtered frame in fog takes: the
-/// fog light's filter makes up for the rest (three towns' foggy frame 40 at
-/// 320 × 180 score 35.5–38.9 dB at 12 spp against 36.1–39.6 at 16, for
-/// about a fifth less CPU; docs/reference.md).
+/// fog light's filter makes up for the rest (measured in
+/// docs/reference.md, session 36).
 const FOG_SAMPLE_SHARE: (u32, u32) = (3, 4);
 
 impl Weather {
-    /// Samples per pixel a filtered frame of this weather takes where the
-    /// user gave no count and `spp` is the default: fewer in fog, `spp`
-    /// elsewhere; at least 1. A count the user gives is never changed.
+    /// Samples per pixel a filtered frame of this weather takes where `spp`
+    /// is a default, not a count the user gave (callers decide which):
+    /// fewer in fog, `spp` elsewhere; at least 1.
     pub fn default_spp(self, spp: u32) -> u32 {
         match self {
             Weather::Foggy => (spp * FOG_SAMPLE_SHARE.0)
