@@ -13,13 +13,12 @@ use glam::DVec3;
 use parallax::light::LightSet;
 use parallax::scene::build_scene;
 use parallax::scene::desc::{MaterialDesc, MaterialKindDesc, ObjectDesc, PrefabDesc, ShapeDesc};
-use parallax::scene::mesh::cylinder_triangles;
 use parallax::town::layout::Layout;
 use parallax::town::materials::town_materials;
 use parallax::town::props::{street_prefabs, LENS_SLOTS};
 use parallax::town::routes::STOP_LINE_AT_M;
 use parallax::town::signals::{self, Lamp, Signal, SignalSite};
-use parallax::town::street::lights::LENS_SEGMENTS;
+use parallax::town::street::lights::lens_mesh;
 use parallax::town::traffic::{Plan, Schedule, VehiclePose};
 use parallax::town::{
     frame_at, load_town_frame, static_objects, town_scene, CameraConfig, TownDesc,
@@ -447,8 +446,7 @@ fn lit_lenses_are_emitters_at_signal_luminance_in_the_light_set() {
         }
     }
     let count = |ls| LightSet::build(&build_scene(ls, DVec3::ZERO).unwrap()).len();
-    let lens = cylinder_triangles(LENS_SEGMENTS, true) as usize;
-    assert_eq!(lens, 48);
-    // A lens disc's 48 triangles are one emitter (`light::emitter`).
+    assert_eq!(lens_mesh().triangles.len(), 36);
+    // A lens disc's 36 triangles are one emitter (`light::emitter`).
     assert_eq!(count(&loaded) - count(&dark), heads);
 }

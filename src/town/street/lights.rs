@@ -15,9 +15,8 @@
 
 use glam::{DAffine3, DQuat, DVec3};
 
-use crate::scene::desc::{ObjectDesc, PrefabDesc};
-use crate::scene::mesh::{cuboid, LocalMesh};
-use crate::town::parts::{class, cylinder};
+use crate::scene::desc::{ObjectDesc, PrefabDesc, TransformDesc};
+use crate::scene::mesh::{self, cuboid, LocalMesh};
 use crate::town::props::LENS_SLOTS;
 
 use super::kit::{prism, regular, Kit};
@@ -34,7 +33,8 @@ pub const LAMP_HIGHWAY: &str = "lamp_highway";
 /// Traffic light whose arm carries one head per lane of a two-lane
 /// approach (`lanes_per_direction` ≥ 2).
 pub const SIGNAL_MAST: &str = "traffic_light_mast";
-/// Sides of a lens disc (a capped cylinder: 4 triangles per side).
+/// Sides of a lens disc (a cylinder capped at the front: 3 triangles per
+/// side).
 pub const LENS_SEGMENTS: u32 = 12;
 /// Vertical spacing of a head's lenses, metres.
 const LENS_STEP_M: f64 = 0.33;
@@ -49,6 +49,20 @@ fn open_top(size: [f64; 3]) -> LocalMesh {
         let [a, b, c] = t.map(|i| m.positions[i as usize]);
         (b - a).cross(c - a).z <= 0.0
     });
+    m
+}
+
+/// A signal lens: a disc of radius 0.1 m, 2 cm deep along local +z (its
+/// front cap at z = 0), without its back cap. The back half sits in the
+/// housing, so a back cap, lit, would shine inside the housing: light
+/// nobody sees, which the light tree would still offer to the points
+/// behind the head.
+pub fn lens_mesh() -> LocalMesh {
+    const DEPTH: f64 = 0.02;
+    let mut m = mesh::cylinder(0.1, DEPTH, LENS_SEGMENTS, true);
+    let positions = &m.positions;
+    m.triangles
+        .retain(|t| t.iter().any(|&i| positions[i as usize].z != DEPTH));
     m
 }
 
@@ -162,10 +176,21 @@ fn head(kit: &mut Kit, y: f64, z: f64) {
     kit.block(h, TL, [0.22, 0.32, 1.0], [0.0, y, z]);
     for (k, slot) in LENS_SLOTS.iter().enumerate() {
         let lz = z + LENS_STEP_M * (1.0 - k as f64);
-        // A lens disc 1.5 cm proud of the housing's face at x = −0.11.
-        let mut lens = cylinder(0.1, 0.02, LENS_SEGMENTS, [-0.125, y, lz], slot, class(TL));
-        lens.transform.rotate_deg = Some([0.0, 90.0, 0.0]);
-        kit.object(lens);
+        // A lens disc 1.5 cm proud of the housing's face at x = −0.11,
+        // facing −x.
+        kit.object(ObjectDesc {
+            name: None,
+            material: Some(slot.to_string()),
+            semantic: Some(TL.to_string()),
+            instance: None,
+            transform: TransformDesc {
+                translate: Some([-0.125, y, lz]),
+                rotate_deg: Some([0.0, 90.0, 0.0]),
+                scale: None,
+            },
+            repeat: Vec::new(),
+            shape: lens_mesh().into_shape(),
+        });
         kit.block(h, TL, [0.2, 0.26, 0.012], [-0.21, y, lz + 0.125]);
         for s in [-1.0, 1.0] {
             kit.block(

@@ -6,31 +6,24 @@
 use glam::DVec3;
 
 use crate::scene::desc::{ObjectDesc, ShapeDesc};
+use crate::scene::transform::parent_from_local;
 use crate::town::lettering::layout;
 
 use super::furniture_prefabs;
 use super::names::SPEED_LIMITS;
 use super::signs::{faces, name_face, speed_face, FaceDesign, PRINT_TOP_M, PRINT_W0_M};
 
-/// Every vertex of a prefab part in the prefab frame (mesh parts are
-/// stored in it; a lens disc is its placed centre ± its radius).
+/// Every vertex of a prefab part in the prefab frame (merged parts are
+/// stored in it; a lens is placed by its transform).
 fn points(o: &ObjectDesc) -> Vec<DVec3> {
-    match &o.shape {
-        ShapeDesc::Mesh { positions, .. } => positions.iter().map(|p| DVec3::from(*p)).collect(),
-        ShapeDesc::Cylinder { radius, .. } => {
-            let c = DVec3::from(o.transform.translate.unwrap());
-            [-1.0, 1.0]
-                .iter()
-                .flat_map(|s| {
-                    [
-                        c + DVec3::new(0.0, s * radius, s * radius),
-                        c + DVec3::X * 0.02,
-                    ]
-                })
-                .collect()
-        }
-        other => panic!("unexpected part {other:?}"),
-    }
+    let ShapeDesc::Mesh { positions, .. } = &o.shape else {
+        panic!("unexpected part {:?}", o.shape);
+    };
+    let at = parent_from_local(&o.transform);
+    positions
+        .iter()
+        .map(|&p| at.transform_point3(DVec3::from(p)))
+        .collect()
 }
 
 /// (name prefix, envelope min, max, stands on the ground).
@@ -215,4 +208,51 @@ fn cobra_lamp_panels_face_down_and_sideways_never_up() {
         };
         assert!((down_m2 - 0.15 * heads).abs() < 1e-9, "{name}: {down_m2}");
     }
+}
+
+#[test]
+fn signal_lenses_shine_out_of_the_housing_never_into_it() {
+    // A head faces −x; its housing lies behind the lenses, towards +x.
+    let prefabs = furniture_prefabs();
+    let mut lenses = 0;
+    for p in prefabs
+        .iter()
+        .filter(|p| p.name.starts_with("traffic_light"))
+    {
+        for o in p.objects.iter().filter(|o| {
+            crate::town::props::LENS_SLOTS.contains(&o.material.as_deref().unwrap_or(""))
+        }) {
+            let ShapeDesc::Mesh {
+                positions,
+                triangles,
+                ..
+            } = &o.shape
+            else {
+                panic!("{}: a lens mesh", p.name);
+            };
+            let at = parent_from_local(&o.transform);
+            let mut front_m2 = 0.0;
+            for t in triangles {
+                let [a, b, c] = t.map(|i| at.transform_point3(DVec3::from(positions[i as usize])));
+                let n = (b - a).cross(c - a);
+                assert!(
+                    n.x <= 1e-12,
+                    "{}: a lens face towards the housing, {n:?}",
+                    p.name
+                );
+                if n.x < -1e-12 && n.y.abs() < 1e-12 && n.z.abs() < 1e-12 {
+                    front_m2 += n.length() / 2.0;
+                }
+            }
+            // The front cap: a 12-gon of circumradius 0.1 m.
+            let disc = 6.0 * 0.1f64.powi(2) * (std::f64::consts::TAU / 12.0).sin();
+            assert!(
+                (front_m2 - disc).abs() < 1e-9,
+                "{}: front {front_m2}",
+                p.name
+            );
+            lenses += 1;
+        }
+    }
+    assert!(lenses >= 6, "{lenses} lenses");
 }
