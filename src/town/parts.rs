@@ -32,7 +32,14 @@ fn transform(at: [f64; 3], heading_deg: f64) -> TransformDesc {
     }
 }
 
-fn object(shape: ShapeDesc, material: Option<&str>, label: Label, t: TransformDesc) -> ObjectDesc {
+/// An object of `shape` with a material, `label`'s class and instance,
+/// placed by `t`.
+pub fn object(
+    shape: ShapeDesc,
+    material: Option<&str>,
+    label: Label,
+    t: TransformDesc,
+) -> ObjectDesc {
     ObjectDesc {
         name: None,
         material: material.map(str::to_string),

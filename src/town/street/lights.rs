@@ -17,6 +17,7 @@ use glam::{DAffine3, DQuat, DVec3};
 
 use crate::scene::desc::{ObjectDesc, PrefabDesc, TransformDesc};
 use crate::scene::mesh::{self, cuboid, LocalMesh};
+use crate::town::parts::{class, object};
 use crate::town::props::LENS_SLOTS;
 
 use super::kit::{prism, regular, Kit};
@@ -178,19 +179,12 @@ fn head(kit: &mut Kit, y: f64, z: f64) {
         let lz = z + LENS_STEP_M * (1.0 - k as f64);
         // A lens disc 1.5 cm proud of the housing's face at x = −0.11,
         // facing −x.
-        kit.object(ObjectDesc {
-            name: None,
-            material: Some(slot.to_string()),
-            semantic: Some(TL.to_string()),
-            instance: None,
-            transform: TransformDesc {
-                translate: Some([-0.125, y, lz]),
-                rotate_deg: Some([0.0, 90.0, 0.0]),
-                scale: None,
-            },
-            repeat: Vec::new(),
-            shape: lens_mesh().into_shape(),
-        });
+        let at = TransformDesc {
+            translate: Some([-0.125, y, lz]),
+            rotate_deg: Some([0.0, 90.0, 0.0]),
+            scale: None,
+        };
+        kit.object(object(lens_mesh().into_shape(), Some(slot), class(TL), at));
         kit.block(h, TL, [0.2, 0.26, 0.012], [-0.21, y, lz + 0.125]);
         for s in [-1.0, 1.0] {
             kit.block(
