@@ -39,6 +39,37 @@ impl LocalMesh {
             .extend([[base, base + 1, base + 2], [base, base + 2, base + 3]]);
     }
 
+    /// Keeps the triangles whose corners (positions) `keep` accepts, in
+    /// order, and only the vertices they use: a removed face leaves no
+    /// stray vertex (an OBJ export would list it). Vertices keep their
+    /// order and normals.
+    pub fn retain_triangles(&mut self, keep: impl Fn([DVec3; 3]) -> bool) {
+        let positions = &self.positions;
+        self.triangles
+            .retain(|t| keep(t.map(|i| positions[i as usize])));
+        // Each used vertex's new index, in the old order.
+        let mut new_index: Vec<Option<u32>> = vec![None; self.positions.len()];
+        for &i in self.triangles.iter().flatten() {
+            new_index[i as usize] = Some(0);
+        }
+        for (next, slot) in new_index.iter_mut().flatten().enumerate() {
+            *slot = next as u32;
+        }
+        let used = |v: &[DVec3]| -> Vec<DVec3> {
+            v.iter()
+                .zip(&new_index)
+                .filter_map(|(&x, k)| k.map(|_| x))
+                .collect()
+        };
+        self.positions = used(&self.positions);
+        if !self.normals.is_empty() {
+            self.normals = used(&self.normals);
+        }
+        for t in &mut self.triangles {
+            *t = t.map(|i| new_index[i as usize].expect("a used vertex"));
+        }
+    }
+
     /// This mesh as an inline scene shape (`kind = "mesh"`).
     pub fn into_shape(self) -> ShapeDesc {
         ShapeDesc::Mesh {
@@ -277,6 +308,36 @@ pub fn ellipsoid(radii: [f64; 3], segments: u32, rings: u32) -> LocalMesh {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A capped cylinder without its top cap: the same triangles (as
+    /// corner positions, with the same normals) as before, minus the cap's,
+    /// and no vertex that no triangle uses.
+    #[test]
+    fn retaining_triangles_drops_the_vertices_only_removed_faces_used() {
+        let full = cylinder(0.5, 2.0, 8, true);
+        let top = |c: [DVec3; 3]| c.iter().all(|p| p.z == 2.0);
+        let corners = |m: &LocalMesh| -> Vec<Vec<(DVec3, Option<DVec3>)>> {
+            let at = |i: u32| (m.positions[i as usize], m.normals.get(i as usize).copied());
+            m.triangles.iter().map(|t| t.map(at).to_vec()).collect()
+        };
+        let want: Vec<_> = corners(&full)
+            .into_iter()
+            .filter(|c| !top([c[0].0, c[1].0, c[2].0]))
+            .collect();
+        let mut cut = full.clone();
+        cut.retain_triangles(|c| !top(c));
+        assert_eq!(cut.triangles.len(), 8 * 3);
+        assert_eq!(corners(&cut), want);
+        assert_eq!(cut.normals.len(), cut.positions.len());
+        let mut used = vec![false; cut.positions.len()];
+        for &i in cut.triangles.iter().flatten() {
+            used[i as usize] = true;
+        }
+        assert!(used.iter().all(|&u| u), "a vertex no triangle uses");
+        // Exactly the cap's own vertices went (its centre and rim).
+        let cap_only = full.positions.len() - cut.positions.len();
+        assert!(cap_only > 0 && full.positions.iter().filter(|p| p.z == 2.0).count() >= cap_only);
+    }
 
     /// Every triangle's geometric normal points away from the centroid.
     fn assert_outward(m: &LocalMesh, centre: DVec3) {

@@ -46,10 +46,7 @@ const LENS_STEP_M: f64 = 0.33;
 /// above it.
 fn open_top(size: [f64; 3]) -> LocalMesh {
     let mut m = cuboid(size);
-    m.triangles.retain(|t| {
-        let [a, b, c] = t.map(|i| m.positions[i as usize]);
-        (b - a).cross(c - a).z <= 0.0
-    });
+    m.retain_triangles(|[a, b, c]| (b - a).cross(c - a).z <= 0.0);
     m
 }
 
@@ -61,9 +58,7 @@ fn open_top(size: [f64; 3]) -> LocalMesh {
 pub fn lens_mesh() -> LocalMesh {
     const DEPTH: f64 = 0.02;
     let mut m = mesh::cylinder(0.1, DEPTH, LENS_SEGMENTS, true);
-    let positions = &m.positions;
-    m.triangles
-        .retain(|t| t.iter().any(|&i| positions[i as usize].z != DEPTH));
+    m.retain_triangles(|corners| corners.iter().any(|p| p.z != DEPTH));
     m
 }
 
