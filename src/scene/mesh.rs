@@ -334,9 +334,16 @@ mod tests {
             used[i as usize] = true;
         }
         assert!(used.iter().all(|&u| u), "a vertex no triangle uses");
-        // Exactly the cap's own vertices went (its centre and rim).
-        let cap_only = full.positions.len() - cut.positions.len();
-        assert!(cap_only > 0 && full.positions.iter().filter(|p| p.z == 2.0).count() >= cap_only);
+        // The vertices kept are exactly those the kept triangles used, in
+        // their old order.
+        let kept: std::collections::BTreeSet<u32> = (full.triangles.iter())
+            .filter(|t| !top(t.map(|i| full.positions[i as usize])))
+            .flatten()
+            .copied()
+            .collect();
+        let kept_positions: Vec<DVec3> = kept.iter().map(|&i| full.positions[i as usize]).collect();
+        assert!(kept.len() < full.positions.len());
+        assert_eq!(cut.positions, kept_positions);
     }
 
     /// Every triangle's geometric normal points away from the centroid.

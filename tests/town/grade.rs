@@ -260,7 +260,7 @@ fn level_towns_hash_as_before_the_grade_existed() {
     // got a convoy of leaders on its route and the pickup an open bed;
     // re-pinned when vehicle lamp lenses became outer domes and cobra
     // lamp panels lost their top face; re-pinned when signal lenses lost
-    // their back cap.
+    // their back cap, and when those faces' unused vertices went.
     const PINNED: [(&str, u64); 3] = [
         ("town02", 0xf505_f2d8_4c74_8441),
         ("town07", 0xebd3_3874_9d82_32fd),
