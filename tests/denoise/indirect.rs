@@ -411,3 +411,40 @@ fn a_firefly_takes_its_neighbours_light_and_noise_is_spread() {
     // (+0.9 % when written.)
     assert!(after.rgb[centre + 1].y > 1.005 * before.rgb[centre + 1].y);
 }
+
+#[test]
+fn light_carried_by_sparse_bright_paths_all_over_a_surface_is_kept() {
+    // At night the light between lamps reaches most pixels as rare bright
+    // paths: here one pixel in ten holds 30 per unit albedo, the rest 0.1,
+    // so 97 % of the light is in what the filter leaves out as fireflies.
+    // Many pixels carry it, so it comes back whole (one path's light would
+    // stay bounded: `a_firefly_takes_its_neighbours_light…`), and spread:
+    // no pixel keeps a speck.
+    let (w, h) = (200, 100);
+    let mut layer = ViewInputs::new(w, h);
+    let rho = Vec3::splat(0.5);
+    layer.rho.fill(rho);
+    for (k, l) in layer.l_surf.iter_mut().enumerate() {
+        let hot = ((k as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15) >> 32).is_multiple_of(10);
+        *l = rho * if hot { 30.0 } else { 0.1 };
+    }
+    let hot_share = layer.l_surf.iter().filter(|l| l.y > 1.0).count() as f64 / (w * h) as f64;
+    assert!(
+        (hot_share - 0.1).abs() < 0.03,
+        "{hot_share} of the pixels hot"
+    );
+    let (before, after) = filter_flat_surface(&layer);
+    let mean = |f: &Film| f.rgb.iter().map(|p| p.y as f64).sum::<f64>() / (w * h) as f64;
+    let (traced, kept) = (mean(&before), mean(&after));
+    assert!(
+        (kept / traced - 1.0).abs() < 0.03,
+        "mean {kept} after the filter against {traced} traced"
+    );
+    for (k, p) in after.rgb.iter().enumerate() {
+        assert!(
+            p.y > 0.5 * traced as f32 && p.y < 1.5 * traced as f32,
+            "pixel {k}: {} (mean {traced})",
+            p.y
+        );
+    }
+}
