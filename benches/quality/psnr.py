@@ -25,6 +25,9 @@ at 4x its spp are also written as HDR, and light_lost is 1 - (the test's mean
 scene radiance) / (the plain render's): the light the filters drop, free of
 the exposure and the tone curve (a noisy reference's display mean sits below
 its scene light, so the display-light bias above overstates a clean image's).
+light_lost_by_class gives the same per semantic class of at least 5 % of the
+pixels: the image's mean is mostly its brightest things (lamps, a car in the
+head-lights), so a loss on the surfaces between them shows only there.
 """
 import argparse
 import json
@@ -139,26 +142,43 @@ def scores(img, refs):
     return res
 
 
-def hdr_mean(out, frame):
-    """Mean Rec.709 luminance of a render's left HDR image (scene units)."""
+def hdr_luminance(out, frame):
+    """Rec.709 luminance of a render's left HDR image (scene units), per pixel."""
     import OpenEXR
     import Imath
     f = OpenEXR.InputFile(os.path.join(out, "left", "rgb_hdr", f"{frame:06d}.exr"))
     px = Imath.PixelType(Imath.PixelType.FLOAT)
     r, g, b = (np.frombuffer(f.channel(c, px), np.float32).astype(np.float64) for c in "RGB")
-    return float(np.mean(0.2126 * r + 0.7152 * g + 0.0722 * b))
+    return 0.2126 * r + 0.7152 * g + 0.0722 * b
+
+
+def semantic_classes(out, frame):
+    """The left view's class id per pixel (flattened) and the class names."""
+    ids = np.asarray(Image.open(os.path.join(out, "left", "semantic", f"{frame:06d}.png"))).ravel()
+    with open(os.path.join(out, "cameras", f"{frame:06d}.json")) as f:
+        names = {i: n for n, i in json.load(f)["semantic_classes"]}
+    return ids, names
 
 
 def light_lost(a, test_out):
-    """1 - the test image's mean scene light over a plain render's at 4x its spp."""
+    """1 - the test image's mean scene light over a plain render's at 4x its
+    spp, over the image and per semantic class of at least 5 % of the
+    pixels (the image's mean is mostly its brightest things: a loss on the
+    surfaces between lamps hardly moves it)."""
     with open(os.path.join(test_out, "cameras", f"{a.frame:06d}.json")) as f:
         spp = json.load(f)["spp"]
     plain = test_out + "_plain"
     render(a.bin, plain, frame_args(a) + ["--hdr", "--no-filter", "--spp", str(4 * spp),
                                           "--sample-seed", str(3000 + a.seed)])
-    lost = 1.0 - hdr_mean(test_out, a.frame) / hdr_mean(plain, a.frame)
+    test, ref = hdr_luminance(test_out, a.frame), hdr_luminance(plain, a.frame)
+    ids, names = semantic_classes(test_out, a.frame)
+    by_class = {}
+    for c in np.unique(ids):
+        k = ids == c
+        if k.mean() >= 0.05 and ref[k].mean() > 0:
+            by_class[names.get(int(c), str(c))] = round(1.0 - test[k].mean() / ref[k].mean(), 4)
     subprocess.run(["rm", "-rf", plain])
-    return round(lost, 4)
+    return round(1.0 - test.mean() / ref.mean(), 4), by_class
 
 
 def main():
@@ -188,7 +208,7 @@ def main():
                                                 / exposure - 1.0), 4),
                 "seconds": round(secs, 2), "ref_spp": a.ref_spp * len(refs)})
     if a.light_lost:
-        res["light_lost"] = light_lost(a, out)
+        res["light_lost"], res["light_lost_by_class"] = light_lost(a, out)
     if not a.out:
         subprocess.run(["rm", "-rf", out])
     print(json.dumps(res))
