@@ -51,11 +51,12 @@ pub(super) fn restore(
     assert!(filtered.len() == n && traced.len() == n && w > 0 && n.is_multiple_of(w));
     let h = n / w;
     let sum = |v: &[Vec3]| v.iter().map(|p| p.element_sum() as f64).collect::<Vec<_>>();
+    let (traced, filtered_sum) = (sum(traced), sum(filtered));
     let tent = |v: &[f64]| box_sums(&box_sums(v, w, h, radius), w, h, radius);
-    let (sum_traced, sum_filtered) = (tent(&sum(traced)), tent(&sum(filtered)));
-    // The light each pixel lost, and how many pixels' worth of paths carry
-    // the window's loss.
-    let lost: Vec<f64> = (sum(traced).iter().zip(sum(filtered)))
+    let (sum_traced, sum_filtered) = (tent(&traced), tent(&filtered_sum));
+    // The light each pixel lost, and (over the window's square) how many
+    // pixels' worth of paths carry the loss.
+    let lost: Vec<f64> = (traced.iter().zip(&filtered_sum))
         .map(|(t, f)| (t - f).max(0.0))
         .collect();
     let lost2: Vec<f64> = lost.iter().map(|d| d * d).collect();
@@ -87,9 +88,9 @@ pub(super) const CARRIERS_FOR_FULL_GAIN: f64 = 16.0;
 
 /// The largest gain for a window whose unbounded gain is `gain` and whose
 /// lost light `carriers` pixels' worth of paths carry: [`MAX_GAIN`] below
-/// half of [`CARRIERS_FOR_FULL_GAIN`], `gain` itself from it on, and
-/// between the two a smooth step, so no edge shows where the count
-/// crosses.
+/// half of [`CARRIERS_FOR_FULL_GAIN`], `gain` itself from
+/// [`CARRIERS_FOR_FULL_GAIN`] on, and between the two a smooth step, so no
+/// edge shows where the count crosses.
 fn gain_bound(gain: f64, carriers: f64) -> f64 {
     if gain <= MAX_GAIN {
         return MAX_GAIN;
