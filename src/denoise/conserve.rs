@@ -8,10 +8,11 @@
 //! specks. At night the loss is most of the light: between lamps a
 //! surface's indirect light arrives as rare bright paths (lamp pools, cars
 //! in head-light beams, seen by a diffuse bounce), which the firefly rule
-//! leaves out in most pixels; the filtered light was a fifth of the traced
-//! on town03's façades. Such a loss, carried by many pixels, comes back
-//! whole; one rare huge path (the sun in a window) is held to [`MAX_GAIN`],
-//! so it cannot light up a whole window ([`gain_bound`]).
+//! leaves out in most pixels: over town03's night frame the filtered light
+//! was a fifth of the traced (the median pixel's window). Such a loss,
+//! carried by many pixels, comes back whole; one rare huge path (the sun in
+//! a window) is held to [`MAX_GAIN`], so it cannot light up a whole window
+//! ([`gain_bound`]).
 //!
 //! Fixed-order sums in f64 (summed-area tables): the same bytes on any
 //! thread count.
