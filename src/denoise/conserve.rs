@@ -52,12 +52,12 @@ pub(super) fn restore(
     assert!(filtered.len() == n && traced.len() == n && w > 0 && n.is_multiple_of(w));
     let h = n / w;
     let sum = |v: &[Vec3]| v.iter().map(|p| p.element_sum() as f64).collect::<Vec<_>>();
-    let (traced, filtered_sum) = (sum(traced), sum(filtered));
+    let (traced_sum, filtered_sum) = (sum(traced), sum(filtered));
     let tent = |v: &[f64]| box_sums(&box_sums(v, w, h, radius), w, h, radius);
-    let (sum_traced, sum_filtered) = (tent(&traced), tent(&filtered_sum));
+    let (sum_traced, sum_filtered) = (tent(&traced_sum), tent(&filtered_sum));
     // The light each pixel lost, and (over the window's square) how many
     // pixels' worth of paths carry the loss.
-    let lost: Vec<f64> = (traced.iter().zip(&filtered_sum))
+    let lost: Vec<f64> = (traced_sum.iter().zip(&filtered_sum))
         .map(|(t, f)| (t - f).max(0.0))
         .collect();
     let lost2: Vec<f64> = lost.iter().map(|d| d * d).collect();
@@ -131,10 +131,10 @@ fn box_sums(v: &[f64], w: usize, h: usize, radius: usize) -> Vec<f64> {
 mod tests {
     use super::*;
 
-    /// A 64 × 32 view of light 1 (a wall), a 20× firefly in every 9th
+    /// A `w × h` view of light 1 (a wall), a 20× firefly in every 9th
     /// pixel; the "filter" replaced each firefly by its neighbours' level.
-    fn wall_with_fireflies() -> (Vec<Vec3>, Vec<Vec3>) {
-        let n = 64 * 32;
+    fn wall_with_fireflies(w: usize, h: usize) -> (Vec<Vec3>, Vec<Vec3>) {
+        let n = w * h;
         let traced: Vec<Vec3> = (0..n)
             .map(|k| Vec3::splat(if k % 9 == 7 { 20.0 } else { 1.0 }))
             .collect();
@@ -144,13 +144,9 @@ mod tests {
     #[test]
     fn fireflies_all_over_a_window_come_back_whole_and_spread_thin() {
         // At night most of the light between lamps is such paths.
-        // A 20× firefly in every 9th pixel of a wall of light 1, each
-        // replaced by its neighbours' level; a window (21 × 21) holds 49.
+        // A window (21 × 21) holds 49 fireflies.
         let (w, h) = (200, 100);
-        let traced: Vec<Vec3> = (0..w * h)
-            .map(|k| Vec3::splat(if k % 9 == 7 { 20.0 } else { 1.0 }))
-            .collect();
-        let filtered = vec![Vec3::ONE; w * h];
+        let (traced, filtered) = wall_with_fireflies(w, h);
         let mut film = filtered.clone();
         restore(&mut film, &filtered, &traced, w, window_radius(w));
         let sum = |v: &[Vec3]| v.iter().map(|p| p.x as f64).sum::<f64>();
@@ -223,7 +219,7 @@ mod tests {
 
     #[test]
     fn light_the_filter_kept_is_left_as_it_is() {
-        let (traced, _) = wall_with_fireflies();
+        let (traced, _) = wall_with_fireflies(64, 32);
         let mut film: Vec<Vec3> = traced.iter().map(|p| *p * 2.0).collect();
         let before = film.clone();
         restore(&mut film, &traced, &traced, 64, 3);
