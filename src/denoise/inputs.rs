@@ -55,6 +55,9 @@ pub struct ViewInputs {
     /// (`DenoiseSample::rho_refl_hit`): what `l_refl` is filtered
     /// against, so that the ratio is the radiance seen in the glass.
     pub rho_refl_hit: Vec<Vec3>,
+    /// Mean openness of the split vertex's bounce over the samples with a
+    /// `rho` (`DenoiseSample::openness`; 1 where none has one).
+    pub openness: Vec<f32>,
 }
 
 impl ViewInputs {
@@ -77,6 +80,7 @@ impl ViewInputs {
             var_refl: vec![0.0; width * height],
             rho_refl: vec![Vec3::ZERO; width * height],
             rho_refl_hit: vec![Vec3::ZERO; width * height],
+            openness: vec![1.0; width * height],
         }
     }
 
@@ -93,6 +97,11 @@ impl ViewInputs {
         self.l_refl[k] = sum.l_refl / n;
         self.rho_refl[k] = sum.rho_refl / n;
         self.rho_refl_hit[k] = sum.rho_refl_hit / n;
+        self.openness[k] = if sum.split_samples > 0 {
+            sum.openness / sum.split_samples as f32
+        } else {
+            1.0
+        };
         let hits = sum.refl_hits as f32;
         self.var_refl[k] = mean_variance(sum.refl_seen, sum.refl_seen2, hits)
             * luminance(self.rho_refl_hit[k]).powi(2);
@@ -149,8 +158,12 @@ mod tests {
             refl_hits: 2,
             refl_seen: 6.0,
             refl_seen2: 20.0,
+            openness: 1.5,
+            split_samples: 3,
         };
         v.set_mean(1, &sum, 4.0);
+        // Over the 3 samples with a rho, not all 4; none: open.
+        assert_eq!((v.openness[0], v.openness[1]), (1.0, 0.5));
         assert_eq!(v.l_fog[1], Vec3::new(0.5, 1.0, 1.5));
         assert_eq!(v.opacity[1], 0.25);
         assert_eq!(v.l_surf[1], Vec3::splat(2.0));

@@ -68,6 +68,25 @@ pub struct DenoiseSample {
     /// the radiance the sample saw in the glass, with none of the sparkle
     /// of which samples reflected: the filter's ratio and its noise level.
     pub rho_refl_hit: Vec3,
+    /// At a Lambertian split vertex (`rho` nonzero), how free its bounce
+    /// ray's first [`OPEN_RADIUS`] is ([`openness`]; 1 where no bounce was
+    /// traced): a corner's or recess's indirect light is low because its
+    /// bounce rays meet the walls around it, which the albedo does not
+    /// say, so the filter of `l_surf` also divides by it.
+    pub openness: f32,
+}
+
+/// Distance, in metres, within which a split vertex's bounce ray meeting a
+/// surface counts as hemmed in: the depth of window reveals, balconies and
+/// the space under a car, where a façade's or the road's indirect light
+/// drops (measured in docs/reference.md, session 40).
+pub const OPEN_RADIUS: f32 = 1.5;
+
+/// The openness of a bounce ray whose first hit lies `distance` metres
+/// away (None: it met nothing): the share of [`OPEN_RADIUS`] it crossed
+/// freely, in [0, 1].
+pub fn openness(distance: Option<f32>) -> f32 {
+    distance.map_or(1.0, |t| (t / OPEN_RADIUS).clamp(0.0, 1.0))
 }
 
 /// The albedo estimate a glossy (non-delta, non-Lambertian) split vertex's
@@ -135,6 +154,10 @@ pub struct DenoiseSum {
     /// Σ of its squares: with the sum, the per-pixel variance of the
     /// reflected radiance that steers its filter.
     pub refl_seen2: f32,
+    /// Σ `DenoiseSample::openness` over the samples with a `rho`.
+    pub openness: f32,
+    /// Samples with a `rho` (a Lambertian split vertex).
+    pub split_samples: u32,
 }
 
 impl DenoiseSum {
@@ -153,6 +176,10 @@ impl DenoiseSum {
         self.l_refl += d.l_refl;
         self.rho_refl += d.rho_refl;
         self.rho_refl_hit += d.rho_refl_hit;
+        if d.rho != Vec3::ZERO {
+            self.openness += d.openness;
+            self.split_samples += 1;
+        }
         let hit = luminance(d.rho_refl_hit);
         if hit > 0.0 {
             let seen = luminance(d.l_refl) / hit;
@@ -257,6 +284,7 @@ mod tests {
             l_refl: Vec3::new(0.0, 0.0, 4.0),
             rho_refl: Vec3::splat(0.125),
             rho_refl_hit: Vec3::splat(0.5),
+            openness: 0.25,
         };
         let b = DenoiseSample {
             l_fog: Vec3::splat(1.0),
@@ -264,10 +292,16 @@ mod tests {
             l_surf: Vec3::splat(0.25),
             rho: Vec3::splat(0.5),
             split_behind_delta: false,
+            openness: 1.0,
+            ..DenoiseSample::default()
+        };
+        // No rho: its openness is not counted.
+        let c = DenoiseSample {
+            openness: 0.5,
             ..DenoiseSample::default()
         };
         let mut sum = DenoiseSum::default();
-        for s in [a, b, a] {
+        for s in [a, b, a, c] {
             sum.add(&s);
         }
         assert_eq!(sum.l_fog, Vec3::new(3.0, 5.0, 7.0));
@@ -283,6 +317,7 @@ mod tests {
         assert_eq!(sum.l_refl, Vec3::new(0.0, 0.0, 8.0));
         assert_eq!(sum.rho_refl, Vec3::splat(0.25));
         assert_eq!(sum.rho_refl_hit, Vec3::splat(1.0));
+        assert_eq!((sum.openness, sum.split_samples), (1.5, 3));
         // Seen in the glass: luminance 4·0.0722 over 0.5, on a's two samples.
         let seen = 4.0f32 * 0.0722 / 0.5;
         assert_eq!(sum.refl_hits, 2);
@@ -292,6 +327,15 @@ mod tests {
             sum.refl_seen
         );
         assert!((sum.refl_seen2 - 2.0 * seen * seen).abs() < 1e-6);
+    }
+
+    #[test]
+    fn openness_is_the_free_share_of_the_radius() {
+        assert_eq!(openness(None), 1.0);
+        assert_eq!(openness(Some(0.0)), 0.0);
+        assert!((openness(Some(0.25 * OPEN_RADIUS)) - 0.25).abs() < 1e-6);
+        assert_eq!(openness(Some(OPEN_RADIUS)), 1.0);
+        assert_eq!(openness(Some(100.0)), 1.0);
     }
 
     #[test]

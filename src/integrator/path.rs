@@ -18,7 +18,7 @@ use shaders_cpu::bsdf::Bsdf;
 use shaders_cpu::sampling::{power_heuristic, Frame};
 
 use super::aov::Aov;
-use super::denoise_parts::{glossy_albedo, DenoiseSample, DenoiseSum};
+use super::denoise_parts::{self, glossy_albedo, DenoiseSample, DenoiseSum};
 use super::PathContext;
 use crate::accel::{Accel, Hit, Ray};
 use crate::geometry::{FrontOrigin, SurfaceInteraction};
@@ -343,6 +343,7 @@ impl<A: Accel> PathContext<'_, A> {
                     l_direct,
                     DenoiseSample {
                         rho: st.split.rho,
+                        openness: 1.0,
                         ..DenoiseSample::default()
                     },
                 ),
@@ -357,6 +358,8 @@ impl<A: Accel> PathContext<'_, A> {
         // At a glossy split vertex: the radiance before its shadow rays,
         // and their sun's part.
         let mut gloss_before = None;
+        // The split vertex's bounce: how freely its ray left (1 untraced).
+        let mut openness = 1.0;
         loop {
             *rays += 1;
             let hit = self.accel.intersect(&ray);
@@ -371,6 +374,8 @@ impl<A: Accel> PathContext<'_, A> {
             let before = st.l;
             let sun = pending.resolve(self.accel, &mut st.l);
             if st.split.rho != Vec3::ZERO && l_first.is_none() {
+                // This ray is the split vertex's bounce.
+                openness = denoise_parts::openness(hit.as_ref().map(|h| h.t * ray.d.length()));
                 l_first = Some(st.l);
                 l_direct = split_direct(&st, before, sun);
             }
@@ -417,6 +422,7 @@ impl<A: Accel> PathContext<'_, A> {
                     l_surf,
                     rho: st.split.rho,
                     split_behind_delta: st.split.behind_delta,
+                    openness,
                     ..DenoiseSample::default()
                 },
             ),

@@ -53,6 +53,7 @@ use glam::{Vec2, Vec3};
 use shaders_cpu::medium::{Equiangular, Medium};
 use shaders_cpu::sampling::power_heuristic;
 
+use super::denoise_parts;
 use super::path::{LiSample, PathState, RayCone, ShadowTrRoulette};
 use super::PathContext;
 use crate::accel::{Accel, Hit, Ray};
@@ -160,6 +161,12 @@ impl<A: Accel> PathContext<'_, A> {
                 Some(hit) => hit,
                 None => self.accel.intersect(&ray),
             };
+            if vs.first.surface.is_split() && vs.first.openness.is_none() {
+                // This ray is x1's bounce (a medium scatter on it is fog
+                // light, not a wall).
+                let distance = hit.as_ref().map(|h| h.t * ray.d.length());
+                vs.first.openness = Some(denoise_parts::openness(distance));
+            }
             let skip_medium = first_segment && surface_beta.is_some();
             if let Some(m) = medium.filter(|_| !skip_medium) {
                 let u = SegmentSamples::draw(stream, vs.st.bounces);

@@ -12,4 +12,5 @@ mod glass;
 mod highlight;
 mod indirect;
 mod oidn;
+mod openness;
 mod shade;

@@ -172,6 +172,9 @@ pub(super) struct FirstEvent {
     /// Whether the split vertex lies behind delta scatters
     /// (`DenoiseSample::split_behind_delta`).
     pub behind_delta: bool,
+    /// A Lambertian x1's bounce: how freely its ray left
+    /// (`DenoiseSample::openness`; None until traced).
+    pub openness: Option<f32>,
 }
 
 /// The running state of one volumetric path.
@@ -238,6 +241,11 @@ impl VolState {
                 l_refl,
                 rho_refl,
                 rho_refl_hit,
+                openness: if first.surface.is_split() {
+                    first.openness.unwrap_or(1.0)
+                } else {
+                    split.openness
+                },
             },
             aov: st.aov.aov,
         }
