@@ -48,6 +48,7 @@ pub(super) fn filter_direct(
         traced: &inputs.l_direct,
         sigma_lum: SIGMA_LUM,
         between_regions: true,
+        openness: None,
     };
     filter_part(film, &part, inputs, guide, widths, levels);
 }
@@ -76,6 +77,7 @@ pub(super) fn filter_reflection(
         traced: &inputs.l_refl,
         sigma_lum: SIGMA_LUM_REFL,
         between_regions: true,
+        openness: None,
     };
     filter_part(film, &part, inputs, guide, widths, levels);
 }

@@ -59,6 +59,10 @@ pub(super) struct Part<'a> {
     /// everywhere (light whose noise is not heavy-tailed, as indirect
     /// light on the first surface).
     pub(super) between_regions: bool,
+    /// Per pixel, the openness of its first surface's bounce
+    /// (`ViewInputs::openness`) as a further key, for light that depends
+    /// on it; None: not a key.
+    pub(super) openness: Option<&'a [f32]>,
 }
 
 /// Replaces `part`'s light in `film` by its filtered estimate (as a ratio
@@ -94,8 +98,9 @@ pub(super) fn filter_part(
     let keys: Vec<SurfKey> = (0..n)
         .into_par_iter()
         .map(|k| {
-            SurfKey::new(guide.depth_z[k], normal(k), inputs.behind_delta[k])
-                .with_glossy(inputs.glossy[k])
+            let key = SurfKey::new(guide.depth_z[k], normal(k), inputs.behind_delta[k])
+                .with_glossy(inputs.glossy[k]);
+            part.openness.map_or(key, |o| key.with_openness(o[k]))
         })
         .collect();
     let geo = Geo {

@@ -12,9 +12,9 @@
 //!   (L − l_fog) + opacity·S̃;
 //! - light on the first surface (`surface.rs`): all it reflects beyond its
 //!   own next-event estimates (sky and indirect light, with a medium fog
-//!   light too), filtered as a ratio to the surface's albedo with the
-//!   direct light's edge-stopping kernel; in medium-free scenes the
-//!   first-scatter cascade is skipped;
+//!   light too), filtered as a ratio to the surface's albedo times its
+//!   bounce's openness with the direct light's edge-stopping kernel; in
+//!   medium-free scenes the first-scatter cascade is skipped;
 //! - direct light on that surface (`direct.rs`): its next-event estimates
 //!   of sky and lamps (the sun's stays as traced), and at a glossy surface
 //!   (paint) all its light; also as a ratio to the albedo, with

@@ -11,7 +11,12 @@
 //! (`ViewInputs::behind_delta`). Renders filter it with `edge_stop.rs`'s
 //! kernel, which also stops at the light's own noise, so corners and
 //! recesses keep their shade (`Widths::surface_sigma_lum`; `None`: on
-//! geometry alone). Fireflies (`FIREFLY_RATIO`) are left out of
+//! geometry alone). There rho also carries each pixel's bounce openness
+//! (`ViewInputs::openness`, how freely its bounce rays leave): a window's
+//! reveal, the shade under a balcony or a car is darker because its
+//! bounces meet the walls around it, which neither the albedo nor the
+//! noise-level test sees, so the ratio divides by it and pixels of unlike
+//! openness stay apart. Fireflies (`FIREFLY_RATIO`) are left out of
 //! the sums and take their neighbours' estimate.
 
 use std::ops::{Add, Div, Mul};
@@ -42,6 +47,16 @@ const INV_BEHIND2: f32 = 1.0 / (0.15 * 0.15);
 /// estimate. The light it carried is dropped: in the street at 16 spp about
 /// 0.35 % of the image's mean luminance.
 const FIREFLY_RATIO: f32 = 6.0;
+/// The share of a pixel's indirect light taken to reach it whatever its
+/// bounce's openness (`ViewInputs::openness`): a hemmed-in surface still
+/// gets light from the walls that hem it in.
+const OPEN_FLOOR: f32 = 0.25;
+
+/// 1/σ² on the step in `ViewInputs::openness` (σ = 0.25, about two
+/// standard deviations of a 16-sample pixel's mean): a window's reveal and
+/// the wall around it stay apart.
+const INV_OPEN2: f32 = 1.0 / (0.25 * 0.25);
+
 /// Half-width in pixels of the firefly test's square neighbourhood.
 const FIREFLY_RADIUS: usize = 2;
 
@@ -141,15 +156,21 @@ fn edge_stopped(
             .map(|(&x, &f)| if f { Vec3::ZERO } else { x })
             .collect()
     };
-    let (l, rho) = (kept(&inputs.l_surf), kept(&inputs.rho));
+    // The light is taken as the albedo times the bounce's openness times
+    // a light smooth over the surface.
+    let rho_open: Vec<Vec3> = (inputs.rho.par_iter().zip(&inputs.openness))
+        .map(|(&rho, &open)| rho * (OPEN_FLOOR + (1.0 - OPEN_FLOOR) * open))
+        .collect();
+    let (l, rho) = (kept(&inputs.l_surf), kept(&rho_open));
     let part = Part {
         l: &l,
         rho: &rho,
         var: &inputs.var_surf,
-        remod: &inputs.rho,
+        remod: &rho_open,
         traced: &inputs.l_surf,
         sigma_lum,
         between_regions: false,
+        openness: Some(&inputs.openness),
     };
     filter_part(film, &part, inputs, guide, widths, DIRECT_LEVELS);
 }
@@ -247,6 +268,9 @@ pub(super) struct SurfKey {
     /// Share of samples split at a glossy vertex (`ViewInputs::glossy`;
     /// zero for the indirect light, which has none).
     glossy: f32,
+    /// The first surface's bounce openness (`ViewInputs::openness`; zero
+    /// where it is not a key).
+    open: f32,
 }
 
 impl SurfKey {
@@ -256,7 +280,14 @@ impl SurfKey {
             n: if n.is_finite() { n } else { Vec3::ZERO },
             behind,
             glossy: 0.0,
+            open: 0.0,
         }
+    }
+
+    /// The key with bounce openness `open`: pixels whose openness differs
+    /// are kept apart.
+    pub(super) fn with_openness(self, open: f32) -> SurfKey {
+        SurfKey { open, ..self }
     }
 
     /// The key with glossy share `glossy`: pixels whose shares differ are
@@ -287,7 +318,10 @@ impl SurfKey {
         let rel = self.ln_z - b.ln_z;
         let behind = self.behind - b.behind;
         let glossy = self.glossy - b.glossy;
-        let mut e = rel * rel * inv_rel2 + (behind * behind + glossy * glossy) * INV_BEHIND2;
+        let open = self.open - b.open;
+        let mut e = rel * rel * inv_rel2
+            + (behind * behind + glossy * glossy) * INV_BEHIND2
+            + open * open * INV_OPEN2;
         if self.n != Vec3::ZERO && b.n != Vec3::ZERO {
             e += (self.n - b.n).length_squared() * inv_n2;
         }
