@@ -79,13 +79,13 @@ pub struct DenoiseSample {
 /// Distance, in metres, within which a split vertex's bounce ray meeting a
 /// surface counts as hemmed in: the depth of window reveals, balconies and
 /// the space under a car, where a façade's or the road's indirect light
-/// drops (measured in docs/reference.md, session 40).
+/// drops (0.5–2 m score alike: docs/reference.md).
 pub const OPEN_RADIUS: f32 = 1.5;
 
 /// The openness of a bounce ray whose first hit lies `distance` metres
 /// away (None: it met nothing): the share of [`OPEN_RADIUS`] it crossed
 /// freely, in [0, 1].
-pub fn openness(distance: Option<f32>) -> f32 {
+pub(super) fn openness(distance: Option<f32>) -> f32 {
     distance.map_or(1.0, |t| (t / OPEN_RADIUS).clamp(0.0, 1.0))
 }
 

@@ -18,7 +18,7 @@ pub mod volpath;
 
 pub use aov::Aov;
 pub use context::{PathContext, Shading};
-pub use denoise_parts::{luminance, openness, DenoiseSample, DenoiseSum, OPEN_RADIUS};
+pub use denoise_parts::{luminance, DenoiseSample, DenoiseSum, OPEN_RADIUS};
 
 use glam::{DMat3, DVec3, Vec3};
 
