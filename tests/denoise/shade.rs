@@ -146,11 +146,13 @@ fn reveal(i: usize) -> bool {
     i % 10 >= 4 && i % 10 < 6
 }
 
+/// The chance that a sample's bounce in a reveal leaves freely.
+const REVEAL_OPEN: f32 = 0.4;
+
 /// A wall with reveals: each sample's bounce leaves freely (on the wall
 /// always, in a reveal with probability `REVEAL_OPEN`) or meets the frame,
 /// and gathers `FREE` or `HEMMED` times an exponential factor of mean 1:
 /// per pixel the means, the light's variance and the openness.
-const REVEAL_OPEN: f32 = 0.4;
 fn wall_with_reveals() -> ViewInputs {
     let mut inputs = ViewInputs::new(W, H);
     let rho = Vec3::splat(0.5);
@@ -182,11 +184,10 @@ fn a_reveal_whose_bounces_meet_its_frame_keeps_its_shade() {
         let ks: Vec<usize> = (0..W * H).filter(|&k| pick(k % W)).collect();
         ks.iter().map(|&k| v[k]).sum::<f32>() / ks.len() as f32
     };
-    let in_reveal = |i: usize| reveal(i);
     // The wall's columns beside a reveal, where light would leave it.
     let beside = |i: usize| !reveal(i) && (reveal(i + 1) || (i > 0 && reveal(i - 1)));
     let truth_reveal = HEMMED + (FREE - HEMMED) * REVEAL_OPEN;
-    let (r0, r1) = (mean_over(&raw, &in_reveal), mean_over(&e, &in_reveal));
+    let (r0, r1) = (mean_over(&raw, &reveal), mean_over(&e, &reveal));
     let (b0, b1) = (mean_over(&raw, &beside), mean_over(&e, &beside));
     println!("reveal {truth_reveal:.3}: traced {r0:.3}, filtered {r1:.3}; beside it {FREE}: {b0:.3} -> {b1:.3}");
     // Without the openness the reveal reads 0.72 and the wall beside it 0.93.
