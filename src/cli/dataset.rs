@@ -87,10 +87,11 @@ pub fn run(a: DatasetArgs) -> Result<(), CliError> {
     let config = resolve_config(&a)?;
     let shard = resolve_shard(&a)?;
     let pool = thread_pool(a.threads)?;
-    if config.filter && config.denoiser == crate::denoise::Denoiser::Oidn {
+    if config.filter && config.denoiser.needs_oidn() {
         // Before any frame: every one would fail alike.
-        crate::denoise::oidn::check()
-            .map_err(|e| CliError::input(format!("config denoiser \"oidn\": {e}")))?;
+        crate::denoise::oidn::check().map_err(|e| {
+            CliError::input(format!("config denoiser \"{}\": {e}", config.denoiser))
+        })?;
     }
     if a.dry_run {
         return pool.install(|| dry_run(&config, &a, shard));

@@ -116,10 +116,11 @@ pub struct RenderArgs {
     /// `filter_inscatter` turned off, a weather preset's included).
     #[arg(long)]
     pub no_filter: bool,
-    /// Denoiser of the surfaces: parallax (its own filters) or oidn (Intel
+    /// Denoiser of the surfaces: parallax (its own filters), oidn (Intel
     /// Open Image Denoise, found at run time: `pip install pyoidn`, or
-    /// PARALLAX_OIDN=path); fog light keeps parallax's filter. Default: the
-    /// scene's `[render] denoiser`, else parallax.
+    /// PARALLAX_OIDN=path) or blend (the mean of the two: less error than
+    /// either); fog light keeps parallax's filter. Default: the scene's
+    /// `[render] denoiser`, else parallax.
     #[arg(long, value_name = "NAME", conflicts_with_all = ["no_filter", "reference"])]
     pub denoiser: Option<crate::denoise::Denoiser>,
     /// Reference mode: plain, unbiased path tracing, as a reference renderer

@@ -74,8 +74,9 @@ pub struct DatasetConfig {
     #[serde(default = "crate::scene::desc::default_true")]
     pub filter: bool,
     /// The denoiser of the surfaces where `filter` is on: "parallax"
-    /// (default) or "oidn" (Intel Open Image Denoise, found at run time:
-    /// `pip install pyoidn`); fog light keeps parallax's filter. Always
+    /// (default), "oidn" (Intel Open Image Denoise, found at run time:
+    /// `pip install pyoidn`) or "blend" (the mean of the two); fog light
+    /// keeps parallax's filter. Always
     /// written to `dataset.json`; a record without it (older versions)
     /// reads as "parallax", so such a dataset resumes as it is.
     #[serde(default)]

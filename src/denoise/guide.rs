@@ -82,6 +82,8 @@ pub fn denoise_view(
         super::Denoiser::Parallax => denoise_guided(film, inputs, &guide, &widths),
         super::Denoiser::Oidn => super::oidn::denoise_view(film, inputs, &guide, &widths, aux)
             .unwrap_or_else(|e| panic!("{e}")),
+        super::Denoiser::Blend => super::oidn::blend_view(film, inputs, &guide, &widths, aux)
+            .unwrap_or_else(|e| panic!("{e}")),
     }
 }
 

@@ -77,8 +77,9 @@ pub struct CameraFile {
     /// and indirect light on diffuse surfaces (`[render] filter_indirect`)
     /// or fog light (`[medium] filter_inscatter`). Ground truth never is.
     pub image_filter: bool,
-    /// The denoiser of the surfaces where `image_filter` is true: "parallax"
-    /// or "oidn" (Intel Open Image Denoise); null when it is false.
+    /// The denoiser of the surfaces where `image_filter` is true: "parallax",
+    /// "oidn" (Intel Open Image Denoise) or "blend" (the mean of the two);
+    /// null when it is false.
     pub denoiser: Option<crate::denoise::Denoiser>,
     /// Semantic class table: (name, id).
     pub semantic_classes: Vec<(String, u8)>,

@@ -3,8 +3,8 @@
 //! the camera file says which one made the images; a bad name, a
 //! contradiction and a missing Open Image Denoise are refused with exit 2
 //! before anything is written. With the library installed (`pip install
-//! pyoidn`; `.ci/run` installs it), an `oidn` render writes other images
-//! over the same ground truth.
+//! pyoidn`; `.ci/run` installs it), an `oidn` or `blend` render writes
+//! other images over the same ground truth.
 
 use crate::common::dataset;
 
@@ -57,12 +57,14 @@ fn a_missing_open_image_denoise_is_refused_before_any_output() {
     let dir = tempfile::tempdir().unwrap();
     let lib = nowhere(dir.path());
     let out = dir.path().join("out");
-    let err = refused(&render_street(&out, &["--denoiser", "oidn"], Some(&lib)));
-    assert!(
-        err.contains(&lib.display().to_string()) && err.contains("pip install pyoidn"),
-        "{err}"
-    );
-    assert!(!out.exists(), "nothing written");
+    for name in ["oidn", "blend"] {
+        let err = refused(&render_street(&out, &["--denoiser", name], Some(&lib)));
+        assert!(
+            err.contains(&lib.display().to_string()) && err.contains("pip install pyoidn"),
+            "{err}"
+        );
+        assert!(!out.exists(), "nothing written");
+    }
     // A scene file asking for it is refused alike.
     let scene = dir.path().join("oidn.toml");
     let street =
@@ -94,7 +96,7 @@ fn a_missing_open_image_denoise_is_refused_before_any_output() {
     let config = write_config(
         dir.path(),
         "d.toml",
-        &format!("{}denoiser = \"oidn\"\n", tiny_config(&["normal"], 1)),
+        &format!("{}denoiser = \"blend\"\n", tiny_config(&["normal"], 1)),
     );
     let root = dir.path().join("ds");
     let o = parallax(&[
@@ -108,7 +110,7 @@ fn a_missing_open_image_denoise_is_refused_before_any_output() {
     .unwrap();
     let err = refused(&o);
     assert!(
-        err.contains("denoiser") && err.contains("pip install pyoidn"),
+        err.contains("denoiser \"blend\"") && err.contains("pip install pyoidn"),
         "{err}"
     );
     assert!(!root.join("left").exists(), "no frame written");
@@ -141,7 +143,7 @@ fn bad_denoiser_choices_are_refused() {
     let out = dir.path().join("out");
     let err = refused(&render_street(&out, &["--denoiser", "magic"], None));
     assert!(
-        err.contains("magic") && err.contains("parallax or oidn"),
+        err.contains("magic") && err.contains("parallax, oidn or blend"),
         "{err}"
     );
     // Plain images have nothing to denoise.
@@ -181,7 +183,7 @@ fn bad_denoiser_choices_are_refused() {
 }
 
 #[test]
-fn an_oidn_render_changes_the_images_not_the_ground_truth() {
+fn oidn_and_blend_renders_change_the_images_not_the_ground_truth() {
     if let Err(e) = parallax::denoise::oidn::check() {
         assert!(
             std::env::var_os("PARALLAX_REQUIRE_OIDN").is_none(),
@@ -191,15 +193,22 @@ fn an_oidn_render_changes_the_images_not_the_ground_truth() {
         return;
     }
     let dir = tempfile::tempdir().unwrap();
-    let (own, oidn) = (dir.path().join("own"), dir.path().join("oidn"));
+    let own = dir.path().join("own");
     ok(&render_street(&own, &[], None));
-    ok(&render_street(&oidn, &["--denoiser", "oidn"], None));
-    assert_eq!(denoiser(&oidn), "oidn");
     let read = |p: PathBuf| std::fs::read(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
-    for view in ["left/rgb/000000.png", "baseline_054/rgb/000000.png"] {
-        assert_ne!(read(own.join(view)), read(oidn.join(view)), "{view}");
-    }
-    for gt in ["left/depth/000000.exr", "baseline_054/disp/000000.pfm"] {
-        assert_eq!(read(own.join(gt)), read(oidn.join(gt)), "{gt}");
+    for name in ["oidn", "blend"] {
+        let other = dir.path().join(name);
+        ok(&render_street(&other, &["--denoiser", name], None));
+        assert_eq!(denoiser(&other), name);
+        for view in ["left/rgb/000000.png", "baseline_054/rgb/000000.png"] {
+            assert_ne!(
+                read(own.join(view)),
+                read(other.join(view)),
+                "{name}: {view}"
+            );
+        }
+        for gt in ["left/depth/000000.exr", "baseline_054/disp/000000.pfm"] {
+            assert_eq!(read(own.join(gt)), read(other.join(gt)), "{name}: {gt}");
+        }
     }
 }

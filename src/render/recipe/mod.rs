@@ -294,7 +294,7 @@ impl FrameRecipe {
         }) {
             loaded.desc.render.spp = p.preset.default_spp(loaded.desc.render.spp);
         }
-        if loaded.desc.render.denoiser == Denoiser::Oidn && loaded.desc.image_filters_on() {
+        if loaded.desc.render.denoiser.needs_oidn() && loaded.desc.image_filters_on() {
             crate::denoise::oidn::check().map_err(RecipeError::Denoiser)?;
         }
         let noise = sensor_noise(noise_iso, weather.as_mut())?;

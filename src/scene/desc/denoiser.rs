@@ -3,9 +3,10 @@
 //! (`denoise`) acts on it.
 
 /// Which denoiser treats a view's surfaces (`[render] denoiser`,
-/// `--denoiser`): parallax's own depth-guided filters, or Intel Open Image
-/// Denoise (`denoise::oidn`), opened at run time where it is installed. Fog light
-/// (the first-scatter part) is filtered by parallax's filter either way.
+/// `--denoiser`): parallax's own depth-guided filters, Intel Open Image
+/// Denoise (`denoise::oidn`), opened at run time where it is installed, or
+/// the mean of the two. Fog light (the first-scatter part) is filtered by
+/// parallax's filter in every case.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Denoiser {
@@ -15,18 +16,27 @@ pub enum Denoiser {
     /// Open Image Denoise's ray-tracing filter on the view's radiance,
     /// guided by its first-surface albedo and normal.
     Oidn,
+    /// The mean of the two, pixel by pixel: their errors are largely
+    /// unlike, so the mean has less than either (docs/reference.md).
+    Blend,
 }
 
 impl Denoiser {
     /// Every choice, in the order messages list them.
-    pub const ALL: [Denoiser; 2] = [Denoiser::Parallax, Denoiser::Oidn];
+    pub const ALL: [Denoiser; 3] = [Denoiser::Parallax, Denoiser::Oidn, Denoiser::Blend];
 
     /// The name in files and on the command line.
     pub fn name(self) -> &'static str {
         match self {
             Denoiser::Parallax => "parallax",
             Denoiser::Oidn => "oidn",
+            Denoiser::Blend => "blend",
         }
+    }
+
+    /// Whether it runs Open Image Denoise (which must then be installed).
+    pub fn needs_oidn(self) -> bool {
+        self != Denoiser::Parallax
     }
 
     /// Whether this is the default (the description leaves it out).
@@ -47,6 +57,6 @@ impl std::str::FromStr for Denoiser {
         Denoiser::ALL
             .into_iter()
             .find(|d| d.name() == s)
-            .ok_or_else(|| format!("unknown denoiser '{s}' (expected parallax or oidn)"))
+            .ok_or_else(|| format!("unknown denoiser '{s}' (expected parallax, oidn or blend)"))
     }
 }

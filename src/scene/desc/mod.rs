@@ -180,9 +180,10 @@ pub struct RenderDesc {
     #[serde(default = "default_true", skip_serializing_if = "is_true")]
     pub filter_indirect: bool,
     /// The denoiser of the rendered views' surfaces where the filters are
-    /// on: "parallax" (default, its own filters) or "oidn" (Intel Open
-    /// Image Denoise, found at run time: `pip install pyoidn`). Fog light
-    /// keeps parallax's filter either way.
+    /// on: "parallax" (default, its own filters), "oidn" (Intel Open
+    /// Image Denoise, found at run time: `pip install pyoidn`) or "blend"
+    /// (the mean of the two). Fog light keeps parallax's filter in every
+    /// case.
     #[serde(default, skip_serializing_if = "Denoiser::is_default")]
     pub denoiser: Denoiser,
 }
