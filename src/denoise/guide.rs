@@ -53,9 +53,9 @@ pub fn centre_opacity(scene: &Scene, cam: &RenderCamera, depth_z: &[f32]) -> Vec
         .collect()
 }
 
-/// Denoises one rendered view in place (both components of
-/// [`denoise_guided`]: fog in-scattering, and the light on the first
-/// surface that `DenoiseSample::l_surf` holds), guided by the view's exact
+/// Denoises one rendered view in place with the scene's denoiser
+/// (parallax's filters, [`denoise_guided`]; Open Image Denoise; or the
+/// mean of the two images), guided by the view's exact
 /// pixel-centre `depth_z`, the opacity along those rays and the normals the
 /// depth implies. Widths: [`Widths::for_width`] for the view's
 /// size, with or without a medium.
@@ -78,12 +78,24 @@ pub fn denoise_view(
     if !super::Features::for_scene(scene).direct {
         widths.direct_levels = 0;
     }
+    let oidn = |film: &mut Film| {
+        super::oidn::denoise_view(film, inputs, &guide, &widths, aux)
+            .unwrap_or_else(|e| panic!("{e}"))
+    };
     match scene.denoiser {
         super::Denoiser::Parallax => denoise_guided(film, inputs, &guide, &widths),
-        super::Denoiser::Oidn => super::oidn::denoise_view(film, inputs, &guide, &widths, aux)
-            .unwrap_or_else(|e| panic!("{e}")),
-        super::Denoiser::Blend => super::oidn::blend_view(film, inputs, &guide, &widths, aux)
-            .unwrap_or_else(|e| panic!("{e}")),
+        super::Denoiser::Oidn => oidn(film),
+        super::Denoiser::Blend => {
+            // The two denoisers' errors are largely unlike (parallax's
+            // filters blur what the depth guide cannot tell apart, OIDN errs
+            // elsewhere), so their mean has less than either.
+            let mut own = film.clone();
+            denoise_guided(&mut own, inputs, &guide, &widths);
+            oidn(film);
+            for (px, own) in film.rgb.iter_mut().zip(&own.rgb) {
+                *px = 0.5 * (*px + *own);
+            }
+        }
     }
 }
 

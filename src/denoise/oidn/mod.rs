@@ -2,7 +2,8 @@
 //! "oidn"`, `--denoiser oidn`): its ray-tracing filter ("RT") on a view's
 //! radiance, guided by the view's first-surface albedo and normal, which
 //! are averages over each pixel's samples and so taken as clean
-//! (`cleanAux`); or averaged with parallax's own filters (`"blend"`). The library is opened at run time (`library.rs`); the
+//! (`cleanAux`); `"blend"` averages its image with parallax's filters'
+//! (`guide::denoise_view`). The library is opened at run time (`library.rs`); the
 //! CPU device runs on the render's thread count, which does not change
 //! its bytes (the test below checks 1 against 2 threads).
 
@@ -39,27 +40,6 @@ pub(super) fn denoise_view(
     let (w, h) = (film.width, film.height);
     let threads = rayon::current_num_threads();
     denoise(&mut film.rgb, aux.albedo, aux.normal, w, h, threads)
-}
-
-/// A rendered view denoised both ways, parallax's filters
-/// ([`super::denoise_guided`]) and [`denoise_view`]'s, and replaced by the
-/// mean of the two. Their errors are largely unlike (parallax's filters
-/// blur what the depth guide cannot tell apart, OIDN's learned filter
-/// errs elsewhere), so the mean has less than either. Err: OIDN failed.
-pub(super) fn blend_view(
-    film: &mut Film,
-    inputs: &ViewInputs,
-    guide: &DepthGuide<'_>,
-    widths: &Widths,
-    aux: SurfaceAux<'_>,
-) -> Result<(), String> {
-    let mut own = film.clone();
-    super::denoise_guided(&mut own, inputs, guide, widths);
-    denoise_view(film, inputs, guide, widths, aux)?;
-    for (px, own) in film.rgb.iter_mut().zip(&own.rgb) {
-        *px = 0.5 * (*px + *own);
-    }
-    Ok(())
 }
 
 /// Checks that the library opens and its CPU device runs on this machine
