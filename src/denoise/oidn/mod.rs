@@ -3,9 +3,9 @@
 //! radiance, guided by the view's first-surface albedo and normal, which
 //! are averages over each pixel's samples and so taken as clean
 //! (`cleanAux`); `"blend"` averages its image with parallax's filters'
-//! (`guide::denoise_view`). The library is opened at run time (`library.rs`); the
-//! CPU device runs on the render's thread count, which does not change
-//! its bytes (the test below checks 1 against 2 threads).
+//! (`guide::denoise_view`). The library is opened at run time
+//! (`library.rs`); the CPU device runs on the render's thread count, which
+//! does not change its bytes (the test below checks 1 against 2 threads).
 
 mod library;
 

@@ -57,6 +57,13 @@ impl std::str::FromStr for Denoiser {
         Denoiser::ALL
             .into_iter()
             .find(|d| d.name() == s)
-            .ok_or_else(|| format!("unknown denoiser '{s}' (expected parallax, oidn or blend)"))
+            .ok_or_else(|| {
+                let names = Denoiser::ALL.map(Denoiser::name);
+                let (last, first) = names.split_last().expect("denoisers");
+                format!(
+                    "unknown denoiser '{s}' (expected {} or {last})",
+                    first.join(", ")
+                )
+            })
     }
 }
