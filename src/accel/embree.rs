@@ -207,10 +207,11 @@ fn intersect_packets(
     };
     for (ray_chunk, hit_chunk) in rays.chunks(LANES).zip(hits.chunks_mut(LANES)) {
         let valid = load_lanes(&mut rayhit.ray, ray_chunk);
+        let valid = &valid.0;
         // Embree writes ids only on a hit.
         rayhit.hit.geomID = [INVALID_ID; LANES];
         rayhit.hit.instID[0] = [INVALID_ID; LANES];
-        scene.intersect8(&mut ctx, &mut rayhit, &valid);
+        scene.intersect8(&mut ctx, &mut rayhit, valid);
         for (lane, out) in hit_chunk.iter_mut().enumerate() {
             let h = &rayhit.hit;
             *out = (h.geomID[lane] != INVALID_ID).then(|| {
@@ -237,7 +238,8 @@ fn occluded_packets(scene: &Scene, rays: &[Ray], out: &mut [bool], coherent: boo
     let mut packet = Ray8::empty();
     for (ray_chunk, out_chunk) in rays.chunks(LANES).zip(out.chunks_mut(LANES)) {
         let valid = load_lanes(&mut packet, ray_chunk);
-        scene.occluded8(&mut ctx, &mut packet, &valid);
+        let valid = &valid.0;
+        scene.occluded8(&mut ctx, &mut packet, valid);
         for (lane, o) in out_chunk.iter_mut().enumerate() {
             // Embree marks an occluded ray by setting tfar to −∞.
             *o = packet.tfar[lane] == f32::NEG_INFINITY;
@@ -253,11 +255,18 @@ fn context(coherent: bool) -> IntersectContext {
     }
 }
 
+/// An 8-lane valid mask at a 32-byte boundary: Embree's 8-wide queries
+/// read it with aligned AVX loads, and `ValidMaskN` alone is aligned to 16
+/// only, so where it fell on the stack decided whether a packet query
+/// crashed (it did once a path's state grew by a few bytes).
+#[repr(C, align(32))]
+struct ValidMask8(ValidMaskN<LANES>);
+
 /// Writes up to 8 rays into the lanes of `packet` (SoA) and returns the
 /// valid mask: lanes past the end are masked off, so Embree neither reads
 /// nor writes them and their stale contents do not matter.
 #[inline]
-fn load_lanes(packet: &mut Ray8, rays: &[Ray]) -> ValidMaskN<LANES> {
+fn load_lanes(packet: &mut Ray8, rays: &[Ray]) -> ValidMask8 {
     let mut lanes = [ValidMask::Invalid; LANES];
     for (lane, r) in rays.iter().enumerate() {
         packet.org_x[lane] = r.o.x;
@@ -270,7 +279,7 @@ fn load_lanes(packet: &mut Ray8, rays: &[Ray]) -> ValidMaskN<LANES> {
         packet.tfar[lane] = r.tmax;
         lanes[lane] = ValidMask::Valid;
     }
-    ValidMaskN::new(lanes)
+    ValidMask8(ValidMaskN::new(lanes))
 }
 
 /// Embree geometries (with their ids) for every non-empty mesh and the sphere set.
@@ -455,5 +464,23 @@ impl Accel for EmbreeAccel {
         // The path pass batches only shadow rays towards one directional
         // light from neighbouring points: coherent.
         occluded_packets(self.shading_scene(), rays, out, true);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn eight_lane_masks_sit_on_the_boundary_avx_loads_need() {
+        let rays = [Ray::new(glam::Vec3::ZERO, glam::Vec3::X); 3];
+        let mut packet = Ray8::empty();
+        // A few masks at different stack depths, as the packet loops make them.
+        let masks: Vec<ValidMask8> = (0..5).map(|_| load_lanes(&mut packet, &rays)).collect();
+        let one = load_lanes(&mut packet, &rays);
+        for m in masks.iter().chain([&one]) {
+            let at = &m.0 as *const ValidMaskN<LANES> as usize;
+            assert_eq!(at % 32, 0, "mask at {at:#x}");
+        }
     }
 }
