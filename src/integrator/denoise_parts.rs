@@ -221,6 +221,10 @@ pub(super) struct SplitVertex {
     /// The throughput after that reflection (else zero):
     /// `DenoiseSample::rho_refl_hit`.
     pub rho_refl_hit: Vec3,
+    /// Whether the first glass's reflection is traced as a branch of its
+    /// own (`SplitVertex::split_glass`): its light is then added to
+    /// `l_refl` when the branch ends, and no later reflection records one.
+    pub branched: bool,
 }
 
 impl SplitVertex {
@@ -246,9 +250,24 @@ impl SplitVertex {
         // beta·R·L whatever q is.
         self.rho_refl += beta * fr_dielectric(wo.z, eta);
         if wi.z * wo.z > 0.0 {
+            // After a split (`split_glass`) this is the pane's back face
+            // reflecting inside: a second, fainter mirror image, filtered
+            // with the first.
             self.refl_from = Some(l);
-            self.rho_refl_hit = beta * weight;
+            self.rho_refl_hit += beta * weight;
         }
+    }
+
+    /// At the smooth glass a camera ray meets first, whose reflection is
+    /// traced whole as a branch of its own, of throughput `beta · r` (`r`
+    /// the reflection's f·|cos θi|, its Fresnel reflectance), while the
+    /// path goes on through the glass: every sample then sees what the
+    /// glass mirrors. The branch's light is `DenoiseSample::l_refl`;
+    /// `rho_refl` gains the reflectance as in [`SplitVertex::at_glass`].
+    pub fn split_glass(&mut self, r: Vec3, beta: Vec3) {
+        self.rho_refl += beta * r;
+        self.rho_refl_hit = beta * r;
+        self.branched = true;
     }
 }
 
@@ -262,6 +281,7 @@ impl Default for SplitVertex {
             rho_refl: Vec3::ZERO,
             refl_from: None,
             rho_refl_hit: Vec3::ZERO,
+            branched: false,
         }
     }
 }

@@ -14,7 +14,7 @@
 //! without one this loop runs unchanged (same bytes).
 
 use glam::Vec3;
-use shaders_cpu::bsdf::Bsdf;
+use shaders_cpu::bsdf::{Bsdf, BsdfSample};
 use shaders_cpu::sampling::{power_heuristic, Frame};
 
 use super::aov::Aov;
@@ -34,6 +34,7 @@ pub use cone::RayCone;
 pub(super) use nee::ShadowTrRoulette;
 use ris::RisSamples;
 use shadows::PendingShadows;
+use state::GlassBranch;
 pub(super) use state::PathState;
 
 /// 4D sample sets per bounce: (BSDF u, BSDF v, lobe, roulette), two 2D
@@ -51,6 +52,8 @@ pub const CAMERA_DIMS: u32 = 1;
 /// when the scene regularises (`Scene::regularize`): the sun reflected in
 /// it then spans about ±6° and next-event estimation finds it.
 pub const REGULARIZE_ALPHA: f32 = 0.1;
+/// The largest f32 below 1: a lobe number past every lobe's probability.
+const ONE_MINUS_EPS: f32 = 1.0 - f32::EPSILON / 2.0;
 /// Shadow rays one vertex may leave pending: every distant light plus the
 /// sampled light.
 const MAX_SHADOW: usize = crate::light::MAX_DISTANT + 1;
@@ -110,8 +113,9 @@ impl BounceSamples {
     /// The samples of scattering event `bounces`. Each light set is drawn at
     /// its own fixed dimension and only when a light uses it: outdoors (sun
     /// and sky, no local lights) that is two draws, not four.
-    fn draw(stream: &mut SampleStream, bounces: u32, lights: &LightSet) -> Self {
-        let dim = CAMERA_DIMS + bounces * DIMS_PER_BOUNCE;
+    /// `dim_base` offsets every dimension (`PathState::dim_base`).
+    fn draw(stream: &mut SampleStream, bounces: u32, dim_base: u32, lights: &LightSet) -> Self {
+        let dim = dim_base + CAMERA_DIMS + bounces * DIMS_PER_BOUNCE;
         stream.set_dimension(dim);
         let [u_bx, u_by, u_lobe, u_rr] = stream.next_4d();
         let mut u = BounceSamples {
@@ -131,8 +135,8 @@ impl BounceSamples {
         if !lights.is_empty() {
             stream.set_dimension(dim + LOCAL_SET);
             let first = stream.next_4d();
-            u.u_local =
-                RisSamples::draw(stream, bounces, first, lights.local_candidates_at(bounces));
+            let m = lights.local_candidates_at(bounces);
+            u.u_local = RisSamples::draw(stream, (bounces, dim_base), first, m);
         }
         u
     }
@@ -215,6 +219,22 @@ pub struct LiSample {
     pub denoise: DenoiseSample,
     /// The first visible surface's albedo and normal (`aov.rs`).
     pub aov: Aov,
+}
+
+impl LiSample {
+    /// Adds the path of the glass reflection the camera ray split off
+    /// (`PathContext::glass_lobes`): its light is the light along the
+    /// glass's reflection, and the first surface it shows adds its albedo
+    /// (each carries its lobe's throughput); the normal stays the
+    /// refracted path's where that has one.
+    fn add_reflection(&mut self, reflected: &LiSample) {
+        self.l += reflected.l;
+        self.denoise.l_refl += reflected.l;
+        self.aov.albedo += reflected.aov.albedo;
+        if self.aov.normal == Vec3::ZERO {
+            self.aov.normal = reflected.aov.normal;
+        }
+    }
 }
 
 /// Running sums of one pixel's samples, field by field.
@@ -303,7 +323,7 @@ impl<A: Accel> PathContext<'_, A> {
         };
         self.surfaces.prefetch(self.scene, &hit);
         let u = if st.bounces < self.max_depth {
-            BounceSamples::draw(stream, st.bounces, self.lights)
+            BounceSamples::draw(stream, st.bounces, st.dim_base, self.lights)
         } else {
             BounceSamples::default()
         };
@@ -316,13 +336,40 @@ impl<A: Accel> PathContext<'_, A> {
         }
     }
 
-    /// The rest of a path begun by [`PathContext::start_path`]: its radiance.
+    /// The rest of a path begun by [`PathContext::start_path`]: its radiance,
+    /// with the reflection of the glass its camera ray met first traced
+    /// after it ([`PathContext::glass_lobes`]).
     pub fn finish_path(
         &self,
         start: PathStart,
         stream: &mut SampleStream,
         rays: &mut u64,
     ) -> LiSample {
+        let (mut sample, branch) = self.finish_refracted(start, stream, rays);
+        if let Some(branch) = branch {
+            let reflected = self.finish_path(
+                PathStart {
+                    st: PathState::of_glass_branch(&branch),
+                    pending: PendingShadows::new(),
+                    next: Some(branch.ray),
+                    volume: None,
+                },
+                stream,
+                rays,
+            );
+            sample.add_reflection(&reflected);
+        }
+        sample
+    }
+
+    /// [`PathContext::finish_path`] for the path alone, with the glass
+    /// reflection it left to trace, if any.
+    fn finish_refracted(
+        &self,
+        start: PathStart,
+        stream: &mut SampleStream,
+        rays: &mut u64,
+    ) -> (LiSample, Option<GlassBranch>) {
         let PathStart {
             mut st,
             mut pending,
@@ -330,13 +377,13 @@ impl<A: Accel> PathContext<'_, A> {
             volume,
         } = start;
         if let Some(sample) = volume {
-            return sample;
+            return (sample, None);
         }
         let Some(mut ray) = next else {
             let before = st.l;
             let sun = pending.resolve(self.accel, &mut st.l);
             let l_direct = split_direct(&st, before, sun);
-            return LiSample {
+            let sample = LiSample {
                 l: st.l,
                 denoise: direct_part(
                     &st,
@@ -349,6 +396,7 @@ impl<A: Accel> PathContext<'_, A> {
                 ),
                 aov: st.aov.aov,
             };
+            return (sample, st.glass_branch);
         };
         // The radiance once the first vertex's own light is in: what
         // follows is its indirect part (`DenoiseSample::l_surf`); and that
@@ -367,7 +415,7 @@ impl<A: Accel> PathContext<'_, A> {
             if let Some(hit) = &hit {
                 self.surfaces.prefetch(self.scene, hit);
                 if st.bounces < self.max_depth {
-                    u = BounceSamples::draw(stream, st.bounces, self.lights);
+                    u = BounceSamples::draw(stream, st.bounces, st.dim_base, self.lights);
                 }
             }
             // The previous vertex's shadow rays, while the record loads.
@@ -413,7 +461,7 @@ impl<A: Accel> PathContext<'_, A> {
         if let Some((before, sun)) = gloss_before {
             l_direct = st.l - before - sun;
         }
-        LiSample {
+        let sample = LiSample {
             l: st.l,
             denoise: direct_part(
                 &st,
@@ -427,7 +475,42 @@ impl<A: Accel> PathContext<'_, A> {
                 },
             ),
             aov: st.aov.aov,
+        };
+        (sample, st.glass_branch)
+    }
+
+    /// Both lobes of the smooth glass a camera ray meets first, where the
+    /// image filters are on and there is no medium: (reflection,
+    /// refraction), each with pdf 1, so f·|cos θi| is its whole share
+    /// (the Fresnel reflectance, the tinted transmittance) instead of a
+    /// share chosen by chance. The path goes on through the glass and the
+    /// reflection is traced as a branch of its own (`finish_path`), so
+    /// every sample sees both what the window mirrors and what is behind
+    /// it. None elsewhere, and where only one lobe exists (total internal
+    /// reflection).
+    fn glass_lobes(
+        &self,
+        st: &PathState,
+        vertex: &Vertex,
+        u: glam::Vec2,
+    ) -> Option<(BsdfSample, BsdfSample)> {
+        let splits = self.scene.filter_indirect && self.scene.medium.is_none();
+        if !splits || st.bounces > 0 || !st.split.ahead || st.split.branched {
+            return None;
         }
+        if !matches!(vertex.bsdf, Bsdf::Dielectric { .. }) || !vertex.bsdf.is_delta() {
+            return None;
+        }
+        let wo = vertex.wo_local;
+        // The smooth interface reflects below its reflection probability
+        // and refracts above it (`dielectric::sample_smooth`).
+        let reflected = vertex.bsdf.sample(wo, 0.0, u)?;
+        let refracted = vertex.bsdf.sample(wo, ONE_MINUS_EPS, u)?;
+        if reflected.wi.z * wo.z <= 0.0 || refracted.wi.z * wo.z >= 0.0 {
+            return None;
+        }
+        let whole = |s: BsdfSample| BsdfSample { pdf: 1.0, ..s };
+        Some((whole(reflected), whole(refracted)))
     }
 
     /// One surface vertex: emission (MIS-weighted), NEE, BSDF sampling and
@@ -446,7 +529,7 @@ impl<A: Accel> PathContext<'_, A> {
     ) -> (Option<Ray>, Vec3, Vec3) {
         let mut pending = PendingShadows::new();
         let mut u = if st.bounces < self.max_depth {
-            BounceSamples::draw(stream, st.bounces, self.lights)
+            BounceSamples::draw(stream, st.bounces, st.dim_base, self.lights)
         } else {
             BounceSamples::default()
         };
@@ -552,14 +635,24 @@ impl<A: Accel> PathContext<'_, A> {
                 self.direct_local(&vertex, &u.u_local, st.beta, pending, rays);
             }
         }
-        let bs = bsdf.sample(vertex.wo_local, u.u_lobe, u.u_bsdf)?;
+        let glass = self.glass_lobes(st, &vertex, u.u_bsdf);
+        let bs = match glass {
+            Some((_, refracted)) => refracted,
+            None => bsdf.sample(vertex.wo_local, u.u_lobe, u.u_bsdf)?,
+        };
         if bs.pdf <= 0.0 {
             return None;
         }
         // The throughput's factor for this bounce, f·|cos θi|/pdf.
         let weight = bs.f * bs.wi.z.abs() / bs.pdf;
-        // In fog too: glass's reflection is filtered apart there as well.
-        if st.split.ahead && (scene.filter_indirect || scene.filter_inscatter) {
+        if let Some((reflected, _)) = glass {
+            let r = reflected.f * reflected.wi.z.abs();
+            st.split.split_glass(r, st.beta);
+            let ray = vertex.front.spawn_ray(&si, frame.from_local(reflected.wi));
+            let cone = st.cone.through_delta(dist);
+            st.glass_branch = Some(st.glass_branch(ray, st.beta * r, si.p, cone));
+        } else if st.split.ahead && (scene.filter_indirect || scene.filter_inscatter) {
+            // In fog too: glass's reflection is filtered apart there as well.
             st.split
                 .at_glass(&bsdf, vertex.wo_local, bs.wi, weight, st.beta, st.l);
         }
@@ -592,6 +685,8 @@ impl<A: Accel> PathContext<'_, A> {
     }
 }
 
+#[cfg(test)]
+mod glass_tests;
 #[cfg(test)]
 mod regularize_tests;
 #[cfg(test)]

@@ -56,10 +56,16 @@ pub(super) struct RisSamples {
 impl RisSamples {
     /// The samples of scattering event `bounces` for `m` candidates:
     /// `first` is the bounce's local-light set (the one-sample draw), the
-    /// rest from their own fixed dimensions.
-    pub fn draw(stream: &mut SampleStream, bounces: u32, first: [f32; 4], m: usize) -> Self {
+    /// rest from their own fixed dimensions, offset by `dim_base`
+    /// (`PathState::dim_base`).
+    pub fn draw(
+        stream: &mut SampleStream,
+        (bounces, dim_base): (u32, u32),
+        first: [f32; 4],
+        m: usize,
+    ) -> Self {
         let mut u = [first; CANDIDATES];
-        stream.set_dimension(RIS_DIMS + bounces * CANDIDATES as u32);
+        stream.set_dimension(dim_base + RIS_DIMS + bounces * CANDIDATES as u32);
         for c in u.iter_mut().take(m).skip(1) {
             *c = stream.next_4d();
         }

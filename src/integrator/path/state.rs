@@ -4,6 +4,7 @@
 use glam::Vec3;
 
 use super::RayCone;
+use crate::accel::Ray;
 use crate::integrator::aov::AovState;
 use crate::integrator::denoise_parts::SplitVertex;
 
@@ -46,6 +47,34 @@ pub(in crate::integrator) struct PathState {
     pub cone: RayCone,
     /// The search for the first visible surface's albedo and normal.
     pub aov: AovState,
+    /// Added to every sample dimension the path draws: 0, or
+    /// `GLASS_BRANCH_DIMS` on a glass reflection's own branch, so its
+    /// bounces do not reuse the numbers of the refraction's.
+    pub dim_base: u32,
+    /// The reflection of the smooth glass the camera ray met first, left
+    /// to trace once the refraction's path has ended
+    /// (`PathContext::finish_path`).
+    pub glass_branch: Option<GlassBranch>,
+}
+
+/// Dimension offset of a glass reflection's branch (`PathState::dim_base`):
+/// past every bounce's and candidate's own sets (`RIS_DIMS` + bounces ×
+/// candidates stays below 2²⁰).
+pub(in crate::integrator) const GLASS_BRANCH_DIMS: u32 = 1 << 24;
+
+/// What the reflection's path starts from: the glass vertex's state with
+/// the reflection's throughput.
+#[derive(Clone, Copy)]
+pub(in crate::integrator) struct GlassBranch {
+    /// The reflected ray.
+    pub ray: Ray,
+    beta: Vec3,
+    prev_p: Vec3,
+    prev_n: Vec3,
+    bounces: u32,
+    rough_bounce: bool,
+    cone: RayCone,
+    aov: AovState,
 }
 
 impl PathState {
@@ -65,7 +94,42 @@ impl PathState {
             rough_bounce: false,
             cone: RayCone::NONE,
             aov: AovState::default(),
+            dim_base: 0,
+            glass_branch: None,
         }
+    }
+
+    /// The branch of a reflected `ray` of throughput `beta`, leaving the
+    /// glass vertex at `p` (this state's, before it steps over the
+    /// vertex) with the pixel's cone `cone` there.
+    pub fn glass_branch(&self, ray: Ray, beta: Vec3, p: Vec3, cone: RayCone) -> GlassBranch {
+        GlassBranch {
+            ray,
+            beta,
+            prev_p: p,
+            // Glass receives from both sides (`receiver_normal`).
+            prev_n: Vec3::ZERO,
+            bounces: self.bounces + 1,
+            rough_bounce: self.rough_bounce,
+            cone,
+            aov: self.aov,
+        }
+    }
+
+    /// The state the reflection's path starts in: no split vertex ahead
+    /// (a reflection's light is filtered as `l_refl`, not as a surface's),
+    /// its own sample dimensions, nothing gathered yet.
+    pub fn of_glass_branch(b: &GlassBranch) -> PathState {
+        let mut st = PathState::new(b.prev_p);
+        st.beta = b.beta;
+        st.prev_n = b.prev_n;
+        st.bounces = b.bounces;
+        st.rough_bounce = b.rough_bounce;
+        st.cone = b.cone;
+        st.aov = b.aov;
+        st.split.ahead = false;
+        st.dim_base = GLASS_BRANCH_DIMS;
+        st
     }
 
     /// Russian roulette after `RR_START` bounces; false ends the path.
