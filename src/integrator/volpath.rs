@@ -74,7 +74,7 @@ mod segment;
 mod strategies;
 mod surface_split;
 #[cfg(test)]
-mod tests;
+pub(super) mod tests;
 
 use segment::{SegmentEnd, SegmentSamples, VolState, SPLIT_SET};
 use strategies::{NeeRoulette, Strategies};

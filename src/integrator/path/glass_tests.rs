@@ -5,15 +5,13 @@
 //! glass with the pane's Fresnel reflectance as its weight; the image's
 //! mean is the one the reflect-or-refract choice gives, with less noise.
 
-use std::path::Path;
+use glam::Vec3;
 
-use glam::{DVec3, Vec3};
-
-use crate::accel::{build_accel, AnyAccel, Backend, Ray};
+use crate::accel::Ray;
 use crate::integrator::path::LiSample;
+use crate::integrator::volpath::tests::built;
 use crate::integrator::Shading;
 use crate::sampler::{SampleStream, StreamKey};
-use crate::scene::{build_scene, parse_scene_str, Scene};
 use shaders_cpu::bsdf::fresnel::fr_dielectric;
 
 const SCENE: &str = r#"
@@ -84,14 +82,6 @@ fn ray() -> Ray {
         Vec3::new(0.0, 0.0, 1.5),
         Vec3::new(1.0, 0.1, 0.05).normalize(),
     )
-}
-
-fn built(src: &str) -> (Scene, AnyAccel) {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/inline.toml");
-    let loaded = parse_scene_str(src, &path).expect("scene parses");
-    let scene = build_scene(&loaded, DVec3::ZERO).expect("scene builds");
-    let accel = build_accel(Backend::Bvh, &scene.accel_geometry()).expect("accel builds");
-    (scene, accel)
 }
 
 /// Mean and variance of the red channel of `f(sample)`.

@@ -78,7 +78,7 @@ fn samples(strategies: Strategies, dirs: &[Vec3], n: u32) -> Vec<Vec<f64>> {
 }
 
 /// Scene `src` (TOML) built, with its BVH.
-fn built(src: &str) -> (Scene, AnyAccel) {
+pub(in crate::integrator) fn built(src: &str) -> (Scene, AnyAccel) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/inline.toml");
     let loaded = parse_scene_str(src, &path).expect("scene parses");
     let scene = build_scene(&loaded, DVec3::ZERO).expect("scene builds");
