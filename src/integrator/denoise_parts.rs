@@ -221,10 +221,6 @@ pub(super) struct SplitVertex {
     /// The throughput after that reflection (else zero):
     /// `DenoiseSample::rho_refl_hit`.
     pub rho_refl_hit: Vec3,
-    /// Whether the first glass's reflection is traced as a branch of its
-    /// own (`SplitVertex::split_glass`): its light is then added to
-    /// `l_refl` when the branch ends, and no later reflection records one.
-    pub branched: bool,
 }
 
 impl SplitVertex {
@@ -267,7 +263,6 @@ impl SplitVertex {
     pub fn split_glass(&mut self, r: Vec3, beta: Vec3) {
         self.rho_refl += beta * r;
         self.rho_refl_hit = beta * r;
-        self.branched = true;
     }
 }
 
@@ -281,7 +276,6 @@ impl Default for SplitVertex {
             rho_refl: Vec3::ZERO,
             refl_from: None,
             rho_refl_hit: Vec3::ZERO,
-            branched: false,
         }
     }
 }

@@ -494,8 +494,8 @@ impl<A: Accel> PathContext<'_, A> {
         vertex: &Vertex,
         u: glam::Vec2,
     ) -> Option<(BsdfSample, BsdfSample)> {
-        let splits = self.scene.filter_indirect && self.scene.medium.is_none();
-        if !splits || st.bounces > 0 || !st.split.ahead || st.split.branched {
+        // Bounce 0: the camera's own hit (a branch starts at bounce 1).
+        if st.bounces > 0 || !self.scene.filter_indirect || self.scene.medium.is_some() {
             return None;
         }
         if !matches!(vertex.bsdf, Bsdf::Dielectric { .. }) || !vertex.bsdf.is_delta() {
@@ -650,7 +650,12 @@ impl<A: Accel> PathContext<'_, A> {
             st.split.split_glass(r, st.beta);
             let ray = vertex.front.spawn_ray(&si, frame.from_local(reflected.wi));
             let cone = st.cone.through_delta(dist);
-            st.glass_branch = Some(st.glass_branch(ray, st.beta * r, si.p, cone));
+            st.glass_branch = Some(GlassBranch {
+                ray,
+                beta: st.beta * r,
+                p: si.p,
+                cone,
+            });
         } else if st.split.ahead && (scene.filter_indirect || scene.filter_inscatter) {
             // In fog too: glass's reflection is filtered apart there as well.
             st.split

@@ -62,19 +62,19 @@ pub(in crate::integrator) struct PathState {
 /// candidates stays below 2²⁰).
 pub(in crate::integrator) const GLASS_BRANCH_DIMS: u32 = 1 << 24;
 
-/// What the reflection's path starts from: the glass vertex's state with
-/// the reflection's throughput.
+/// What the reflection of the glass a camera ray met first starts from
+/// (`PathContext::glass_lobes`): the rest is a camera path's state after
+/// one delta scatter.
 #[derive(Clone, Copy)]
 pub(in crate::integrator) struct GlassBranch {
     /// The reflected ray.
     pub ray: Ray,
-    beta: Vec3,
-    prev_p: Vec3,
-    prev_n: Vec3,
-    bounces: u32,
-    rough_bounce: bool,
-    cone: RayCone,
-    aov: AovState,
+    /// Its throughput: the Fresnel reflectance.
+    pub beta: Vec3,
+    /// The glass vertex.
+    pub p: Vec3,
+    /// The pixel's cone there.
+    pub cone: RayCone,
 }
 
 impl PathState {
@@ -99,34 +99,14 @@ impl PathState {
         }
     }
 
-    /// The branch of a reflected `ray` of throughput `beta`, leaving the
-    /// glass vertex at `p` (this state's, before it steps over the
-    /// vertex) with the pixel's cone `cone` there.
-    pub fn glass_branch(&self, ray: Ray, beta: Vec3, p: Vec3, cone: RayCone) -> GlassBranch {
-        GlassBranch {
-            ray,
-            beta,
-            prev_p: p,
-            // Glass receives from both sides (`receiver_normal`).
-            prev_n: Vec3::ZERO,
-            bounces: self.bounces + 1,
-            rough_bounce: self.rough_bounce,
-            cone,
-            aov: self.aov,
-        }
-    }
-
     /// The state the reflection's path starts in: no split vertex ahead
     /// (a reflection's light is filtered as `l_refl`, not as a surface's),
     /// its own sample dimensions, nothing gathered yet.
     pub fn of_glass_branch(b: &GlassBranch) -> PathState {
-        let mut st = PathState::new(b.prev_p);
+        let mut st = PathState::new(b.p);
         st.beta = b.beta;
-        st.prev_n = b.prev_n;
-        st.bounces = b.bounces;
-        st.rough_bounce = b.rough_bounce;
+        st.bounces = 1;
         st.cone = b.cone;
-        st.aov = b.aov;
         st.split.ahead = false;
         st.dim_base = GLASS_BRANCH_DIMS;
         st
