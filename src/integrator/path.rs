@@ -490,12 +490,12 @@ impl<A: Accel> PathContext<'_, A> {
     /// reflection).
     fn glass_lobes(
         &self,
-        st: &PathState,
+        bounces: u32,
         vertex: &Vertex,
         u: glam::Vec2,
     ) -> Option<(BsdfSample, BsdfSample)> {
         // Bounce 0: the camera's own hit (a branch starts at bounce 1).
-        if st.bounces > 0 || !self.scene.filter_indirect || self.scene.medium.is_some() {
+        if bounces > 0 || !self.scene.filter_indirect || self.scene.medium.is_some() {
             return None;
         }
         if !matches!(vertex.bsdf, Bsdf::Dielectric { .. }) || !vertex.bsdf.is_delta() {
@@ -635,7 +635,7 @@ impl<A: Accel> PathContext<'_, A> {
                 self.direct_local(&vertex, &u.u_local, st.beta, pending, rays);
             }
         }
-        let glass = self.glass_lobes(st, &vertex, u.u_bsdf);
+        let glass = self.glass_lobes(st.bounces, &vertex, u.u_bsdf);
         let bs = match glass {
             Some((_, refracted)) => refracted,
             None => bsdf.sample(vertex.wo_local, u.u_lobe, u.u_bsdf)?,
