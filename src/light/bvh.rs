@@ -19,12 +19,14 @@ use glam::Vec3;
 
 mod bounds;
 mod build;
+mod cut;
 mod node;
 pub(super) use bounds::acos_clamped;
 #[cfg(test)]
 use bounds::cone_union;
 pub use bounds::LightBounds;
 use build::{Subtree, PARALLEL_GRAIN};
+pub use cut::{Cut, Region};
 #[cfg(test)]
 use node::{angle_sub_clamped, safe_sqrt};
 use node::{Packed, Side, MAX_INDEX};
@@ -50,6 +52,8 @@ pub struct LightBvh {
     nodes: Vec<Packed>,
     /// Per light: the branch taken at each depth (bit d = 1: second child).
     trails: Vec<u128>,
+    /// Per light: its leaf's node index (`u32::MAX`: left out).
+    leaves: Vec<u32>,
 }
 
 impl LightBvh {
@@ -78,6 +82,12 @@ impl LightBvh {
             "light tree of {} nodes",
             sub.nodes.len()
         );
+        let mut leaves = vec![u32::MAX; bounds.len()];
+        for (k, n) in sub.nodes.iter().enumerate() {
+            if n.leaf {
+                leaves[n.child_or_light as usize] = k as u32;
+            }
+        }
         LightBvh {
             nodes: sub
                 .nodes
@@ -85,6 +95,7 @@ impl LightBvh {
                 .map(|n| Packed::new(&n.bounds, n.child_or_light, n.leaf))
                 .collect(),
             trails,
+            leaves,
         }
     }
 
@@ -232,15 +243,33 @@ impl LightBvh {
         n: Vec3,
         us: [Option<f32>; M],
     ) -> [Option<(u32, f32)>; M] {
-        let mut out = [None; M];
         if self.nodes.is_empty() {
-            return out;
+            return [None; M];
         }
-        let mut walks = us.map(|u| {
-            u.map(|u| Walker {
-                k: 0,
-                pmf: 1.0,
-                end: self.nodes.len(),
+        let root = Start {
+            node: 0,
+            end: self.nodes.len() as u32,
+            pmf: 1.0,
+        };
+        self.walk_many(p, n, us.map(|u| u.map(|u| (root, u))))
+    }
+
+    /// Walks down from each given node (with the probability of having
+    /// come there, and a number in [0, 1)) to a leaf, all together:
+    /// [`LightBvh::sample_facing_many`] from the root, a [`Cut`]'s
+    /// walks from its nodes.
+    fn walk_many<const M: usize>(
+        &self,
+        p: Vec3,
+        n: Vec3,
+        starts: [Option<(Start, f32)>; M],
+    ) -> [Option<(u32, f32)>; M] {
+        let mut out = [None; M];
+        let mut walks = starts.map(|s| {
+            s.map(|(s, u)| Walker {
+                k: s.node as usize,
+                pmf: s.pmf,
+                end: s.end as usize,
                 u,
                 walk: Walk::new(n),
             })
@@ -388,10 +417,22 @@ impl LightBvh {
         if self.nodes.is_empty() {
             return 0.0;
         }
-        let mut trail = self.trails[light as usize];
-        let mut k = 0;
-        let mut pmf = 1.0f32;
-        let mut end = self.nodes.len();
+        let root = Start {
+            node: 0,
+            end: self.nodes.len() as u32,
+            pmf: 1.0,
+        };
+        self.replay(p, n, light, (root, 0))
+    }
+
+    /// The probability that a walk from `start` (at depth `depth`) ends at
+    /// `light`, whose leaf lies under it: the walk's arithmetic replayed
+    /// down the light's trail.
+    fn replay(&self, p: Vec3, n: Vec3, light: u32, (start, depth): (Start, u32)) -> f32 {
+        let mut trail = self.trails[light as usize] >> depth;
+        let mut k = start.node as usize;
+        let mut pmf = start.pmf;
+        let mut end = start.end as usize;
         let mut walk = Walk::new(n);
         loop {
             let node = &self.nodes[k];
@@ -423,6 +464,15 @@ impl LightBvh {
             walk.descend(w[taken].1);
         }
     }
+}
+
+/// Where a walk starts: a node, the end of its subtree, and the
+/// probability of having come there.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Start {
+    node: u32,
+    end: u32,
+    pmf: f32,
 }
 
 /// One walk of [`LightBvh::sample_facing_many`] under way.

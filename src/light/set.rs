@@ -82,6 +82,8 @@ pub struct LightSet {
     /// local lights at all (the rest skip them; the pmfs include it, so the
     /// estimate keeps its mean).
     budget: LocalBudget,
+    /// This set's number for the cache of its tree's cuts (`cuts.rs`).
+    cut_set: u64,
 }
 
 /// Area and unit normal of a triangle.
@@ -190,6 +192,7 @@ impl LightSet {
             suns,
             tri_index,
             emitters,
+            cut_set: cuts::next_set(),
         }
     }
 
@@ -347,7 +350,7 @@ impl LightSet {
             Route::Skip => None,
             Route::Sun(pick) => Some(pick),
             Route::Tree(u) => {
-                let walked = self.bvh.sample_facing(p, n, u);
+                let [walked] = self.walk_tree((p, n), [Some(u)], bounce);
                 walked.map(|w| self.tree_pick(w, bounce))
             }
         }
@@ -371,6 +374,32 @@ impl LightSet {
             ));
         }
         Route::Tree(((u_select - self.p_suns) / (1.0 - self.p_suns)).clamp(0.0, 1.0 - f32::EPSILON))
+    }
+
+    /// The tree's choice for each number of `us` at receiver `p`, normal
+    /// `n`: walks from the cut of the cell holding `p` (`cuts.rs`).
+    fn walk_tree<const M: usize>(
+        &self,
+        (p, n): (Vec3, Vec3),
+        us: [Option<f32>; M],
+        bounce: u32,
+    ) -> [Option<(u32, f32)>; M] {
+        if us.iter().all(Option::is_none) || self.bvh.is_empty() {
+            return [None; M];
+        }
+        cuts::with_cut((self.cut_set, &self.bvh), (p, n), bounce, |cut| {
+            self.bvh.sample_in_cut(cut, (p, n), us)
+        })
+    }
+
+    /// The probability that [`LightSet::walk_tree`] returns `light`.
+    fn tree_pmf(&self, (p, n): (Vec3, Vec3), light: u32, bounce: u32) -> f32 {
+        if self.bvh.is_empty() {
+            return 0.0;
+        }
+        cuts::with_cut((self.cut_set, &self.bvh), (p, n), bounce, |cut| {
+            self.bvh.pmf_in_cut(cut, (p, n), light)
+        })
     }
 
     /// A tree walk's (entry, pmf) as a selection: the pmf times the
@@ -403,7 +432,7 @@ impl LightSet {
                 Some(Route::Tree(u)) => *t = Some(u),
             }
         }
-        let walked = self.bvh.sample_facing_many(p, n, tree);
+        let walked = self.walk_tree((p, n), tree, bounce);
         for (pick, w) in picks.iter_mut().zip(walked) {
             if let Some(w) = w {
                 *pick = Some(self.tree_pick(w, bounce));
@@ -441,7 +470,7 @@ impl LightSet {
                 Entry::Explicit(Light::Sun { .. }) => {
                     self.p_suns / self.local_suns.len() as f32 * p_local
                 }
-                _ => self.bvh.pmf_facing(p, n, idx as u32) * (1.0 - self.p_suns) * p_local,
+                _ => self.tree_pmf((p, n), idx as u32, bounce) * (1.0 - self.p_suns) * p_local,
             },
             _ => self.pmf[idx],
         }
@@ -555,6 +584,7 @@ impl LightSet {
 }
 
 mod collect;
+mod cuts;
 use collect::{Collected, SunDisk};
 mod global;
 mod share;

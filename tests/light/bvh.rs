@@ -12,23 +12,23 @@ use parallax::light::{LightSelection, LightSet};
 use parallax::scene::{parse_scene_str, LoadedScene};
 
 /// A small deterministic generator (SplitMix64) for test inputs.
-struct Rng(u64);
+pub(crate) struct Rng(pub(crate) u64);
 
 impl Rng {
-    fn f(&mut self) -> f32 {
+    pub(crate) fn f(&mut self) -> f32 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = self.0;
         z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
         z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
         ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
     }
-    fn v(&mut self, s: f32) -> Vec3 {
+    pub(crate) fn v(&mut self, s: f32) -> Vec3 {
         Vec3::new(self.f() - 0.5, self.f() - 0.5, self.f() - 0.5) * s
     }
 }
 
 /// Points, spots and one- and two-sided triangles scattered in a 40 m box.
-fn random_lights(n: usize, rng: &mut Rng) -> Vec<LightBounds> {
+pub(crate) fn random_lights(n: usize, rng: &mut Rng) -> Vec<LightBounds> {
     (0..n)
         .map(|k| {
             let p = rng.v(40.0);

@@ -8,6 +8,7 @@ mod analytic_furnace;
 mod analytic_lights;
 mod bump_furnace;
 mod bvh;
+mod cut;
 mod media_analytic;
 mod noise_town;
 mod sky_physical_furnace;

@@ -162,6 +162,35 @@ impl Packed {
     }
 }
 
+impl Packed {
+    /// A bound of [`Packed::at_unculled`] (no receiver normal) over every
+    /// point of the ball of centre `c` and radius `r`: zero only where no
+    /// point of it can be lit. Its angles are those of the node's box grown
+    /// by `r` seen from `c` (every direction from the box to a point of
+    /// the ball lies within them); its distance is the centre's, floored at
+    /// `r`, a weight rather than a bound.
+    pub(super) fn at_ball(&self, c: Vec3, r: f32) -> f32 {
+        let grown = Packed {
+            r2: (self.r2.sqrt() + r) * (self.r2.sqrt() + r),
+            d2_min: self.d2_min.max(r * r),
+            ..*self
+        };
+        grown.at_unculled(c, Vec3::ZERO)
+    }
+
+    /// Whether the node's box lies behind the plane of every receiver in
+    /// the ball (`c`, `r`) whose unit normal is within distance `spread`
+    /// of unit `axis` (|n − axis| ≤ spread): then none of its lights
+    /// reaches any of them.
+    pub(super) fn behind_ball(&self, (c, r): (Vec3, f32), axis: Vec3, spread: f32) -> bool {
+        // n·(q − p) ≤ axis·(q − p) + |n − axis|·|q − p| for q in the box,
+        // p in the ball.
+        let ahead = axis.dot(self.pc - c) + axis.abs().dot(self.half) + r;
+        let reach = (self.pc - c).length() + self.r2.sqrt() + r;
+        ahead + spread * reach <= 0.0
+    }
+}
+
 /// [`Packed::at_unculled`] of each of `nodes`, the same bits: the nodes'
 /// fields are laid side by side and the arithmetic runs lane by lane
 /// without branches, so the compiler computes several nodes per

@@ -271,3 +271,44 @@ fn candidates_chosen_together_get_each_ones_own_choice() {
         assert!(chosen > 1000, "{chosen} chosen for\n{extra}");
     }
 }
+
+#[test]
+fn a_cells_choice_is_the_same_from_any_thread_and_after_its_cut_was_evicted() {
+    // Lamps over a wide floor: choices at points spread over far more
+    // cells than a thread's cache holds, asked in one thread in one order
+    // and in a fresh thread in the other, give the same lights and bits.
+    let lamps: String = (0..40)
+        .map(|k| {
+            let (x, y) = ((k % 8) as f32 * 12.0 - 42.0, (k / 8) as f32 * 12.0 - 24.0);
+            format!("[[light]]\nkind = \"point\"\nposition = [{x:?}, {y:?}, 5.0]\nintensity = [1e6, 1e6, 1e6]\n")
+        })
+        .collect();
+    let lights = LightSet::build(&scene_with(&format!("{OVERCAST}{lamps}")));
+    assert_eq!(lights.budget.candidates, crate::light::LOCAL_CANDIDATES);
+    let mut rng = Rng::new(&[0x0c07_5eed]);
+    let asks: Vec<(Vec3, Vec3, f32)> = (0..30_000)
+        .map(|k| {
+            let p = Vec3::new(rng.f32() - 0.5, rng.f32() - 0.5, 0.2 * rng.f32()) * 400.0;
+            let n = [Vec3::Z, Vec3::ZERO, Vec3::new(0.6, 0.0, 0.8)][k % 3];
+            (p, n, rng.f32())
+        })
+        .collect();
+    let answer = |&(p, n, u): &(Vec3, Vec3, f32)| {
+        let pick = lights.select_at(p, n, u, 0);
+        let pmf = pick.map(|(i, _)| lights.pmf_at(p, n, i, 0).to_bits());
+        (pick.map(|(i, pmf)| (i, pmf.to_bits())), pmf)
+    };
+    let here: Vec<_> = asks.iter().map(answer).collect();
+    let there: Vec<_> = std::thread::scope(|s| {
+        s.spawn(|| asks.iter().rev().map(answer).collect::<Vec<_>>())
+            .join()
+            .unwrap()
+    });
+    let there: Vec<_> = there.into_iter().rev().collect();
+    assert_eq!(here, there);
+    let chosen = here.iter().filter(|(pick, _)| pick.is_some()).count();
+    assert!(chosen > 20_000, "{chosen} chosen");
+    for (pick, pmf) in &here {
+        assert_eq!(pick.map(|(_, bits)| bits), *pmf);
+    }
+}
