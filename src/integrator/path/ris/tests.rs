@@ -215,14 +215,14 @@ fn a_wall_given_its_normal_keeps_the_closed_form_with_less_variance() {
 }
 
 /// A plane under `n` point lights of intensity 10 on a circle of radius 3,
-/// 4 m up, centred over the origin.
+/// 4 m up, centred over `RING_CENTRE`.
 fn ring_scene(n: usize) -> crate::scene::Scene {
     let mut text = String::from(
         "[camera]\nposition = [0.0, 0.0, 1.5]\n[[material]]\nname = \"m\"\nkind = \"diffuse\"\nalbedo = [0.5, 0.5, 0.5]\n[[object]]\nkind = \"quad\"\nsize = [60.0, 60.0]\nmaterial = \"m\"\n",
     );
     for k in 0..n {
         let a = std::f32::consts::TAU * k as f32 / n as f32;
-        let (x, y) = (3.0 * a.cos(), 3.0 * a.sin());
+        let (x, y) = (RING_CENTRE.x + 3.0 * a.cos(), RING_CENTRE.y + 3.0 * a.sin());
         text += &format!("[[light]]\nkind = \"point\"\nposition = [{x}, {y}, 4.0]\nintensity = [10.0, 10.0, 10.0]\n");
     }
     let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/inline.toml");
@@ -230,10 +230,15 @@ fn ring_scene(n: usize) -> crate::scene::Scene {
     build_scene(&loaded, DVec3::ZERO).expect("scene builds")
 }
 
+/// The centre of the light tree's cells of a path's first vertex over
+/// the origin's corner (`light::set::cuts`): the cell's cut weighs lamps
+/// on a ring about it alike.
+const RING_CENTRE: Vec3 = Vec3::new(1.0, 1.0, 0.0);
+
 #[test]
 fn stratified_candidates_see_every_lamp_the_tree_weighs_alike() {
-    // Under the centre of a ring of M equal lamps the tree gives each a
-    // pmf of 1/M: the M stratified candidates are the M lamps, one each,
+    // Under the centre of a ring of M equal lamps, at the centre of its
+    // cell, the tree gives each a pmf of 1/M: the M stratified candidates are the M lamps, one each,
     // so every draw's estimate is the closed form Σ f·I/d², here with a
     // BSDF that favours +x (the tree, given no normal, cannot see it).
     // Independent candidates repeat a lamp and miss another in most draws.
@@ -246,6 +251,7 @@ fn stratified_candidates_see_every_lamp_the_tree_weighs_alike() {
             .iter()
             .map(|l| match *l {
                 Light::Point { p: q, intensity } => {
+                    let q = q - RING_CENTRE;
                     (f(q.normalize()).y * intensity.y / q.length_squared()) as f64
                 }
                 _ => unreachable!("points only"),
@@ -258,8 +264,8 @@ fn stratified_candidates_see_every_lamp_the_tree_weighs_alike() {
                 *c = [rng.f(), rng.f(), rng.f(), rng.f()];
             }
             let u = RisSamples { u, m, bounce: 0 };
-            let r = resample(&lights, &scene, (Vec3::ZERO, Vec3::ZERO), &u, f)
-                .expect("every lamp lights the origin");
+            let r = resample(&lights, &scene, (RING_CENTRE, Vec3::ZERO), &u, f)
+                .expect("every lamp lights the ring's centre");
             let x = (r.f * r.ls.li * r.inv_pdf.expect("resampled")).y as f64;
             assert!(
                 (x - e).abs() <= 1e-4 * e,
