@@ -12,6 +12,10 @@
 //! normal): nodes wholly below its horizon get nothing, and lights that meet
 //! it at grazing angles less.
 //!
+//! A walk may also start from a node of a [`Cut`], the tree's top weighed
+//! once for a region of receivers (`cut.rs`); [`LightBvh::sample_facing`]
+//! and [`LightBvh::pmf_facing`] are the walk from the root.
+//!
 //! Render space; `p` is the receiving point. The build is serial and uses
 //! only deterministic selects, so the same lights give the same tree.
 

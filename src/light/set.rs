@@ -12,7 +12,8 @@
 //! function does not favour the sky) and its tables carry the fog's
 //! transmittance. Local lights (point, spot, emissive triangles) are selected
 //! one per vertex by a light BVH (`bvh.rs`, Conty Estevez & Kulla 2018) from
-//! the shading point; suns beyond `MAX_DISTANT` take a uniform share beside
+//! the shading point, each walk starting from the tree's cut for the cell
+//! of space holding the point (`cuts.rs`, `bvh/cut.rs`); suns beyond `MAX_DISTANT` take a uniform share beside
 //! the tree (pbrt-v4's `BVHLightSampler`). The older point-independent
 //! selection (half by power, half uniform) and uniform selection stay
 //! available as [`LightSelection`] kinds. Probabilities returned include the
