@@ -55,8 +55,17 @@ pub struct DenoiseSample {
     /// that the camera ray meets through delta scatters (a pane's front or
     /// back face), when the sample took that reflection (zero when it
     /// refracted throughout): the sky and street a window mirrors. Filtered
-    /// as a ratio to `rho_refl`.
+    /// as a ratio to `rho_refl`. On the reflection's own branch
+    /// (`PathContext::glass_lobes`) less `l_refl_sharp`.
     pub l_refl: Vec3,
+    /// What the glass's reflection branch shows sharp, left as traced
+    /// (part of the radiance, in no filtered part): the light it meets
+    /// through delta scatters only (the sky, lamps and lit windows seen in
+    /// the glass) and the sun's next-event light where it first meets a
+    /// rough surface. Given the reflected ray these are nearly free of
+    /// noise, and they carry what the window mirrors in detail: the sunlit
+    /// brickwork, the lamps, the skyline.
+    pub l_refl_sharp: Vec3,
     /// Σ throughput × Fresnel reflectance over those glass faces, on every
     /// sample that met them, reflected or not: the mean of `l_refl` is the
     /// pixel's mean `rho_refl` times the reflected radiance, whatever share
@@ -296,6 +305,8 @@ mod tests {
             rho_direct: Vec3::splat(0.25),
             glossy: true,
             l_refl: Vec3::new(0.0, 0.0, 4.0),
+            // Left as traced: in no filtered sum.
+            l_refl_sharp: Vec3::splat(9.0),
             rho_refl: Vec3::splat(0.125),
             rho_refl_hit: Vec3::splat(0.5),
             openness: 0.25,

@@ -34,8 +34,8 @@ pub use cone::RayCone;
 pub(super) use nee::ShadowTrRoulette;
 use ris::RisSamples;
 use shadows::PendingShadows;
-use state::GlassBranch;
 pub(super) use state::PathState;
+use state::{GlassBranch, GLASS_BRANCH_DIMS};
 
 /// 4D sample sets per bounce: (BSDF u, BSDF v, lobe, roulette), two 2D
 /// samples for distant lights 0 and 1, (light choice, light u, light v,
@@ -184,10 +184,54 @@ fn direct_part(st: &PathState, l_direct: Vec3, d: DenoiseSample) -> DenoiseSampl
         },
         glossy,
         split_behind_delta: st.split.behind_delta,
-        l_refl: st.split.refl_from.map_or(Vec3::ZERO, |l0| st.l - l0),
+        l_refl: st.split.refl_from.map_or(d.l_refl, |l0| st.l - l0),
         rho_refl: st.split.rho_refl,
         rho_refl_hit: st.split.rho_refl_hit,
         ..d
+    }
+}
+
+/// What a glass reflection's branch shows sharp
+/// (`DenoiseSample::l_refl_sharp`), gathered as its path is traced.
+struct SharpMirror {
+    /// Whether the path is such a branch (else nothing is gathered).
+    on_branch: bool,
+    /// Whether the vertex whose shadow rays are pending was reached from
+    /// the glass through delta scatters only.
+    pending: bool,
+    /// The light gathered so far.
+    l: Vec3,
+}
+
+impl SharpMirror {
+    fn new(on_branch: bool) -> Self {
+        SharpMirror {
+            on_branch,
+            pending: false,
+            l: Vec3::ZERO,
+        }
+    }
+
+    /// Light `l` a path in state `st` met along its ray (the sky).
+    fn add_seen(&mut self, st: &PathState, l: Vec3) {
+        if self.on_branch && !st.rough_bounce {
+            self.l += l;
+        }
+    }
+
+    /// Light the pending vertex emitted.
+    fn add_seen_pending(&mut self, l: Vec3) {
+        if self.pending {
+            self.l += l;
+        }
+    }
+
+    /// The sun's next-event light of the pending vertex, as its shadow
+    /// rays are resolved.
+    fn add_sun(&mut self, sun: Vec3) {
+        if self.pending {
+            self.l += sun;
+        }
     }
 }
 
@@ -229,7 +273,8 @@ impl LiSample {
     /// refracted path's where that has one.
     fn add_reflection(&mut self, reflected: &LiSample) {
         self.l += reflected.l;
-        self.denoise.l_refl += reflected.l;
+        self.denoise.l_refl += reflected.denoise.l_refl;
+        self.denoise.l_refl_sharp += reflected.denoise.l_refl_sharp;
         self.aov.albedo += reflected.aov.albedo;
         if self.aov.normal == Vec3::ZERO {
             self.aov.normal = reflected.aov.normal;
@@ -408,6 +453,10 @@ impl<A: Accel> PathContext<'_, A> {
         let mut gloss_before = None;
         // The split vertex's bounce: how freely its ray left (1 untraced).
         let mut openness = 1.0;
+        // On a glass reflection's branch, what it shows sharp
+        // (`DenoiseSample::l_refl_sharp`); and whether the vertex whose
+        // shadow rays are pending was reached through delta scatters only.
+        let mut sharp = SharpMirror::new(st.dim_base == GLASS_BRANCH_DIMS);
         loop {
             *rays += 1;
             let hit = self.accel.intersect(&ray);
@@ -421,6 +470,7 @@ impl<A: Accel> PathContext<'_, A> {
             // The previous vertex's shadow rays, while the record loads.
             let before = st.l;
             let sun = pending.resolve(self.accel, &mut st.l);
+            sharp.add_sun(sun);
             if st.split.rho != Vec3::ZERO && l_first.is_none() {
                 // This ray is the split vertex's bounce.
                 openness = denoise_parts::openness(hit.as_ref().map(|h| h.t * ray.d.length()));
@@ -431,18 +481,25 @@ impl<A: Accel> PathContext<'_, A> {
                 gloss_before.get_or_insert((before, sun));
             }
             let Some(hit) = hit else {
+                let before = st.l;
                 st.l += st.beta
                     * self
                         .lights
                         .escaped_at(self.scene, ray.o, ray.d, st.prev_pdf, st.prev_delta);
+                sharp.add_seen(&st, st.l - before);
                 break;
             };
+            let before = st.l;
+            sharp.pending = sharp.on_branch && !st.rough_bounce;
             let next = self.surface_vertex_deferred(&ray, &hit, &mut st, &u, rays, &mut pending);
+            // Its emission (its next-event light is pending).
+            sharp.add_seen_pending(st.l - before);
             match next {
                 Some(next) => ray = next,
                 None => {
                     let before = st.l;
                     let sun = pending.resolve(self.accel, &mut st.l);
+                    sharp.add_sun(sun);
                     if l_first.is_none() {
                         l_direct = split_direct(&st, before, sun);
                     }
@@ -461,12 +518,18 @@ impl<A: Accel> PathContext<'_, A> {
         if let Some((before, sun)) = gloss_before {
             l_direct = st.l - before - sun;
         }
+        let (l_refl, l_refl_sharp) = match sharp.on_branch {
+            true => (st.l - sharp.l, sharp.l),
+            false => (Vec3::ZERO, Vec3::ZERO),
+        };
         let sample = LiSample {
             l: st.l,
             denoise: direct_part(
                 &st,
                 l_direct,
                 DenoiseSample {
+                    l_refl,
+                    l_refl_sharp,
                     l_surf,
                     rho: st.split.rho,
                     split_behind_delta: st.split.behind_delta,

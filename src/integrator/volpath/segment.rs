@@ -239,6 +239,8 @@ impl VolState {
                 rho_direct,
                 glossy: first.glossy.is_some() || split.glossy,
                 l_refl,
+                // Media keep one lobe of glass by chance, no branch.
+                l_refl_sharp: Vec3::ZERO,
                 rho_refl,
                 rho_refl_hit,
                 openness: if first.surface.is_split() {
