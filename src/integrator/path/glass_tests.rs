@@ -14,19 +14,29 @@ use crate::integrator::Shading;
 use crate::sampler::{SampleStream, StreamKey};
 use shaders_cpu::bsdf::fresnel::fr_dielectric;
 
-const SCENE: &str = r#"
+/// The camera and the pane 5 m ahead of it, facing it.
+const PANE: &str = r#"
 [camera]
 width = 4
 height = 4
 hfov_deg = 60.0
 position = [0.0, 0.0, 1.5]
-[sky]
-kind = "constant"
-le = [0.0, 0.0, 0.0]
 [[material]]
 name = "glass"
 kind = "dielectric"
 ior = 1.5
+[[object]]
+kind = "box"
+size = [0.05, 30.0, 30.0]
+material = "glass"
+transform = { translate = [5.0, 0.0, 1.5] }
+"#;
+
+/// Behind the pane a grey emitting wall, behind the camera a red one.
+const WALLS: &str = r#"
+[sky]
+kind = "constant"
+le = [0.0, 0.0, 0.0]
 [[material]]
 name = "grey"
 kind = "emissive"
@@ -35,11 +45,6 @@ radiance = [0.3, 0.3, 0.3]
 name = "red"
 kind = "emissive"
 radiance = [1.0, 0.0, 0.0]
-[[object]]
-kind = "box"
-size = [0.05, 30.0, 30.0]
-material = "glass"
-transform = { translate = [5.0, 0.0, 1.5] }
 [[object]]
 kind = "box"
 size = [0.2, 40.0, 40.0]
@@ -56,9 +61,9 @@ transform = { translate = [-3.0, 0.0, 1.5] }
 /// the image filters on (the glass split) or off (one lobe by chance).
 fn samples(filter: bool, n: u32) -> Vec<LiSample> {
     let src = if filter {
-        SCENE.to_string()
+        format!("{PANE}{WALLS}")
     } else {
-        format!("{SCENE}[render]\nfilter_indirect = false\n")
+        format!("{PANE}{WALLS}[render]\nfilter_indirect = false\n")
     };
     let (scene, accel) = built(&src);
     assert_eq!(scene.filter_indirect, filter);
@@ -171,12 +176,7 @@ fn the_sun_on_what_the_pane_mirrors_is_left_sharp_and_sampled_light_to_the_filte
     const ALBEDO: f32 = 0.5;
     const ELEVATION_DEG: f32 = 45.0;
     let src = format!(
-        r#"
-[camera]
-width = 4
-height = 4
-hfov_deg = 60.0
-position = [0.0, 0.0, 1.5]
+        r#"{PANE}
 [sky]
 kind = "constant"
 le = [30.0, 30.0, 30.0]
@@ -186,18 +186,9 @@ elevation_deg = {ELEVATION_DEG}
 azimuth_deg = 180.0
 irradiance = [{E_SUN}, {E_SUN}, {E_SUN}]
 [[material]]
-name = "glass"
-kind = "dielectric"
-ior = 1.5
-[[material]]
 name = "floor"
 kind = "diffuse"
 albedo = [{ALBEDO}, {ALBEDO}, {ALBEDO}]
-[[object]]
-kind = "box"
-size = [0.05, 30.0, 30.0]
-material = "glass"
-transform = {{ translate = [5.0, 0.0, 1.5] }}
 [[material]]
 name = "lamp"
 kind = "emissive"
