@@ -212,25 +212,24 @@ impl SharpMirror {
         }
     }
 
+    /// Whether a path in state `st` came from the glass through delta
+    /// scatters only.
+    fn through_delta(&self, st: &PathState) -> bool {
+        self.on_branch && !st.rough_bounce
+    }
+
     /// Light `l` a path in state `st` met along its ray (the sky).
     fn add_seen(&mut self, st: &PathState, l: Vec3) {
-        if self.on_branch && !st.rough_bounce {
+        if self.through_delta(st) {
             self.l += l;
         }
     }
 
-    /// Light the pending vertex emitted.
-    fn add_seen_pending(&mut self, l: Vec3) {
+    /// Light the pending vertex added: its emission as it is shaded, its
+    /// sun's next-event light as its shadow rays are resolved.
+    fn add_pending(&mut self, l: Vec3) {
         if self.pending {
             self.l += l;
-        }
-    }
-
-    /// The sun's next-event light of the pending vertex, as its shadow
-    /// rays are resolved.
-    fn add_sun(&mut self, sun: Vec3) {
-        if self.pending {
-            self.l += sun;
         }
     }
 }
@@ -470,7 +469,7 @@ impl<A: Accel> PathContext<'_, A> {
             // The previous vertex's shadow rays, while the record loads.
             let before = st.l;
             let sun = pending.resolve(self.accel, &mut st.l);
-            sharp.add_sun(sun);
+            sharp.add_pending(sun);
             if st.split.rho != Vec3::ZERO && l_first.is_none() {
                 // This ray is the split vertex's bounce.
                 openness = denoise_parts::openness(hit.as_ref().map(|h| h.t * ray.d.length()));
@@ -490,16 +489,16 @@ impl<A: Accel> PathContext<'_, A> {
                 break;
             };
             let before = st.l;
-            sharp.pending = sharp.on_branch && !st.rough_bounce;
+            sharp.pending = sharp.through_delta(&st);
             let next = self.surface_vertex_deferred(&ray, &hit, &mut st, &u, rays, &mut pending);
             // Its emission (its next-event light is pending).
-            sharp.add_seen_pending(st.l - before);
+            sharp.add_pending(st.l - before);
             match next {
                 Some(next) => ray = next,
                 None => {
                     let before = st.l;
                     let sun = pending.resolve(self.accel, &mut st.l);
-                    sharp.add_sun(sun);
+                    sharp.add_pending(sun);
                     if l_first.is_none() {
                         l_direct = split_direct(&st, before, sun);
                     }
@@ -518,9 +517,10 @@ impl<A: Accel> PathContext<'_, A> {
         if let Some((before, sun)) = gloss_before {
             l_direct = st.l - before - sun;
         }
-        let (l_refl, l_refl_sharp) = match sharp.on_branch {
-            true => (st.l - sharp.l, sharp.l),
-            false => (Vec3::ZERO, Vec3::ZERO),
+        let (l_refl, l_refl_sharp) = if sharp.on_branch {
+            (st.l - sharp.l, sharp.l)
+        } else {
+            (Vec3::ZERO, Vec3::ZERO)
         };
         let sample = LiSample {
             l: st.l,
